@@ -1,0 +1,388 @@
+//! The configuration structs. Units are SI as in the paper's Section 4 (m, kg, N, s, rad).
+
+use serde::{Deserialize, Serialize};
+
+use crate::ConfigError;
+
+/// The whole run configuration.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Config {
+    /// Structural parameters of the wing (paper Section 4).
+    pub wing: Wing,
+    /// Boundary control law (15) and the controller kind.
+    pub control: Control,
+    /// Finite-time disturbance observer (16)–(21); also used for DOBC's sampling.
+    pub observer: Observer,
+    /// Disturbances (56).
+    pub disturbance: Disturbance,
+    /// Initial condition.
+    pub initial: Initial,
+    /// Spatial and temporal discretisation.
+    pub discretisation: Discretisation,
+    /// Simulated horizon and output sampling.
+    pub horizon: Horizon,
+}
+
+/// Wing parameters (paper Section 4, notation of `shared/spec/model.md`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Wing {
+    /// Span s (m).
+    pub span: f64,
+    /// Mass per unit length ρ (kg/m).
+    pub rho: f64,
+    /// Mass–elastic-axis coupling ρx_c (kg): the paper's ρ x_c c with x_c c = 0.35 m.
+    pub rho_xc: f64,
+    /// Bending rigidity EI (N m²) (paper: EI_b).
+    pub ei: f64,
+    /// Torsion rigidity GJ (N m²).
+    pub gj: f64,
+    /// Polar moment of inertia per unit length I_p (kg m).
+    pub ip: f64,
+    /// Aerodynamic-centre offset x_ac (m) (paper: x_a c).
+    pub x_ac: f64,
+    /// Kelvin–Voigt damping coefficient ξ (s).
+    pub xi: f64,
+}
+
+/// Which boundary controller acts at the tip.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ControllerKind {
+    /// τ1 = τ2 = 0 (paper Figs 3–4).
+    None,
+    /// τ from (15) without the disturbance estimate (ĝ = 0).
+    Pd,
+    /// τ from (15) with the finite-time disturbance observer (16)–(21).
+    Ftdo,
+    /// τ from (15) with the linear disturbance observer of (57), corrected.
+    Dobc,
+}
+
+impl ControllerKind {
+    /// Name as used on the command line and in outputs.
+    pub fn name(self) -> &'static str {
+        match self {
+            ControllerKind::None => "none",
+            ControllerKind::Pd => "pd",
+            ControllerKind::Ftdo => "ftdo",
+            ControllerKind::Dobc => "dobc",
+        }
+    }
+}
+
+impl std::str::FromStr for ControllerKind {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "none" => Ok(Self::None),
+            "pd" => Ok(Self::Pd),
+            "ftdo" => Ok(Self::Ftdo),
+            "dobc" => Ok(Self::Dobc),
+            _ => Err(format!("unknown controller `{s}`: allowed none, pd, ftdo, dobc")),
+        }
+    }
+}
+
+/// Boundary control law (15): τ1 = −k1(a q(s) + b q̇(s)) − ĝ1, τ2 = −k2(a θ(s) + b θ̇(s)) − ĝ2.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Control {
+    /// Controller kind.
+    pub kind: ControllerKind,
+    /// Bending boundary gain k1 (N/m per unit of a q + b q̇).
+    pub k1: f64,
+    /// Torsion boundary gain k2.
+    pub k2: f64,
+    /// Weight a on the tip displacement in (15) (1; the paper does not give it).
+    pub a: f64,
+    /// Weight b on the tip velocity in (15) (s; the paper does not give it).
+    pub b: f64,
+}
+
+/// How the digital observer evaluates the discontinuous ĝ(σ) at a sample.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ObserverRule {
+    /// Set-valued implicit (Acary–Brogliato) step: solve σ̃ + T ĝ(σ̃) ∋ σ_k, ĝ_k = (σ_k − σ̃)/T.
+    Implicit,
+    /// Explicit sampling ĝ_k = ĝ(σ_k); chatters.
+    Explicit,
+}
+
+impl ObserverRule {
+    /// Name as used on the command line and in outputs.
+    pub fn name(self) -> &'static str {
+        match self {
+            ObserverRule::Implicit => "implicit",
+            ObserverRule::Explicit => "explicit",
+        }
+    }
+}
+
+impl std::str::FromStr for ObserverRule {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "implicit" => Ok(Self::Implicit),
+            "explicit" => Ok(Self::Explicit),
+            _ => Err(format!("unknown observer rule `{s}`: allowed implicit, explicit")),
+        }
+    }
+}
+
+/// Finite-time disturbance observer (16)–(21), sampled with period `sample_period`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Observer {
+    /// Evaluation rule of the digital observer.
+    pub rule: ObserverRule,
+    /// Sample (hold) period T of the digital observer (s); a multiple of `discretisation.dt`.
+    pub sample_period: f64,
+    /// κ1: linear gain of ĝ1.
+    pub kappa1: f64,
+    /// κ2: switching gain of ĝ1 (Theorem 3 needs κ2 ≥ ζ1).
+    pub kappa2: f64,
+    /// κ3: fractional-power gain of ĝ1.
+    pub kappa3: f64,
+    /// κ4: linear gain of ĝ2.
+    pub kappa4: f64,
+    /// κ5: switching gain of ĝ2 (Theorem 4 needs κ5 ≥ ζ2).
+    pub kappa5: f64,
+    /// κ6: fractional-power gain of ĝ2.
+    pub kappa6: f64,
+    /// Odd integer a1 with a1 < a2 < 2 a1; exponent r1 = (2a1 − a2)/a2.
+    pub a1: u32,
+    /// Odd integer a2.
+    pub a2: u32,
+    /// Odd integer b1 with b1 < b2 < 2 b1; exponent r2 = (2b1 − b2)/b2.
+    pub b1: u32,
+    /// Odd integer b2.
+    pub b2: u32,
+    /// Initial observer state ν1(0) (N).
+    pub nu1_0: f64,
+    /// Initial observer state ν2(0) (N m).
+    pub nu2_0: f64,
+}
+
+impl Observer {
+    /// Exponent r1 = (2a1 − a2)/a2 of sig^r(σ1) in (17)/(20).
+    pub fn r1(&self) -> f64 {
+        (2.0 * self.a1 as f64 - self.a2 as f64) / self.a2 as f64
+    }
+    /// Exponent r2 = (2b1 − b2)/b2 of sig^r(σ2) in (19)/(21).
+    pub fn r2(&self) -> f64 {
+        (2.0 * self.b1 as f64 - self.b2 as f64) / self.b2 as f64
+    }
+}
+
+/// Disturbances (56), generalised only in their coefficients.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Disturbance {
+    /// Distributed load g_h(z,t) = (mean + cos_amp cos(cos_freq t) + sin_amp sin(sin_freq t)) · slope · z.
+    pub distributed: Distributed,
+    /// Tip bending force g1(t) = mean + amp sin(freq t).
+    pub tip_bending: TipDisturbance,
+    /// Tip torsion moment g2(t) = mean + amp sin(freq t).
+    pub tip_torsion: TipDisturbance,
+}
+
+/// Distributed disturbance g_h(z,t) = φ(t)·slope·z with φ(t) = mean + cos_amp cos(cos_freq t) + sin_amp sin(sin_freq t) (N/m).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Distributed {
+    /// Constant part of φ (paper: 1).
+    pub mean: f64,
+    /// Cosine amplitude (paper: 3).
+    pub cos_amp: f64,
+    /// Cosine angular frequency (rad/s) (paper: 3π).
+    pub cos_freq: f64,
+    /// Sine amplitude (paper: 1).
+    pub sin_amp: f64,
+    /// Sine angular frequency (rad/s) (paper: π).
+    pub sin_freq: f64,
+    /// Spatial slope (1/m) (paper: 1/30).
+    pub slope: f64,
+}
+
+impl Distributed {
+    /// Time factor φ(t) of g_h(z,t) = φ(t)·slope·z.
+    pub fn phi(&self, t: f64) -> f64 {
+        self.mean + self.cos_amp * (self.cos_freq * t).cos() + self.sin_amp * (self.sin_freq * t).sin()
+    }
+    /// Exact integral ∫_{t0}^{t1} φ(t) dt (product forms, no cancellation for short steps).
+    pub fn phi_integral(&self, t0: f64, t1: f64) -> f64 {
+        let dt = t1 - t0;
+        let mid = 0.5 * (t0 + t1);
+        self.mean * dt
+            + self.cos_amp * (self.cos_freq * mid).cos() * dt * sinc(0.5 * self.cos_freq * dt)
+            + self.sin_amp * (self.sin_freq * mid).sin() * dt * sinc(0.5 * self.sin_freq * dt)
+    }
+    /// sup over z ∈ [0,s], t ≥ 0 of |g_h| = (|mean| + |cos_amp| + |sin_amp|)·|slope|·s: Assumption 1's g_hmax
+    /// (an upper bound; attained for the paper's data at t = 0 … up to the phase alignment).
+    pub fn sup_abs(&self, span: f64) -> f64 {
+        (self.mean.abs() + self.cos_amp.abs() + self.sin_amp.abs()) * self.slope.abs() * span
+    }
+}
+
+/// sin(x)/x with sinc(0) = 1: ∫ of sin/cos over [m − δ, m + δ] is 2δ·sinc(ωδ)·(value at m).
+fn sinc(x: f64) -> f64 {
+    if x.abs() < 1e-4 {
+        1.0 - x * x / 6.0
+    } else {
+        x.sin() / x
+    }
+}
+
+/// Tip disturbance mean + amp·sin(freq·t).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TipDisturbance {
+    /// Constant part.
+    pub mean: f64,
+    /// Amplitude of the sine.
+    pub amp: f64,
+    /// Angular frequency (rad/s).
+    pub freq: f64,
+}
+
+impl TipDisturbance {
+    /// Value at time t.
+    pub fn at(&self, t: f64) -> f64 {
+        self.mean + self.amp * (self.freq * t).sin()
+    }
+    /// Exact mean (1/(t1 − t0))∫_{t0}^{t1} g dt over a step (t1 = t0 gives g(t0)).
+    pub fn mean_over(&self, t0: f64, t1: f64) -> f64 {
+        let mid = 0.5 * (t0 + t1);
+        self.mean + self.amp * (self.freq * mid).sin() * sinc(0.5 * self.freq * (t1 - t0))
+    }
+    /// Time derivative at t.
+    pub fn rate(&self, t: f64) -> f64 {
+        self.amp * self.freq * (self.freq * t).cos()
+    }
+    /// sup_t |g(t)| = |mean| + |amp| (Assumption 1's ζ for this channel; tight when the sine reaches ±1).
+    pub fn sup_abs(&self) -> f64 {
+        self.mean.abs() + self.amp.abs()
+    }
+}
+
+/// Shape of the initial displacement.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum InitialShape {
+    /// The paper's q(z,0) = q_tip z/s, θ(z,0) = θ_tip z/s, with the clamp imposed at the root
+    /// (root rotation 0); violates q'(0) = 0, so a kink at the root decays over a few ξ.
+    Linear,
+    /// Clamp-consistent static tip-load shape q(z,0) = q_tip z²(3s − z)/(2s³); θ as in `Linear`.
+    Cantilever,
+}
+
+/// Initial condition; velocities are zero (paper Section 4).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Initial {
+    /// Shape of q(z,0).
+    pub shape: InitialShape,
+    /// Tip bending displacement q(s,0) (m) (paper: 1).
+    pub q_tip: f64,
+    /// Tip twist θ(s,0) (rad) (paper: π/2).
+    pub theta_tip: f64,
+}
+
+/// Spatial discretisation method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Method {
+    /// The paper's finite differences with ghost points, lumped mass, tip loads as point loads.
+    Fd,
+    /// Finite elements: cubic Hermite for q, linear for θ, consistent coupled mass.
+    Fe,
+}
+
+impl Method {
+    /// Name as used on the command line and in outputs.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Fd => "fd",
+            Method::Fe => "fe",
+        }
+    }
+}
+
+impl std::str::FromStr for Method {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "fd" => Ok(Self::Fd),
+            "fe" => Ok(Self::Fe),
+            _ => Err(format!("unknown method `{s}`: allowed fd, fe")),
+        }
+    }
+}
+
+/// Discretisation settings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Discretisation {
+    /// FD or FE.
+    pub method: Method,
+    /// Number of elements (FE) or grid intervals (FD) along the span.
+    pub elements: usize,
+    /// Integrator time step (s); must divide `observer.sample_period`.
+    pub dt: f64,
+}
+
+/// Horizon and output sampling.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Horizon {
+    /// Final time T (s) (paper: 20).
+    pub t_end: f64,
+    /// Output sampling interval (s); rounded to a whole number of observer samples.
+    pub sample_every: f64,
+    /// Number of points of the coarse output grid for q(z,t), θ(z,t) (≥ 2).
+    pub field_points: usize,
+}
+
+impl Config {
+    /// The paper's configuration, embedded from `configs/paper.json`.
+    pub fn paper() -> Config {
+        Self::from_json_str(crate::PAPER_JSON).expect("embedded configs/paper.json is valid")
+    }
+
+    /// Parse and validate a JSON document. Unknown keys are rejected.
+    pub fn from_json_str(text: &str) -> Result<Config, ConfigError> {
+        let cfg: Config = serde_json::from_str(text).map_err(|e| ConfigError::Parse(e.to_string()))?;
+        cfg.validate()?;
+        Ok(cfg)
+    }
+
+    /// Parse a JSON value (after overrides) and validate it.
+    pub fn from_json_value(value: serde_json::Value) -> Result<Config, ConfigError> {
+        let cfg: Config = serde_json::from_value(value).map_err(|e| ConfigError::Parse(e.to_string()))?;
+        cfg.validate()?;
+        Ok(cfg)
+    }
+
+    /// The configuration as pretty JSON (stable key order: struct order).
+    pub fn to_json_pretty(&self) -> String {
+        serde_json::to_string_pretty(self).expect("config serialises")
+    }
+
+    /// Number of integrator steps per observer sample, T/dt (validated to be a whole number).
+    pub fn steps_per_sample(&self) -> usize {
+        (self.observer.sample_period / self.discretisation.dt).round().max(1.0) as usize
+    }
+
+    /// Number of observer samples per output sample.
+    pub fn samples_per_output(&self) -> usize {
+        (self.horizon.sample_every / self.observer.sample_period).round().max(1.0) as usize
+    }
+
+    /// Total number of observer samples in [0, T].
+    pub fn total_samples(&self) -> usize {
+        (self.horizon.t_end / self.observer.sample_period).round() as usize
+    }
+}

@@ -1,0 +1,45 @@
+use thiserror::Error;
+
+/// Everything that can be wrong with a configuration.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum ConfigError {
+    /// The JSON text could not be parsed into a configuration (syntax error, wrong type,
+    /// unknown key, missing key). The message is serde_json's, with line and column.
+    #[error("config is not valid: {0}")]
+    Parse(String),
+    /// A numeric field is NaN or infinite.
+    #[error("{field} = {value} is not a finite number")]
+    NotFinite {
+        /// Dotted path of the field, e.g. `wing.ei`.
+        field: String,
+        /// The offending value.
+        value: f64,
+    },
+    /// A field lies outside its allowed range.
+    #[error("{field} = {value} is out of range: allowed {allowed}")]
+    OutOfRange {
+        /// Dotted path of the field, e.g. `wing.ei`.
+        field: String,
+        /// The offending value (as text, so integers print as integers).
+        value: String,
+        /// The allowed range in words, e.g. `> 0`.
+        allowed: String,
+    },
+    /// Several fields together violate a constraint (e.g. the mass matrix is not
+    /// positive definite).
+    #[error("{fields}: {reason}")]
+    Inconsistent {
+        /// The fields involved.
+        fields: String,
+        /// What is wrong and what is allowed.
+        reason: String,
+    },
+    /// A `--set key=value` override is malformed or names an unknown key.
+    #[error("override `{expr}`: {reason}")]
+    Override {
+        /// The override as given.
+        expr: String,
+        /// What is wrong.
+        reason: String,
+    },
+}

@@ -1,0 +1,22 @@
+//! Wing model configuration for wingcheck.
+//!
+//! One JSON document holds every parameter of the coupled bending–torsion wing
+//! (paper Section 2, eq. (9)–(10) as corrected in `shared/spec/model.md`), the boundary
+//! control law (15), the observer (16)–(21) or DOBC (57), the disturbances (56), the
+//! initial condition, the discretisation and the horizon. [`Config::paper`] is the
+//! embedded default (`configs/paper.json`); [`Config::from_json_str`] parses a user file
+//! (unknown keys are rejected) and [`apply_override`] implements `--set path.to.key=value`.
+//! [`Config::validate`] checks every field and returns a [`ConfigError`] naming the field
+//! and the allowed range.
+
+mod config;
+mod error;
+mod overrides;
+mod validate;
+
+pub use config::*;
+pub use error::ConfigError;
+pub use overrides::{apply_override, apply_overrides};
+
+/// The paper's configuration (`configs/paper.json`), embedded at compile time.
+pub const PAPER_JSON: &str = include_str!("../../../configs/paper.json");

@@ -1,0 +1,45 @@
+//! Simulation of the coupled bending–torsion wing with Kelvin–Voigt damping under boundary
+//! control (paper eq. (9)–(10), corrected in `shared/spec/model.md`).
+//!
+//! - [`Discretisation`]: two independent spatial discretisations, the paper's finite
+//!   differences ([`fd`]) and finite elements ([`fe`]), both as sparse symmetric M, K (faer).
+//! - [`Stepper`]: the closed loop advanced one observer sample at a time (trapezoidal rule,
+//!   step matrix factorised once, digital observer with zero-order hold).
+//! - [`simulate`]: a whole run, sampled.
+//! - [`modes`]: natural frequencies of the undamped, uncontrolled wing, and the analytic
+//!   uncoupled ones.
+
+pub mod bench;
+mod disc;
+pub mod fd;
+pub mod fe;
+pub mod modes;
+pub mod output;
+mod run;
+pub mod sparse;
+mod stepper;
+
+pub use disc::{mass_determinant, Discretisation, Interpolation, Parts};
+pub use run::{simulate, Fields, RunOptions, RunStats, Series, SimOutput};
+pub use stepper::{Channel, EnergyLedger, Sample, Stepper};
+
+use thiserror::Error;
+
+/// Errors of the simulator.
+#[derive(Debug, Error)]
+pub enum SimError {
+    /// The configuration is invalid.
+    #[error(transparent)]
+    Config(#[from] wingcheck_model::ConfigError),
+    /// A linear-algebra step failed (e.g. a matrix that should be positive definite is not).
+    #[error("numerical failure: {0}")]
+    Numerical(String),
+    /// The simulation diverged.
+    #[error("simulation diverged at t = {t:.4} s: {reason}")]
+    Diverged {
+        /// Time of detection (s).
+        t: f64,
+        /// What was detected.
+        reason: String,
+    },
+}

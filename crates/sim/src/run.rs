@@ -1,0 +1,265 @@
+//! `simulate`: run the closed loop over the horizon and collect the sampled time series
+//! (and optionally the fields on the output grid). Memory grows only with the number of
+//! output samples requested, never with the number of integrator steps.
+
+use std::time::Instant;
+
+use serde::Serialize;
+use wingcheck_model::Config;
+
+use crate::stepper::{Sample, Stepper};
+use crate::{Discretisation, Interpolation, SimError};
+
+/// Sampled time series of the closed loop (column-oriented; all columns have equal length).
+#[derive(Debug, Clone, Default, Serialize, PartialEq)]
+pub struct Series {
+    /// t (s).
+    pub t: Vec<f64>,
+    /// q(s,t) (m).
+    pub q_tip: Vec<f64>,
+    /// θ(s,t) (rad).
+    pub theta_tip: Vec<f64>,
+    /// q̇(s,t) (m/s).
+    pub q_tip_rate: Vec<f64>,
+    /// θ̇(s,t) (rad/s).
+    pub theta_tip_rate: Vec<f64>,
+    /// τ1 (N).
+    pub tau1: Vec<f64>,
+    /// τ2 (N m).
+    pub tau2: Vec<f64>,
+    /// g1 (N).
+    pub g1: Vec<f64>,
+    /// g2 (N m).
+    pub g2: Vec<f64>,
+    /// ĝ1 (N).
+    pub g1_hat: Vec<f64>,
+    /// ĝ2 (N m).
+    pub g2_hat: Vec<f64>,
+    /// σ1 (N).
+    pub sigma1: Vec<f64>,
+    /// σ2 (N m).
+    pub sigma2: Vec<f64>,
+    /// Mechanical energy (J).
+    pub energy: Vec<f64>,
+    /// q'''(s,t) (1/m²), from the boundary condition.
+    pub q_tip_shear: Vec<f64>,
+    /// θ'(s,t) (1/m), from the boundary condition.
+    pub theta_tip_slope: Vec<f64>,
+}
+
+impl Series {
+    /// Column names in output order.
+    pub const COLUMNS: [&'static str; 16] = [
+        "t",
+        "q_tip",
+        "theta_tip",
+        "q_tip_rate",
+        "theta_tip_rate",
+        "tau1",
+        "tau2",
+        "g1",
+        "g2",
+        "g1_hat",
+        "g2_hat",
+        "sigma1",
+        "sigma2",
+        "energy",
+        "q_tip_shear",
+        "theta_tip_slope",
+    ];
+
+    /// Columns in the order of [`Series::COLUMNS`].
+    pub fn columns(&self) -> [&Vec<f64>; 16] {
+        [
+            &self.t,
+            &self.q_tip,
+            &self.theta_tip,
+            &self.q_tip_rate,
+            &self.theta_tip_rate,
+            &self.tau1,
+            &self.tau2,
+            &self.g1,
+            &self.g2,
+            &self.g1_hat,
+            &self.g2_hat,
+            &self.sigma1,
+            &self.sigma2,
+            &self.energy,
+            &self.q_tip_shear,
+            &self.theta_tip_slope,
+        ]
+    }
+
+    /// Number of samples.
+    pub fn len(&self) -> usize {
+        self.t.len()
+    }
+
+    /// True if there are no samples.
+    pub fn is_empty(&self) -> bool {
+        self.t.is_empty()
+    }
+
+    fn push(&mut self, s: &Sample) {
+        self.t.push(s.t);
+        self.q_tip.push(s.q_tip);
+        self.theta_tip.push(s.theta_tip);
+        self.q_tip_rate.push(s.q_tip_rate);
+        self.theta_tip_rate.push(s.theta_tip_rate);
+        self.tau1.push(s.tau1);
+        self.tau2.push(s.tau2);
+        self.g1.push(s.g1);
+        self.g2.push(s.g2);
+        self.g1_hat.push(s.g1_hat);
+        self.g2_hat.push(s.g2_hat);
+        self.sigma1.push(s.sigma1);
+        self.sigma2.push(s.sigma2);
+        self.energy.push(s.energy);
+        self.q_tip_shear.push(s.q_tip_shear);
+        self.theta_tip_slope.push(s.theta_tip_slope);
+    }
+
+    /// Linear interpolation of a column at time t (clamped to the sampled range).
+    pub fn at(&self, column: &[f64], t: f64) -> f64 {
+        let n = self.t.len();
+        if n == 0 {
+            return f64::NAN;
+        }
+        if t <= self.t[0] {
+            return column[0];
+        }
+        if t >= self.t[n - 1] {
+            return column[n - 1];
+        }
+        let i = self.t.partition_point(|&x| x <= t) - 1;
+        let u = (t - self.t[i]) / (self.t[i + 1] - self.t[i]);
+        column[i] + u * (column[i + 1] - column[i])
+    }
+}
+
+/// q(z,t) and θ(z,t) on the coarse output grid at the sample times.
+#[derive(Debug, Clone, Default, Serialize, PartialEq)]
+pub struct Fields {
+    /// Grid points z_j (m).
+    pub z: Vec<f64>,
+    /// q[k][j] = q(z_j, t_k) (m).
+    pub q: Vec<Vec<f64>>,
+    /// theta[k][j] = θ(z_j, t_k) (rad).
+    pub theta: Vec<Vec<f64>>,
+}
+
+/// Options of a run that do not change its result.
+#[derive(Default)]
+pub struct RunOptions<'a> {
+    /// Record q(z,t), θ(z,t) on the output grid.
+    pub fields: bool,
+    /// Called with the fraction done (0..=1) at every output sample.
+    pub progress: Option<&'a mut dyn FnMut(f64)>,
+}
+
+/// Cost statistics of a run.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct RunStats {
+    /// Unknowns of the semi-discrete system.
+    pub unknowns: usize,
+    /// Nonzeros of the step matrix's Cholesky factor.
+    pub factor_nnz: usize,
+    /// Integrator steps taken.
+    pub steps: usize,
+    /// Wall time for assembly and factorisation (s).
+    pub setup_seconds: f64,
+    /// Wall time for time stepping (s).
+    pub stepping_seconds: f64,
+}
+
+/// Result of [`simulate`].
+#[derive(Debug, Clone, Serialize)]
+pub struct SimOutput {
+    /// Sampled time series.
+    pub series: Series,
+    /// Fields on the output grid, if requested.
+    pub fields: Option<Fields>,
+    /// Cost statistics (wall times vary; everything else is deterministic).
+    pub stats: RunStats,
+}
+
+/// Energy above which a run is declared diverged (relative to 1 + E(0)).
+const DIVERGENCE_FACTOR: f64 = 1e12;
+
+/// Run the closed loop of `cfg` over [0, T].
+pub fn simulate(cfg: &Config, mut opts: RunOptions<'_>) -> Result<SimOutput, SimError> {
+    let start = Instant::now();
+    let mut stepper = Stepper::new(cfg)?;
+    let setup_seconds = start.elapsed().as_secs_f64();
+    let start = Instant::now();
+    let total = cfg.total_samples();
+    let every = cfg.samples_per_output();
+    let mut series = Series::default();
+    let mut fields = opts.fields.then(|| Fields { z: stepper.discretisation().interp.z.clone(), ..Default::default() });
+    let e0 = stepper.sample().energy;
+    let record = |st: &Stepper, series: &mut Series, fields: &mut Option<Fields>| -> Result<(), SimError> {
+        let s = st.sample();
+        check_sample(&s, e0)?;
+        series.push(&s);
+        if let Some(f) = fields {
+            let (x, _) = st.state();
+            let d: &Discretisation = st.discretisation();
+            f.q.push(Interpolation::eval(&d.interp.q_rows, x));
+            f.theta.push(Interpolation::eval(&d.interp.theta_rows, x));
+        }
+        Ok(())
+    };
+    record(&stepper, &mut series, &mut fields)?;
+    for k in 1..=total {
+        stepper.advance_sample();
+        if k % every == 0 || k == total {
+            record(&stepper, &mut series, &mut fields)?;
+            if let Some(p) = opts.progress.as_mut() {
+                p(k as f64 / total as f64);
+            }
+        }
+    }
+    let (unknowns, factor_nnz) = stepper.solver_size();
+    Ok(SimOutput {
+        series,
+        fields,
+        stats: RunStats {
+            unknowns,
+            factor_nnz,
+            steps: total * cfg.steps_per_sample(),
+            setup_seconds,
+            stepping_seconds: start.elapsed().as_secs_f64(),
+        },
+    })
+}
+
+/// Stop with a message saying when and why if the state is no longer finite or the energy
+/// has grown beyond any physical meaning.
+fn check_sample(s: &Sample, e0: f64) -> Result<(), SimError> {
+    let values = [
+        ("q(s,t)", s.q_tip),
+        ("θ(s,t)", s.theta_tip),
+        ("q̇(s,t)", s.q_tip_rate),
+        ("θ̇(s,t)", s.theta_tip_rate),
+        ("τ1", s.tau1),
+        ("τ2", s.tau2),
+        ("ĝ1", s.g1_hat),
+        ("ĝ2", s.g2_hat),
+        ("energy", s.energy),
+    ];
+    if let Some((name, v)) = values.iter().find(|(_, v)| !v.is_finite()) {
+        return Err(SimError::Diverged { t: s.t, reason: format!("{name} became {v}") });
+    }
+    if s.energy > DIVERGENCE_FACTOR * (1.0 + e0) {
+        return Err(SimError::Diverged {
+            t: s.t,
+            reason: format!(
+                "energy {:.3e} J exceeds {:.0e} × (1 + E(0) = {:.3e} J)",
+                s.energy,
+                DIVERGENCE_FACTOR,
+                1.0 + e0
+            ),
+        });
+    }
+    Ok(())
+}
