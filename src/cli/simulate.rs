@@ -33,9 +33,10 @@ pub struct SimulateArgs {
     /// Print a JSON summary to stdout.
     #[arg(long)]
     json: bool,
-    /// Times at which the summary reports the tip values (comma-separated, s).
-    #[arg(long, value_delimiter = ',', default_value = "5,10,20")]
-    sample_times: Vec<f64>,
+    /// Times at which the summary reports the tip values (comma-separated, s; default 5,10,20,
+    /// those beyond the horizon dropped).
+    #[arg(long, value_delimiter = ',')]
+    sample_times: Option<Vec<f64>>,
 }
 
 pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
@@ -53,7 +54,11 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
         set.push(format!("horizon.sample_every={s}"));
     }
     let cfg = super::ConfigArgs { config: a.config.config.clone(), set }.load()?;
-    for &t in &a.sample_times {
+    let sample_times: Vec<f64> = match &a.sample_times {
+        Some(v) => v.clone(),
+        None => [5.0, 10.0, 20.0].into_iter().filter(|&t| t <= cfg.horizon.t_end).collect(),
+    };
+    for &t in &sample_times {
         if !(t.is_finite() && (0.0..=cfg.horizon.t_end).contains(&t)) {
             anyhow::bail!("--sample-times: {t} is outside the horizon [0, {}]", cfg.horizon.t_end);
         }
@@ -85,6 +90,7 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
                 "observer": cfg.observer.rule.name(),
                 "method": cfg.discretisation.method.name(),
                 "elements": cfg.discretisation.elements,
+                "grading": if cfg.discretisation.method == Method::Fe { cfg.discretisation.grading } else { 0.0 },
                 "dt": cfg.discretisation.dt,
                 "sample_period": cfg.observer.sample_period,
                 "t_end": cfg.horizon.t_end,
@@ -94,9 +100,9 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
             "run_seconds": wall,
             "stats": out.stats,
             "tip": {
-                "t": a.sample_times,
-                "q": a.sample_times.iter().map(|&t| s.at(&s.q_tip, t)).collect::<Vec<_>>(),
-                "theta": a.sample_times.iter().map(|&t| s.at(&s.theta_tip, t)).collect::<Vec<_>>(),
+                "t": sample_times,
+                "q": sample_times.iter().map(|&t| s.at(&s.q_tip, t)).collect::<Vec<_>>(),
+                "theta": sample_times.iter().map(|&t| s.at(&s.theta_tip, t)).collect::<Vec<_>>(),
             },
             "out": a.out.as_ref().map(|p| p.display().to_string()),
         });
@@ -113,7 +119,11 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
             wall
         );
         println!("{:>8} {:>14} {:>14}", "t (s)", "q(s,t) (m)", "θ(s,t) (rad)");
-        for &t in &a.sample_times {
+        let sample_times: Vec<f64> = match &a.sample_times {
+            Some(v) => v.clone(),
+            None => [5.0, 10.0, 20.0].into_iter().filter(|&t| t <= cfg.horizon.t_end).collect(),
+        };
+        for &t in &sample_times {
             println!("{:>8} {:>14.6e} {:>14.6e}", t, s.at(&s.q_tip, t), s.at(&s.theta_tip, t));
         }
         if let Some(p) = &a.out {

@@ -78,7 +78,7 @@ impl ObserverGain {
                 }
                 let df = a * inv * y.powf(inv - 1.0) + c;
                 let next = y - fy / df;
-                if !(next < y) || next <= 0.0 {
+                if next.partial_cmp(&y) != Some(std::cmp::Ordering::Less) || next <= 0.0 {
                     break;
                 }
                 y = next;

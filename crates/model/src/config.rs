@@ -332,6 +332,10 @@ pub struct Discretisation {
     pub elements: usize,
     /// Integrator time step (s); must divide `observer.sample_period`.
     pub dt: f64,
+    /// FE mesh grading in [0, 0.9]: node z_i = s·(u − grading·sin(2πu)/(2π)), u = i/N, so the
+    /// root and tip elements are (1 − grading) × the uniform size. FE only: the FD grid is always uniform.
+    #[serde(default)]
+    pub grading: f64,
 }
 
 /// Horizon and output sampling.
@@ -354,14 +358,15 @@ impl Config {
 
     /// Parse and validate a JSON document. Unknown keys are rejected.
     pub fn from_json_str(text: &str) -> Result<Config, ConfigError> {
-        let cfg: Config = serde_json::from_str(text).map_err(|e| ConfigError::Parse(e.to_string()))?;
+        let de = &mut serde_json::Deserializer::from_str(text);
+        let cfg: Config = serde_path_to_error::deserialize(de).map_err(|e| ConfigError::Parse(describe(&e)))?;
         cfg.validate()?;
         Ok(cfg)
     }
 
     /// Parse a JSON value (after overrides) and validate it.
     pub fn from_json_value(value: serde_json::Value) -> Result<Config, ConfigError> {
-        let cfg: Config = serde_json::from_value(value).map_err(|e| ConfigError::Parse(e.to_string()))?;
+        let cfg: Config = serde_path_to_error::deserialize(value).map_err(|e| ConfigError::Parse(describe(&e)))?;
         cfg.validate()?;
         Ok(cfg)
     }
@@ -384,5 +389,15 @@ impl Config {
     /// Total number of observer samples in [0, T].
     pub fn total_samples(&self) -> usize {
         (self.horizon.t_end / self.observer.sample_period).round() as usize
+    }
+}
+
+/// "field.path: message" for a deserialisation error (the path is omitted at the top level).
+fn describe(e: &serde_path_to_error::Error<serde_json::Error>) -> String {
+    let path = e.path().to_string();
+    if path == "." || path.is_empty() {
+        e.inner().to_string()
+    } else {
+        format!("{path}: {}", e.inner())
     }
 }

@@ -16,6 +16,11 @@ pub fn apply_override(root: &mut Value, expr: &str) -> Result<(), ConfigError> {
     if path.is_empty() {
         return Err(err("empty key".into()));
     }
+    if let Ok(x) = raw.trim().parse::<f64>() {
+        if !x.is_finite() {
+            return Err(ConfigError::NotFinite { field: path.to_string(), value: x });
+        }
+    }
     let value: Value = serde_json::from_str(raw.trim()).unwrap_or_else(|_| Value::String(raw.trim().to_string()));
     let mut node = root;
     let parts: Vec<&str> = path.split('.').collect();

@@ -131,6 +131,8 @@ impl Config {
             return Err(range("discretisation.elements", disc.elements, "an integer in [2, 4000]"));
         }
         within("discretisation.dt", disc.dt, 1e-9, o.sample_period)?;
+        within("discretisation.grading", disc.grading, 0.0, 0.9)?;
+
         if !whole_multiple(o.sample_period / disc.dt) {
             return Err(ConfigError::Inconsistent {
                 fields: "observer.sample_period, discretisation.dt".into(),

@@ -93,19 +93,35 @@ pub fn element_matrices(z0: f64, h: f64) -> ElementMatrices {
     e
 }
 
+/// Node positions z_i = s·g(i/N) with g(u) = u − grading·sin(2πu)/(2π): uniform for
+/// grading = 0; for 0 < grading < 1 the elements at the root and the tip are (1 − grading)
+/// times the uniform size (the mapping is smooth, so the convergence order is kept).
+pub fn node_positions(span: f64, elements: usize, grading: f64) -> Vec<f64> {
+    use std::f64::consts::PI;
+    let mut z: Vec<f64> = (0..=elements)
+        .map(|i| {
+            let u = i as f64 / elements as f64;
+            span * (u - grading * (2.0 * PI * u).sin() / (2.0 * PI))
+        })
+        .collect();
+    z[0] = 0.0;
+    z[elements] = span;
+    z
+}
+
 fn dof(node: usize, k: usize) -> Option<usize> {
     (node > 0).then(|| 3 * (node - 1) + k)
 }
 
 pub(crate) fn assemble(cfg: &Config, elements: usize) -> RawAssembly {
     let s = cfg.wing.span;
-    let h = s / elements as f64;
+    let nodes = node_positions(s, elements, cfg.discretisation.grading);
     let n = 3 * elements;
     let mut b = builders(n);
     let mut load_q = vec![0.0; n];
     let mut load_t = vec![0.0; n];
     for e in 0..elements {
-        let em = element_matrices(e as f64 * h, h);
+        let em = element_matrices(nodes[e], nodes[e + 1] - nodes[e]);
         let qd = [dof(e, 0), dof(e, 1), dof(e + 1, 0), dof(e + 1, 1)];
         let td = [dof(e, 2), dof(e + 1, 2)];
         b[0].add_block(&qd, &em.hermite_mass);
@@ -130,7 +146,7 @@ pub(crate) fn assemble(cfg: &Config, elements: usize) -> RawAssembly {
     }
     let mut x0 = vec![0.0; n];
     for node in 1..=elements {
-        let z = node as f64 * h;
+        let z = nodes[node];
         let (q, dq) = initial_q(cfg, z);
         x0[3 * (node - 1)] = q;
         x0[3 * (node - 1) + 1] = dq;
@@ -140,8 +156,9 @@ pub(crate) fn assemble(cfg: &Config, elements: usize) -> RawAssembly {
     let mut q_rows = Vec::with_capacity(z.len());
     let mut theta_rows = Vec::with_capacity(z.len());
     for &zj in &z {
-        let e = ((zj / h).floor() as usize).min(elements - 1);
-        let u = ((zj - e as f64 * h) / h).clamp(0.0, 1.0);
+        let e = (nodes.partition_point(|&zn| zn <= zj).max(1) - 1).min(elements - 1);
+        let h = nodes[e + 1] - nodes[e];
+        let u = ((zj - nodes[e]) / h).clamp(0.0, 1.0);
         let (nv, _, _) = hermite(u, h);
         let qd = [dof(e, 0), dof(e, 1), dof(e + 1, 0), dof(e + 1, 1)];
         q_rows.push(qd.iter().zip(nv).filter_map(|(d, w)| d.map(|i| (i, w))).filter(|p| p.1 != 0.0).collect());

@@ -16,7 +16,7 @@
 use wingcheck_control::{ChannelObserver, TipChannel};
 use wingcheck_model::{Config, ControllerKind};
 
-use crate::sparse::{SpdSolver, SymBuilder, SymMatrix};
+use crate::sparse::{SpdSolver, SymBuilder, SymMatrix, SymPair};
 use crate::{Discretisation, SimError};
 
 /// State of one tip channel (bending or torsion).
@@ -88,10 +88,8 @@ pub struct Stepper {
     cfg: Config,
     disc: Discretisation,
     solver: SpdSolver,
-    /// M (for the right-hand side).
-    two_m_over_h: SymMatrix,
-    /// K_c = K + a·diag(k)|tip.
-    stiffness_closed: SymMatrix,
+    /// (2/h)M and K_c = K + a·diag(k)|tip, fused for the right-hand side (2/h)M v − K_c x.
+    rhs_operator: SymPair,
     h: f64,
     steps_per_sample: usize,
     /// Number of the current sample k (t = k T).
@@ -99,7 +97,6 @@ pub struct Stepper {
     x: Vec<f64>,
     v: Vec<f64>,
     rhs: Vec<f64>,
-    tmp: Vec<f64>,
     /// Bending and torsion channels.
     pub channels: [Channel; 2],
     track_energy: bool,
@@ -131,6 +128,7 @@ impl Stepper {
             SymMatrix::combine(&[(2.0 / h, &disc.mass), (xi + 0.5 * h, &disc.stiffness), (b + 0.5 * h * a, &tip)]);
         let solver = SpdSolver::new(&step)?;
         let two_m_over_h = SymMatrix::combine(&[(2.0 / h, &disc.mass)]);
+        let rhs_operator = SymPair::new(&two_m_over_h, &stiffness_closed);
         let x = disc.x0.clone();
         let s = cfg.wing.span;
         // Initial tip states from the initial shape: q'''(s,0) and θ'(s,0).
@@ -148,14 +146,12 @@ impl Stepper {
             cfg: cfg.clone(),
             disc,
             solver,
-            two_m_over_h,
-            stiffness_closed,
+            rhs_operator,
             h,
             steps_per_sample: cfg.steps_per_sample(),
             k: 0,
             v: vec![0.0; n],
             rhs: vec![0.0; n],
-            tmp: vec![0.0; n],
             x,
             channels,
             track_energy: false,
@@ -253,10 +249,9 @@ impl Stepper {
         let phi_mean = self.cfg.disturbance.distributed.phi_integral(t, t1) / h;
         let g_mean = [self.tip_disturbance(0).mean_over(t, t1), self.tip_disturbance(1).mean_over(t, t1)];
         // rhs = (2/h) M v − K_c x + f̄, with f̄ = φ̄ f_h + e(ḡ − ĝ).
-        self.two_m_over_h.mul_into(&self.v, &mut self.rhs);
-        self.stiffness_closed.mul_into(&self.x, &mut self.tmp);
-        for i in 0..self.rhs.len() {
-            self.rhs[i] += phi_mean * self.disc.load[i] - self.tmp[i];
+        self.rhs_operator.mul_diff_into(&self.v, &self.x, &mut self.rhs);
+        for (r, f) in self.rhs.iter_mut().zip(&self.disc.load) {
+            *r += phi_mean * f;
         }
         for (c, g) in self.channels.iter().zip(g_mean) {
             self.rhs[c.dof] += g - c.g_hat;

@@ -1,0 +1,156 @@
+//! The command line as a user meets it: determinism, outputs, and clear errors for bad input
+//! (nonzero exit, no panic, no partial file).
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn wingcheck(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_wingcheck")).args(args).output().expect("binary runs")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn assert_clean_failure(o: &Output, must_mention: &str) {
+    let err = stderr(o);
+    assert!(!o.status.success(), "expected failure, got success; stderr: {err}");
+    assert!(!err.contains("panicked"), "panic instead of an error: {err}");
+    assert!(err.contains(must_mention), "error should mention `{must_mention}`: {err}");
+}
+
+const SHORT: [&str; 2] = ["--set", "horizon.t_end=2"];
+
+#[test]
+fn same_input_gives_bit_identical_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut files = Vec::new();
+    for i in 0..2 {
+        let p = dir.path().join(format!("run{i}.json"));
+        let o = wingcheck(&["simulate", SHORT[0], SHORT[1], "--out", p.to_str().unwrap()]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        files.push(std::fs::read(&p).unwrap());
+    }
+    // Wall times are in `stats`; everything else must match bit for bit.
+    let strip = |b: &[u8]| {
+        let mut v: serde_json::Value = serde_json::from_slice(b).unwrap();
+        v.as_object_mut().unwrap().remove("stats");
+        v.to_string()
+    };
+    assert_eq!(strip(&files[0]), strip(&files[1]));
+    let csv: Vec<Vec<u8>> = (0..2)
+        .map(|i| {
+            let p = dir.path().join(format!("run{i}.csv"));
+            assert!(wingcheck(&["simulate", SHORT[0], SHORT[1], "--out", p.to_str().unwrap()]).status.success());
+            std::fs::read(&p).unwrap()
+        })
+        .collect();
+    assert_eq!(csv[0], csv[1]);
+}
+
+#[test]
+fn json_output_holds_series_and_fields() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("run.json");
+    let o = wingcheck(&["simulate", "--controller", "dobc", SHORT[0], SHORT[1], "--out", p.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&p).unwrap()).unwrap();
+    for col in [
+        "t",
+        "q_tip",
+        "theta_tip",
+        "q_tip_rate",
+        "theta_tip_rate",
+        "tau1",
+        "tau2",
+        "g1",
+        "g2",
+        "g1_hat",
+        "g2_hat",
+        "sigma1",
+        "sigma2",
+        "energy",
+    ] {
+        assert_eq!(v["series"][col].as_array().unwrap().len(), 201, "column {col}");
+    }
+    assert_eq!(v["fields"]["q"].as_array().unwrap().len(), 201);
+    assert_eq!(v["fields"]["z"].as_array().unwrap().len(), 21);
+    // the field at the tip is the tip series (same state, interpolation exact at nodes)
+    let q_last = v["fields"]["q"][200].as_array().unwrap().last().unwrap().as_f64().unwrap();
+    let tip_last = v["series"]["q_tip"][200].as_f64().unwrap();
+    assert!((q_last - tip_last).abs() < 1e-15);
+    assert_eq!(v["config"]["control"]["kind"], "dobc");
+}
+
+#[test]
+fn json_summary_reports_tip_values_at_requested_times() {
+    let o = wingcheck(&["simulate", "--json", "--sample-times", "0.5,1", SHORT[0], SHORT[1]]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["tip"]["t"], serde_json::json!([0.5, 1.0]));
+    assert_eq!(v["tip"]["q"].as_array().unwrap().len(), 2);
+    assert!(v["run_seconds"].as_f64().unwrap() > 0.0);
+}
+
+#[test]
+fn modes_json_has_coupled_frequencies() {
+    let o = wingcheck(&["modes", "--json", "--count", "4"]);
+    assert!(o.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let f = v["coupled_rad_s"].as_array().unwrap();
+    assert_eq!(f.len(), 4);
+    // Reference: FD/FE extrapolated first coupled frequency 0.1208599 rad/s (tests/modes.rs);
+    // the default 16-element graded FE mesh is within 1e-5 of it.
+    assert!((f[0].as_f64().unwrap() - 0.1208599).abs() < 1e-5, "{f:?}");
+}
+
+#[test]
+fn bad_values_name_the_field_and_range() {
+    assert_clean_failure(&wingcheck(&["simulate", "--set", "wing.ei=-0.2"]), "wing.ei");
+    assert_clean_failure(&wingcheck(&["simulate", "--set", "wing.ei=-0.2"]), "> 0");
+    assert_clean_failure(&wingcheck(&["simulate", "--set", "wing.gj=NaN"]), "wing.gj");
+    assert_clean_failure(&wingcheck(&["simulate", "--set", "discretisation.dt=0"]), "discretisation.dt");
+    assert_clean_failure(&wingcheck(&["simulate", "--set", "discretisation.dt=-1e-3"]), "discretisation.dt");
+    assert_clean_failure(&wingcheck(&["simulate", "--set", "wing.rho_xc=4"]), "ρ·I_p > (ρx_c)²");
+    assert_clean_failure(&wingcheck(&["simulate", "--set", "wing.nope=1"]), "unknown key `wing.nope`");
+    assert_clean_failure(&wingcheck(&["simulate", "--set", "control.a=-1"]), "control.a");
+    assert_clean_failure(&wingcheck(&["simulate", "--set", "observer.a2=30"]), "observer.a2");
+    assert_clean_failure(&wingcheck(&["simulate", "--set", "discretisation.dt=0.0007"]), "whole multiple");
+}
+
+#[test]
+fn unreadable_or_malformed_config_is_a_clear_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let missing = dir.path().join("missing.json");
+    assert_clean_failure(&wingcheck(&["simulate", "--config", missing.to_str().unwrap()]), "cannot read config");
+    let bad = dir.path().join("bad.json");
+    std::fs::write(&bad, "{ \"wing\": { \"span\": 2.0, ").unwrap();
+    assert_clean_failure(&wingcheck(&["simulate", "--config", bad.to_str().unwrap()]), "line");
+    let unknown = dir.path().join("unknown.json");
+    let mut v: serde_json::Value = serde_json::from_str(wingcheck_model::PAPER_JSON).unwrap();
+    v["wing"]["stiffness"] = serde_json::json!(1.0);
+    std::fs::write(&unknown, v.to_string()).unwrap();
+    assert_clean_failure(&wingcheck(&["simulate", "--config", unknown.to_str().unwrap()]), "unknown field `stiffness`");
+}
+
+#[test]
+fn unwritable_output_fails_before_work_and_leaves_no_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let target = dir.path().join("no/such/dir/out.csv");
+    assert_clean_failure(&wingcheck(&["simulate", "--out", target.to_str().unwrap()]), "--out");
+    let wrong_ext = dir.path().join("out.txt");
+    assert_clean_failure(&wingcheck(&["simulate", "--out", wrong_ext.to_str().unwrap()]), ".csv or .json");
+    assert!(!wrong_ext.exists());
+    // A failing run (bad config) never leaves an output or temp file behind.
+    let out = dir.path().join("x.csv");
+    assert_clean_failure(&wingcheck(&["simulate", "--set", "wing.ei=0", "--out", out.to_str().unwrap()]), "wing.ei");
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "stray files in {}", Path::new(dir.path()).display());
+}
+
+#[test]
+fn a_diverging_run_stops_with_when_and_why() {
+    // The explicit digital FTDO is the map σ_{k+1} = σ_k − T φ(σ_k) + ∫g, unstable once
+    // T·κ1 > 2 (|1 − Tκ1| > 1): with T = 1 ms, κ1 = 5000 the estimate grows like 4^k.
+    let o = wingcheck(&["simulate", "--observer", "explicit", "--set", "observer.kappa1=5000", SHORT[0], SHORT[1]]);
+    assert_clean_failure(&o, "simulation diverged at t = ");
+}

@@ -1,0 +1,27 @@
+//! Helpers shared by the integration tests.
+#![allow(dead_code)]
+
+use wingcheck_model::{apply_overrides, Config};
+
+/// The paper's configuration with overrides.
+pub fn paper_with(sets: &[&str]) -> Config {
+    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    apply_overrides(&Config::paper(), &sets).expect("valid overrides")
+}
+
+/// Observed convergence order from errors at successively halved grids: log2(e_k / e_{k+1}).
+pub fn orders(errors: &[f64]) -> Vec<f64> {
+    errors.windows(2).map(|w| (w[0] / w[1]).log2()).collect()
+}
+
+/// Observed order from three solutions on grids h, h/2, h/4 (no reference needed):
+/// log2(|u_h − u_{h/2}| / |u_{h/2} − u_{h/4}|).
+pub fn order_from_three(u1: f64, u2: f64, u3: f64) -> f64 {
+    ((u1 - u2).abs() / (u2 - u3).abs()).log2()
+}
+
+/// Richardson extrapolation of u_{h/2} and u_h for a method of order p.
+pub fn richardson(u_coarse: f64, u_fine: f64, p: f64) -> f64 {
+    let f = 2f64.powf(p);
+    (f * u_fine - u_coarse) / (f - 1.0)
+}
