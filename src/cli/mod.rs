@@ -1,6 +1,7 @@
 //! Command-line interface.
 
 mod bench;
+mod check;
 mod common;
 mod modes;
 mod simulate;
@@ -24,6 +25,8 @@ enum Command {
     Simulate(simulate::SimulateArgs),
     /// Natural frequencies of the undamped, uncontrolled wing.
     Modes(modes::ModesArgs),
+    /// The claim ledger: one verdict per claim of the paper, with evidence and assumptions.
+    Check(check::CheckArgs),
     /// Measure simulator performance (run time, time per step vs one sparse solve, scaling).
     Bench(bench::BenchArgs),
     /// Print the effective configuration (embedded default or --config, with --set applied).
@@ -36,6 +39,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Simulate(a) => simulate::run(a),
         Command::Modes(a) => modes::run(a),
         Command::Bench(a) => bench::run(a),
+        Command::Check(a) => check::run(a),
         Command::Config(a) => {
             println!("{}", a.load()?.to_json_pretty());
             Ok(())
