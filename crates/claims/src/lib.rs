@@ -11,7 +11,9 @@ pub mod comparison;
 pub mod finite_time;
 mod ledger;
 pub mod lemmas;
+pub mod lyapunov;
 pub mod mu;
+pub mod socp;
 pub mod uub;
 pub mod wbounds;
 
