@@ -4,6 +4,7 @@ mod bench;
 mod check;
 mod common;
 mod modes;
+mod proofs;
 mod simulate;
 
 use clap::{Parser, Subcommand};
@@ -27,6 +28,10 @@ enum Command {
     Modes(modes::ModesArgs),
     /// The claim ledger: one verdict per claim of the paper, with evidence and assumptions.
     Check(check::CheckArgs),
+    /// Write exact certificates for the definiteness/infeasibility facts (default: proofs/).
+    Certify(proofs::CertifyArgs),
+    /// Re-check certificates in exact rational arithmetic, independent of the solvers.
+    Verify(proofs::VerifyArgs),
     /// Measure simulator performance (run time, time per step vs one sparse solve, scaling).
     Bench(bench::BenchArgs),
     /// Print the effective configuration (embedded default or --config, with --set applied).
@@ -40,6 +45,8 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Modes(a) => modes::run(a),
         Command::Bench(a) => bench::run(a),
         Command::Check(a) => check::run(a),
+        Command::Certify(a) => proofs::certify(a),
+        Command::Verify(a) => proofs::verify(a),
         Command::Config(a) => {
             println!("{}", a.load()?.to_json_pretty());
             Ok(())

@@ -7,6 +7,7 @@
 //! ([`finite_time`]), `lemmas` ([`lemmas`]) and `ftdo-vs-dobc` ([`comparison`]) on simulation
 //! and adversarial search.
 
+pub mod certify;
 pub mod comparison;
 pub mod finite_time;
 mod ledger;

@@ -252,10 +252,8 @@ pub fn recipe_build(params: &Value) -> Result<RationalMatrix, String> {
         "lambda-kappa-minus-w" => Ok(lk.sub(&f.w).ok_or("dimension mismatch")?),
         "negative-direction" | "positive-direction" => {
             let xs = params.get("x").and_then(Value::as_array).ok_or("missing `x`")?;
-            let x: Result<Vec<BigRational>, String> = xs
-                .iter()
-                .map(|v| parse_rational(v.as_str().unwrap_or("")).map_err(|e| format!("x: {e}")))
-                .collect();
+            let x: Result<Vec<BigRational>, String> =
+                xs.iter().map(|v| parse_rational(v.as_str().unwrap_or("")).map_err(|e| format!("x: {e}"))).collect();
             let x = x?;
             if x.len() != diff.rows() {
                 return Err(format!("x has {} entries, the state space {}", x.len(), diff.rows()));

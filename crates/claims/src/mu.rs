@@ -97,7 +97,15 @@ impl MuData {
     }
 
     /// min ε over the η's subject to μ_i ≥ t (ε of (32) with η8 = 1/k1, η9 = 1/k2, their infima).
-    pub fn min_epsilon(&self, t: f64, sg2: f64, zeta3: f64, zeta4: f64, k1: f64, k2: f64) -> Result<(f64, Vec<f64>), ClaimsError> {
+    pub fn min_epsilon(
+        &self,
+        t: f64,
+        sg2: f64,
+        zeta3: f64,
+        zeta4: f64,
+        k1: f64,
+        k2: f64,
+    ) -> Result<(f64, Vec<f64>), ClaimsError> {
         let mut p = self.base(15);
         p.le(vec![(T, -1.0)], -t);
         for (v, i) in [(V1, 1), (V2, 2), (V6, 6), (V7, 7)] {
@@ -170,7 +178,8 @@ pub fn disturbance_bounds(cfg: &Config) -> Result<(f64, f64, f64), ClaimsError> 
     let steps = (cfg.horizon.t_end / 1e-4).round() as usize;
     let phi_max = (0..=steps).map(|k| d.phi(k as f64 * 1e-4).abs()).fold(0.0, f64::max);
     let g_hmax = phi_max * d.slope.abs() * cfg.wing.span;
-    let ftdo = apply_overrides(cfg, &["control.kind=ftdo".into()]).map_err(|e| ClaimsError::Numerical { what: "config".into(), detail: e.to_string() })?;
+    let ftdo = apply_overrides(cfg, &["control.kind=ftdo".into()])
+        .map_err(|e| ClaimsError::Numerical { what: "config".into(), detail: e.to_string() })?;
     let s = wingcheck_sim::simulate(&ftdo, Default::default())?.series;
     let sup = |g: &[f64], h: &[f64]| g.iter().zip(h).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
     Ok((g_hmax, sup(&s.g1, &s.g1_hat), sup(&s.g2, &s.g2_hat)))

@@ -93,7 +93,8 @@ impl Socp {
         let a = CscMatrix::new_from_triplets(row, self.n, ri, ci, vals);
         let p = CscMatrix::zeros((self.n, self.n));
         let settings = DefaultSettingsBuilder::default().verbose(false).build().map_err(|e| format!("{e:?}"))?;
-        let mut solver = DefaultSolver::new(&p, &self.cost, &a, &rhs, &cones, settings).map_err(|e| format!("{e:?}"))?;
+        let mut solver =
+            DefaultSolver::new(&p, &self.cost, &a, &rhs, &cones, settings).map_err(|e| format!("{e:?}"))?;
         solver.solve();
         let s = &solver.solution;
         Ok(SocpOutcome { status: s.status, x: s.x.clone(), objective: s.obj_val, seconds: s.solve_time })

@@ -114,7 +114,8 @@ pub fn a_over_b_max(cfg: &Config, coupling: Coupling, elements: usize) -> Result
 /// An exact witness of W(x) < 0 at the configured weights (if W is indefinite there): the
 /// extremal state rounded to rationals and W(x), κ(x) evaluated exactly.
 pub fn indefinite_witness(cfg: &Config, elements: usize) -> Result<Option<(Vec<BigRational>, f64, f64)>, ClaimsError> {
-    let f = lyapunov::assemble(&LyapunovParams::from_config(cfg, Coupling::Corrected, elements)).map_err(num("assembly"))?;
+    let f = lyapunov::assemble(&LyapunovParams::from_config(cfg, Coupling::Corrected, elements))
+        .map_err(num("assembly"))?;
     let t = lyapunov::tight_constants(&f).map_err(num("eigen"))?;
     if t.lambda2 >= 0.0 {
         return Ok(None);
@@ -190,7 +191,8 @@ pub fn check(cfg: &Config) -> Result<WBounds, ClaimsError> {
     let l1_star = richardson(corrected[k - 2].lambda1, corrected[k - 1].lambda1);
     let l2_star_printed = richardson(printed[k - 2].lambda2, printed[k - 1].lambda2);
     let l1_star_printed = richardson(printed[k - 2].lambda1, printed[k - 1].lambda1);
-    let order = ((corrected[k - 3].lambda2 - corrected[k - 2].lambda2) / (corrected[k - 2].lambda2 - corrected[k - 1].lambda2))
+    let order = ((corrected[k - 3].lambda2 - corrected[k - 2].lambda2)
+        / (corrected[k - 2].lambda2 - corrected[k - 1].lambda2))
         .log2();
     let ratio_max = a_over_b_max(cfg, Coupling::Corrected, 16)?;
     let ratio_max_printed = a_over_b_max(cfg, Coupling::Printed, 16)?;
@@ -226,7 +228,11 @@ pub fn check(cfg: &Config) -> Result<WBounds, ClaimsError> {
     ev.insert("lambda2_refinement_order".into(), json!(order));
     ev.insert(
         "lambda2_by_elements".into(),
-        json!(GRIDS.iter().zip(&corrected).map(|(n, t)| json!({"elements": n, "lambda2": t.lambda2, "lambda1": t.lambda1})).collect::<Vec<_>>()),
+        json!(GRIDS
+            .iter()
+            .zip(&corrected)
+            .map(|(n, t)| json!({"elements": n, "lambda2": t.lambda2, "lambda1": t.lambda1}))
+            .collect::<Vec<_>>()),
     );
     ev.insert("a_over_b_max".into(), json!(ratio_max));
     ev.insert("a_over_b_max_printed_cross_term".into(), json!(ratio_max_printed));
@@ -272,14 +278,26 @@ pub fn check(cfg: &Config) -> Result<WBounds, ClaimsError> {
     };
     let plots = vec![PlotData {
         name: "w-bounds-refinement".into(),
-        title: format!("Tight bounds of W/κ vs elements (a = {a}, b = {b}); extrapolated λ2* = {l2_star:.4}, λ1* = {l1_star:.4}"),
+        title: format!(
+            "Tight bounds of W/κ vs elements (a = {a}, b = {b}); extrapolated λ2* = {l2_star:.4}, λ1* = {l1_star:.4}"
+        ),
         x_label: "elements N".into(),
         y_label: "W/κ extremes".into(),
         log_x: true,
         log_y: false,
         lines: vec![
-            Line { label: "λ2(N) = min W/κ".into(), x: GRIDS.iter().map(|&n| n as f64).collect(), y: corrected.iter().map(|t| t.lambda2).collect(), points: true },
-            Line { label: "λ1(N) = max W/κ".into(), x: GRIDS.iter().map(|&n| n as f64).collect(), y: corrected.iter().map(|t| t.lambda1).collect(), points: true },
+            Line {
+                label: "λ2(N) = min W/κ".into(),
+                x: GRIDS.iter().map(|&n| n as f64).collect(),
+                y: corrected.iter().map(|t| t.lambda2).collect(),
+                points: true,
+            },
+            Line {
+                label: "λ1(N) = max W/κ".into(),
+                x: GRIDS.iter().map(|&n| n as f64).collect(),
+                y: corrected.iter().map(|t| t.lambda1).collect(),
+                points: true,
+            },
         ],
     }];
     let row = ClaimRow {
@@ -296,9 +314,18 @@ pub fn check(cfg: &Config) -> Result<WBounds, ClaimsError> {
             "W_o's last term read as −b ρx_c ∫q̇θ̇ (the paper prints b x_c; the bound (27) uses bρx_c); the printed variant is reported too".into(),
             format!("state space discretised by cubic Hermite q, linear θ, discontinuous cubic velocities on N ∈ {GRIDS:?} uniform elements; infimum over velocities exact"),
         ],
-        certificates: vec!["w-bounds-indefinite.json".into(), "w-bounds-lower.json".into(), "w-bounds-upper.json".into()],
+        certificates: ["w-bounds-indefinite.json", "w-bounds-lower.json", "w-bounds-upper.json", "w-bounds-ratio-above.json", "w-bounds-ratio-below.json"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect(),
         plots,
         seconds: start.elapsed().as_secs_f64(),
     };
-    Ok(WBounds { row, lambda1_tight: Some(l1_star), lambda2_tight: Some(l2_star), lambda1_printed: l1p, lambda2_printed: l2p })
+    Ok(WBounds {
+        row,
+        lambda1_tight: Some(l1_star),
+        lambda2_tight: Some(l2_star),
+        lambda1_printed: l1p,
+        lambda2_printed: l2p,
+    })
 }
