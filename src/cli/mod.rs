@@ -5,6 +5,7 @@ mod check;
 mod common;
 mod modes;
 mod proofs;
+mod report;
 mod simulate;
 
 use clap::{Parser, Subcommand};
@@ -26,6 +27,8 @@ enum Command {
     Simulate(simulate::SimulateArgs),
     /// Natural frequencies of the undamped, uncontrolled wing.
     Modes(modes::ModesArgs),
+    /// Write the self-contained HTML report (claim ledger, Figures 3–20, accuracy, provenance).
+    Report(report::ReportArgs),
     /// The claim ledger: one verdict per claim of the paper, with evidence and assumptions.
     Check(check::CheckArgs),
     /// Write exact certificates for the definiteness/infeasibility facts (default: proofs/).
@@ -45,6 +48,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Modes(a) => modes::run(a),
         Command::Bench(a) => bench::run(a),
         Command::Check(a) => check::run(a),
+        Command::Report(a) => report::run(a),
         Command::Certify(a) => proofs::certify(a),
         Command::Verify(a) => proofs::verify(a),
         Command::Config(a) => {

@@ -1,0 +1,245 @@
+//! `wingcheck report`: one self-contained, offline HTML report (index.html + one SVG and one
+//! CSV per figure) with
+//!
+//! - the claim ledger of [`wingcheck_claims::check_all`] at the top, colour-coded by verdict,
+//!   each row linking to its section (evidence, assumptions, the row's own plots);
+//! - the paper's Figures 3–20 reproduced from simulations (no control, FTDO, DOBC), with
+//!   captions whose numbers are computed from the runs;
+//! - FTDO-vs-DOBC overlays, and an accuracy section (tip error vs grid, FD and FE);
+//! - assumptions (values the paper leaves out) and provenance (tool, platform, config and its
+//!   SHA-256, wall time per stage).
+//!
+//! The page is rendered from a template (`templates/index.html`, minijinja) with a serde
+//! context; it is well-formed XHTML, has no JavaScript and no external resources. Output is
+//! atomic ([`atomic`]) and deterministic: the same config gives byte-identical files except
+//! the wall times, which appear only between `<!-- walltime:begin -->` and
+//! `<!-- walltime:end -->` in index.html.
+
+mod accuracy;
+pub mod atomic;
+mod chart;
+mod context;
+mod error;
+mod figure;
+mod paper;
+mod runs;
+mod stats;
+
+use std::path::Path;
+use std::time::Instant;
+
+use rayon::prelude::*;
+use wingcheck_claims::{check_all, config_sha256, Ledger};
+use wingcheck_model::Config;
+
+pub use atomic::MARKER;
+pub use error::ReportError;
+pub use runs::GRIDS;
+pub use stats::fmt_num;
+
+use crate::context::{assumptions, claim_anchor, row_assumptions, row_ctx, FigCtx, GroupCtx, Page, Timing};
+use crate::figure::{safe_name, Caption, Chart, Figure};
+
+/// The page template.
+const TEMPLATE: &str = include_str!("../templates/index.html");
+
+/// Progress of a stage, for a progress bar owned by the caller.
+#[derive(Debug, Clone, Copy)]
+pub struct Progress<'a> {
+    /// Stage name (`ledger`, `simulations`, `charts`, …).
+    pub stage: &'a str,
+    /// Units done in this stage.
+    pub done: usize,
+    /// Units in this stage.
+    pub total: usize,
+}
+
+/// Options of [`write_report`] that do not change its content.
+#[derive(Default, Clone, Copy)]
+pub struct ReportOptions<'a> {
+    /// Called as work completes (possibly from worker threads).
+    pub progress: Option<&'a (dyn Fn(Progress) + Sync)>,
+}
+
+/// Wall time of one stage.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StageTiming {
+    /// Stage name.
+    pub name: String,
+    /// Wall time (s). `ledger` and `simulations` run concurrently.
+    pub seconds: f64,
+}
+
+/// What [`write_report`] did.
+#[derive(Debug, Clone)]
+pub struct ReportSummary {
+    /// The report directory.
+    pub out_dir: std::path::PathBuf,
+    /// Wall time per stage, in order.
+    pub timings: Vec<StageTiming>,
+    /// Files written (names relative to `out_dir`, sorted; includes the marker).
+    pub files: Vec<String>,
+    /// The claim ledger shown in the report.
+    pub ledger: Ledger,
+}
+
+fn report(progress: Option<&(dyn Fn(Progress) + Sync)>, stage: &str, done: usize, total: usize) {
+    if let Some(p) = progress {
+        p(Progress { stage, done, total });
+    }
+}
+
+/// Render the report for `cfg` into `out_dir` (created, or an earlier report there replaced).
+///
+/// Refuses an existing `out_dir` that is neither a report (marker file [`MARKER`]) nor an
+/// empty directory. Everything is written into a temporary directory beside `out_dir` and
+/// renamed into place at the end; on error the temporary directory is removed.
+pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Result<ReportSummary, ReportError> {
+    atomic::check_replaceable(out_dir)?;
+    let staging = atomic::Staging::new(out_dir)?;
+    let progress = opts.progress;
+    let mut timings = Vec::new();
+
+    // Stage 1: the ledger and the simulations, concurrently.
+    let (ledger, runs) = rayon::join(
+        || {
+            let t = Instant::now();
+            report(progress, "ledger", 0, 1);
+            let l = check_all(cfg);
+            report(progress, "ledger", 1, 1);
+            (l, t.elapsed().as_secs_f64())
+        },
+        || {
+            let t = Instant::now();
+            let r = runs::run_all(cfg, progress);
+            (r, t.elapsed().as_secs_f64())
+        },
+    );
+    timings.push(StageTiming { name: "ledger".into(), seconds: ledger.1 });
+    timings.push(StageTiming { name: "simulations".into(), seconds: runs.1 });
+    let (mut ledger, runs) = (ledger.0?, runs.0?);
+    // Wall times are not reproducible content: the rows' own `seconds` and evidence keys
+    // named `seconds` / `*_seconds` move to the wall-time block of the provenance section.
+    let mut row_walltimes = Vec::new();
+    for r in &mut ledger.rows {
+        row_walltimes.push((format!("ledger row {}", r.id), r.seconds));
+        r.seconds = 0.0;
+        let keys: Vec<String> = r.evidence.keys().filter(|k| is_walltime_key(k)).cloned().collect();
+        for k in keys {
+            if let Some(v) = r.evidence.remove(&k).and_then(|v| v.as_f64()) {
+                row_walltimes.push((format!("ledger row {}: {k}", r.id), v));
+            }
+        }
+    }
+
+    // Stage 2: figure data and captions.
+    let t = Instant::now();
+    let groups = paper::paper_figures(cfg, &runs);
+    let comparison = paper::comparison_figures(cfg, &runs);
+    let (acc_fig, acc_rows) = accuracy::accuracy(&runs.accuracy);
+    let row_figs: Vec<Vec<Figure>> = ledger.rows.iter().map(claim_figures).collect();
+    timings.push(StageTiming { name: "figure data".into(), seconds: t.elapsed().as_secs_f64() });
+
+    // Stage 3: SVG + CSV of every figure, in parallel.
+    let t = Instant::now();
+    let all: Vec<&Figure> = groups
+        .iter()
+        .flat_map(|g| g.figures.iter())
+        .chain(comparison.iter())
+        .chain(std::iter::once(&acc_fig))
+        .chain(row_figs.iter().flatten())
+        .collect();
+    let total = all.len();
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let mut files: Vec<String> = all
+        .par_iter()
+        .map(|f| {
+            let r = f.render()?;
+            let svg = staging.write(&format!("{}.svg", f.file), r.svg.as_bytes())?;
+            let csv = staging.write(&format!("{}.csv", f.file), r.csv.as_bytes())?;
+            let k = done.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
+            report(progress, "charts", k, total);
+            Ok::<_, ReportError>([svg, csv])
+        })
+        .collect::<Result<Vec<_>, _>>()?
+        .into_iter()
+        .flatten()
+        .collect();
+    timings.push(StageTiming { name: "charts".into(), seconds: t.elapsed().as_secs_f64() });
+
+    // Stage 4: the page.
+    let t = Instant::now();
+    let mut page = Page {
+        tool: ledger.tool.clone(),
+        config_sha256: config_sha256(cfg),
+        config_json: cfg.to_json_pretty(),
+        platform: format!("{}/{}", std::env::consts::OS, std::env::consts::ARCH),
+        rows: ledger.rows.iter().zip(&row_figs).map(|(r, f)| row_ctx(r, f)).collect(),
+        groups: groups
+            .iter()
+            .map(|g| GroupCtx {
+                id: g.id.into(),
+                title: g.title.clone(),
+                intro: g.intro.clone(),
+                figures: g.figures.iter().map(FigCtx::from).collect(),
+            })
+            .collect(),
+        comparison: comparison.iter().map(FigCtx::from).collect(),
+        accuracy_figure: FigCtx::from(&acc_fig),
+        accuracy_rows: acc_rows,
+        grids: GRIDS.to_vec(),
+        assumptions: assumptions(cfg),
+        row_assumptions: row_assumptions(&ledger),
+        timings: Vec::new(),
+    };
+    page.timings = timings
+        .iter()
+        .map(|s| (s.name.clone(), s.seconds))
+        .chain(row_walltimes)
+        .map(|(name, seconds)| Timing { name, seconds: format!("{seconds:.3}") })
+        .collect();
+    let html = render_html(&page)?;
+    files.push(staging.write("index.html", html.as_bytes())?);
+    // The canonical compact JSON, so that `sha256sum config.json` equals the hash shown.
+    files.push(staging.write("config.json", serde_json::to_string(cfg).expect("config serialises").as_bytes())?);
+    files.push(
+        staging.write("ledger.json", serde_json::to_string_pretty(&ledger).expect("ledger serialises").as_bytes())?,
+    );
+    timings.push(StageTiming { name: "html".into(), seconds: t.elapsed().as_secs_f64() });
+    report(progress, "html", 1, 1);
+
+    let t = Instant::now();
+    staging.commit(&format!("{}\nconfig sha256 {}\n", ledger.tool, page.config_sha256))?;
+    files.push(MARKER.to_string());
+    files.sort();
+    timings.push(StageTiming { name: "write".into(), seconds: t.elapsed().as_secs_f64() });
+    Ok(ReportSummary { out_dir: out_dir.to_path_buf(), timings, files, ledger })
+}
+
+/// Evidence keys that hold wall times (`seconds`, `*_seconds`), by convention.
+pub fn is_walltime_key(key: &str) -> bool {
+    key == "seconds" || key.ends_with("_seconds")
+}
+
+/// A ledger row's plots as figures (files `claim-<row>-<plot>`).
+fn claim_figures(r: &wingcheck_claims::ClaimRow) -> Vec<Figure> {
+    r.plots
+        .iter()
+        .enumerate()
+        .map(|(i, pd)| Figure {
+            file: format!("{}-{}", claim_anchor(&r.id), safe_name(&pd.name)),
+            label: format!("{} plot {}", r.id, i + 1),
+            title: pd.title.clone(),
+            caption: Caption::default().t(pd.title.clone()).0,
+            chart: Chart::Line(pd.clone()),
+        })
+        .collect()
+}
+
+/// Render the page from the template.
+fn render_html(page: &Page) -> Result<String, ReportError> {
+    let mut env = minijinja::Environment::new();
+    env.set_auto_escape_callback(|_| minijinja::AutoEscape::Html);
+    env.add_template("index.html", TEMPLATE)?;
+    Ok(env.get_template("index.html")?.render(page)?)
+}

@@ -1,0 +1,249 @@
+//! Integration tests of `write_report`: rendered into temp dirs on a short horizon (4 s) to
+//! stay cheap; every reference value is computed independently in the test (comments say how).
+
+use std::path::{Path, PathBuf};
+
+use wingcheck_model::{apply_overrides, Config};
+use wingcheck_report::{write_report, ReportError, ReportOptions, MARKER};
+use wingcheck_sim::{simulate, RunOptions};
+
+/// The paper's configuration on a 4-s horizon (the report's content does not depend on T
+/// beyond the numbers, and the tests only need it to be small).
+fn small_cfg(extra: &[&str]) -> Config {
+    let mut sets = vec!["horizon.t_end=4".to_string()];
+    sets.extend(extra.iter().map(|s| s.to_string()));
+    apply_overrides(&Config::paper(), &sets).expect("valid overrides")
+}
+
+fn render(cfg: &Config, out: &Path) -> wingcheck_report::ReportSummary {
+    write_report(cfg, out, &ReportOptions::default()).expect("report renders")
+}
+
+fn read(p: &Path) -> String {
+    std::fs::read_to_string(p).unwrap_or_else(|e| panic!("read {}: {e}", p.display()))
+}
+
+/// Names in `dir` other than `keep` (to detect leftover temp / old directories).
+fn others(dir: &Path, keep: &[&str]) -> Vec<String> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().to_string())
+        .filter(|n| !keep.contains(&n.as_str()))
+        .collect()
+}
+
+/// Parse as XML, allowing the `<!DOCTYPE html>` declaration.
+fn parse_xml(text: &str) -> Result<roxmltree::Document<'_>, roxmltree::Error> {
+    roxmltree::Document::parse_with_options(text, roxmltree::ParsingOptions { allow_dtd: true, ..Default::default() })
+}
+
+/// Text content of a node and its descendants.
+fn text(n: roxmltree::Node) -> String {
+    n.descendants().filter(|d| d.is_text()).map(|d| d.text().unwrap_or("")).collect()
+}
+
+fn has_class(n: &roxmltree::Node, c: &str) -> bool {
+    n.attribute("class").is_some_and(|a| a.split_whitespace().any(|x| x == c))
+}
+
+/// Caption number with key `key` in index.html.
+fn caption_number(html: &str, key: &str) -> f64 {
+    let doc = parse_xml(html).expect("index.html is well-formed XML");
+    let n = doc
+        .descendants()
+        .find(|n| n.attribute("data-key") == Some(key))
+        .unwrap_or_else(|| panic!("no caption number {key}"));
+    text(n).parse().unwrap_or_else(|e| panic!("{key}: {e}"))
+}
+
+#[test]
+fn report_is_well_formed_complete_and_matches_the_ledger() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("paper");
+    let cfg = small_cfg(&[]);
+    let summary = render(&cfg, &out);
+    assert_eq!(others(tmp.path(), &["paper"]), Vec::<String>::new(), "no temp dir left beside the report");
+    assert!(out.join(MARKER).is_file());
+    for f in &summary.files {
+        assert!(out.join(f).is_file(), "summary lists {f}, which must exist");
+    }
+    let stages: Vec<&str> = summary.timings.iter().map(|t| t.name.as_str()).collect();
+    assert!(stages.contains(&"simulations") && stages.contains(&"charts"), "{stages:?}");
+
+    let html = read(&out.join("index.html"));
+    let doc = parse_xml(&html).expect("index.html is well-formed XML");
+    assert!(!html.contains("<script"), "no JavaScript");
+    // Offline: no external resources (the only URLs are XML namespaces).
+    for a in doc.descendants().filter_map(|n| n.attribute("src").or(n.attribute("href"))) {
+        assert!(!a.contains("://"), "external resource {a}");
+    }
+
+    // Every image is a non-empty, well-formed SVG; every figure links its CSV.
+    let figures: Vec<_> = doc.descendants().filter(|n| n.has_tag_name("figure")).collect();
+    // 18 paper figures (3–20) + 4 FTDO/DOBC overlays + 1 accuracy figure + the ledger's own plots.
+    let ledger_plots: usize = summary.ledger.rows.iter().map(|r| r.plots.len()).sum();
+    assert_eq!(figures.len(), 18 + 4 + 1 + ledger_plots);
+    for f in &figures {
+        let img = f.descendants().find(|n| n.has_tag_name("img")).expect("figure has an image");
+        let src = img.attribute("src").unwrap();
+        assert!(src.ends_with(".svg") && !src.contains('/'), "local SVG: {src}");
+        let svg = read(&out.join(src));
+        let sdoc = parse_xml(&svg).unwrap_or_else(|e| panic!("{src} is not XML: {e}"));
+        assert_eq!(sdoc.root_element().tag_name().name(), "svg");
+        assert!(sdoc.root_element().children().filter(|n| n.is_element()).count() > 3, "{src} has content");
+        let csv = f
+            .descendants()
+            .filter(|n| n.has_tag_name("a"))
+            .filter_map(|a| a.attribute("href"))
+            .find(|h| h.ends_with(".csv"))
+            .unwrap_or_else(|| panic!("figure {src} links no CSV"));
+        let data = read(&out.join(csv));
+        assert!(data.lines().count() > 1, "{csv} has a header and data");
+    }
+    // All local links resolve.
+    for a in doc.descendants().filter(|n| n.has_tag_name("a")) {
+        let href = a.attribute("href").unwrap();
+        if let Some(anchor) = href.strip_prefix('#') {
+            assert!(doc.descendants().any(|n| n.attribute("id") == Some(anchor)), "dangling anchor #{anchor}");
+        } else {
+            assert!(out.join(href).is_file(), "dangling link {href}");
+        }
+    }
+
+    // The ledger table equals check_all's rows (computed independently here), in order.
+    let expected = wingcheck_claims::check_all(&cfg).unwrap();
+    let table = doc.descendants().find(|n| n.attribute("id") == Some("ledger-table")).unwrap();
+    let tbody = table.children().find(|n| n.has_tag_name("tbody")).unwrap();
+    let rows: Vec<(String, String, String)> = tbody
+        .children()
+        .filter(|n| n.has_tag_name("tr"))
+        .map(|tr| {
+            let cell = |c: &str| text(tr.children().find(|td| has_class(td, c)).unwrap()).trim().to_string();
+            (cell("id"), cell("verdict"), cell("basis"))
+        })
+        .collect();
+    let want: Vec<(String, String, String)> = expected
+        .rows
+        .iter()
+        .map(|r| (r.id.clone(), r.verdict.name().to_string(), r.basis.name().to_string()))
+        .collect();
+    assert_eq!(rows, want);
+
+    // Provenance: the SHA-256 shown is the config's, and config.json hashes to it.
+    assert!(html.contains(&wingcheck_claims::config_sha256(&cfg)));
+    assert_eq!(read(&out.join("config.json")), serde_json::to_string(&cfg).unwrap());
+}
+
+/// index.html without the wall-time block.
+fn strip_walltime(html: &str) -> String {
+    let a = html.find("<!-- walltime:begin -->").expect("walltime block");
+    let b = html.find("<!-- walltime:end -->").expect("walltime block");
+    format!("{}{}", &html[..a], &html[b..])
+}
+
+#[test]
+fn same_config_gives_identical_files_except_wall_times() {
+    let tmp = tempfile::tempdir().unwrap();
+    let cfg = small_cfg(&[]);
+    let s1 = render(&cfg, &tmp.path().join("a"));
+    let s2 = render(&cfg, &tmp.path().join("b"));
+    assert_eq!(s1.files, s2.files);
+    for f in &s1.files {
+        let (x, y) = (
+            std::fs::read(tmp.path().join("a").join(f)).unwrap(),
+            std::fs::read(tmp.path().join("b").join(f)).unwrap(),
+        );
+        if f == "index.html" {
+            let (x, y) = (String::from_utf8(x).unwrap(), String::from_utf8(y).unwrap());
+            assert_eq!(strip_walltime(&x), strip_walltime(&y), "index.html differs outside the wall-time block");
+        } else {
+            assert!(x == y, "{f} differs between two renders of the same config");
+        }
+    }
+}
+
+#[test]
+fn caption_numbers_come_from_the_run() {
+    let tmp = tempfile::tempdir().unwrap();
+    let base = small_cfg(&[]);
+    let stiff = small_cfg(&["control.k1=6"]);
+    let mut seen = Vec::new();
+    for (name, cfg) in [("base", &base), ("k1", &stiff)] {
+        let out = tmp.path().join(name);
+        render(cfg, &out);
+        let html = read(&out.join("index.html"));
+        // Reference: max |q(s,t)| over [T/2, T] of an independent FTDO run of the same config.
+        let ftdo = apply_overrides(cfg, &["control.kind=ftdo".to_string()]).unwrap();
+        let s = simulate(&ftdo, RunOptions::default()).unwrap().series;
+        let t_half = cfg.horizon.t_end / 2.0;
+        let want = s.t.iter().zip(&s.q_tip).filter(|(t, _)| **t >= t_half).map(|(_, q)| q.abs()).fold(0.0, f64::max);
+        let got = caption_number(&html, "fig9.max_abs_late");
+        // Captions print 4 significant digits: relative rounding error ≤ 5e-4.
+        assert!((got - want).abs() <= 5e-4 * want, "{name}: caption {got} vs run {want}");
+        // Reference: max |τ1| over [0, T] of the same run.
+        let tau = s.tau1.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let got_tau = caption_number(&html, "fig7.max_abs");
+        assert!((got_tau - tau).abs() <= 5e-4 * tau, "{name}: τ1 caption {got_tau} vs run {tau}");
+        seen.push(got);
+    }
+    assert!((seen[0] - seen[1]).abs() > 1e-3 * seen[0], "changing k1 must change the caption: {seen:?}");
+}
+
+#[test]
+fn refuses_to_overwrite_a_directory_that_is_not_a_report() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("precious");
+    std::fs::create_dir(&out).unwrap();
+    std::fs::write(out.join("thesis.tex"), "do not delete").unwrap();
+    let err = write_report(&small_cfg(&[]), &out, &ReportOptions::default()).unwrap_err();
+    assert!(matches!(err, ReportError::NotAReport { .. }), "{err}");
+    assert!(err.to_string().contains(&out.display().to_string()), "error names the path: {err}");
+    assert_eq!(read(&out.join("thesis.tex")), "do not delete");
+    assert_eq!(others(tmp.path(), &["precious"]), Vec::<String>::new(), "no temp dir left on error");
+
+    // A plain file is refused too.
+    let file = tmp.path().join("notes.txt");
+    std::fs::write(&file, "x").unwrap();
+    assert!(matches!(
+        write_report(&small_cfg(&[]), &file, &ReportOptions::default()),
+        Err(ReportError::NotAReport { .. })
+    ));
+}
+
+#[test]
+fn replaces_an_earlier_report_by_swap_and_leaves_nothing_behind() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("r");
+    render(&small_cfg(&[]), &out);
+    std::fs::write(out.join("stale.txt"), "from an older version").unwrap();
+    render(&small_cfg(&[]), &out);
+    assert!(!out.join("stale.txt").exists(), "the old report is replaced as a whole");
+    assert!(out.join("index.html").is_file());
+    assert_eq!(others(tmp.path(), &["r"]), Vec::<String>::new());
+}
+
+#[test]
+fn unwritable_output_is_a_clear_error_and_an_interrupted_run_leaves_no_temp_dir() {
+    let tmp = tempfile::tempdir().unwrap();
+    // Parent is a regular file: cannot create the directory; the error names the path.
+    let blocker = tmp.path().join("blocker");
+    std::fs::write(&blocker, "").unwrap();
+    let out: PathBuf = blocker.join("report");
+    let err = write_report(&small_cfg(&[]), &out, &ReportOptions::default()).unwrap_err();
+    assert!(matches!(err, ReportError::Io { .. }), "{err}");
+    assert!(err.to_string().contains(&blocker.display().to_string()), "{err}");
+
+    // A run interrupted mid-way (a panicking progress callback while charts are written)
+    // removes its staging directory and creates no report.
+    let out = tmp.path().join("interrupted");
+    let panicky = |p: wingcheck_report::Progress| {
+        if p.stage == "charts" {
+            panic!("interrupted");
+        }
+    };
+    let r =
+        std::panic::catch_unwind(|| write_report(&small_cfg(&[]), &out, &ReportOptions { progress: Some(&panicky) }));
+    assert!(r.is_err());
+    assert!(!out.exists());
+    assert_eq!(others(tmp.path(), &["blocker"]), Vec::<String>::new(), "no temp dir left after interruption");
+}
