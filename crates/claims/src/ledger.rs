@@ -134,6 +134,9 @@ pub struct ClaimRow {
     pub correction: Option<String>,
     /// Key numbers and facts (stable keys; tests assert on them).
     pub evidence: BTreeMap<String, Value>,
+    /// Evidence keys to show first (e.g. in the report's ledger table), most important first.
+    #[serde(default)]
+    pub highlights: Vec<String>,
     /// Assumptions made where the paper is silent.
     pub assumptions: Vec<String>,
     /// Certificate files backing the row (relative to the proofs directory).
@@ -158,6 +161,7 @@ impl ClaimRow {
             summary: reason.into(),
             correction: None,
             evidence: BTreeMap::new(),
+            highlights: Vec::new(),
             assumptions: Vec::new(),
             certificates: Vec::new(),
             plots: Vec::new(),

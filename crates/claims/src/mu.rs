@@ -311,6 +311,7 @@ pub fn check(cfg: &Config, _w: &WBounds) -> Result<MuResult, ClaimsError> {
         summary,
         correction: None,
         evidence: ev,
+        highlights: ["lambda3_max", "a_over_b_boundary_closed_form", "best_lambda", "best_epsilon"].iter().map(|s| s.to_string()).collect(),
         assumptions: vec![
             format!("a = {a}, b = {b} (not given by the paper)"),
             "silent conditions added: η3 ≤ b/(2a), η4 ≤ b/(2a) (coefficients of ∫q''², ∫θ''² in (31) must be ≥ 0)".into(),

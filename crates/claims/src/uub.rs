@@ -125,6 +125,7 @@ pub fn check(cfg: &Config, w: &WBounds, m: &MuResult) -> Result<ClaimRow, Claims
         summary,
         correction: Some("(36): κ ≤ W/λ2 (not W/λ); the bound needs a/b < r* (μ-conditions) and a clamp-compatible initial shape (W(0) < ∞)".into()),
         evidence: ev,
+        highlights: ["ratio_bound_over_measured_q", "decay_time_constant_s", "bound_q_at_T", "measured_max_abs_q_second_half"].iter().map(|s| s.to_string()).collect(),
         assumptions: vec![
             format!("operating point a = {:.4e}, b = {} = half the closed-form μ boundary (the configured point is used when feasible)", best.a, best.b),
             "W(0) from the discretised initial state (16 uniform FE elements)".into(),

@@ -309,6 +309,7 @@ pub fn check(cfg: &Config) -> Result<WBounds, ClaimsError> {
         summary,
         correction,
         evidence: ev,
+        highlights: ["lambda2_printed", "lambda1_printed", "lambda2_tight", "lambda1_tight", "a_over_b_max"].iter().map(|s| s.to_string()).collect(),
         assumptions: vec![
             format!("a = {a}, b = {b} (the paper does not give them)"),
             "W_o's last term read as −b ρx_c ∫q̇θ̇ (the paper prints b x_c; the bound (27) uses bρx_c); the printed variant is reported too".into(),

@@ -192,13 +192,19 @@ pub fn row_ctx(r: &ClaimRow, figures: &[Figure]) -> RowCtx {
         basis: r.basis.name().into(),
         summary: r.summary.clone(),
         correction: r.correction.clone(),
-        key_numbers: r
-            .evidence
-            .iter()
-            .filter(|(_, v)| is_key_number(v))
-            .take(KEY_NUMBERS)
-            .map(|(k, v)| Kv { key: k.clone(), value: value_text(v) })
-            .collect(),
+        key_numbers: if r.highlights.is_empty() {
+            r.evidence
+                .iter()
+                .filter(|(_, v)| is_key_number(v))
+                .take(KEY_NUMBERS)
+                .map(|(k, v)| Kv { key: k.clone(), value: value_text(v) })
+                .collect()
+        } else {
+            r.highlights
+                .iter()
+                .filter_map(|k| r.evidence.get(k).map(|v| Kv { key: k.clone(), value: value_text(v) }))
+                .collect()
+        },
         evidence,
         assumptions: r.assumptions.clone(),
         certificates: r.certificates.clone(),
