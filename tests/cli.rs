@@ -154,3 +154,34 @@ fn a_diverging_run_stops_with_when_and_why() {
     let o = wingcheck(&["simulate", "--observer", "explicit", "--set", "observer.kappa1=5000", SHORT[0], SHORT[1]]);
     assert_clean_failure(&o, "simulation diverged at t = ");
 }
+
+#[test]
+fn check_json_is_the_ledger_and_honours_overrides() {
+    let o = wingcheck(&["check", "--json", "--set", "control.a=0.05"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let rows = v["rows"].as_array().unwrap();
+    let ids: Vec<&str> = rows.iter().map(|r| r["id"].as_str().unwrap()).collect();
+    assert_eq!(ids, ["W-bounds", "mu-conditions", "UUB", "finite-time-1", "finite-time-2", "lemmas", "ftdo-vs-dobc"]);
+    // a/b = 0.05 < ω₁ ≈ 0.121: W is positive definite after the correction (tests/claims_lyapunov.rs)
+    assert_eq!(rows[0]["verdict"], "holds-after-correction");
+    for key in ["lambda1_printed", "lambda2_printed", "lambda1_tight", "lambda2_tight", "a_over_b_max"] {
+        assert!(rows[0]["evidence"][key].is_number(), "missing {key}");
+    }
+}
+
+#[test]
+fn verify_rejects_a_tampered_certificate_with_nonzero_exit() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path().to_str().unwrap();
+    assert!(wingcheck(&["certify", "--out", d]).status.success());
+    let ok = wingcheck(&["verify", d]);
+    assert!(ok.status.success(), "{}", String::from_utf8_lossy(&ok.stdout));
+    let f = dir.path().join("mu-conditions-infeasible.json");
+    let text = std::fs::read_to_string(&f).unwrap();
+    std::fs::write(&f, text.replacen("\"1/1\"", "\"2/1\"", 1)).unwrap();
+    let bad = wingcheck(&["verify", d]);
+    assert!(!bad.status.success());
+    let out = String::from_utf8_lossy(&bad.stdout);
+    assert!(out.contains("REJECTED") && out.contains("mu-conditions-infeasible.json"), "{out}");
+}

@@ -18,10 +18,18 @@ pub struct BenchArgs {
     /// Print JSON.
     #[arg(long)]
     json: bool,
+    /// What to measure: the simulator (`sim`), the claim checker (`check`) or the report (`report`).
+    #[arg(long, default_value = "sim", value_parser = ["sim", "check", "report"])]
+    what: String,
 }
 
 pub fn run(a: BenchArgs) -> anyhow::Result<()> {
     let cfg = a.config.load()?;
+    match a.what.as_str() {
+        "check" => return bench_check(&cfg, a.repeats, a.json),
+        "report" => return bench_report(&cfg, a.repeats, a.json),
+        _ => {}
+    }
     let base = time_config(&cfg, a.repeats)?;
     let mut grid: Vec<Timing> = Vec::new();
     for n in [8usize, 16, 32, 64, 128] {
@@ -90,5 +98,95 @@ pub fn run(a: BenchArgs) -> anyhow::Result<()> {
         println!("{:>9} {:>9} {:>12.2}", t.t_end, t.steps, t.run_seconds * 1e3);
     }
     println!("  fitted exponent of run time vs steps: {horizon_slope:.2} (1 = linear)");
+    Ok(())
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(|a, b| a.total_cmp(b));
+    v[v.len() / 2]
+}
+
+/// Whole `wingcheck check` wall time (median of `repeats`) with the per-row breakdown and the
+/// exact re-verification of the certificates.
+fn bench_check(cfg: &wingcheck_model::Config, repeats: usize, as_json: bool) -> anyhow::Result<()> {
+    use std::time::Instant;
+    let mut totals = Vec::new();
+    let mut rows: Vec<(String, Vec<f64>)> = Vec::new();
+    let mut sdp = Vec::new();
+    for _ in 0..repeats.max(1) {
+        let t = Instant::now();
+        let ledger = wingcheck_claims::check_all(cfg)?;
+        totals.push(t.elapsed().as_secs_f64());
+        for (i, r) in ledger.rows.iter().enumerate() {
+            if rows.len() <= i {
+                rows.push((r.id.clone(), Vec::new()));
+            }
+            rows[i].1.push(r.seconds);
+        }
+        sdp.push(ledger.row("W-bounds").and_then(|r| r.number("sdp_seconds")).unwrap_or(0.0));
+    }
+    let tmp = std::env::temp_dir().join(format!("wingcheck-bench-proofs-{}", std::process::id()));
+    let t = Instant::now();
+    let files = wingcheck_claims::certify::write_all(cfg, &tmp)?;
+    let certify_s = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let results = wingcheck_cert::verify_dir_with(&tmp, &wingcheck_claims::certify::registry());
+    let verify_s = t.elapsed().as_secs_f64();
+    let _ = std::fs::remove_dir_all(&tmp);
+    let ok = results.iter().filter(|(_, r)| r.is_ok()).count();
+    let breakdown: Vec<(String, f64)> = rows.into_iter().map(|(id, v)| (id, median(v))).collect();
+    if as_json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&json!({
+                "check_seconds": median(totals),
+                "rows": breakdown.iter().map(|(id, s)| json!({"id": id, "seconds": s})).collect::<Vec<_>>(),
+                "sdp_seconds": median(sdp),
+                "certify_seconds": certify_s,
+                "verify_seconds": verify_s,
+                "certificates": files.len(),
+            }))?
+        );
+        return Ok(());
+    }
+    println!("wingcheck check: {:.3} s (median of {})", median(totals.clone()), totals.len());
+    for (id, s) in &breakdown {
+        println!("  {id:<14} {s:>7.3} s");
+    }
+    println!("  (of W-bounds: clarabel SDPs {:.4} s)", median(sdp));
+    println!(
+        "certify: {} certificates in {certify_s:.3} s; exact re-verification ({ok} ok) in {verify_s:.3} s",
+        files.len()
+    );
+    Ok(())
+}
+
+/// Whole `wingcheck report` wall time with the stage breakdown.
+fn bench_report(cfg: &wingcheck_model::Config, repeats: usize, as_json: bool) -> anyhow::Result<()> {
+    let mut runs = Vec::new();
+    let mut last = None;
+    for i in 0..repeats.max(1) {
+        let dir = std::env::temp_dir().join(format!("wingcheck-bench-report-{}-{i}", std::process::id()));
+        let t = std::time::Instant::now();
+        let summary = wingcheck_report::write_report(cfg, &dir, &Default::default())?;
+        runs.push(t.elapsed().as_secs_f64());
+        let _ = std::fs::remove_dir_all(&dir);
+        last = Some(summary);
+    }
+    let summary = last.expect("at least one run");
+    if as_json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&json!({
+                "report_seconds": median(runs),
+                "stages": summary.timings.iter().map(|t| json!({"stage": t.name, "seconds": t.seconds})).collect::<Vec<_>>(),
+            }))?
+        );
+        return Ok(());
+    }
+    println!("wingcheck report: {:.3} s (median of {})", median(runs.clone()), runs.len());
+    for t in &summary.timings {
+        println!("  {:<12} {:>7.3} s (last run)", t.name, t.seconds);
+    }
     Ok(())
 }
