@@ -35,7 +35,7 @@ enum Command {
     Certify(proofs::CertifyArgs),
     /// Re-check certificates in exact rational arithmetic, independent of the solvers.
     Verify(proofs::VerifyArgs),
-    /// Measure simulator performance (run time, time per step vs one sparse solve, scaling).
+    /// Measure performance: simulator (time per step vs one sparse solve, scaling), check, report.
     Bench(bench::BenchArgs),
     /// Print the effective configuration (embedded default or --config, with --set applied).
     Config(ConfigArgs),
