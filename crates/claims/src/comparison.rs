@@ -1,15 +1,276 @@
-//! Section 4, Figs 3–20: the proposed FTDO controller against DOBC.
+//! Section 4, Figs 3–20: the proposed FTDO controller against DOBC (57, corrected).
+//!
+//! Both controllers use the same law (15) and gains; they differ only in ĝ. Metrics over the
+//! windows [0, t_end] ("full") and [t_end/2, t_end] ("late") from the 0.01-s output series.
+//!
+//! Evidence keys, per run label L ∈ {`ftdo-implicit`, `ftdo-explicit`, `dobc`} at the
+//! configured (a, b): `L.{rms,max}_{q,theta}_{full,late}` (m, rad), `L.settle_{q,theta}_s`
+//! (s; last exit from |q| ≤ `SETTLE_FRACTION`·|q(s,0)|, |θ| ≤ `SETTLE_FRACTION`·|θ(s,0)|; null if never),
+//! `L.{rms,peak}_{tau1,tau2}` (N, N m, full window), `L.rms_gtilde{1,2}_{full,late}`,
+//! `L.gtilde{1,2}_settle_s` (last exit from |g̃| ≤ `GTILDE_THRESHOLD`); and
+//! `rel_diff_rms_q_full`, `rel_diff_rms_theta_full`, `rel_diff_rms_q_late`,
+//! `rel_diff_rms_theta_late` ((DOBC − FTDO)/FTDO, implicit FTDO), `gtilde_ratio_late`
+//! (RMS g̃ DOBC / FTDO, late, both channels combined), `ab_sweep` (array of objects with
+//! a, b and the relative differences), `max_abs_rel_diff_tip` (over the sweep and both rules),
+//! `late_min_rel_diff` (most negative late-window difference: < 0 means DOBC smaller).
 
-use wingcheck_model::Config;
+use std::collections::BTreeMap;
+use std::time::Instant;
 
-use crate::{ClaimRow, ClaimsError};
+use serde_json::{json, Value};
+use wingcheck_model::{Config, ControllerKind, ObserverRule};
+use wingcheck_sim::{simulate, RunOptions, Series};
 
-/// Compare FTDO and DOBC.
-pub fn check(_cfg: &Config) -> Result<ClaimRow, ClaimsError> {
-    Ok(ClaimRow::inconclusive(
-        "ftdo-vs-dobc",
-        "Section 4, Figs 3–20",
-        "the proposed controller suppresses vibration better than DOBC",
-        "not yet computed",
-    ))
+use crate::{Basis, ClaimRow, ClaimsError, Line, PlotData, Verdict};
+
+/// Settling threshold for |q(s,t)| and |θ(s,t)| as a fraction of their initial tip values.
+pub const SETTLE_FRACTION: f64 = 0.1;
+/// Threshold for |g̃| (N or N m) defining "g̃ has converged".
+pub const GTILDE_THRESHOLD: f64 = 1e-4;
+/// (a, b) pairs of the sensitivity sweep (besides the configured one).
+pub const AB_SWEEP: [(f64, f64); 3] = [(0.5, 1.0), (1.0, 0.5), (2.0, 2.0)];
+/// Relative difference of tip metrics below which the controllers count as indistinguishable.
+pub const INDISTINGUISHABLE: f64 = 0.05;
+
+/// Metrics of one run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Metrics {
+    /// Named values (keys as in the module documentation, without the run label).
+    pub values: BTreeMap<String, Value>,
+}
+
+impl Metrics {
+    /// Numeric value by key (NaN if missing or null).
+    pub fn get(&self, key: &str) -> f64 {
+        self.values.get(key).and_then(Value::as_f64).unwrap_or(f64::NAN)
+    }
+}
+
+fn rms(x: &[f64]) -> f64 {
+    if x.is_empty() {
+        return f64::NAN;
+    }
+    (x.iter().map(|v| v * v).sum::<f64>() / x.len() as f64).sqrt()
+}
+
+fn max_abs(x: &[f64]) -> f64 {
+    x.iter().fold(0.0, |m, v| m.max(v.abs()))
+}
+
+/// Time after which |x| ≤ thr for the rest of the series (None if the last sample exceeds it).
+pub fn settle_time(t: &[f64], x: &[f64], thr: f64) -> Option<f64> {
+    match x.iter().rposition(|v| v.abs() > thr) {
+        None => t.first().copied(),
+        Some(i) if i + 1 < t.len() => Some(t[i + 1]),
+        Some(_) => None,
+    }
+}
+
+/// Metrics of one simulated series (see module docs).
+pub fn metrics(s: &Series) -> Metrics {
+    let n = s.t.len();
+    let t_end = s.t.last().copied().unwrap_or(0.0);
+    let late = s.t.partition_point(|&t| t < 0.5 * t_end).min(n);
+    let gt1: Vec<f64> = s.g1.iter().zip(&s.g1_hat).map(|(g, h)| g - h).collect();
+    let gt2: Vec<f64> = s.g2.iter().zip(&s.g2_hat).map(|(g, h)| g - h).collect();
+    let mut v = BTreeMap::new();
+    for (name, x) in [("q", &s.q_tip), ("theta", &s.theta_tip)] {
+        v.insert(format!("rms_{name}_full"), json!(rms(x)));
+        v.insert(format!("max_{name}_full"), json!(max_abs(x)));
+        v.insert(format!("rms_{name}_late"), json!(rms(&x[late..])));
+        v.insert(format!("max_{name}_late"), json!(max_abs(&x[late..])));
+    }
+    let thr = |x: &[f64]| SETTLE_FRACTION * x.first().map_or(0.0, |v| v.abs());
+    v.insert("settle_q_s".into(), json!(settle_time(&s.t, &s.q_tip, thr(&s.q_tip))));
+    v.insert("settle_theta_s".into(), json!(settle_time(&s.t, &s.theta_tip, thr(&s.theta_tip))));
+    for (name, x) in [("tau1", &s.tau1), ("tau2", &s.tau2)] {
+        v.insert(format!("rms_{name}"), json!(rms(x)));
+        v.insert(format!("peak_{name}"), json!(max_abs(x)));
+    }
+    for (name, x) in [("gtilde1", &gt1), ("gtilde2", &gt2)] {
+        v.insert(format!("rms_{name}_full"), json!(rms(x)));
+        v.insert(format!("rms_{name}_late"), json!(rms(&x[late..])));
+        v.insert(format!("{name}_settle_s"), json!(settle_time(&s.t, x, GTILDE_THRESHOLD)));
+    }
+    Metrics { values: v }
+}
+
+/// Simulate `cfg` with the given controller, rule and (a, b).
+pub fn run(cfg: &Config, kind: ControllerKind, rule: ObserverRule, a: f64, b: f64) -> Result<Series, ClaimsError> {
+    let mut c = cfg.clone();
+    c.control.kind = kind;
+    c.observer.rule = rule;
+    c.control.a = a;
+    c.control.b = b;
+    Ok(simulate(&c, RunOptions::default())?.series)
+}
+
+fn rel(ftdo: &Metrics, dobc: &Metrics, key: &str) -> f64 {
+    (dobc.get(key) - ftdo.get(key)) / ftdo.get(key)
+}
+
+/// Compare FTDO and DOBC (Section 4, Figs 3–20).
+pub fn check(cfg: &Config) -> Result<ClaimRow, ClaimsError> {
+    let clock = Instant::now();
+    let (a0, b0) = (cfg.control.a, cfg.control.b);
+    let fi = run(cfg, ControllerKind::Ftdo, ObserverRule::Implicit, a0, b0)?;
+    let fe = run(cfg, ControllerKind::Ftdo, ObserverRule::Explicit, a0, b0)?;
+    let db = run(cfg, ControllerKind::Dobc, ObserverRule::Implicit, a0, b0)?;
+    let (mi, me, md) = (metrics(&fi), metrics(&fe), metrics(&db));
+    let mut ev: BTreeMap<String, Value> = BTreeMap::new();
+    for (label, m) in [("ftdo-implicit", &mi), ("ftdo-explicit", &me), ("dobc", &md)] {
+        for (k, v) in &m.values {
+            ev.insert(format!("{label}.{k}"), v.clone());
+        }
+    }
+    let keys = ["rms_q_full", "rms_theta_full", "rms_q_late", "rms_theta_late"];
+    for k in keys {
+        ev.insert(format!("rel_diff_{k}"), json!(rel(&mi, &md, k)));
+    }
+    let gl = |m: &Metrics| m.get("rms_gtilde1_late").hypot(m.get("rms_gtilde2_late"));
+    let gratio = gl(&md) / gl(&mi);
+    ev.insert("gtilde_ratio_late".into(), json!(gratio));
+    // Relative differences (DOBC − FTDO)/FTDO of the four tip RMS metrics, for every compared pair.
+    let mut diffs: Vec<[f64; 4]> = vec![keys.map(|k| rel(&mi, &md, k)), keys.map(|k| rel(&me, &md, k))];
+    let mut sweep = Vec::new();
+    for (a, b) in AB_SWEEP {
+        let f = metrics(&run(cfg, ControllerKind::Ftdo, ObserverRule::Implicit, a, b)?);
+        let d = metrics(&run(cfg, ControllerKind::Dobc, ObserverRule::Implicit, a, b)?);
+        let r = keys.map(|k| rel(&f, &d, k));
+        diffs.push(r);
+        sweep.push(json!({"a": a, "b": b, "rel_diff_rms_q_full": r[0], "rel_diff_rms_theta_full": r[1],
+            "rel_diff_rms_q_late": r[2], "rel_diff_rms_theta_late": r[3], "gtilde_ratio_late": gl(&d) / gl(&f)}));
+    }
+    ev.insert("ab_sweep".into(), Value::Array(sweep));
+    let worst = diffs.iter().flatten().fold(0.0_f64, |m, x| m.max(x.abs()));
+    ev.insert("max_abs_rel_diff_tip".into(), json!(worst));
+    let range = |j: usize| {
+        let v = diffs.iter().map(|d| d[j]);
+        (v.clone().fold(f64::INFINITY, f64::min), v.fold(f64::NEG_INFINITY, f64::max))
+    };
+    let (fq, ft, lq, lt) = (range(0), range(1), range(2), range(3));
+    ev.insert("late_min_rel_diff".into(), json!(lq.0.min(lt.0)));
+    // Holds only if DOBC is worse by a clear margin in every tip metric of every pair.
+    let all_clear = diffs.iter().flatten().all(|&x| x > INDISTINGUISHABLE);
+    let dobc_better_somewhere = diffs.iter().flatten().any(|&x| x < 0.0);
+    let verdict = if all_clear {
+        Verdict::Holds
+    } else if dobc_better_somewhere || worst < INDISTINGUISHABLE {
+        Verdict::Fails
+    } else {
+        Verdict::Inconclusive
+    };
+    let pct = |r: (f64, f64)| format!("{:+.1}%..{:+.1}%", 100.0 * r.0, 100.0 * r.1);
+    let summary = format!(
+        "Reproduced: FTDO's disturbance error vanishes (implicit rule: |g̃| ≤ {thr:e} from {s1:.2} s / {s2:.2} s on) \
+         while DOBC's stays O(ġ) (late RMS g̃ ratio DOBC/FTDO = {gratio:.3e}). Not reproduced: a clearly better tip \
+         response. Relative excess (DOBC − FTDO)/FTDO of the tip RMS over (a, b) ∈ {{({a0}, {b0}), (0.5, 1), (1, 0.5), \
+         (2, 2)}} and both FTDO rules: q over [0,T] {pfq}, θ over [0,T] {pft}, q over [T/2,T] {plq}, θ over [T/2,T] \
+         {plt}. FTDO's early advantage comes from DOBC's initial estimate error (ĝ2(0) = ξGJθ'(s,0) with p(0) = 0, \
+         decaying as e^(−t)); over the late half DOBC is as good or slightly better. At the configured (a, b): RMS \
+         q(s,t) {q1:.4} vs {q2:.4} m, RMS θ(s,t) {t1:.4} vs {t2:.4} rad; settle to 10% of the initial tip values at \
+         {sq1:.2} / {st1:.2} s (FTDO) vs {sq2:.2} / {st2:.2} s (DOBC). The tip disturbances (≤ 0.08 N, 0.06 N m) are \
+         small beside the initial-condition response and the uncompensated distributed load. Costs: FTDO's τ2 peak \
+         {pf2:.2} N m vs DOBC {pd2:.2} (its large initial ĝ2 kick); the explicit FTDO chatters (RMS τ1 {re1:.2} N vs {rd1:.2}).",
+        thr = GTILDE_THRESHOLD,
+        s1 = mi.get("gtilde1_settle_s"),
+        s2 = mi.get("gtilde2_settle_s"),
+        pfq = pct(fq),
+        pft = pct(ft),
+        plq = pct(lq),
+        plt = pct(lt),
+        q1 = mi.get("rms_q_full"),
+        q2 = md.get("rms_q_full"),
+        t1 = mi.get("rms_theta_full"),
+        t2 = md.get("rms_theta_full"),
+        sq1 = mi.get("settle_q_s"),
+        st1 = mi.get("settle_theta_s"),
+        sq2 = md.get("settle_q_s"),
+        st2 = md.get("settle_theta_s"),
+        pf2 = mi.get("peak_tau2"),
+        pd2 = md.get("peak_tau2"),
+        re1 = me.get("rms_tau1"),
+        rd1 = md.get("rms_tau1"),
+    );
+    let plots = plots(&fi, &db, &mi, &md);
+    Ok(ClaimRow {
+        id: "ftdo-vs-dobc".into(),
+        equation: "Section 4, Figs 3–20, (57)".into(),
+        claim: "the proposed controller suppresses vibration better than DOBC".into(),
+        verdict,
+        basis: Basis::Simulation,
+        summary,
+        correction: None,
+        evidence: ev,
+        highlights: Vec::new(),
+        assumptions: vec![
+            "DOBC (57) corrected: b q̇(s) in τ1, ĝ from d ĝ/dt = g − ĝ with p(0) = 0; same k1, k2, a, b as FTDO".into(),
+            format!("(a, b) not given by the paper: configured ({a0}, {b0}) plus the sweep (0.5, 1), (1, 0.5), (2, 2)"),
+            format!(
+                "metrics from the {} s output series; settle thresholds {SETTLE_FRACTION} × the initial |q(s,0)|, |θ(s,0)|; |g̃| ≤ {GTILDE_THRESHOLD:e}",
+                cfg.horizon.sample_every
+            ),
+            format!("'indistinguishable' = relative difference of tip RMS below {INDISTINGUISHABLE}"),
+        ],
+        certificates: vec![],
+        plots,
+        seconds: clock.elapsed().as_secs_f64(),
+    })
+}
+
+fn plots(f: &Series, d: &Series, mf: &Metrics, md: &Metrics) -> Vec<PlotData> {
+    let line = |label: &str, x: &[f64], y: Vec<f64>| Line { label: label.into(), x: x.to_vec(), y, points: false };
+    let gt = |g: &[f64], h: &[f64]| g.iter().zip(h).map(|(a, b)| a - b).collect::<Vec<f64>>();
+    let mk = |name: &str, what: &str, unit: &str, yf: Vec<f64>, yd: Vec<f64>, title: String| PlotData {
+        name: format!("ftdo-vs-dobc-{name}"),
+        title,
+        x_label: "t (s)".into(),
+        y_label: format!("{what} ({unit})"),
+        log_x: false,
+        log_y: false,
+        lines: vec![line("FTDO (implicit)", &f.t, yf), line("DOBC", &d.t, yd)],
+    };
+    let two = |key: &str| (mf.get(key), md.get(key));
+    let (a, b) = two("rms_q_full");
+    let (c, e) = two("rms_theta_full");
+    let (g1f, g1d) = two("rms_gtilde1_late");
+    let (g2f, g2d) = two("rms_gtilde2_late");
+    let (p1f, p1d) = two("peak_tau1");
+    let (p2f, p2d) = two("peak_tau2");
+    vec![
+        mk(
+            "q-tip",
+            "q(s,t)",
+            "m",
+            f.q_tip.clone(),
+            d.q_tip.clone(),
+            format!("Tip bending: RMS FTDO {a:.5} m, DOBC {b:.5} m"),
+        ),
+        mk(
+            "theta-tip",
+            "θ(s,t)",
+            "rad",
+            f.theta_tip.clone(),
+            d.theta_tip.clone(),
+            format!("Tip twist: RMS FTDO {c:.5} rad, DOBC {e:.5} rad"),
+        ),
+        mk(
+            "gtilde1",
+            "g̃1",
+            "N",
+            gt(&f.g1, &f.g1_hat),
+            gt(&d.g1, &d.g1_hat),
+            format!("g̃1 = g1 − ĝ1: late RMS FTDO {g1f:.2e}, DOBC {g1d:.2e} N"),
+        ),
+        mk(
+            "gtilde2",
+            "g̃2",
+            "N m",
+            gt(&f.g2, &f.g2_hat),
+            gt(&d.g2, &d.g2_hat),
+            format!("g̃2 = g2 − ĝ2: late RMS FTDO {g2f:.2e}, DOBC {g2d:.2e} N m"),
+        ),
+        mk("tau1", "τ1", "N", f.tau1.clone(), d.tau1.clone(), format!("τ1: peak FTDO {p1f:.3} N, DOBC {p1d:.3} N")),
+        mk("tau2", "τ2", "N m", f.tau2.clone(), d.tau2.clone(), format!("τ2: peak FTDO {p2f:.3}, DOBC {p2d:.3} N m")),
+    ]
 }

@@ -1,0 +1,336 @@
+//! Reaching time of the observer error σ: the bound (38)/(39) (via Lemma 3, (13)–(14)), the
+//! continuous-time (Filippov) limit of σ̇ = g(t) − φ(σ), and the digital observers of the
+//! simulator (explicit and implicit sampling) across hold periods T.
+
+use wingcheck_control::ObserverGain;
+use wingcheck_model::{Config, ControllerKind, ObserverRule, TipDisturbance};
+use wingcheck_sim::Stepper;
+
+use crate::ClaimsError;
+
+/// Lemma 3, (14): t_f = ln((φ1 Q0^{1−φ3} + φ2)/φ2) / (φ1 (1 − φ3)) (s), the exact time at which
+/// the solution of Q̇ = −φ1 Q − φ2 Q^{φ3}, Q(0) = Q0 ≥ 0, reaches 0 (hence an upper bound for
+/// any Q with Q̇ ≤ −φ1 Q − φ2 Q^{φ3}). Needs φ1 > 0, φ2 > 0, 0 < φ3 < 1.
+pub fn lemma3_time(phi1: f64, phi2: f64, phi3: f64, q0: f64) -> Result<f64, ClaimsError> {
+    if !(phi1 > 0.0 && phi2 > 0.0 && phi3 > 0.0 && phi3 < 1.0 && q0 >= 0.0 && q0.is_finite()) {
+        return Err(num_err(
+            "lemma3_time",
+            format!("need φ1, φ2 > 0, 0 < φ3 < 1, Q0 ≥ 0; got {phi1}, {phi2}, {phi3}, {q0}"),
+        ));
+    }
+    Ok((phi1 * q0.powf(1.0 - phi3) / phi2).ln_1p() / (phi1 * (1.0 - phi3)))
+}
+
+/// The bound (38) (Theorem 3; (39) for Theorem 4 with κ4, κ6, b1, b2) on the reaching time of σ
+/// (s), read as
+/// t_f ≤ a2/(2κ1(a2 − a1)) · ln{(κ1 Q0^{(a2−a1)/a2} + 2^{a1/a2 − 1} κ3) / (2^{a1/a2 − 1} κ3)},
+/// Q0 = σ(0)²/2. This is Lemma 3 with φ1 = 2κ1, φ2 = 2^p κ3, φ3 = p = a1/a2, applied to
+/// Q̇ ≤ −2κ1 Q − 2^p κ3 Q^p, which follows from (40) since |σ|^{1+r} = (2Q)^p, r = 2p − 1.
+pub fn bound_38(linear: f64, fractional: f64, a1: u32, a2: u32, sigma0: f64) -> Result<f64, ClaimsError> {
+    let p = a1 as f64 / a2 as f64;
+    if !(linear > 0.0 && fractional > 0.0 && a1 < a2 && 2 * u64::from(a1) > u64::from(a2) && sigma0.is_finite()) {
+        return Err(num_err(
+            "bound_38",
+            format!("need κ_lin, κ_frac > 0, a1 < a2 < 2a1; got {linear}, {fractional}, {a1}, {a2}"),
+        ));
+    }
+    let q0 = 0.5 * sigma0 * sigma0;
+    let c = 2f64.powf(p - 1.0) * fractional;
+    Ok(a2 as f64 / (2.0 * linear * (a2 - a1) as f64) * (linear * q0.powf((a2 - a1) as f64 / a2 as f64) / c).ln_1p())
+}
+
+/// The bound (38) with the exponents read literally as printed: Q0^{a2 − a1/a2} and
+/// 2^{a1/a2} − 1 (s). Only to show that the literal reading cannot be meant.
+pub fn bound_38_literal(linear: f64, fractional: f64, a1: u32, a2: u32, sigma0: f64) -> f64 {
+    let (a1, a2) = (a1 as f64, a2 as f64);
+    let q0 = 0.5 * sigma0 * sigma0;
+    let c = (2f64.powf(a1 / a2) - 1.0) * fractional;
+    a2 / (2.0 * linear * (a2 - a1)) * (linear * q0.powf(a2 - a1 / a2) / c).ln_1p()
+}
+
+/// Assumption 1's ζ for g = mean + amp·sin(freq·t) on t ≥ 0, tightest value: |mean| + |amp| if
+/// the sine moves (freq ≠ 0, amp ≠ 0; the sine reaches ±1), else |mean|. Units of g.
+pub fn zeta(g: &TipDisturbance) -> f64 {
+    if g.freq != 0.0 && g.amp != 0.0 {
+        g.mean.abs() + g.amp.abs()
+    } else {
+        g.mean.abs()
+    }
+}
+
+/// Continuous-time (Filippov) limit of σ̇ = g(t) − φ(σ), σ(0) = σ0.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Filippov {
+    /// Reaching time of σ = 0 (s); `None` if not reached before the time limit.
+    pub reach_s: Option<f64>,
+    /// Estimated absolute error of `reach_s` (s) (Richardson difference of two resolutions).
+    pub error_s: f64,
+    /// Trajectory up to the reaching time: times (s).
+    pub t: Vec<f64>,
+    /// Trajectory: σ (units of g).
+    pub sigma: Vec<f64>,
+    /// `"sigma-domain"` (exact reparametrisation, used when σ is monotone) or `"time-domain"`.
+    pub method: &'static str,
+}
+
+/// Reaching time of σ̇ = g(t) − φ(σ) from σ0, in the Filippov sense (σ stops at 0).
+///
+/// While σ ≠ 0 keeps its sign s0 and φ(|σ|) > s0 g(t), σ is monotone, so t is a function of σ:
+/// with u = |σ|^r (r = gain exponent, removes the |σ|^r singularity), |σ| = u^{1/r},
+/// dt/du = −(1/r) u^{1/r − 1} / (φ(u^{1/r}) − s0 g(t)), integrated by RK4 from u0 = |σ0|^r to 0
+/// with `steps` and 2·`steps` steps (Richardson error estimate). If the denominator ever
+/// becomes ≤ 0 (possible only when κ_sw < sup|g|) falls back to RK4 in time with step 1e-4 s
+/// and linear location of the sign change (first order), up to `t_max` (s).
+pub fn filippov_reach(
+    gain: &ObserverGain,
+    g: &dyn Fn(f64) -> f64,
+    sigma0: f64,
+    t_max: f64,
+    steps: usize,
+) -> Result<Filippov, ClaimsError> {
+    let gains_ok = [gain.linear, gain.switching, gain.fractional].iter().all(|k| k.is_finite() && *k >= 0.0);
+    if !(sigma0.is_finite() && gains_ok && gain.exponent > 0.0 && gain.exponent <= 1.0 && steps >= 2 && t_max > 0.0) {
+        return Err(num_err("filippov_reach", format!("bad input σ0 = {sigma0}, r = {}", gain.exponent)));
+    }
+    if sigma0 == 0.0 {
+        return Ok(Filippov {
+            reach_s: Some(0.0),
+            error_s: 0.0,
+            t: vec![0.0],
+            sigma: vec![0.0],
+            method: "sigma-domain",
+        });
+    }
+    match sigma_domain(gain, g, sigma0, steps) {
+        Some((t1, tr, sg)) => {
+            let (t2, _, _) = sigma_domain(gain, g, sigma0, 2 * steps).unwrap_or((t1, vec![], vec![]));
+            Ok(Filippov { reach_s: Some(t2), error_s: (t2 - t1).abs(), t: tr, sigma: sg, method: "sigma-domain" })
+        }
+        None => Ok(time_domain(gain, g, sigma0, t_max)),
+    }
+}
+
+/// RK4 of t(u) on a uniform u grid; `None` if σ is not monotone along the path.
+fn sigma_domain(
+    gain: &ObserverGain,
+    g: &dyn Fn(f64) -> f64,
+    sigma0: f64,
+    steps: usize,
+) -> Option<(f64, Vec<f64>, Vec<f64>)> {
+    let s0 = sigma0.signum();
+    let r = gain.exponent;
+    let m = 1.0 / r;
+    let u0 = sigma0.abs().powf(r);
+    let du = u0 / steps as f64;
+    // dt/dv with v = u0 − u increasing: m u^{m−1} / (φ(u^m) − s0 g(t)).
+    let rate = |v: f64, t: f64| -> Option<f64> {
+        let u = (u0 - v).max(0.0);
+        let x = u.powf(m);
+        let den = gain.linear * x + gain.switching + gain.fractional * u - s0 * g(t);
+        let num = m * u.powf(m - 1.0);
+        if den > 0.0 {
+            Some(num / den)
+        } else if num == 0.0 && den == 0.0 {
+            Some(0.0)
+        } else {
+            None
+        }
+    };
+    let stride = (steps / 400).max(1);
+    let (mut t, mut tr, mut sg) = (0.0, vec![0.0], vec![sigma0]);
+    for i in 0..steps {
+        let v = i as f64 * du;
+        let k1 = rate(v, t)?;
+        let k2 = rate(v + 0.5 * du, t + 0.5 * du * k1)?;
+        let k3 = rate(v + 0.5 * du, t + 0.5 * du * k2)?;
+        let k4 = rate(v + du, t + du * k3)?;
+        t += du / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+        if (i + 1) % stride == 0 || i + 1 == steps {
+            tr.push(t);
+            sg.push(s0 * (u0 - v - du).max(0.0).powf(m));
+        }
+    }
+    Some((t, tr, sg))
+}
+
+fn time_domain(gain: &ObserverGain, g: &dyn Fn(f64) -> f64, sigma0: f64, t_max: f64) -> Filippov {
+    let h = 1e-4;
+    let f = |t: f64, s: f64| g(t) - gain.phi(s);
+    let (mut t, mut s) = (0.0, sigma0);
+    let (mut tr, mut sg) = (vec![0.0], vec![sigma0]);
+    let mut reach = None;
+    let mut k = 0usize;
+    while t < t_max {
+        let k1 = f(t, s);
+        let k2 = f(t + 0.5 * h, s + 0.5 * h * k1);
+        let k3 = f(t + 0.5 * h, s + 0.5 * h * k2);
+        let k4 = f(t + h, s + h * k3);
+        let next = s + h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+        if next == 0.0 || next.signum() != sigma0.signum() {
+            reach = Some(t + h * s / (s - next));
+            break;
+        }
+        s = next;
+        t += h;
+        k += 1;
+        if k % 100 == 0 {
+            tr.push(t);
+            sg.push(s);
+        }
+    }
+    Filippov { reach_s: reach, error_s: h, t: tr, sigma: sg, method: "time-domain" }
+}
+
+/// Per-channel results of one digital run.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct DigitalChannel {
+    /// σ(0) (units of g).
+    pub sigma0: f64,
+    /// Reaching time (s): implicit rule — first sample from which |σ_k| ≤ T κ_sw for the rest of
+    /// the run (the deadbeat band); explicit rule — first sample where σ_k = 0 or changes sign.
+    pub reach_s: Option<f64>,
+    /// max |σ_k| after reaching (units of g): implicit — over the samples after the entry sample
+    /// (≤ T·sup|g| when the observer slides); explicit — from the first crossing on (chatter band).
+    pub sigma_after_max: f64,
+    /// max |g(t_k) − ĝ_k| over the chatter window (units of g): the sampled g̃.
+    pub gtilde_max: f64,
+    /// max |ĝ_{k+1} − ĝ_k| over the chatter window: sample-to-sample jump of ĝ.
+    pub ghat_jump_max: f64,
+    /// max |τ_{k+1} − τ_k| over the chatter window: sample-to-sample jump of τ (N or N m).
+    pub tau_jump_max: f64,
+    /// Sample times (s), only if a trace was requested.
+    pub t: Vec<f64>,
+    /// σ_k, only with a trace.
+    pub sigma: Vec<f64>,
+    /// ĝ_k, only with a trace.
+    pub g_hat: Vec<f64>,
+    /// τ_k, only with a trace.
+    pub tau: Vec<f64>,
+}
+
+/// One closed-loop run of the FTDO with a given sampling rule and hold period.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DigitalRun {
+    /// Sampling rule.
+    pub rule: ObserverRule,
+    /// Hold period T (s).
+    pub period: f64,
+    /// Chatter window [start, end] (s).
+    pub window: (f64, f64),
+    /// Bending and torsion channels.
+    pub channels: [DigitalChannel; 2],
+}
+
+/// The configuration of a digital FTDO run: `cfg` with the given rule and hold period T (s),
+/// integrator step dt = T / ⌈T/dt_cfg⌉ (≤ the configured dt, a whole fraction of T), horizon `t_end`.
+pub fn digital_config(cfg: &Config, rule: ObserverRule, period: f64, t_end: f64) -> Config {
+    let mut c = cfg.clone();
+    c.control.kind = ControllerKind::Ftdo;
+    c.observer.rule = rule;
+    c.observer.sample_period = period;
+    c.discretisation.dt = period / (period / cfg.discretisation.dt).ceil().max(1.0);
+    c.horizon.t_end = t_end;
+    c.horizon.sample_every = c.horizon.sample_every.max(period);
+    c
+}
+
+/// Run the closed loop (FTDO, `rule`, hold `period`) over [0, `t_end`] sample by sample and
+/// measure σ's reaching time and the chatter of ĝ and τ over the last `window` seconds.
+/// `trace_from`: keep per-sample traces from this time on (None: no traces).
+pub fn digital_run(
+    cfg: &Config,
+    rule: ObserverRule,
+    period: f64,
+    t_end: f64,
+    window: f64,
+    trace_from: Option<f64>,
+) -> Result<DigitalRun, ClaimsError> {
+    if !(period > 0.0 && t_end > period && window > 0.0) {
+        return Err(num_err(
+            "digital_run",
+            format!("need T > 0, t_end > T, window > 0; got {period}, {t_end}, {window}"),
+        ));
+    }
+    let c = digital_config(cfg, rule, period, t_end);
+    let mut st = Stepper::new(&c)?;
+    let n = c.total_samples();
+    let w0 = t_end - window;
+    let gs = [&c.disturbance.tip_bending, &c.disturbance.tip_torsion];
+    let mut out: [DigitalChannel; 2] = Default::default();
+    // Implicit: the last sample outside the band; explicit: the first crossing.
+    let mut first_out = [None::<usize>; 2];
+    let mut prev = st.sample();
+    let mut sig_hist: [Vec<f64>; 2] = [Vec::with_capacity(n + 1), Vec::with_capacity(n + 1)];
+    for (i, ch) in out.iter_mut().enumerate() {
+        ch.sigma0 = [prev.sigma1, prev.sigma2][i];
+    }
+    for k in 0..=n {
+        let s = if k == 0 { prev } else { st.sample() };
+        let sig = [s.sigma1, s.sigma2];
+        let gh = [s.g1_hat, s.g2_hat];
+        let tau = [s.tau1, s.tau2];
+        let pgh = [prev.g1_hat, prev.g2_hat];
+        let ptau = [prev.tau1, prev.tau2];
+        for i in 0..2 {
+            let ch = &mut out[i];
+            sig_hist[i].push(sig[i]);
+            let band = period * st.channels[i].observer.gain.switching;
+            match rule {
+                ObserverRule::Implicit => {
+                    if sig[i].abs() > band {
+                        first_out[i] = Some(k);
+                    }
+                }
+                ObserverRule::Explicit => {
+                    if ch.reach_s.is_none() && (sig[i] == 0.0 || sig[i].signum() != ch.sigma0.signum()) {
+                        ch.reach_s = Some(s.t);
+                        first_out[i] = Some(k);
+                    }
+                }
+            }
+            if s.t >= w0 - 1e-12 {
+                ch.gtilde_max = ch.gtilde_max.max((gs[i].at(s.t) - gh[i]).abs());
+                if k > 0 && prev.t >= w0 - 1e-12 {
+                    ch.ghat_jump_max = ch.ghat_jump_max.max((gh[i] - pgh[i]).abs());
+                    ch.tau_jump_max = ch.tau_jump_max.max((tau[i] - ptau[i]).abs());
+                }
+            }
+            if trace_from.is_some_and(|t0| s.t >= t0 - 1e-12) {
+                ch.t.push(s.t);
+                ch.sigma.push(sig[i]);
+                ch.g_hat.push(gh[i]);
+                ch.tau.push(tau[i]);
+            }
+        }
+        prev = s;
+        if k < n {
+            st.advance_sample();
+        }
+    }
+    for i in 0..2 {
+        let ch = &mut out[i];
+        let start = match rule {
+            ObserverRule::Implicit => match first_out[i] {
+                None => Some(0),
+                Some(k) if k < n => Some(k + 1),
+                Some(_) => None,
+            },
+            ObserverRule::Explicit => first_out[i],
+        };
+        if let Some(k0) = start {
+            ch.reach_s = Some(k0 as f64 * period);
+            // Implicit: strictly after the entry sample (the entry itself may be anywhere in the band).
+            let from = if rule == ObserverRule::Implicit { k0 + 1 } else { k0 };
+            ch.sigma_after_max = sig_hist[i].get(from..).unwrap_or(&[]).iter().fold(0.0, |m, x| m.max(x.abs()));
+        } else {
+            ch.reach_s = None;
+            ch.sigma_after_max = f64::NAN;
+        }
+    }
+    Ok(DigitalRun { rule, period, window: (w0, t_end), channels: out })
+}
+
+/// A [`ClaimsError::Numerical`].
+pub(crate) fn num_err(what: &str, detail: String) -> ClaimsError {
+    ClaimsError::Numerical { what: what.into(), detail }
+}
