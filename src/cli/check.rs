@@ -23,9 +23,9 @@ pub fn run(a: CheckArgs) -> anyhow::Result<()> {
         return Ok(());
     }
     println!("claim ledger ({}, config sha256 {})", ledger.tool, &ledger.config_sha256[..12]);
-    println!("{:<14} {:<24} {:<23} {:<18} {:>7}", "id", "equation", "verdict", "basis", "time");
+    println!("{:<14} {:<28} {:<23} {:<18} {:>7}", "id", "equation", "verdict", "basis", "time");
     for r in &ledger.rows {
-        println!("{:<14} {:<24} {:<23} {:<18} {:>6.2}s", r.id, r.equation, r.verdict.name(), r.basis.name(), r.seconds);
+        println!("{:<14} {:<28} {:<23} {:<18} {:>6.2}s", r.id, r.equation, r.verdict.name(), r.basis.name(), r.seconds);
     }
     for r in &ledger.rows {
         println!("\n[{}] {} — {}", r.id, r.verdict.name(), r.claim);
