@@ -72,6 +72,9 @@ pub fn padded_range(values: impl Iterator<Item = f64>, log: bool) -> (f64, f64) 
         return if log { (1e-3, 1.0) } else { (-1.0, 1.0) };
     }
     if log {
+        // At most 12 decades below the largest value: a decay to round-off (1e-200…) would
+        // otherwise squeeze everything of interest into the top of the axis.
+        lo = lo.max(hi * 1e-12);
         if hi <= lo {
             return (lo / 2.0, hi * 2.0);
         }
@@ -89,6 +92,14 @@ pub fn padded_range(values: impl Iterator<Item = f64>, log: bool) -> (f64, f64) 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn log_range_spans_at_most_twelve_decades() {
+        // A decay to 1e-211 must not squeeze the data of interest into the top of the axis.
+        let (lo, hi) = padded_range([0.2356, 1e-6, 3.7e-211].into_iter(), true);
+        assert!(lo >= 0.2356e-12 / 2.0 && lo < 1e-6, "{lo}");
+        assert!(hi > 0.2356);
+    }
 
     #[test]
     fn ticks_are_short() {
