@@ -8,7 +8,9 @@ use wingcheck_model::Method;
 use wingcheck_sim::{modes, Discretisation};
 
 fn frequencies(method: Method, elements: usize, sets: &[&str], count: usize) -> Vec<f64> {
-    let cfg = paper_with(sets);
+    // uniform meshes: the refinement orders below are for uniform grids
+    let mut cfg = paper_with(sets);
+    cfg.discretisation.grading = 0.0;
     modes::natural_frequencies(&Discretisation::with(&cfg, method, elements), count).unwrap()
 }
 
