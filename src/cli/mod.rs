@@ -6,6 +6,7 @@ mod common;
 mod modes;
 mod proofs;
 mod report;
+mod search;
 mod simulate;
 
 use clap::{Parser, Subcommand};
@@ -29,6 +30,10 @@ enum Command {
     Modes(modes::ModesArgs),
     /// Write the self-contained HTML report (claim ledger, Figures 3–20, accuracy, provenance).
     Report(report::ReportArgs),
+    /// Map the gain region where the theorems' conditions hold and where the closed loop performs.
+    Search(search::SearchArgs),
+    /// Combine the output directories of `search --shard K/N` runs.
+    Merge(search::MergeArgs),
     /// The claim ledger: one verdict per claim of the paper, with evidence and assumptions.
     Check(check::CheckArgs),
     /// Write exact certificates for the definiteness/infeasibility facts (default: proofs/).
@@ -49,6 +54,8 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Bench(a) => bench::run(a),
         Command::Check(a) => check::run(a),
         Command::Report(a) => report::run(a),
+        Command::Search(a) => search::run_search(a),
+        Command::Merge(a) => search::run_merge(a),
         Command::Certify(a) => proofs::certify(a),
         Command::Verify(a) => proofs::verify(a),
         Command::Config(a) => {

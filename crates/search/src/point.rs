@@ -1,0 +1,309 @@
+//! One point of a search: config = base + the axis overrides, the closed-loop simulation and
+//! its metrics, and the theory ([`crate::theory`]).
+
+use std::time::Instant;
+
+use serde::{Deserialize, Serialize};
+use wingcheck_model::{apply_overrides, Config, ControllerKind};
+use wingcheck_sim::{simulate, RunOptions, Series, SimError};
+
+use crate::axis::Grid;
+use crate::theory::{Theory, TheoryCache};
+
+/// Metric columns, in output order. Units: λ's of W/κ dimensionless-by-construction
+/// (units of W/κ), λ in 1/s, bounds and q in m, θ in rad, t in s, τ1/g1 in N, τ2/g2 in N m,
+/// energy in J.
+///
+/// - `lambda2`, `lambda1`: tight min/max of W/κ on the Galerkin space (N = 8);
+/// - `lambda3_max`: max over the η's of min μ3..μ6 ((32) feasible iff > 0);
+/// - `lambda`, `epsilon`: decay rate λ = λ3/λ1 (1/s) and ε of (32) at the η's minimising ε/λ;
+/// - `uub_bound_q`: √(s³/λ2 · ε/λ) (m), Theorem 2's ultimate bound on |q|;
+/// - `g_hmax` (N/m), `zeta3` (N), `zeta4` (N m): disturbance bounds used for ε (ζ = sup|g̃| of
+///   the point's FTDO run);
+/// - `rms_*`, `max_*`: RMS and max of |q(s,t)|, |θ(s,t)| over the metric window;
+/// - `settling_time`: the first output sample time after which |q(s,t)| ≤ 5 % |q(s,0)| and
+///   |θ(s,t)| ≤ 5 % |θ(s,0)| for the rest of the horizon (a channel starting at 0 is ignored);
+///   empty if not settled by T;
+/// - `tau*_peak`, `tau*_rms`: max |τ| and RMS τ over [0, T];
+/// - `g*_tilde_rms`: RMS of g̃ = g − ĝ over the window; `energy_t_end`: E(T).
+pub const METRICS: [&str; 21] = [
+    "lambda2",
+    "lambda1",
+    "lambda3_max",
+    "lambda",
+    "epsilon",
+    "uub_bound_q",
+    "g_hmax",
+    "zeta3",
+    "zeta4",
+    "rms_q_tip",
+    "max_q_tip",
+    "rms_theta_tip",
+    "max_theta_tip",
+    "settling_time",
+    "tau1_peak",
+    "tau1_rms",
+    "tau2_peak",
+    "tau2_rms",
+    "g1_tilde_rms",
+    "g2_tilde_rms",
+    "energy_t_end",
+];
+
+/// Index of a metric column by name.
+pub fn metric_index(name: &str) -> Option<usize> {
+    METRICS.iter().position(|m| *m == name)
+}
+
+/// Outcome of a point.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Status {
+    /// Simulation and theory completed.
+    Ok,
+    /// The simulation diverged (theory columns still filled).
+    Diverged,
+    /// The config, the simulation or the theory failed (see the message).
+    Error,
+}
+
+impl Status {
+    /// Name in outputs.
+    pub fn name(self) -> &'static str {
+        match self {
+            Status::Ok => "ok",
+            Status::Diverged => "diverged",
+            Status::Error => "error",
+        }
+    }
+}
+
+/// Result of one point (everything but the timings is deterministic).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PointResult {
+    /// Point index (row-major, first axis slowest).
+    pub index: usize,
+    /// Swept values as applied (`key=text`), in axis order.
+    pub values: Vec<String>,
+    /// Outcome.
+    pub status: Status,
+    /// Why a point is not `ok` (empty otherwise).
+    pub message: String,
+    /// W ≻ 0 on the Galerkin space.
+    pub w_positive_definite: Option<bool>,
+    /// (29)–(32) satisfiable.
+    pub feasible_32: Option<bool>,
+    /// Values of [`METRICS`], same order; None where not available.
+    pub metrics: Vec<Option<f64>>,
+    /// Wall time in simulation (s) — not deterministic, kept out of the result files.
+    pub sim_seconds: f64,
+    /// Wall time in theory (eigen, SOCPs) (s) — not deterministic.
+    pub theory_seconds: f64,
+}
+
+impl PointResult {
+    /// Both hypotheses of Theorem 2: W ≻ 0 and (32) feasible.
+    pub fn theorem_feasible(&self) -> Option<bool> {
+        Some(self.w_positive_definite? && self.feasible_32?)
+    }
+
+    /// A metric by name.
+    pub fn metric(&self, name: &str) -> Option<f64> {
+        metric_index(name).and_then(|i| self.metrics[i])
+    }
+}
+
+/// Metric window [t0, t1] (s): `Some` as given, else the second half of the horizon
+/// ([10, 20] s for T = 20 s).
+pub fn window(cfg: &Config, w: Option<(f64, f64)>) -> (f64, f64) {
+    w.unwrap_or((0.5 * cfg.horizon.t_end, cfg.horizon.t_end))
+}
+
+fn rms(v: impl Iterator<Item = f64>) -> Option<f64> {
+    let (mut s, mut n) = (0.0, 0usize);
+    for x in v {
+        s += x * x;
+        n += 1;
+    }
+    (n > 0).then(|| (s / n as f64).sqrt())
+}
+
+fn max_abs(v: impl Iterator<Item = f64>) -> Option<f64> {
+    v.map(f64::abs).reduce(f64::max)
+}
+
+/// Settling time (see [`METRICS`]).
+pub fn settling_time(s: &Series) -> Option<f64> {
+    let n = s.len();
+    if n == 0 {
+        return None;
+    }
+    let (tq, tt) = (0.05 * s.q_tip[0].abs(), 0.05 * s.theta_tip[0].abs());
+    if tq == 0.0 && tt == 0.0 {
+        return None;
+    }
+    let outside = |k: usize| (tq > 0.0 && s.q_tip[k].abs() > tq) || (tt > 0.0 && s.theta_tip[k].abs() > tt);
+    match (0..n).rev().find(|&k| outside(k)) {
+        None => Some(s.t[0]),
+        Some(k) if k + 1 == n => None,
+        Some(k) => Some(s.t[k + 1]),
+    }
+}
+
+/// The simulation metrics (positions 9.. of [`METRICS`]).
+fn sim_metrics(s: &Series, win: (f64, f64)) -> [Option<f64>; 12] {
+    let tol = 1e-9 * (1.0 + win.1.abs());
+    let idx: Vec<usize> = (0..s.len()).filter(|&k| s.t[k] >= win.0 - tol && s.t[k] <= win.1 + tol).collect();
+    let w = |c: &[f64]| idx.iter().map(|&k| c[k]).collect::<Vec<f64>>();
+    let (q, th) = (w(&s.q_tip), w(&s.theta_tip));
+    let gt = |g: &[f64], h: &[f64]| idx.iter().map(|&k| g[k] - h[k]).collect::<Vec<f64>>();
+    [
+        rms(q.iter().copied()),
+        max_abs(q.iter().copied()),
+        rms(th.iter().copied()),
+        max_abs(th.iter().copied()),
+        settling_time(s),
+        max_abs(s.tau1.iter().copied()),
+        rms(s.tau1.iter().copied()),
+        max_abs(s.tau2.iter().copied()),
+        rms(s.tau2.iter().copied()),
+        rms(gt(&s.g1, &s.g1_hat).into_iter()),
+        rms(gt(&s.g2, &s.g2_hat).into_iter()),
+        s.energy.last().copied(),
+    ]
+}
+
+fn sup_tilde(s: &Series) -> (f64, f64) {
+    let sup = |g: &[f64], h: &[f64]| g.iter().zip(h).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+    (sup(&s.g1, &s.g1_hat), sup(&s.g2, &s.g2_hat))
+}
+
+fn sim_message(e: &SimError) -> (Status, String) {
+    match e {
+        SimError::Diverged { .. } => (Status::Diverged, e.to_string()),
+        _ => (Status::Error, format!("simulation: {e}")),
+    }
+}
+
+/// Evaluate point `p` of `grid` on `base`. Never panics on a bad point: failures are a status.
+pub fn evaluate(grid: &Grid, base: &Config, win: Option<(f64, f64)>, cache: &TheoryCache, p: usize) -> PointResult {
+    let mut r = PointResult {
+        index: p,
+        values: grid.texts(p),
+        status: Status::Ok,
+        message: String::new(),
+        w_positive_definite: None,
+        feasible_32: None,
+        metrics: vec![None; METRICS.len()],
+        sim_seconds: 0.0,
+        theory_seconds: 0.0,
+    };
+    let cfg = match apply_overrides(base, &grid.overrides(p)) {
+        Ok(c) => c,
+        Err(e) => {
+            r.status = Status::Error;
+            r.message = format!("config: {e}");
+            return r;
+        }
+    };
+    let start = Instant::now();
+    let sim = simulate(&cfg, RunOptions::default());
+    let mut zetas = None;
+    match &sim {
+        Ok(out) => {
+            let m = sim_metrics(&out.series, window(&cfg, win));
+            r.metrics[9..].copy_from_slice(&m);
+            if cfg.control.kind == ControllerKind::Ftdo {
+                zetas = Some(sup_tilde(&out.series));
+            }
+        }
+        Err(e) => (r.status, r.message) = sim_message(e),
+    }
+    r.sim_seconds = start.elapsed().as_secs_f64();
+
+    let start = Instant::now();
+    let verdicts = cache.verdicts(&cfg);
+    r.theory_seconds = start.elapsed().as_secs_f64();
+    let feasible = matches!(&verdicts, Ok(v) if v.feasible_32() == Some(true));
+    if feasible && cfg.control.kind != ControllerKind::Ftdo {
+        // ζ3, ζ4 are defined by the FTDO's observer error: one extra run at the same point.
+        let start = Instant::now();
+        let mut ftdo = cfg.clone();
+        ftdo.control.kind = ControllerKind::Ftdo;
+        if let Ok(out) = simulate(&ftdo, RunOptions::default()) {
+            zetas = Some(sup_tilde(&out.series));
+        }
+        r.sim_seconds += start.elapsed().as_secs_f64();
+    }
+    let start = Instant::now();
+    let g_hmax = cache.g_hmax(&cfg);
+    let bounds = zetas.map(|(z3, z4)| (g_hmax, z3, z4));
+    match cache.evaluate(&cfg, bounds) {
+        Ok(t) => fill_theory(&mut r, &t, g_hmax, zetas),
+        Err(e) => {
+            if r.status == Status::Ok {
+                r.status = Status::Error;
+            }
+            r.message = if r.message.is_empty() { e.to_string() } else { format!("{}; {e}", r.message) };
+        }
+    }
+    r.theory_seconds += start.elapsed().as_secs_f64();
+    r
+}
+
+fn fill_theory(r: &mut PointResult, t: &Theory, g_hmax: f64, zetas: Option<(f64, f64)>) {
+    r.w_positive_definite = t.w_pd;
+    r.feasible_32 = t.feasible_32;
+    let th = [
+        t.lambda2,
+        t.lambda1,
+        t.lambda3_max,
+        t.lambda,
+        t.epsilon,
+        t.uub_bound_q,
+        Some(g_hmax),
+        zetas.map(|z| z.0),
+        zetas.map(|z| z.1),
+    ];
+    r.metrics[..9].copy_from_slice(&th);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn series(q: &[f64], th: &[f64]) -> Series {
+        Series {
+            t: (0..q.len()).map(|k| k as f64 * 0.5).collect(),
+            q_tip: q.to_vec(),
+            theta_tip: th.to_vec(),
+            ..Default::default()
+        }
+    }
+
+    #[test]
+    fn settling_time_definition() {
+        // thresholds 5 % of |q(0)| = 0.05 and of |θ(0)| = 0.1 (hand-made series, t = 0.5 k)
+        let s = series(&[1.0, 0.5, 0.04, 0.06, 0.01, 0.0], &[2.0, 0.05, 0.05, 0.05, 0.05, 0.05]);
+        assert_eq!(settling_time(&s), Some(2.0)); // last excursion at k = 3 (q = 0.06 > 0.05)
+        let s = series(&[1.0, 0.01, 0.2], &[0.0, 0.0, 0.0]); // θ starts at 0: ignored
+        assert_eq!(settling_time(&s), None); // still outside at T
+        let s = series(&[0.0, 0.0], &[0.0, 0.0]);
+        assert_eq!(settling_time(&s), None);
+    }
+
+    #[test]
+    fn window_metrics() {
+        // window [0.5, 1.0] holds samples k = 1, 2: q = 3, −4 → RMS √12.5, max 4
+        let mut s = series(&[1.0, 3.0, -4.0], &[1.0, 1.0, 1.0]);
+        for c in [&mut s.tau1, &mut s.tau2, &mut s.g1, &mut s.g2, &mut s.g1_hat, &mut s.g2_hat, &mut s.energy] {
+            *c = vec![0.0, 1.0, 2.0];
+        }
+        let m = sim_metrics(&s, (0.5, 1.0));
+        assert_eq!(m[0], Some(12.5f64.sqrt()));
+        assert_eq!(m[1], Some(4.0));
+        assert_eq!(m[5], Some(2.0)); // τ1 peak over [0, T]
+        assert_eq!(m[9], Some(0.0)); // g̃1 = 0
+        assert_eq!(m[11], Some(2.0)); // E(T)
+    }
+}

@@ -1,0 +1,115 @@
+//! The boundaries found by a search agree with the claim checker's independent answers:
+//! W ≻ 0 ⟺ a/b < `a_over_b_max` (pencil eigenvalue), (32) feasible ⟺ a/b < `closed_form_ratio`.
+
+use wingcheck_claims::lyapunov::{assemble, tight_constants, Coupling, LyapunovParams};
+use wingcheck_claims::mu::{best_point, MuData};
+use wingcheck_claims::wbounds::a_over_b_max;
+use wingcheck_model::{apply_overrides, Config};
+use wingcheck_search::{run, RunControl, Search, SearchOptions, TheoryCache};
+
+/// Paper config with a short horizon (the theory does not depend on it; the simulation only
+/// has to run).
+fn short() -> Config {
+    apply_overrides(&Config::paper(), &["horizon.t_end=0.2".into()]).expect("valid")
+}
+
+fn boundary_estimates(dir: &std::path::Path, kind: &str) -> Vec<(f64, f64, f64)> {
+    let text = std::fs::read_to_string(dir.join("boundary.csv")).expect("boundary.csv");
+    let mut lines = text.lines();
+    let head: Vec<&str> = lines.next().expect("header").split(',').collect();
+    let col = |name: &str| head.iter().position(|h| *h == name).expect("column");
+    let (lo, hi, est) = (col("lo"), col("hi"), col("estimate"));
+    lines
+        .filter(|l| l.starts_with(kind))
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            (f[lo].parse().unwrap(), f[hi].parse().unwrap(), f[est].parse().unwrap())
+        })
+        .collect()
+}
+
+#[test]
+fn boundaries_along_a_match_the_claim_checker() {
+    let base = short();
+    let tol = 1e-6;
+    let search = Search::new(
+        base.clone(),
+        &["control.a=1e-5..1:log:11".into()],
+        SearchOptions { refine: Some(tol), chunk_size: 4, ..Default::default() },
+    )
+    .expect("valid search");
+    let dir = tempfile::tempdir().unwrap();
+    let summary = run(&search, dir.path(), RunControl::default()).expect("runs");
+    assert!(summary.complete);
+
+    // Reference 1: largest a/b with W ≻ 0 on the same Galerkin space (N = 8), from the
+    // pencil (W(1,0), W(0,1)) — wingcheck_claims::wbounds::a_over_b_max; ≈ 0.1209 = ω₁ for
+    // the paper config (crates/claims W-bounds row). b = 1, so a* = (a/b)*.
+    let w_ref = a_over_b_max(&base, Coupling::Corrected, 8).expect("pencil");
+    assert!((w_ref - 0.1209).abs() < 1e-3, "reference ω₁ ≈ 0.1209, got {w_ref}");
+    let w = boundary_estimates(dir.path(), "w_positive_definite");
+    assert_eq!(w.len(), 1, "one W ≻ 0 boundary crossing along a: {w:?}");
+    let (lo, hi, est) = w[0];
+    assert!(hi / lo - 1.0 <= tol, "bracket refined to the tolerance: [{lo}, {hi}]");
+    // The bracket must contain the reference up to the eigen solver's rounding (λ2 is a
+    // smooth function of a crossing 0 transversally; 1e-9 relative is far above rounding).
+    assert!(lo <= w_ref * (1.0 + 1e-9) && w_ref <= hi * (1.0 + 1e-9), "[{lo}, {hi}] ∌ {w_ref}");
+    assert!((est / w_ref - 1.0).abs() <= tol, "estimate {est} vs {w_ref}");
+
+    // Reference 2: the closed-form boundary r* of the μ-conditions (crates/claims/src/mu.rs,
+    // module docs): ≈ 3.58e-4 for the paper data (α = 0.00375, β = 0.0375, c = 7).
+    let mu_ref = MuData::closed_form_ratio(&base);
+    assert!((mu_ref - 3.58e-4).abs() < 0.01e-4, "reference r* ≈ 3.58e-4, got {mu_ref}");
+    let m = boundary_estimates(dir.path(), "feasible_32");
+    assert_eq!(m.len(), 1, "one (32) boundary crossing along a: {m:?}");
+    let (lo, hi, est) = m[0];
+    assert!(hi / lo - 1.0 <= tol);
+    // The SOCP decides the sign of λ3* to clarabel's tolerance (~1e-8 absolute on λ3,
+    // |dλ3/da| = O(ρ) = O(10)), so the boundary is located to ~1e-5 relative at worst.
+    assert!((est / mu_ref - 1.0).abs() < 1e-4, "estimate {est} vs closed form {mu_ref}");
+}
+
+#[test]
+fn coarse_verdicts_follow_the_ratio() {
+    // Log grid over a (b = 1) without refinement: each point's verdicts agree with the
+    // references away from the boundaries.
+    let base = short();
+    let search = Search::new(base.clone(), &["control.a=1e-5..1:log:6".into()], SearchOptions::default()).unwrap();
+    let cache = TheoryCache::new(8);
+    let w_ref = a_over_b_max(&base, Coupling::Corrected, 8).unwrap();
+    let mu_ref = MuData::closed_form_ratio(&base);
+    for p in 0..search.points() {
+        let r = search.evaluate(p, &cache);
+        let a: f64 = r.values[0].parse().unwrap();
+        assert_eq!(r.w_positive_definite, Some(a < w_ref), "a = {a}");
+        assert_eq!(r.feasible_32, Some(a < mu_ref), "a = {a}");
+        assert_eq!(r.theorem_feasible(), Some(a < mu_ref.min(w_ref)));
+    }
+}
+
+#[test]
+fn fast_theory_matches_the_claims_functions() {
+    // The search computes λ2, λ1 from the cached pencil; the claims crate assembles W(a, b)
+    // and solves the generalised eigenproblem (lyapunov::tight_constants). Same N = 8.
+    let base = short();
+    let cache = TheoryCache::new(8);
+    for (a, b) in [(1e-4, 1.0), (0.05, 2.0), (1.0, 1.0), (3e-3, 30.0)] {
+        let cfg = apply_overrides(&base, &[format!("control.a={a}"), format!("control.b={b}")]).unwrap();
+        let v = cache.verdicts(&cfg).unwrap();
+        let t =
+            tight_constants(&assemble(&LyapunovParams::from_config(&cfg, Coupling::Corrected, 8)).unwrap()).unwrap();
+        let scale = t.lambda1.abs();
+        assert!((v.lambda2 - t.lambda2).abs() <= 1e-10 * scale, "λ2 {} vs {}", v.lambda2, t.lambda2);
+        assert!((v.lambda1 - t.lambda1).abs() <= 1e-10 * scale, "λ1 {} vs {}", v.lambda1, t.lambda1);
+    }
+    // λ and ε: the same fractions of λ3* as mu::best_point, with the λ1 from the cache.
+    let cfg = apply_overrides(&base, &["control.a=1e-4".into()]).unwrap();
+    let bounds = (0.2, 0.01, 0.02); // arbitrary positive (g_hmax, ζ3, ζ4); the same for both
+    let t = cache.evaluate(&cfg, Some(bounds)).unwrap();
+    let bp = best_point(&cfg, 1e-4, 1.0, bounds).unwrap().expect("a/b = 1e-4 < r* is feasible");
+    let rel = |x: f64, y: f64| (x - y).abs() / y.abs();
+    assert!(rel(t.lambda.unwrap(), bp.lambda) < 1e-9, "λ {:?} vs {}", t.lambda, bp.lambda);
+    assert!(rel(t.epsilon.unwrap(), bp.epsilon) < 1e-9, "ε {:?} vs {}", t.epsilon, bp.epsilon);
+    let ub = (cfg.wing.span.powi(3) / t.lambda2.unwrap() * bp.epsilon / bp.lambda).sqrt();
+    assert!(rel(t.uub_bound_q.unwrap(), ub) < 1e-9);
+}

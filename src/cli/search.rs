@@ -1,0 +1,112 @@
+//! `wingcheck search` and `wingcheck merge`: parameter searches (crates/search).
+
+use std::path::PathBuf;
+
+use clap::Args;
+use wingcheck_search::{merge, run, Progress, RunControl, Search, SearchOptions, Shard};
+
+use super::common::ConfigArgs;
+
+/// Arguments of `wingcheck search`.
+#[derive(Debug, Args)]
+pub struct SearchArgs {
+    #[command(flatten)]
+    config: ConfigArgs,
+    /// Axis `key=lo..hi:log:N`, `key=lo..hi:lin:N` or `key=v1,v2,...` (repeatable; any config key).
+    #[arg(long = "over", value_name = "AXIS", required = true)]
+    over: Vec<String>,
+    /// Output directory (a killed run restarted with the same arguments resumes).
+    #[arg(long, value_name = "DIR")]
+    out: PathBuf,
+    /// Evaluate shard K of N (chunks c with c mod N = K − 1); combine with `wingcheck merge`.
+    #[arg(long, value_name = "K/N", default_value = "1/1")]
+    shard: Shard,
+    /// Bisect the W ≻ 0 and (32) boundaries to this tolerance (relative on log axes).
+    #[arg(long, value_name = "TOL")]
+    refine: Option<f64>,
+    /// Metric ranking best.json (minimised; prefix `-` to maximise), e.g. rms_q_tip, -lambda.
+    #[arg(long, default_value = "rms_q_tip", allow_hyphen_values = true)]
+    best: String,
+    /// Metric window `t0,t1` in s (default: the second half of the horizon).
+    #[arg(long, value_name = "T0,T1", value_parser = parse_window)]
+    window: Option<(f64, f64)>,
+    /// Points per chunk (the unit of resumption and sharding).
+    #[arg(long, default_value_t = 32)]
+    chunk_size: usize,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    threads: Option<usize>,
+}
+
+fn parse_window(s: &str) -> Result<(f64, f64), String> {
+    let (a, b) = s.split_once(',').ok_or("expected t0,t1")?;
+    Ok((a.trim().parse().map_err(|_| "t0 is not a number")?, b.trim().parse().map_err(|_| "t1 is not a number")?))
+}
+
+/// Arguments of `wingcheck merge`.
+#[derive(Debug, Args)]
+pub struct MergeArgs {
+    /// Shard output directories (same search).
+    #[arg(required = true, value_name = "DIR")]
+    dirs: Vec<PathBuf>,
+    /// Output directory for the combined files.
+    #[arg(long, value_name = "DIR")]
+    out: PathBuf,
+}
+
+pub fn run_search(a: SearchArgs) -> anyhow::Result<()> {
+    let base = a.config.load()?;
+    let options = SearchOptions {
+        window: a.window,
+        chunk_size: a.chunk_size,
+        refine: a.refine,
+        best_metric: a.best.clone(),
+        ..Default::default()
+    };
+    let search = Search::new(base, &a.over, options)?;
+    let bar = indicatif::ProgressBar::new(0);
+    if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
+        bar.set_style(
+            indicatif::ProgressStyle::with_template(
+                "search [{bar:40}] {pos}/{len} points ({per_sec}, {elapsed} / eta {eta})",
+            )
+            .expect("valid template")
+            .progress_chars("=> "),
+        );
+    } else {
+        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
+    }
+    let on_progress = |p: Progress| {
+        if p.done == 0 {
+            bar.set_length(p.total as u64);
+            bar.reset();
+        } else {
+            bar.inc(1);
+        }
+    };
+    let s = run(
+        &search,
+        &a.out,
+        RunControl { shard: a.shard, progress: Some(&on_progress), threads: a.threads, ..Default::default() },
+    )?;
+    bar.finish_and_clear();
+    println!(
+        "{} of {} points evaluated ({} already done) in {:.1} s; simulation {:.1} s, theory {:.1} s (summed over points)",
+        s.evaluated, s.points_total, s.skipped, s.wall_seconds, s.sim_seconds, s.theory_seconds
+    );
+    if s.complete {
+        println!("results in {}: {}", s.out_dir.display(), s.files.join(", "));
+    } else {
+        println!(
+            "shard {}/{} done; combine the shard directories with `wingcheck merge DIR... --out DIR`",
+            a.shard.k, a.shard.n
+        );
+    }
+    Ok(())
+}
+
+pub fn run_merge(a: MergeArgs) -> anyhow::Result<()> {
+    let s = merge(&a.dirs, &a.out)?;
+    println!("merged {} points into {}: {}", s.points_total, s.out_dir.display(), s.files.join(", "));
+    Ok(())
+}
