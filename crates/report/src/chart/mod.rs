@@ -98,7 +98,7 @@ mod tests {
         // A decay to 1e-211 must not squeeze the data of interest into the top of the axis.
         let (lo, hi) = padded_range([0.2356, 1e-6, 3.7e-211].into_iter(), true);
         // 12 decades below the max, then the 5% log padding (factor (1e12)^0.05 ≈ 4)
-        assert!(lo >= 0.2356e-12 / 5.0 && lo < 1e-6, "{lo}");
+        assert!((0.2356e-12 / 5.0..1e-6).contains(&lo), "{lo}");
         assert!(hi > 0.2356);
     }
 
