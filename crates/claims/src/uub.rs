@@ -16,12 +16,8 @@ use wingcheck_sim::{simulate, Discretisation, RunOptions};
 
 use crate::lyapunov::{assemble, decimal, tight_constants, Coupling, LyapunovParams};
 use crate::mu::MuResult;
-use crate::wbounds::WBounds;
+use crate::wbounds::{num, WBounds};
 use crate::{Basis, ClaimRow, ClaimsError, Line, PlotData, Verdict};
-
-fn num(what: &'static str) -> impl Fn(String) -> ClaimsError {
-    move |detail| ClaimsError::Numerical { what: what.into(), detail }
-}
 
 /// W(0) for zero initial velocity: b × the elastic energy of the discretised initial shape,
 /// on a uniform FE mesh of `elements` elements.

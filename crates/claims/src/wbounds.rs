@@ -97,7 +97,8 @@ fn study(cfg: &Config, coupling: Coupling) -> Result<Vec<lyapunov::TightConstant
         .collect()
 }
 
-fn num(what: &'static str) -> impl Fn(String) -> ClaimsError {
+/// Map a numerical failure's detail text to [`ClaimsError::Numerical`] for `what`.
+pub(crate) fn num(what: &'static str) -> impl Fn(String) -> ClaimsError {
     move |detail| ClaimsError::Numerical { what: what.into(), detail }
 }
 
