@@ -3,7 +3,7 @@
 use clap::Args;
 use serde_json::json;
 use wingcheck_model::apply_overrides;
-use wingcheck_sim::bench::{loglog_slope, time_config, Timing};
+use wingcheck_sim::bench::{loglog_slope, time_config, time_modes, Timing};
 
 use super::common::ConfigArgs;
 
@@ -31,6 +31,7 @@ pub fn run(a: BenchArgs) -> anyhow::Result<()> {
         _ => {}
     }
     let base = time_config(&cfg, a.repeats)?;
+    let modes = time_modes(&cfg, 5, a.repeats)?;
     let mut grid: Vec<Timing> = Vec::new();
     for n in [8usize, 16, 32, 64, 128] {
         let c = apply_overrides(&cfg, &[format!("discretisation.elements={n}")])?;
@@ -54,6 +55,7 @@ pub fn run(a: BenchArgs) -> anyhow::Result<()> {
             "{}",
             serde_json::to_string_pretty(&json!({
                 "default": base,
+                "modes": modes,
                 "grid_scaling": grid,
                 "grid_exponent": grid_slope,
                 "horizon_scaling": horizon,
@@ -78,6 +80,13 @@ pub fn run(a: BenchArgs) -> anyhow::Result<()> {
         base.seconds_per_step * 1e6,
         base.seconds_per_step / base.solve_seconds,
         base.solve_seconds * 1e6
+    );
+    println!(
+        "modes (5, with error estimates, {} meshes {:?}): {:.2} ms, worst relative estimate {:.1e}",
+        cfg.discretisation.method.name(),
+        modes.meshes,
+        modes.seconds * 1e3,
+        modes.worst_relative_error
     );
     println!("grid scaling (T = {} s):", cfg.horizon.t_end);
     println!("{:>9} {:>9} {:>12} {:>12} {:>10}", "elements", "unknowns", "µs/step", "µs/solve", "step/solve");

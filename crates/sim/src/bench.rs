@@ -91,3 +91,41 @@ pub fn loglog_slope(x: &[f64], y: &[f64]) -> f64 {
     let sxx: f64 = lx.iter().map(|a| (a - mx) * (a - mx)).sum();
     sxy / sxx
 }
+
+/// Cost of `wingcheck modes` at its defaults: converged frequencies with error estimates.
+#[derive(Debug, Clone, Serialize)]
+pub struct ModesTiming {
+    /// Number of frequencies.
+    pub count: usize,
+    /// Meshes solved.
+    pub meshes: Vec<usize>,
+    /// Median wall time (s).
+    pub seconds: f64,
+    /// Largest relative error estimate.
+    pub worst_relative_error: f64,
+}
+
+/// Median time of [`crate::modes::converged_frequencies`] (configured method, `count` modes,
+/// default tolerance) over `repeats` runs.
+pub fn time_modes(cfg: &Config, count: usize, repeats: usize) -> Result<ModesTiming, SimError> {
+    let mut runs = Vec::new();
+    let mut last = None;
+    for _ in 0..repeats.max(1) {
+        let t = Instant::now();
+        let m = crate::modes::converged_frequencies(
+            cfg,
+            cfg.discretisation.method,
+            count,
+            crate::modes::DEFAULT_MODE_TOLERANCE,
+        )?;
+        runs.push(t.elapsed().as_secs_f64());
+        last = Some(m);
+    }
+    let m = last.expect("at least one run");
+    Ok(ModesTiming {
+        count,
+        meshes: m.meshes.clone(),
+        seconds: median(runs),
+        worst_relative_error: m.modes.iter().map(|e| e.error / e.omega).fold(0.0, f64::max),
+    })
+}

@@ -5,6 +5,7 @@
 use wingcheck_model::{Config, InitialShape, Method, Wing};
 
 use crate::sparse::{SymBuilder, SymMatrix};
+use crate::strain::{StrainForm, StrainRow};
 
 /// Unit-coefficient parts of the discretised quadratic forms, each over the full unknown vector:
 /// `mass_qq` ≈ ∫q v, `mass_tt` ≈ ∫θ φ, `mass_qt` ≈ ∫(q φ + θ v) (symmetric cross term),
@@ -58,6 +59,8 @@ pub struct Discretisation {
     pub mass: SymMatrix,
     /// Stiffness matrix K (elastic energy ½ xᵀKx = ½∫(EI q''² + GJ θ'²)).
     pub stiffness: SymMatrix,
+    /// The same stiffness in factored form K = Gᵀ D G (accurate K⁻¹ for the eigen-solve).
+    pub strain: StrainForm,
     /// Distributed-load shape f_h = ∫ slope·z·(N_q − x_ac N_θ) dz; the load is φ(t)·f_h.
     pub load: Vec<f64>,
     /// Index of the tip displacement q(s) in the unknown vector.
@@ -89,6 +92,9 @@ impl Discretisation {
             (-w.rho_xc, &raw.parts.mass_qt),
         ]);
         let stiffness = SymMatrix::combine(&[(w.ei, &raw.parts.stiff_qq), (w.gj, &raw.parts.stiff_tt)]);
+        let mut strain_rows = StrainForm::scaled(raw.strain_q, w.ei);
+        strain_rows.extend(StrainForm::scaled(raw.strain_t, w.gj));
+        let strain = StrainForm { rows: strain_rows };
         let load: Vec<f64> = raw
             .load_q
             .iter()
@@ -102,6 +108,7 @@ impl Discretisation {
             parts: raw.parts,
             mass,
             stiffness,
+            strain,
             load,
             tip_q: raw.tip_q,
             tip_theta: raw.tip_theta,
@@ -134,6 +141,10 @@ pub(crate) struct RawAssembly {
     pub tip_theta: usize,
     pub x0: Vec<f64>,
     pub interp: Interpolation,
+    /// Unit-weight bending strain rows (∫q''² = Σ weight (g·x)²), in substitution order.
+    pub strain_q: Vec<StrainRow>,
+    /// Unit-weight torsion strain rows (∫θ'² = Σ weight (g·x)²), in substitution order.
+    pub strain_t: Vec<StrainRow>,
 }
 
 /// Initial bending displacement q(z,0) and slope q'(z,0) for the configured shape.

@@ -10,6 +10,7 @@
 use wingcheck_model::Config;
 
 use crate::disc::{builders, finish, initial_q, initial_theta, output_grid, Interpolation, RawAssembly};
+use crate::strain::StrainRow;
 
 fn qd(i: usize) -> usize {
     2 * (i - 1)
@@ -37,6 +38,7 @@ pub(crate) fn assemble(cfg: &Config, n_int: usize) -> RawAssembly {
     }
     // Bending: curvature rows δ²q_i, i = 0..N−1, as sparse coefficient lists.
     let h2 = h * h;
+    let (mut strain_q, mut strain_t) = (Vec::with_capacity(n_int), Vec::with_capacity(n_int));
     for i in 0..n_int {
         let mut row: Vec<(usize, f64)> = Vec::with_capacity(3);
         if i == 0 {
@@ -49,6 +51,7 @@ pub(crate) fn assemble(cfg: &Config, n_int: usize) -> RawAssembly {
             row.push((qd(i + 1), 1.0 / h2));
         }
         let c = if i == 0 { 0.5 } else { 1.0 };
+        strain_q.push(StrainRow { pivot: qd(i + 1), entries: row.clone(), weight: c * h });
         for &(a, ca) in &row {
             for &(bb, cb) in &row {
                 if a <= bb {
@@ -64,6 +67,7 @@ pub(crate) fn assemble(cfg: &Config, n_int: usize) -> RawAssembly {
         if i >= 1 {
             row.push((td(i), -1.0 / h));
         }
+        strain_t.push(StrainRow { pivot: td(i + 1), entries: row.clone(), weight: h });
         for &(a, ca) in &row {
             for &(bb, cb) in &row {
                 if a <= bb {
@@ -103,5 +107,7 @@ pub(crate) fn assemble(cfg: &Config, n_int: usize) -> RawAssembly {
         tip_theta: td(n_int),
         x0,
         interp: Interpolation { z, q_rows, theta_rows },
+        strain_q,
+        strain_t,
     }
 }

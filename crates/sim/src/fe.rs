@@ -6,6 +6,7 @@
 use wingcheck_model::Config;
 
 use crate::disc::{builders, finish, initial_q, initial_theta, output_grid, Interpolation, RawAssembly};
+use crate::strain::StrainRow;
 
 /// 4-point Gauss–Legendre nodes and weights on [0, 1].
 const GAUSS: [(f64, f64); 4] = [
@@ -120,6 +121,26 @@ pub(crate) fn assemble(cfg: &Config, elements: usize) -> RawAssembly {
     let mut b = builders(n);
     let mut load_q = vec![0.0; n];
     let mut load_t = vec![0.0; n];
+    let (mut strain_q, mut strain_t) = (Vec::with_capacity(2 * elements), Vec::with_capacity(elements));
+    for e in 0..elements {
+        let h = nodes[e + 1] - nodes[e];
+        // q'' is linear on the element: ∫q''² = h(m² + d²/3) with the mean m = (q'_{e+1} − q'_e)/h
+        // and half-jump d = (κ1 − κ0)/2 = 6(q_e − q_{e+1})/h² + 3(q'_e + q'_{e+1})/h; θ' = Δθ/h.
+        let (a, b) = (dof(e, 0), dof(e + 1, 0).expect("node e+1 > 0"));
+        let row = |pivot: usize, coefs: [(Option<usize>, f64); 4], weight: f64| StrainRow {
+            pivot,
+            entries: coefs.iter().filter_map(|&(d, g)| d.map(|i| (i, g))).collect(),
+            weight,
+        };
+        let (qa, pa, qb, pb) = (a, dof(e, 1), b, b + 1);
+        strain_q.push(row(pb, [(pa, -1.0 / h), (Some(pb), 1.0 / h), (None, 0.0), (None, 0.0)], h));
+        strain_q.push(row(
+            qb,
+            [(qa, 6.0 / (h * h)), (pa, 3.0 / h), (Some(qb), -6.0 / (h * h)), (Some(pb), 3.0 / h)],
+            h / 3.0,
+        ));
+        strain_t.push(row(b + 2, [(dof(e, 2), -1.0 / h), (Some(b + 2), 1.0 / h), (None, 0.0), (None, 0.0)], h));
+    }
     for e in 0..elements {
         let em = element_matrices(nodes[e], nodes[e + 1] - nodes[e]);
         let qd = [dof(e, 0), dof(e, 1), dof(e + 1, 0), dof(e + 1, 1)];
@@ -173,5 +194,7 @@ pub(crate) fn assemble(cfg: &Config, elements: usize) -> RawAssembly {
         tip_theta: 3 * (elements - 1) + 2,
         x0,
         interp: Interpolation { z, q_rows, theta_rows },
+        strain_q,
+        strain_t,
     }
 }

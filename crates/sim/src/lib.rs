@@ -11,6 +11,7 @@
 
 pub mod bench;
 mod disc;
+pub mod estimate;
 pub mod fd;
 pub mod fe;
 pub mod modes;
@@ -18,8 +19,10 @@ pub mod output;
 mod run;
 pub mod sparse;
 mod stepper;
+pub mod strain;
 
 pub use disc::{mass_determinant, Discretisation, Interpolation, Parts};
+pub use estimate::Estimate;
 pub use run::{simulate, Fields, RunOptions, RunStats, Series, SimOutput};
 pub use stepper::{Channel, EnergyLedger, Sample, Stepper};
 

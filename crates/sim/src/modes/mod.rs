@@ -1,31 +1,24 @@
 //! Natural frequencies of the undamped, uncontrolled wing: the generalised eigenproblem
-//! K φ = ω² M φ (dense, faer), and the analytic frequencies of the uncoupled problem.
+//! K φ = ω² M φ on one mesh ([`natural_frequencies`], sparse shift-invert), converged
+//! frequencies with error estimates by extrapolation over uniform meshes
+//! ([`converged_frequencies`], [`fundamental_frequency`]), and the analytic frequencies of the
+//! uncoupled problem.
 
-use faer::{Mat, Side};
+mod converged;
+mod eigen;
+
+pub use converged::{
+    converged_frequencies, fundamental_frequency, ConvergedModes, ModeEstimate, DEFAULT_MODE_TOLERANCE,
+};
+pub use eigen::{lowest_eigenvalues, RitzValue};
 
 use crate::{Discretisation, SimError};
 
-/// The `count` lowest natural frequencies ω (rad/s) of K φ = ω² M φ, ascending.
+/// The `count` lowest natural frequencies ω (rad/s) of K φ = ω² M φ of one discretisation,
+/// ascending (sparse shift-invert subspace iteration, [`lowest_eigenvalues`]).
 pub fn natural_frequencies(disc: &Discretisation, count: usize) -> Result<Vec<f64>, SimError> {
-    let n = disc.dim();
-    let md = disc.mass.to_dense();
-    let kd = disc.stiffness.to_dense();
-    let m = Mat::<f64>::from_fn(n, n, |i, j| md[i * n + j]);
-    let k = Mat::<f64>::from_fn(n, n, |i, j| kd[i * n + j]);
-    let llt =
-        m.llt(Side::Lower).map_err(|e| SimError::Numerical(format!("mass matrix is not positive definite: {e:?}")))?;
-    let l = llt.L();
-    // A = L⁻¹ K L⁻ᵀ: solve L Y = K, then L Aᵀ = Yᵀ.
-    let mut y = k.clone();
-    faer::linalg::triangular_solve::solve_lower_triangular_in_place(l, y.as_mut(), faer::Par::Seq);
-    let mut a = y.transpose().to_owned();
-    faer::linalg::triangular_solve::solve_lower_triangular_in_place(l, a.as_mut(), faer::Par::Seq);
-    let a = Mat::<f64>::from_fn(n, n, |i, j| 0.5 * (a[(i, j)] + a[(j, i)]));
-    let mut ev = a
-        .self_adjoint_eigenvalues(Side::Lower)
-        .map_err(|e| SimError::Numerical(format!("eigenvalue iteration failed: {e:?}")))?;
-    ev.sort_by(|x, y| x.total_cmp(y));
-    Ok(ev.into_iter().take(count).map(|l| l.max(0.0).sqrt()).collect())
+    let count = count.min(disc.dim());
+    Ok(lowest_eigenvalues(disc, count)?.into_iter().map(|r| r.lambda.sqrt()).collect())
 }
 
 /// n-th root (n ≥ 1) of the cantilever frequency equation 1 + cos x cosh x = 0, by bisection
