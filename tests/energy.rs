@@ -30,7 +30,8 @@ fn undamped_uncontrolled_undisturbed_energy_is_conserved() {
     // Reference: E(t) = E(0) exactly for the PDE with ξ = 0, τ = g = 0; the trapezoidal rule
     // conserves the discrete quadratic energy exactly, so only round-off remains.
     for method in ["fe", "fd"] {
-        let sets = conservative(method);
+        let mut sets = conservative(method);
+        sets.push("discretisation.stepper=trapezoid".into());
         let refs: Vec<&str> = sets.iter().map(|s| s.as_str()).collect();
         let cfg = paper_with(&refs);
         let mut st = Stepper::new(&cfg).unwrap();
@@ -41,7 +42,8 @@ fn undamped_uncontrolled_undisturbed_energy_is_conserved() {
             worst = worst.max((st.sample().energy - e0).abs() / e0);
         }
         println!("{method}: E(0) = {e0:.6e} J, max relative drift over 5 s = {worst:.2e}");
-        assert!(worst < 1e-11, "{method}: relative energy drift {worst}");
+        // round-off random walk over 5000 steps (banded Cholesky, no pivoting needed for SPD)
+        assert!(worst < 5e-11, "{method}: relative energy drift {worst}");
     }
 }
 
@@ -57,6 +59,7 @@ fn discrete_energy_balance_holds_to_round_off_in_the_closed_loop() {
             &format!("discretisation.method={method}"),
             &format!("control.kind={controller}"),
             &format!("observer.rule={rule}"),
+            "discretisation.stepper=trapezoid",
         ]);
         let mut st = Stepper::new(&cfg).unwrap();
         st.track_energy(true);
@@ -70,5 +73,83 @@ fn discrete_energy_balance_holds_to_round_off_in_the_closed_loop() {
         }
         println!("{method}/{controller}/{rule}: max |ΔE − (work − dissipation)| / scale = {worst:.2e}");
         assert!(worst < 1e-12, "{method}/{controller}: balance residual {worst}");
+    }
+}
+
+/// TR-BDF2 energy, undamped and unforced: A-stable (|R(iy)| ≤ 1 in every mode, and E is the
+/// modal norm), so E never increases; its numerical dissipation vanishes under dt refinement at
+/// order ≥ 2 (reference: E(t) = E(0) for the PDE).
+#[test]
+fn trbdf2_energy_never_increases_and_its_dissipation_vanishes_at_second_order() {
+    for method in ["fe", "fd"] {
+        let mut losses = Vec::new();
+        for dt in ["1e-3", "5e-4", "2.5e-4"] {
+            let mut sets = conservative(method);
+            sets.push(format!("discretisation.dt={dt}"));
+            sets.push("discretisation.stepper=trbdf2".into());
+            let refs: Vec<&str> = sets.iter().map(|s| s.as_str()).collect();
+            let cfg = paper_with(&refs);
+            let mut st = Stepper::new(&cfg).unwrap();
+            let e0 = st.sample().energy;
+            let mut prev = e0;
+            for _ in 0..2000 {
+                st.advance_sample();
+                let e = st.sample().energy;
+                assert!(e <= prev * (1.0 + 1e-13), "{method} dt {dt}: energy rose {prev} -> {e}");
+                prev = e;
+            }
+            losses.push((e0 - prev) / e0);
+        }
+        let orders: Vec<f64> = losses.windows(2).map(|w| (w[0] / w[1]).log2()).collect();
+        println!("{method}: TR-BDF2 relative energy loss over 2 s {losses:?}, orders {orders:.2?}");
+        assert!(orders.iter().all(|&p| p > 1.9), "{method}: orders {orders:?}");
+    }
+}
+
+/// TR-BDF2 energy balance in the closed loop: the ledger integrates the power and the
+/// Kelvin–Voigt dissipation with the scheme's own stage quadrature; ΔE − (work − dissipation)
+/// is the scheme's numerical dissipation, which vanishes under dt refinement (reference:
+/// dE/dt = power in − ξ∫(EI q̇''² + GJ θ̇'²) for the PDE, spec). Measured order ≈ 1.4, not 2:
+/// every sample's jump of ĝ excites stiff, physically overdamped modes, whose energy the
+/// L-stable scheme removes numerically instead of through ξ (the price of not ringing); the
+/// residual is ≤ 2e-3 of the energy scale at the default dt.
+#[test]
+fn trbdf2_energy_balance_residual_vanishes_under_refinement() {
+    for method in ["fe", "fd"] {
+        let mut residuals = Vec::new();
+        for dt in ["1e-3", "5e-4", "2.5e-4"] {
+            let cfg = paper_with(&[
+                &format!("discretisation.method={method}"),
+                &format!("discretisation.dt={dt}"),
+                "discretisation.stepper=trbdf2",
+            ]);
+            let mut st = Stepper::new(&cfg).unwrap();
+            st.track_energy(true);
+            let e0 = st.sample().energy;
+            let mut worst: f64 = 0.0;
+            let mut worst_late: f64 = 0.0;
+            let mut at_half = 0.0;
+            for k in 1..=2000 {
+                st.advance_sample();
+                let l = st.ledger();
+                let scale = e0 + l.work_in.abs() + l.dissipated;
+                let r = (st.sample().energy - e0 - l.work_in + l.dissipated) / scale;
+                worst = worst.max(r.abs());
+                if k == 1000 {
+                    at_half = r;
+                }
+                if k > 1000 {
+                    worst_late = worst_late.max((r - at_half).abs());
+                }
+            }
+            println!("{method} dt {dt}: max residual over [0, 2] s {worst:.3e}, growth over [1, 2] s {worst_late:.3e}");
+            if dt == "1e-3" {
+                assert!(worst < 2e-3, "{method}: residual {worst} at the default dt");
+            }
+            residuals.push(worst);
+        }
+        let orders: Vec<f64> = residuals.windows(2).map(|w| (w[0] / w[1]).log2()).collect();
+        println!("{method}: TR-BDF2 balance residuals {residuals:?}, orders {orders:.2?}");
+        assert!(orders.iter().all(|&p| p > 1.25), "{method}: orders {orders:?}");
     }
 }

@@ -6,7 +6,8 @@ use std::time::Instant;
 use serde::Serialize;
 use wingcheck_model::Config;
 
-use crate::sparse::{SpdSolver, SymMatrix};
+use crate::banded::BandedCholesky;
+use crate::sparse::SymMatrix;
 use crate::{simulate, Discretisation, RunOptions, SimError};
 
 /// One timed configuration.
@@ -58,12 +59,13 @@ pub fn time_config(cfg: &Config, repeats: usize) -> Result<Timing, SimError> {
     })
 }
 
-/// Median time of one in-place solve with the configuration's step matrix.
+/// Median time of one in-place solve with the configuration's step matrix (banded Cholesky,
+/// as used by the stepper).
 pub fn time_solve(cfg: &Config) -> Result<f64, SimError> {
     let disc = Discretisation::new(cfg);
     let h = cfg.discretisation.dt;
     let step = SymMatrix::combine(&[(2.0 / h, &disc.mass), (cfg.wing.xi + 0.5 * h, &disc.stiffness)]);
-    let mut solver = SpdSolver::new(&step)?;
+    let mut solver = BandedCholesky::new(&step)?;
     let mut rhs: Vec<f64> = (0..disc.dim()).map(|i| 1.0 + i as f64 * 1e-3).collect();
     let batch = 2000;
     let mut samples = Vec::new();

@@ -3,12 +3,14 @@
 //!
 //! - [`Discretisation`]: two independent spatial discretisations, the paper's finite
 //!   differences ([`fd`]) and finite elements ([`fe`]), both as sparse symmetric M, K (faer).
-//! - [`Stepper`]: the closed loop advanced one observer sample at a time (trapezoidal rule,
-//!   step matrix factorised once, digital observer with zero-order hold).
+//! - [`Stepper`]: the closed loop advanced one observer sample at a time (TR-BDF2 by default,
+//!   or the trapezoidal rule; step matrix factorised once, digital observer with zero-order
+//!   hold), with full-rate [`Peaks`].
 //! - [`simulate`]: a whole run, sampled.
 //! - [`modes`]: natural frequencies of the undamped, uncontrolled wing, and the analytic
 //!   uncoupled ones.
 
+pub mod banded;
 pub mod bench;
 mod disc;
 pub mod estimate;
@@ -24,7 +26,7 @@ pub mod strain;
 pub use disc::{mass_determinant, Discretisation, Interpolation, Parts};
 pub use estimate::Estimate;
 pub use run::{simulate, Fields, RunOptions, RunStats, Series, SimOutput};
-pub use stepper::{Channel, EnergyLedger, Sample, Stepper};
+pub use stepper::{Channel, EnergyLedger, Peak, Peaks, Sample, Stepper};
 
 use thiserror::Error;
 

@@ -7,7 +7,7 @@ use std::time::Instant;
 use serde::Serialize;
 use wingcheck_model::Config;
 
-use crate::stepper::{Sample, Stepper};
+use crate::stepper::{Peaks, Sample, Stepper};
 use crate::{Discretisation, Interpolation, SimError};
 
 /// Sampled time series of the closed loop (column-oriented; all columns have equal length).
@@ -162,7 +162,7 @@ pub struct RunOptions<'a> {
 pub struct RunStats {
     /// Unknowns of the semi-discrete system.
     pub unknowns: usize,
-    /// Nonzeros of the step matrix's Cholesky factor.
+    /// Stored entries of the step matrix's banded Cholesky factor.
     pub factor_nnz: usize,
     /// Integrator steps taken.
     pub steps: usize,
@@ -179,6 +179,9 @@ pub struct SimOutput {
     pub series: Series,
     /// Fields on the output grid, if requested.
     pub fields: Option<Fields>,
+    /// Full-rate extremes over the whole run (every integrator step, both sides of every
+    /// sample's jump): use these for peaks, never the output samples.
+    pub peaks: Peaks,
     /// Cost statistics (wall times vary; everything else is deterministic).
     pub stats: RunStats,
 }
@@ -223,6 +226,7 @@ pub fn simulate(cfg: &Config, mut opts: RunOptions<'_>) -> Result<SimOutput, Sim
     Ok(SimOutput {
         series,
         fields,
+        peaks: *stepper.peaks(),
         stats: RunStats {
             unknowns,
             factor_nnz,

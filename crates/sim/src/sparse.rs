@@ -113,6 +113,14 @@ impl SymMatrix {
         (cp[j]..cp[j + 1]).find(|&p| ri[p] == i).map(|p| m.val()[p]).unwrap_or(0.0)
     }
 
+    /// Stored entries (i, j, A_ij), both triangles.
+    pub fn to_sparse_entries(&self) -> Vec<(usize, usize, f64)> {
+        let m = self.mat.as_ref();
+        let cp = m.symbolic().col_ptr();
+        let ri = m.symbolic().row_idx();
+        (0..self.dim()).flat_map(|j| (cp[j]..cp[j + 1]).map(move |p| (ri[p], j, m.val()[p]))).collect()
+    }
+
     /// Dense copy, row-major n×n.
     pub fn to_dense(&self) -> Vec<f64> {
         let n = self.dim();

@@ -1,22 +1,36 @@
 //! The closed-loop time stepper.
 //!
-//! Plant: the trapezoidal rule (implicit midpoint form, second order, A-stable) applied to
-//! M ẍ + C ẋ + K_c x = f̄ with C = ξK + b·diag(k1, k2)|tip and K_c = K + a·diag(k1, k2)|tip: the
-//! analogue part −k(a·tip + b·tip rate) of (15) is inside the step matrix
-//! S = 2M/h + C + (h/2)K_c, factorised once per run. Per step one sparse solve gives
-//! v̄ = (v_n + v_{n+1})/2; then x_{n+1} = x_n + h v̄. The discrete energy balance
-//! E_{n+1} − E_n = h v̄ᵀ f̄_total − h ξ v̄ᵀ K v̄ holds exactly (up to round-off).
+//! Plant: M ẍ + C ẋ + K_c x = f̄ with C = ξK + b·diag(k1, k2)|tip and K_c = K + a·diag(k1, k2)|tip:
+//! the analogue part −k(a·tip + b·tip rate) of (15) is inside the step matrix
+//! S = M/α + C + αK_c, factorised once per run. Two schemes ([`TimeScheme`]):
+//!
+//! - TR-BDF2 (default; γ = 2 − √2, α = γh/2): a trapezoidal stage to t + γh, then a BDF2
+//!   stage to t + h, both with S (two sparse solves per step). Second order and L-stable: the
+//!   stiff Kelvin–Voigt modes are damped (amplification → 0), so the observer's zero-order-hold
+//!   jumps do not make the tip rate ring. See [`trbdf2`].
+//! - Trapezoidal rule (α = h/2, implicit midpoint form, A-stable): one solve gives
+//!   v̄ = (v_n + v_{n+1})/2; then x_{n+1} = x_n + h v̄. The discrete energy balance
+//!   E_{n+1} − E_n = h v̄ᵀ f̄_total − h ξ v̄ᵀ K v̄ holds exactly (up to round-off); its stiff modes
+//!   ring (amplification → −1) under sampled discontinuous inputs.
 //!
 //! Inputs: the distributed load and g1, g2 enter as their exact step averages; the digital
 //! observer's estimate ĝ_k is held over each sample period T = m·h (zero-order hold).
 //!
 //! Tip states: q'''(s,t) and θ'(s,t) are integrated from the boundary conditions themselves,
-//! ξ S ẇ = s(τ + g) − S w (Crank–Nicolson with the same averages), never read off the field.
+//! ξ S ẇ = s(τ + g) − S w by the same scheme with the same stage values of τ, never read off
+//! the field; the observer integrator ν uses the scheme's own quadrature of τ and w, so that
+//! σ_{n+1} − σ_n = h(ḡ − ĝ) holds to round-off for either scheme.
+
+mod peaks;
+mod trbdf2;
+
+pub use peaks::{Peak, Peaks};
 
 use wingcheck_control::{ChannelObserver, TipChannel};
-use wingcheck_model::{Config, ControllerKind};
+use wingcheck_model::{Config, ControllerKind, TimeScheme};
 
-use crate::sparse::{SpdSolver, SymBuilder, SymMatrix, SymPair};
+use crate::banded::{BandedCholesky, BandedPair};
+use crate::sparse::{SymBuilder, SymMatrix};
 use crate::{Discretisation, SimError};
 
 /// State of one tip channel (bending or torsion).
@@ -87,10 +101,18 @@ pub struct Sample {
 pub struct Stepper {
     cfg: Config,
     disc: Discretisation,
-    solver: SpdSolver,
-    /// (2/h)M and K_c = K + a·diag(k)|tip, fused for the right-hand side (2/h)M v − K_c x.
-    rhs_operator: SymPair,
+    solver: BandedCholesky,
+    /// M/α and K_c = K + a·diag(k)|tip, fused for the right-hand side (M/α) v − K_c x.
+    rhs_operator: BandedPair,
     h: f64,
+    /// Scheme and its stage coefficient α (h/2 trapezoid, (1 − 1/√2)h TR-BDF2).
+    scheme: TimeScheme,
+    alpha: f64,
+    /// Stage buffers (TR-BDF2).
+    x_stage: Vec<f64>,
+    v_stage: Vec<f64>,
+    /// Full-rate extremes.
+    peaks: Peaks,
     steps_per_sample: usize,
     /// Number of the current sample k (t = k T).
     k: usize,
@@ -123,12 +145,17 @@ impl Stepper {
         tip_damp.add(disc.tip_theta, disc.tip_theta, k2);
         let tip = tip_damp.build();
         let (a, b, xi) = (cfg.control.a, cfg.control.b, cfg.wing.xi);
+        let scheme = cfg.discretisation.stepper;
+        let alpha = match scheme {
+            TimeScheme::Trapezoid => 0.5 * h,
+            TimeScheme::Trbdf2 => trbdf2::ALPHA * h,
+        };
         let stiffness_closed = SymMatrix::combine(&[(1.0, &disc.stiffness), (a, &tip)]);
         let step =
-            SymMatrix::combine(&[(2.0 / h, &disc.mass), (xi + 0.5 * h, &disc.stiffness), (b + 0.5 * h * a, &tip)]);
-        let solver = SpdSolver::new(&step)?;
-        let two_m_over_h = SymMatrix::combine(&[(2.0 / h, &disc.mass)]);
-        let rhs_operator = SymPair::new(&two_m_over_h, &stiffness_closed);
+            SymMatrix::combine(&[(1.0 / alpha, &disc.mass), (xi + alpha, &disc.stiffness), (b + alpha * a, &tip)]);
+        let solver = BandedCholesky::new(&step)?;
+        let m_over_alpha = SymMatrix::combine(&[(1.0 / alpha, &disc.mass)]);
+        let rhs_operator = BandedPair::new(&m_over_alpha, &stiffness_closed);
         let x = disc.x0.clone();
         let s = cfg.wing.span;
         // Initial tip states from the initial shape: q'''(s,0) and θ'(s,0).
@@ -148,6 +175,11 @@ impl Stepper {
             solver,
             rhs_operator,
             h,
+            scheme,
+            alpha,
+            x_stage: vec![0.0; n],
+            v_stage: vec![0.0; n],
+            peaks: Peaks::default(),
             steps_per_sample: cfg.steps_per_sample(),
             k: 0,
             v: vec![0.0; n],
@@ -158,12 +190,19 @@ impl Stepper {
             ledger: EnergyLedger::default(),
         };
         st.update_estimates();
+        st.record_peaks(0.0);
         Ok(st)
     }
 
     /// Keep the energy ledger (work in, dissipation) from now on.
     pub fn track_energy(&mut self, on: bool) {
         self.track_energy = on;
+    }
+
+    /// Extremes of the tip values, rates, controls and observer errors over every integrator
+    /// step so far (full rate, both sides of each sample's jump), not only at output samples.
+    pub fn peaks(&self) -> &Peaks {
+        &self.peaks
     }
 
     /// The energy ledger so far.
@@ -191,9 +230,9 @@ impl Stepper {
         self.k
     }
 
-    /// Sparse-solver statistics: (unknowns, nnz of the step matrix's factor).
+    /// Solver statistics: (unknowns, stored entries of the step matrix's banded Cholesky factor).
     pub fn solver_size(&self) -> (usize, usize) {
-        (self.disc.dim(), self.solver.factor_nnz())
+        (self.disc.dim(), self.solver.stored())
     }
 
     fn tip_disturbance(&self, ch: usize) -> &wingcheck_model::TipDisturbance {
@@ -244,6 +283,32 @@ impl Stepper {
 
     /// Advance one integrator step of length h starting at time t.
     fn substep(&mut self, t: f64) {
+        match self.scheme {
+            TimeScheme::Trapezoid => self.substep_trapezoid(t),
+            TimeScheme::Trbdf2 => self.substep_trbdf2(t),
+        }
+        self.record_peaks(t + self.h);
+    }
+
+    /// Fold the current state (at time t, with the held estimate) into the peaks.
+    fn record_peaks(&mut self, t: f64) {
+        let [b, tr] = &self.channels;
+        let g = [self.tip_disturbance(0).at(t), self.tip_disturbance(1).at(t)];
+        let values = [
+            self.x[b.dof],
+            self.x[tr.dof],
+            self.v[b.dof],
+            self.v[tr.dof],
+            self.tau(0),
+            self.tau(1),
+            g[0] - b.g_hat,
+            g[1] - tr.g_hat,
+        ];
+        self.peaks.update(t, &values);
+    }
+
+    /// One trapezoidal step of length h starting at time t.
+    fn substep_trapezoid(&mut self, t: f64) {
         let h = self.h;
         let t1 = t + h;
         let phi_mean = self.cfg.disturbance.distributed.phi_integral(t, t1) / h;
@@ -297,5 +362,6 @@ impl Stepper {
         }
         self.k += 1;
         self.update_estimates();
+        self.record_peaks(self.time());
     }
 }
