@@ -5,7 +5,7 @@
 mod common;
 
 use common::paper_with;
-use wingcheck_sim::{simulate, RunOptions, Series};
+use wingcheck_sim::{simulate, simulate_with_error, RunOptions, Series};
 
 fn run(sets: &[&str]) -> Series {
     simulate(&paper_with(sets), RunOptions::default()).unwrap().series
@@ -42,6 +42,7 @@ fn spatial_study(method: &str) -> (Vec<Series>, f64) {
             run(&[
                 &format!("discretisation.method={method}"),
                 &format!("discretisation.elements={n}"),
+                &format!("discretisation.fd_points={n}"),
                 "discretisation.grading=0",
             ])
         })
@@ -69,39 +70,93 @@ fn fe_and_fd_tip_trajectories_converge_at_second_order_and_agree() {
     assert!(gap_all < 1e-4, "FE and FD limits differ by {gap_all} in the start-up transient");
 }
 
+/// FD's default settings (the FD grid is uniform).
+const FD: [&str; 2] = ["discretisation.method=fd", "discretisation.grading=0"];
+
 #[test]
-fn default_settings_are_within_2e_4_of_the_extrapolated_solution() {
-    let default = run(&[]);
-    // Reference: uniform grids (grading 0) of 64 and 128 elements, Richardson-extrapolated at
-    // the measured order 2: independent of the default's graded mesh.
+fn default_settings_are_within_2e_4_of_the_extrapolated_solution_over_the_whole_horizon() {
+    // Reference: FE on uniform grids (grading 0) of 64 and 128 elements, Richardson-extrapolated
+    // at the measured order 2: independent of the default graded FE mesh and of FD.
     let fine = run(&["discretisation.elements=64", "discretisation.grading=0"]);
     let finer = run(&["discretisation.elements=128", "discretisation.grading=0"]);
     let (q_ref, t_ref) = extrapolate(&fine, &finer, 2.0);
-    let t = &default.t;
-    let err_all = max_diff(&default.q_tip, &q_ref).max(max_diff(&default.theta_tip, &t_ref));
-    let err = max_diff_after(t, &default.q_tip, &q_ref, TRANSIENT).max(max_diff_after(
-        t,
-        &default.theta_tip,
-        &t_ref,
-        TRANSIENT,
-    ));
-    let cfg = paper_with(&[]);
-    println!(
-        "default ({} elements, grading {}, dt = {} s): max tip error {err:.3e} for t in [{TRANSIENT}, 20] s, {err_all:.3e} over [0, 20] s",
-        cfg.discretisation.elements, cfg.discretisation.grading, cfg.discretisation.dt
-    );
-    assert!(err <= 2e-4, "default tip error {err}");
-    assert!(err_all <= 1e-3, "default tip error in the start-up transient {err_all}");
-    // The finer documented setting meets 2e-4 over the whole horizon.
-    let accurate = run(&["discretisation.elements=24", "discretisation.grading=0.5"]);
-    let err_acc = max_diff(&accurate.q_tip, &q_ref).max(max_diff(&accurate.theta_tip, &t_ref));
-    println!("24 elements, grading 0.5: max tip error over [0, 20] s = {err_acc:.3e}");
-    assert!(err_acc <= 2e-4, "accurate setting tip error {err_acc}");
+    for (name, sets) in [("fe", &[][..]), ("fd", &FD[..])] {
+        let default = run(sets);
+        let t = &default.t;
+        let err_all = max_diff(&default.q_tip, &q_ref).max(max_diff(&default.theta_tip, &t_ref));
+        let err_late = max_diff_after(t, &default.q_tip, &q_ref, TRANSIENT).max(max_diff_after(
+            t,
+            &default.theta_tip,
+            &t_ref,
+            TRANSIENT,
+        ));
+        let cfg = paper_with(sets);
+        println!(
+            "{name} default ({} grid, grading {}, dt = {} s): max tip error {err_all:.3e} over [0, 20] s, {err_late:.3e} for t >= {TRANSIENT} s",
+            cfg.discretisation.grid_size(),
+            cfg.discretisation.grading,
+            cfg.discretisation.dt
+        );
+        assert!(err_all <= 2e-4, "{name} default tip error {err_all}");
+    }
     // the time-step part of the error, from a run with dt/4 on the default grid
     let dt_fine = run(&["discretisation.dt=0.00025"]);
-    let dt_err = tip_diff(&default, &dt_fine);
+    let dt_err = tip_diff(&run(&[]), &dt_fine);
     println!("time-step contribution (dt vs dt/4): {dt_err:.3e}");
     assert!(dt_err < 2e-5);
+}
+
+/// The error estimate of `simulate_with_error` (one refinement in h and in dt) against the
+/// actual error measured from an independent reference: Richardson extrapolation of the same
+/// scheme on the two next finer grids (2N, 4N) at dt/2. Checked as the maximum over each 1-s
+/// window of [0, 20] s, for FE and FD; and FE and FD agree within the sum of their stated errors.
+#[test]
+fn error_estimates_bound_the_error_against_richardson_on_finer_grids_for_fe_and_fd() {
+    let mut estimated = Vec::new();
+    for (name, sets) in [("fe", &[][..]), ("fd", &FD[..])] {
+        let cfg = paper_with(sets);
+        let est = simulate_with_error(&cfg, RunOptions::default()).unwrap();
+        let n = cfg.discretisation.grid_size();
+        let key = if name == "fe" { "elements" } else { "fd_points" };
+        let dt = format!("discretisation.dt={}", cfg.discretisation.dt / 2.0);
+        let mut fine_sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        fine_sets.push(dt);
+        let at = |m: usize| {
+            let mut v = fine_sets.clone();
+            v.push(format!("discretisation.{key}={m}"));
+            let refs: Vec<&str> = v.iter().map(|s| s.as_str()).collect();
+            run(&refs)
+        };
+        let (q_ref, t_ref) = extrapolate(&at(2 * n), &at(4 * n), 2.0);
+        let s = &est.output.series;
+        let mut worst_ratio: f64 = 0.0;
+        for w in 0..20 {
+            let idx: Vec<usize> = (0..s.len()).filter(|&k| s.t[k] >= w as f64 && s.t[k] < (w + 1) as f64).collect();
+            let actual = idx.iter().map(|&k| (s.q_tip[k] - q_ref[k]).abs()).fold(0.0, f64::max);
+            let bound = idx.iter().map(|&k| est.q_tip_error[k]).fold(0.0, f64::max);
+            let actual_t = idx.iter().map(|&k| (s.theta_tip[k] - t_ref[k]).abs()).fold(0.0, f64::max);
+            let bound_t = idx.iter().map(|&k| est.theta_tip_error[k]).fold(0.0, f64::max);
+            worst_ratio = worst_ratio.max(actual / bound).max(actual_t / bound_t);
+            assert!(actual <= bound, "{name} window {w} s: q error {actual:e} > estimate {bound:e}");
+            assert!(actual_t <= bound_t, "{name} window {w} s: θ error {actual_t:e} > estimate {bound_t:e}");
+        }
+        println!(
+            "{name}: max estimated error q {:.2e} θ {:.2e}; worst actual/estimate over 1-s windows {worst_ratio:.2}",
+            est.max_q_tip_error, est.max_theta_tip_error
+        );
+        assert!(est.meets_tolerance, "{name}: defaults exceed the stated tolerance");
+        estimated.push(est);
+    }
+    let (fe, fd) = (&estimated[0], &estimated[1]);
+    let (a, b) = (&fe.output.series, &fd.output.series);
+    let mut worst: f64 = 0.0;
+    for k in 0..a.len() {
+        let gap_q = (a.q_tip[k] - b.q_tip[k]).abs() / (fe.q_tip_error[k] + fd.q_tip_error[k]);
+        let gap_t = (a.theta_tip[k] - b.theta_tip[k]).abs() / (fe.theta_tip_error[k] + fd.theta_tip_error[k]);
+        worst = worst.max(gap_q).max(gap_t);
+    }
+    println!("FE vs FD: worst |difference| / (sum of stated errors) = {worst:.2}");
+    assert!(worst <= 1.0, "FE and FD differ by more than their stated errors ({worst})");
 }
 
 #[test]

@@ -34,7 +34,8 @@ pub fn run(a: BenchArgs) -> anyhow::Result<()> {
     let modes = time_modes(&cfg, 5, a.repeats)?;
     let mut grid: Vec<Timing> = Vec::new();
     for n in [8usize, 16, 32, 64, 128] {
-        let c = apply_overrides(&cfg, &[format!("discretisation.elements={n}")])?;
+        let key = if cfg.discretisation.method == wingcheck_model::Method::Fd { "fd_points" } else { "elements" };
+        let c = apply_overrides(&cfg, &[format!("discretisation.{key}={n}")])?;
         grid.push(time_config(&c, a.repeats.min(3))?);
     }
     let mut horizon: Vec<Timing> = Vec::new();
@@ -68,7 +69,7 @@ pub fn run(a: BenchArgs) -> anyhow::Result<()> {
         "default run ({} controller, {} with {} elements, dt = {} s, T = {} s): {:.2} ms ({} steps, {} unknowns)",
         cfg.control.kind.name(),
         cfg.discretisation.method.name(),
-        cfg.discretisation.elements,
+        cfg.discretisation.grid_size(),
         cfg.discretisation.dt,
         cfg.horizon.t_end,
         base.run_seconds * 1e3,

@@ -6,7 +6,8 @@ use std::time::Instant;
 use clap::Args;
 use serde_json::json;
 use wingcheck_model::{ControllerKind, Method, ObserverRule};
-use wingcheck_sim::{output, simulate, RunOptions};
+use wingcheck_sim::{output, simulate_with_error, RunOptions, TIP_TOLERANCE};
+use wingcheck_sim::{simulate, EstimatedRun};
 
 use super::common::{progress_bar, ConfigArgs};
 
@@ -21,9 +22,14 @@ pub struct SimulateArgs {
     /// Observer rule: implicit (set-valued, default) or explicit (chatters).
     #[arg(long)]
     observer: Option<ObserverRule>,
-    /// Spatial discretisation: fd or fe.
+    /// Spatial discretisation: fd or fe. `fd` implies a uniform grid (discretisation.grading=0)
+    /// unless the grading is set explicitly, which FD then refuses.
     #[arg(long)]
     method: Option<Method>,
+    /// Also estimate the discretisation error of every tip value and peak by one refinement in
+    /// h (2N) and one in dt (dt/2), Richardson order 2 (about 5× the work of the run).
+    #[arg(long)]
+    error_estimate: bool,
     /// Output file: .csv (time series) or .json (series, fields q(z,t), θ(z,t), config, stats).
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
@@ -41,6 +47,9 @@ pub struct SimulateArgs {
 
 pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
     let mut set = a.config.set.clone();
+    if a.method == Some(Method::Fd) && !set.iter().any(|s| s.trim_start().starts_with("discretisation.grading")) {
+        set.insert(0, "discretisation.grading=0".into());
+    }
     if let Some(c) = a.controller {
         set.push(format!("control.kind={}", c.name()));
     }
@@ -74,7 +83,13 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
     };
     let wants_fields = a.out.as_ref().is_some_and(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("json")));
     let start = Instant::now();
-    let out = simulate(&cfg, RunOptions { fields: wants_fields, progress: Some(&mut progress) })?;
+    let opts = RunOptions { fields: wants_fields, progress: Some(&mut progress) };
+    let (out, estimated): (_, Option<EstimatedRun>) = if a.error_estimate {
+        let e = simulate_with_error(&cfg, opts)?;
+        (e.output.clone(), Some(e))
+    } else {
+        (simulate(&cfg, opts)?, None)
+    };
     let wall = start.elapsed().as_secs_f64();
     if let Some(b) = bar {
         b.finish_and_clear();
@@ -89,9 +104,10 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
                 "controller": cfg.control.kind.name(),
                 "observer": cfg.observer.rule.name(),
                 "method": cfg.discretisation.method.name(),
-                "elements": cfg.discretisation.elements,
-                "grading": if cfg.discretisation.method == Method::Fe { cfg.discretisation.grading } else { 0.0 },
+                "elements": cfg.discretisation.grid_size(),
+                "grading": cfg.discretisation.grading,
                 "dt": cfg.discretisation.dt,
+                "stepper": cfg.discretisation.stepper.name(),
                 "sample_period": cfg.observer.sample_period,
                 "t_end": cfg.horizon.t_end,
                 "a": cfg.control.a,
@@ -104,27 +120,79 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
                 "q": sample_times.iter().map(|&t| s.at(&s.q_tip, t)).collect::<Vec<_>>(),
                 "theta": sample_times.iter().map(|&t| s.at(&s.theta_tip, t)).collect::<Vec<_>>(),
             },
-            "out": a.out.as_ref().map(|p| p.display().to_string()),
+            "peaks": out.peaks,
         });
+        let mut summary = summary;
+        if let Some(p) = &a.out {
+            summary["out"] = json!(p.display().to_string());
+        }
+        if let Some(e) = &estimated {
+            let tips: Vec<_> = sample_times.iter().map(|&t| e.tip_at(t)).collect();
+            summary["tip"]["q_error"] = json!(tips.iter().map(|x| x.0.error).collect::<Vec<_>>());
+            summary["tip"]["theta_error"] = json!(tips.iter().map(|x| x.1.error).collect::<Vec<_>>());
+            summary["error_estimate"] = json!({
+                "refined_grid": e.refined_grid,
+                "refined_dt": e.refined_dt,
+                "max_q_tip_error": e.max_q_tip_error,
+                "max_theta_tip_error": e.max_theta_tip_error,
+                "max_space_error": e.max_space_error,
+                "max_time_error": e.max_time_error,
+                "tolerance": e.tolerance,
+                "meets_tolerance": e.meets_tolerance,
+                "peaks": e.peaks,
+                "basis": "Richardson, order 2 in h and dt, safety factor 1.25: (5/3)·|u(N) − u(2N)| + (5/3)·|u(dt) − u(dt/2)| per output sample, maximised over ±0.1 s; peaks at full rate",
+            });
+        }
         println!("{}", serde_json::to_string_pretty(&summary)?);
     } else {
         println!(
-            "{} controller, {} observer, {} with {} elements, dt = {} s: {} steps in {:.3} s",
+            "{} controller, {} observer, {} with {} {}, dt = {} s ({}): {} steps in {:.3} s",
             cfg.control.kind.name(),
             cfg.observer.rule.name(),
             cfg.discretisation.method.name(),
-            cfg.discretisation.elements,
+            cfg.discretisation.grid_size(),
+            if cfg.discretisation.method == Method::Fe { "elements" } else { "intervals" },
             cfg.discretisation.dt,
+            cfg.discretisation.stepper.name(),
             out.stats.steps,
             wall
         );
-        println!("{:>8} {:>14} {:>14}", "t (s)", "q(s,t) (m)", "θ(s,t) (rad)");
-        let sample_times: Vec<f64> = match &a.sample_times {
-            Some(v) => v.clone(),
-            None => [5.0, 10.0, 20.0].into_iter().filter(|&t| t <= cfg.horizon.t_end).collect(),
-        };
-        for &t in &sample_times {
-            println!("{:>8} {:>14.6e} {:>14.6e}", t, s.at(&s.q_tip, t), s.at(&s.theta_tip, t));
+        match &estimated {
+            None => {
+                println!("{:>8} {:>14} {:>14}", "t (s)", "q(s,t) (m)", "θ(s,t) (rad)");
+                for &t in &sample_times {
+                    println!("{:>8} {:>14.6e} {:>14.6e}", t, s.at(&s.q_tip, t), s.at(&s.theta_tip, t));
+                }
+            }
+            Some(e) => {
+                println!(
+                    "{:>8} {:>14} {:>9} {:>14} {:>9}",
+                    "t (s)", "q(s,t) (m)", "± error", "θ(s,t) (rad)", "± error"
+                );
+                for &t in &sample_times {
+                    let (q, th) = e.tip_at(t);
+                    println!("{:>8} {:>14.6e} {:>9.1e} {:>14.6e} {:>9.1e}", t, q.value, q.error, th.value, th.error);
+                }
+                println!(
+                    "max estimated error over the horizon: q {:.1e} m, θ {:.1e} rad (space {:.1e}, time {:.1e}; refined grid {}, dt {}): {} the tolerance {:.0e}",
+                    e.max_q_tip_error,
+                    e.max_theta_tip_error,
+                    e.max_space_error,
+                    e.max_time_error,
+                    e.refined_grid,
+                    e.refined_dt,
+                    if e.meets_tolerance { "within" } else { "EXCEEDS" },
+                    TIP_TOLERANCE
+                );
+                let p = &e.peaks;
+                println!(
+                    "full-rate peaks: |τ1| {:.6} ± {:.1e} N at {:.3} s, |τ2| {:.6} ± {:.1e} N m at {:.3} s, |q| {:.6} ± {:.1e} m, |θ| {:.6} ± {:.1e} rad",
+                    p.tau1.abs_max.value, p.tau1.abs_max.error, p.tau1.t,
+                    p.tau2.abs_max.value, p.tau2.abs_max.error, p.tau2.t,
+                    p.q_tip.abs_max.value, p.q_tip.abs_max.error,
+                    p.theta_tip.abs_max.value, p.theta_tip.abs_max.error
+                );
+            }
         }
         if let Some(p) = &a.out {
             println!("wrote {}", p.display());

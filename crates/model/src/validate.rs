@@ -132,6 +132,18 @@ impl Config {
         }
         within("discretisation.dt", disc.dt, 1e-9, o.sample_period)?;
         within("discretisation.grading", disc.grading, 0.0, 0.9)?;
+        if !(2..=4000).contains(&disc.fd_points) {
+            return Err(range("discretisation.fd_points", disc.fd_points, "an integer in [2, 4000]"));
+        }
+        if disc.method == crate::Method::Fd && disc.grading != 0.0 {
+            return Err(ConfigError::Inconsistent {
+                fields: "discretisation.grading, discretisation.method".into(),
+                reason: format!(
+                    "discretisation.grading = {} is implemented for method fe only; the fd grid is uniform: set discretisation.grading=0",
+                    disc.grading
+                ),
+            });
+        }
 
         if !whole_multiple(o.sample_period / disc.dt) {
             return Err(ConfigError::Inconsistent {

@@ -45,6 +45,7 @@ pub fn accuracy_variant(cfg: &Config, method: &str, elements: usize) -> Result<C
         &[
             format!("discretisation.method={method}"),
             format!("discretisation.elements={elements}"),
+            format!("discretisation.fd_points={elements}"),
             "discretisation.grading=0".to_string(),
         ],
     )

@@ -49,7 +49,7 @@ pub fn time_config(cfg: &Config, repeats: usize) -> Result<Timing, SimError> {
     }
     let run_seconds = median(runs);
     Ok(Timing {
-        elements: cfg.discretisation.elements,
+        elements: cfg.discretisation.grid_size(),
         unknowns,
         t_end: cfg.horizon.t_end,
         steps,

@@ -76,7 +76,7 @@ pub struct Discretisation {
 impl Discretisation {
     /// Build the discretisation the configuration asks for.
     pub fn new(cfg: &Config) -> Discretisation {
-        Self::with(cfg, cfg.discretisation.method, cfg.discretisation.elements)
+        Self::with(cfg, cfg.discretisation.method, cfg.discretisation.grid_size())
     }
 
     /// Build with an explicit method and element count (for refinement studies).

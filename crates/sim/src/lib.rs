@@ -13,6 +13,7 @@
 pub mod banded;
 pub mod bench;
 mod disc;
+pub mod error_estimate;
 pub mod estimate;
 pub mod fd;
 pub mod fe;
@@ -24,6 +25,7 @@ mod stepper;
 pub mod strain;
 
 pub use disc::{mass_determinant, Discretisation, Interpolation, Parts};
+pub use error_estimate::{simulate_with_error, EstimatedRun, PeakEstimate, PeakEstimates, TIP_TOLERANCE};
 pub use estimate::Estimate;
 pub use run::{simulate, Fields, RunOptions, RunStats, Series, SimOutput};
 pub use stepper::{Channel, EnergyLedger, Peak, Peaks, Sample, Stepper};

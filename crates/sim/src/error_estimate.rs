@@ -1,0 +1,205 @@
+//! Simulations with error estimates: every tip value and full-rate peak of a run with an
+//! estimated discretisation error from refinement in h and in dt (Richardson, order 2 in
+//! each: FE with linear torsion elements and FD are O(h²), both time schemes O(dt²)):
+//! e_h = |u(N) − u(2N)|·F, e_dt = |u(dt) − u(dt/2)|·F with F = 1.25·4/3 (Richardson for order
+//! 2 with the grid-convergence-index safety factor 1.25), error = e_h + e_dt per output
+//! sample, maximised over ±[`ENVELOPE_HALF_WIDTH`] around it. Cost: the base run plus one run on the doubled grid and one with half the step
+//! (≈ 1 + 2 + 2 = 5 base runs of work).
+
+use serde::Serialize;
+use wingcheck_model::{Config, Method};
+
+use crate::estimate::Estimate;
+use crate::{simulate, Peaks, RunOptions, SimError, SimOutput};
+
+/// Tolerance the default grids are chosen to meet: absolute error on q(s,t) (m) and θ(s,t)
+/// (rad) over the whole horizon, switch-on included.
+pub const TIP_TOLERANCE: f64 = 2e-4;
+
+/// Richardson factor 2^p/(2^p − 1) = 4/3 for p = 2, which turns a difference between grids h
+/// and h/2 into an estimate of the error at h, times Roache's grid-convergence-index safety
+/// factor 1.25 (for an order verified by refinement: 1.98 in h for FE, 1.86 for FD, 2.02 in dt,
+/// tests/trajectories.rs): 5/3.
+const RICHARDSON_2: f64 = 1.25 * 4.0 / 3.0;
+
+/// A full-rate peak with its estimated error.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct PeakEstimate {
+    /// max |value| over the horizon at full rate, with its error.
+    pub abs_max: Estimate,
+    /// Time of the peak in the base run (s).
+    pub t: f64,
+}
+
+/// Full-rate peaks with errors.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct PeakEstimates {
+    /// |q(s,t)| (m).
+    pub q_tip: PeakEstimate,
+    /// |θ(s,t)| (rad).
+    pub theta_tip: PeakEstimate,
+    /// |q̇(s,t)| (m/s).
+    pub q_tip_rate: PeakEstimate,
+    /// |θ̇(s,t)| (rad/s).
+    pub theta_tip_rate: PeakEstimate,
+    /// |τ1| (N).
+    pub tau1: PeakEstimate,
+    /// |τ2| (N m).
+    pub tau2: PeakEstimate,
+    /// |g1 − ĝ1| (N).
+    pub g1_error: PeakEstimate,
+    /// |g2 − ĝ2| (N m).
+    pub g2_error: PeakEstimate,
+}
+
+/// A run with its discretisation-error estimates.
+#[derive(Debug, Clone, Serialize)]
+pub struct EstimatedRun {
+    /// The base run (the configuration as given).
+    pub output: SimOutput,
+    /// Grid of the spatial refinement run (elements / intervals, 2N).
+    pub refined_grid: usize,
+    /// Step of the temporal refinement run (s, dt/2).
+    pub refined_dt: f64,
+    /// Estimated absolute error of q(s,t_k) (m) at each output sample.
+    pub q_tip_error: Vec<f64>,
+    /// Estimated absolute error of θ(s,t_k) (rad) at each output sample.
+    pub theta_tip_error: Vec<f64>,
+    /// Max of `q_tip_error` over the horizon (m).
+    pub max_q_tip_error: f64,
+    /// Max of `theta_tip_error` over the horizon (rad).
+    pub max_theta_tip_error: f64,
+    /// Max spatial part over the horizon, max(q, θ).
+    pub max_space_error: f64,
+    /// Max temporal part over the horizon, max(q, θ).
+    pub max_time_error: f64,
+    /// Full-rate peaks with errors.
+    pub peaks: PeakEstimates,
+    /// [`TIP_TOLERANCE`].
+    pub tolerance: f64,
+    /// Whether both maxima are within the tolerance.
+    pub meets_tolerance: bool,
+}
+
+impl EstimatedRun {
+    /// q(s,t) and θ(s,t) at time t (linear interpolation between output samples) with their
+    /// errors (the larger error of the two bracketing samples).
+    pub fn tip_at(&self, t: f64) -> (Estimate, Estimate) {
+        let s = &self.output.series;
+        let i = s.t.partition_point(|&x| x <= t).min(s.len() - 1);
+        let j = i.saturating_sub(1);
+        let err = |e: &[f64]| e[i].max(e[j]);
+        (
+            Estimate { value: s.at(&s.q_tip, t), error: err(&self.q_tip_error) },
+            Estimate { value: s.at(&s.theta_tip, t), error: err(&self.theta_tip_error) },
+        )
+    }
+}
+
+fn refined_space(cfg: &Config) -> Config {
+    let mut c = cfg.clone();
+    match c.discretisation.method {
+        Method::Fe => c.discretisation.elements *= 2,
+        Method::Fd => c.discretisation.fd_points *= 2,
+    }
+    c
+}
+
+fn refined_time(cfg: &Config) -> Config {
+    let mut c = cfg.clone();
+    c.discretisation.dt *= 0.5;
+    c
+}
+
+fn peak_estimates(base: &Peaks, space: &Peaks, time: &Peaks) -> PeakEstimates {
+    let one = |b: crate::Peak, s: crate::Peak, t: crate::Peak| PeakEstimate {
+        abs_max: Estimate {
+            value: b.abs_max,
+            error: RICHARDSON_2 * ((b.abs_max - s.abs_max).abs() + (b.abs_max - t.abs_max).abs()),
+        },
+        t: b.t,
+    };
+    PeakEstimates {
+        q_tip: one(base.q_tip, space.q_tip, time.q_tip),
+        theta_tip: one(base.theta_tip, space.theta_tip, time.theta_tip),
+        q_tip_rate: one(base.q_tip_rate, space.q_tip_rate, time.q_tip_rate),
+        theta_tip_rate: one(base.theta_tip_rate, space.theta_tip_rate, time.theta_tip_rate),
+        tau1: one(base.tau1, space.tau1, time.tau1),
+        tau2: one(base.tau2, space.tau2, time.tau2),
+        g1_error: one(base.g1_error, space.g1_error, time.g1_error),
+        g2_error: one(base.g2_error, space.g2_error, time.g2_error),
+    }
+}
+
+/// Half-width (s) of the window over which a pointwise estimate is maximised: the difference
+/// between two grids crosses zero where the error itself need not.
+pub const ENVELOPE_HALF_WIDTH: f64 = 0.1;
+
+/// e_k ← max{e_j : |t_j − t_k| ≤ ENVELOPE_HALF_WIDTH} (two-pointer sliding maximum, O(n·w)).
+fn envelope(t: &[f64], e: &[f64]) -> Vec<f64> {
+    let n = t.len();
+    let mut out = Vec::with_capacity(n);
+    let (mut lo, mut hi) = (0usize, 0usize);
+    for k in 0..n {
+        while t[lo] < t[k] - ENVELOPE_HALF_WIDTH {
+            lo += 1;
+        }
+        while hi + 1 < n && t[hi + 1] <= t[k] + ENVELOPE_HALF_WIDTH {
+            hi += 1;
+        }
+        out.push(e[lo..=hi].iter().copied().fold(0.0, f64::max));
+    }
+    out
+}
+
+/// Run `cfg` and estimate the discretisation error of every output sample's tip values and of
+/// the full-rate peaks by one refinement in h and one in dt. Refuses (as a configuration
+/// error) a refinement the validation would refuse, e.g. a doubled grid above 4000.
+pub fn simulate_with_error(cfg: &Config, opts: RunOptions<'_>) -> Result<EstimatedRun, SimError> {
+    cfg.validate()?;
+    let space_cfg = refined_space(cfg);
+    let time_cfg = refined_time(cfg);
+    space_cfg.validate()?;
+    time_cfg.validate()?;
+    let output = simulate(cfg, opts)?;
+    let space = simulate(&space_cfg, RunOptions::default())?;
+    let time = simulate(&time_cfg, RunOptions::default())?;
+    let (b, s, t) = (&output.series, &space.series, &time.series);
+    let n = b.len();
+    let (mut eq, mut et) = (Vec::with_capacity(n), Vec::with_capacity(n));
+    let (mut max_space, mut max_time): (f64, f64) = (0.0, 0.0);
+    for k in 0..n {
+        let sq = RICHARDSON_2 * (b.q_tip[k] - s.q_tip[k]).abs();
+        let st = RICHARDSON_2 * (b.theta_tip[k] - s.theta_tip[k]).abs();
+        let tq = RICHARDSON_2 * (b.q_tip[k] - t.q_tip[k]).abs();
+        let tt = RICHARDSON_2 * (b.theta_tip[k] - t.theta_tip[k]).abs();
+        max_space = max_space.max(sq).max(st);
+        max_time = max_time.max(tq).max(tt);
+        eq.push(sq + tq);
+        et.push(st + tt);
+    }
+    let eq = envelope(&b.t, &eq);
+    let et = envelope(&b.t, &et);
+    let max_q = eq.iter().copied().fold(0.0, f64::max);
+    let max_t = et.iter().copied().fold(0.0, f64::max);
+    let peaks = peak_estimates(&output.peaks, &space.peaks, &time.peaks);
+    let refined_grid = space_cfg.discretisation.grid_size();
+    Ok(EstimatedRun {
+        output,
+        refined_grid,
+        refined_dt: time_cfg.discretisation.dt,
+        q_tip_error: eq,
+        theta_tip_error: et,
+        max_q_tip_error: max_q,
+        max_theta_tip_error: max_t,
+        max_space_error: max_space,
+        max_time_error: max_time,
+        peaks,
+        tolerance: TIP_TOLERANCE,
+        meets_tolerance: max_q <= TIP_TOLERANCE && max_t <= TIP_TOLERANCE,
+    })
+}
+
+/// Work of [`simulate_with_error`] in units of the base run's unknown-steps (for the
+/// bounded-work guards of callers): 1 + 2 (doubled grid) + 2 (half step) = 5.
+pub const WORK_FACTOR: f64 = 5.0;
