@@ -182,6 +182,6 @@ fn verify_rejects_a_tampered_certificate_with_nonzero_exit() {
     std::fs::write(&f, text.replacen("\"1/1\"", "\"2/1\"", 1)).unwrap();
     let bad = wingcheck(&["verify", d]);
     assert!(!bad.status.success());
-    let out = String::from_utf8_lossy(&bad.stdout);
-    assert!(out.contains("REJECTED") && out.contains("mu-conditions-infeasible.json"), "{out}");
+    let err = stderr(&bad);
+    assert!(err.contains("REJECTED") && err.contains("mu-conditions-infeasible.json"), "{err}");
 }

@@ -32,7 +32,15 @@ pub fn run(a: ModesArgs) -> anyhow::Result<()> {
         anyhow::bail!("--count must be at least 1");
     }
     let disc = Discretisation::new(&cfg);
-    let count = a.count.min(disc.dim());
+    if a.count > disc.dim() {
+        anyhow::bail!(
+            "--count {} exceeds the {} degrees of freedom of this discretisation (allowed: 1 to {}); refine with --set discretisation.elements=N",
+            a.count,
+            disc.dim(),
+            disc.dim()
+        );
+    }
+    let count = a.count;
     let coupled = modes::natural_frequencies(&disc, count)?;
     let w = &cfg.wing;
     let bending = modes::bending_frequencies(w.span, w.ei, w.rho, count);
