@@ -12,6 +12,8 @@ use super::common::ConfigArgs;
 pub struct ModesArgs {
     #[command(flatten)]
     config: ConfigArgs,
+    #[command(flatten)]
+    work: super::common::WorkArgs,
     /// Number of frequencies.
     #[arg(long, default_value_t = 5)]
     count: usize,
@@ -31,6 +33,7 @@ pub fn run(a: ModesArgs) -> anyhow::Result<()> {
     if a.count == 0 {
         anyhow::bail!("--count must be at least 1");
     }
+    a.work.guard(&wingcheck_model::work::WorkEstimate::modes(&cfg))?;
     let disc = Discretisation::new(&cfg);
     if a.count > disc.dim() {
         anyhow::bail!(

@@ -77,15 +77,10 @@ impl CertifyError {
     }
 }
 
-/// Shortest exact decimal text of a config value: the shortest round-trip decimal, in
-/// positional form when that is short (`0.35`, `10`), else in scientific form (`1e-12`).
+/// Exact decimal text of a config value ([`wingcheck_model::format_number`]: the shortest
+/// round-trip decimal, `0.35`, `10`, `1e-12`).
 pub fn format_decimal(x: f64) -> String {
-    let plain = format!("{x}");
-    if plain.len() <= 24 {
-        plain
-    } else {
-        format!("{x:e}")
-    }
+    wingcheck_model::format_number(x)
 }
 
 fn numerical(what: &str) -> impl FnOnce(String) -> CertifyError + '_ {
