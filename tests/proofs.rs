@@ -11,6 +11,11 @@ use common::paper_with;
 use serde_json::{json, Value};
 use wingcheck_claims::certify::{self, manifest, verify_set};
 
+/// A forgery: the file edited, the edit, and what the rejection must mention.
+type Forgery<'a> = (&'static str, Box<dyn Fn(&mut Value) + 'a>, &'static str);
+/// A forgery with a plain function as the edit.
+type PlainForgery = (&'static str, fn(&mut Value), &'static str);
+
 fn fresh_set() -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
     certify::write_all(&paper_with(&[]), &dir.path().join("p")).unwrap();
@@ -161,7 +166,7 @@ fn certificates_must_be_for_the_sets_config() {
 
 #[test]
 fn text_matrices_and_systems_cannot_be_smuggled_in() {
-    let cases: [(&str, fn(&mut Value), &str); 6] = [
+    let cases: [PlainForgery; 6] = [
         (
             "w-bounds-lower.json",
             |v| v["statement"] = json!("W is positive definite (λ2 > 0)"),
@@ -277,7 +282,7 @@ fn the_set_must_be_complete_and_only_itself() {
 #[test]
 fn adversarial_numbers_and_sizes_are_refused_before_arithmetic() {
     let million = "9".repeat(1_000_000);
-    let cases: Vec<(&str, Box<dyn Fn(&mut Value)>, &str)> = vec![
+    let cases: Vec<Forgery<'_>> = vec![
         ("w-bounds-lower.json", Box::new(|v| v["lambda"] = json!("-1e99999")), "exponent"),
         ("w-bounds-lower.json", Box::new(|v| v["lambda"] = json!("-1e3000")), "exponent"),
         ("w-bounds-lower.json", Box::new(|v| v["lambda"] = json!("1/1e5")), "not an exact number"),
