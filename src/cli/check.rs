@@ -10,6 +10,8 @@ use super::common::ConfigArgs;
 pub struct CheckArgs {
     #[command(flatten)]
     config: ConfigArgs,
+    #[command(flatten)]
+    work: super::common::WorkArgs,
     /// Print the ledger as JSON (rows with evidence, assumptions and plot data).
     #[arg(long)]
     json: bool,
@@ -17,6 +19,7 @@ pub struct CheckArgs {
 
 pub fn run(a: CheckArgs) -> anyhow::Result<()> {
     let cfg = a.config.load()?;
+    a.work.guard(&wingcheck_model::work::WorkEstimate::check(&cfg))?;
     let ledger = check_all(&cfg)?;
     if a.json {
         println!("{}", serde_json::to_string_pretty(&ledger)?);

@@ -3,7 +3,6 @@
 use std::io::IsTerminal;
 use std::path::PathBuf;
 
-use anyhow::Context;
 use clap::Args;
 use wingcheck_model::{apply_overrides, Config};
 
@@ -23,12 +22,31 @@ impl ConfigArgs {
     pub fn load(&self) -> anyhow::Result<Config> {
         let base = match &self.config {
             None => Config::paper(),
-            Some(p) => {
-                let text = std::fs::read_to_string(p).with_context(|| format!("cannot read config {}", p.display()))?;
-                Config::from_json_str(&text).with_context(|| format!("in config {}", p.display()))?
-            }
+            Some(p) => Config::from_file(p).map_err(|e| match e {
+                wingcheck_model::ConfigError::Read { .. } => anyhow::Error::new(e),
+                other => anyhow::Error::new(other).context(format!("in config {}", p.display())),
+            })?,
         };
         Ok(apply_overrides(&base, &self.set)?)
+    }
+}
+
+/// The work guard shared by simulate, check, report and modes.
+#[derive(Debug, Clone, Args)]
+pub struct WorkArgs {
+    /// Run even if the estimated work exceeds the limits (10 min of computing, 4 GiB of
+    /// memory, 1 GiB of output).
+    #[arg(long)]
+    pub allow_large: bool,
+}
+
+impl WorkArgs {
+    /// Refuse `est` above the default limits unless `--allow-large` was given.
+    pub fn guard(&self, est: &wingcheck_model::work::WorkEstimate) -> anyhow::Result<()> {
+        if self.allow_large {
+            return Ok(());
+        }
+        Ok(est.within(&wingcheck_model::work::DEFAULT_LIMITS)?)
     }
 }
 

@@ -12,6 +12,8 @@ use super::common::{progress_bar, ConfigArgs};
 pub struct ReportArgs {
     #[command(flatten)]
     config: ConfigArgs,
+    #[command(flatten)]
+    work: super::common::WorkArgs,
     /// Output directory; an earlier report there is replaced atomically, anything else is refused.
     #[arg(long, value_name = "DIR", default_value = "reports/paper")]
     out: PathBuf,
@@ -19,6 +21,7 @@ pub struct ReportArgs {
 
 pub fn run(a: ReportArgs) -> anyhow::Result<()> {
     let cfg = a.config.load()?;
+    a.work.guard(&wingcheck_model::work::WorkEstimate::report(&cfg))?;
     let bar = progress_bar(1, "report");
     let on_progress = |p: Progress| {
         if let Some(b) = &bar {

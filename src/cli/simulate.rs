@@ -16,6 +16,8 @@ use super::common::{progress_bar, ConfigArgs};
 pub struct SimulateArgs {
     #[command(flatten)]
     config: ConfigArgs,
+    #[command(flatten)]
+    work: super::common::WorkArgs,
     /// Controller: none, pd, ftdo, dobc (default: control.kind of the config).
     #[arg(long)]
     controller: Option<ControllerKind>,
@@ -72,6 +74,8 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
             anyhow::bail!("--sample-times: {t} is outside the horizon [0, {}]", cfg.horizon.t_end);
         }
     }
+    let json_out = a.out.as_ref().map(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("json")));
+    a.work.guard(&wingcheck_model::work::WorkEstimate::simulation(&cfg, json_out == Some(true), json_out))?;
     if let Some(path) = &a.out {
         check_writable(path)?;
     }

@@ -10,7 +10,6 @@
 //! do not matter, but any change of a value does. The hash only detects
 //! accidental/naive edits; soundness comes from re-checking the mathematics.
 
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use num_rational::BigRational;
@@ -471,22 +470,10 @@ impl Certificate {
     }
 }
 
-/// Writes `cert` to `path` atomically: temp file in the same directory,
-/// `fsync`, rename over `path`, then (best effort) `fsync` of the directory.
+/// Writes `cert` to `path` atomically (wingcheck-io: temp file, `fsync`, rename, mode 0644).
 pub fn write_certificate(path: &Path, cert: &Certificate) -> Result<(), CertError> {
-    let werr = |source| CertError::Write { path: path.to_path_buf(), source };
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    let mut tmp = tempfile::NamedTempFile::new_in(&dir).map_err(werr)?;
-    tmp.write_all(cert.to_json().as_bytes()).map_err(werr)?;
-    tmp.as_file().sync_all().map_err(werr)?;
-    tmp.persist(path).map_err(|e| werr(e.error))?;
-    if let Ok(d) = std::fs::File::open(&dir) {
-        let _ = d.sync_all(); // not supported everywhere; rename already happened
-    }
-    Ok(())
+    wingcheck_io::write_file_atomic(path, cert.to_json().as_bytes())
+        .map_err(|e| CertError::Write { path: path.to_path_buf(), source: std::io::Error::other(e.to_string()) })
 }
 
 /// Rationals of a matrix as `"p/q"` strings, row by row.

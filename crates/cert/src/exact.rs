@@ -46,6 +46,50 @@ fn parse_int(text: &str, whole: &str) -> Result<BigInt, ExactError> {
     text.parse::<BigInt>().map_err(|e| parse_err(whole, &e.to_string()))
 }
 
+/// Bounds on the text of one exact number, checked before any big-integer arithmetic so that
+/// a few bytes (`"-1e99999"`, a million-digit integer) cannot make a reader hang.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct NumberLimits {
+    /// Most characters of the whole text (digits, sign, `/`, `.`, `e`, exponent).
+    pub max_chars: usize,
+    /// Largest |decimal exponent| after the fraction digits are accounted for
+    /// (`"1.5e-3"` has exponent −4).
+    pub max_exponent: i64,
+}
+
+impl NumberLimits {
+    /// The limits of certificate files: 64 characters, |exponent| ≤ 64.
+    pub const CERTIFICATE: NumberLimits = NumberLimits { max_chars: 64, max_exponent: 64 };
+}
+
+/// [`parse_rational`] with the text's length and decimal exponent bounded by `limits`
+/// *before* any digits are turned into big integers.
+///
+/// # Errors
+/// [`ExactError::Parse`] naming the limit that was exceeded, or any error of
+/// [`parse_rational`].
+pub fn parse_rational_bounded(text: &str, limits: &NumberLimits) -> Result<BigRational, ExactError> {
+    let s = text.trim();
+    if s.len() > limits.max_chars {
+        return Err(parse_err(
+            &format!("{}…", s.chars().take(16).collect::<String>()),
+            &format!("{} characters, at most {} allowed", s.len(), limits.max_chars),
+        ));
+    }
+    if let Some(pos) = s.find(['e', 'E']) {
+        let exp: i64 = s[pos + 1..].parse().map_err(|_| parse_err(text, "bad exponent"))?;
+        let mantissa = &s[..pos];
+        let frac_len = mantissa.split_once('.').map_or(0, |(_, f)| f.len()) as i64;
+        if (exp - frac_len).abs() > limits.max_exponent {
+            return Err(parse_err(
+                text,
+                &format!("decimal exponent {} outside [-{m}, {m}]", exp - frac_len, m = limits.max_exponent),
+            ));
+        }
+    }
+    parse_rational(text)
+}
+
 /// Parses an exact rational from text.
 ///
 /// Accepted forms (surrounding whitespace is ignored):

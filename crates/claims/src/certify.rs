@@ -1,41 +1,90 @@
 //! Certificates for the definiteness and infeasibility facts behind the W-bounds and
-//! mu-conditions rows, written by `wingcheck certify` and re-checked by `wingcheck verify`
-//! in exact rational arithmetic (wingcheck-cert), independent of clarabel and faer: the
-//! verifier rebuilds every matrix from the decimal parameters with [`crate::lyapunov`].
+//! mu-conditions rows, written by `wingcheck certify` and re-derived by `wingcheck verify` in
+//! exact rational arithmetic (wingcheck-cert), independent of clarabel and faer.
+//!
+//! A certificate is a *recipe*: parameters (the configuration's decimals, the Galerkin element
+//! count, λ as a rational) and a witness. The verifier rebuilds W and κ ((22)–(25), via
+//! [`crate::lyapunov::assemble`]) or the μ3 system of (32) from the parameters, checks the
+//! witness and writes the statement itself ([`facts`]). The set is bound to one configuration
+//! by `index.json` ([`manifest`]). A passing verify proves that the printed facts follow from
+//! the printed parameters; it says nothing about who made the files.
 
+pub mod facts;
+pub mod manifest;
+
+use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
 use num_rational::BigRational;
-use serde_json::{json, Value};
-use wingcheck_cert::exact::{parse_rational, to_fraction_string};
-use wingcheck_cert::lp::{FarkasCertificate, LinearSystem};
-use wingcheck_cert::{write_certificate, Certificate, FnRecipe, Payload, RationalMatrix, RecipeRef, RecipeRegistry};
+use wingcheck_cert::exact::{parse_rational_bounded, to_f64, NumberLimits};
 use wingcheck_model::Config;
 
-use crate::lyapunov::{self, decimal, Coupling, LyapunovParams};
-use crate::ClaimsError;
+use crate::lyapunov::{self, Coupling, LyapunovParams};
+use facts::{CertificateFile, FactKind, WeightsText, WingText, FORMAT, VERSION};
+use manifest::{ClaimEntry, FileEntry, Manifest, INDEX, INDEX_FORMAT, INDEX_VERSION};
+
+pub use manifest::{verify_set, VerifiedSet};
 
 /// Elements of the Galerkin space used in certificates (dimension 11·N).
 pub const CERT_ELEMENTS: usize = 4;
 
-/// The registry with the wing Lyapunov recipe.
-pub fn registry() -> RecipeRegistry {
-    let mut r = RecipeRegistry::new();
-    r.register(Box::new(FnRecipe { name: lyapunov::RECIPE, build: lyapunov::recipe_build }))
-        .expect("recipe name is unique");
-    r
+/// Errors of writing and verifying certificate sets.
+#[derive(Debug, thiserror::Error)]
+pub enum CertifyError {
+    /// Reading a file or directory failed.
+    #[error("cannot read {path}: {source}")]
+    Io {
+        /// The path.
+        path: PathBuf,
+        /// The OS error.
+        source: std::io::Error,
+    },
+    /// Writing the set failed (the previous set, if any, is unchanged).
+    #[error(transparent)]
+    Write(#[from] wingcheck_io::IoError),
+    /// A field of a certificate or the manifest is malformed, out of its bounds or
+    /// inconsistent with the set.
+    #[error("{field}: {message}")]
+    Invalid {
+        /// File and/or field.
+        field: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// The exact check failed: the claimed fact does not follow from the parameters.
+    #[error("refuted: {0}")]
+    Refuted(String),
+    /// The float computation that finds a witness failed (certify only).
+    #[error("numerical failure while computing {what}: {detail}")]
+    Numerical {
+        /// Which quantity.
+        what: String,
+        /// The solver's message.
+        detail: String,
+    },
 }
 
-fn cert_err(e: impl std::fmt::Display) -> ClaimsError {
-    ClaimsError::Numerical { what: "certificate".into(), detail: e.to_string() }
-}
-
-fn recipe(params: &LyapunovParams, form: &str, lambda: &BigRational, x: Option<&[BigRational]>) -> RecipeRef {
-    let mut p = json!({ "forms": params, "form": form, "lambda": to_fraction_string(lambda) });
-    if let Some(x) = x {
-        p["x"] = Value::from(x.iter().map(to_fraction_string).collect::<Vec<_>>());
+impl CertifyError {
+    /// Prefixes the error with the file it occurred in.
+    pub fn in_file(self, file: &str) -> Self {
+        match self {
+            CertifyError::Invalid { field, message } => {
+                CertifyError::Invalid { field: format!("{file}: {field}"), message }
+            }
+            CertifyError::Refuted(m) => CertifyError::Refuted(format!("{file}: {m}")),
+            other => other,
+        }
     }
-    RecipeRef { name: lyapunov::RECIPE.into(), params: p }
+}
+
+/// Exact decimal text of a config value ([`wingcheck_model::format_number`]: the shortest
+/// round-trip decimal, `0.35`, `10`, `1e-12`).
+pub fn format_decimal(x: f64) -> String {
+    wingcheck_model::format_number(x)
+}
+
+fn numerical(what: &str) -> impl FnOnce(String) -> CertifyError + '_ {
+    move |detail| CertifyError::Numerical { what: what.into(), detail }
 }
 
 /// Rational close to x with denominator 10⁶, rounded down (`down`) or up.
@@ -45,156 +94,194 @@ fn round_rational(x: f64, down: bool) -> BigRational {
     BigRational::new((k as i64).into(), 1_000_000.into())
 }
 
-/// Produce all certificates for `cfg` (in memory).
-pub fn certificates(cfg: &Config) -> Result<Vec<(String, Certificate)>, ClaimsError> {
+fn fraction(r: &BigRational) -> String {
+    wingcheck_cert::exact::to_fraction_string(r)
+}
+
+struct Maker {
+    wing: WingText,
+    params: LyapunovParams,
+}
+
+impl Maker {
+    fn file(&self, id: &str, fact: FactKind, a: &str, b: &str) -> CertificateFile {
+        CertificateFile {
+            format: FORMAT.into(),
+            version: VERSION,
+            id: id.into(),
+            fact,
+            wing: self.wing.clone(),
+            weights: WeightsText { a: a.into(), b: b.into() },
+            elements: None,
+            lambda: None,
+            witness: None,
+        }
+    }
+
+    fn bound(&self, id: &str, fact: FactKind, a: &str, b: &str, lambda: &BigRational) -> CertificateFile {
+        CertificateFile {
+            elements: Some(self.params.elements),
+            lambda: Some(fraction(lambda)),
+            ..self.file(id, fact, a, b)
+        }
+    }
+
+    fn negative(&self, id: &str, a: &str, b: &str, argmin: &[f64]) -> CertificateFile {
+        let x = lyapunov::round_vector(argmin).iter().map(fraction).collect();
+        CertificateFile {
+            elements: Some(self.params.elements),
+            witness: Some(x),
+            ..self.file(id, FactKind::WNegativeDirection, a, b)
+        }
+    }
+}
+
+/// All certificate files for `cfg` (in memory, in manifest order).
+pub fn certificates(cfg: &Config) -> Result<Vec<CertificateFile>, CertifyError> {
+    let exact = manifest::config_params(cfg)?; // refuses values that cannot be certified
     let n = CERT_ELEMENTS;
-    let params = LyapunovParams::from_config(cfg, Coupling::Corrected, n);
-    let forms = lyapunov::assemble(&params).map_err(cert_err)?;
-    let tight = lyapunov::tight_constants(&forms).map_err(cert_err)?;
-    let (a, b) = (cfg.control.a, cfg.control.b);
-    let space = format!("cubic Hermite q, linear θ and discontinuous cubic velocities on {n} uniform elements");
+    let w = &cfg.wing;
+    let d = format_decimal;
+    let wing = WingText {
+        span: d(w.span),
+        rho: d(w.rho),
+        rho_xc: d(w.rho_xc),
+        ei: d(w.ei),
+        gj: d(w.gj),
+        ip: d(w.ip),
+        xi: d(w.xi),
+    };
+    let params = LyapunovParams {
+        rho: wing.rho.clone(),
+        rho_xc: wing.rho_xc.clone(),
+        ei: wing.ei.clone(),
+        gj: wing.gj.clone(),
+        ip: wing.ip.clone(),
+        span: wing.span.clone(),
+        a: d(cfg.control.a),
+        b: d(cfg.control.b),
+        coupling: Coupling::Corrected,
+        elements: n,
+    };
+    let maker = Maker { wing, params: params.clone() };
+    let forms = lyapunov::assemble(&params).map_err(numerical("the exact forms W, κ"))?;
+    let tight = lyapunov::tight_constants(&forms).map_err(numerical("the tight constants of W/κ"))?;
+    let (a, b) = (params.a.as_str(), params.b.as_str());
     let mut out = Vec::new();
-    // Lower and upper bounds on the Galerkin space (discrete statements).
-    let l2 = round_rational(tight.lambda2 - 1e-4 * tight.lambda2.abs().max(1.0), true);
-    out.push((
-        "w-bounds-lower.json".to_string(),
-        Certificate {
-            id: "w-bounds-lower".into(),
-            claim: "W-bounds (Theorem 1)".into(),
-            statement: format!(
-                "With a = {a}, b = {b}, W − λκ is positive definite for λ = {} on the space of {space}: inf W/κ > {:.6} there (an upper estimate of the continuum infimum).",
-                to_fraction_string(&l2),
-                wingcheck_cert::exact::to_f64(&l2)
-            ),
-            payload: Payload::positive_definite(recipe(&params, "w-minus-lambda-kappa", &l2, None)),
-        },
-    ));
+    let l2 = if tight.lambda2 > 0.0 {
+        round_rational(tight.lambda2 * (1.0 - 1e-3), true)
+    } else {
+        round_rational(tight.lambda2 - 1e-4 * tight.lambda2.abs().max(1.0), true)
+    };
+    out.push(maker.bound("w-bounds-lower", FactKind::WLowerBound, a, b, &l2));
     let l1 = round_rational(tight.lambda1 + 1e-4 * tight.lambda1.abs().max(1.0), false);
-    out.push((
-        "w-bounds-upper.json".to_string(),
-        Certificate {
-            id: "w-bounds-upper".into(),
-            claim: "W-bounds (Theorem 1)".into(),
-            statement: format!(
-                "With a = {a}, b = {b}, λκ − W is positive definite for λ = {} on the space of {space}: sup W/κ < {:.6} there.",
-                to_fraction_string(&l1),
-                wingcheck_cert::exact::to_f64(&l1)
-            ),
-            payload: Payload::positive_definite(recipe(&params, "lambda-kappa-minus-w", &l1, None)),
-        },
-    ));
-    // Indefiniteness at the configured weights (a statement about the PDE).
-    let zero = BigRational::from_integer(0.into());
-    if tight.lambda2 < 0.0 {
-        let x = lyapunov::round_vector(&tight.argmin);
-        out.push((
-            "w-bounds-indefinite.json".to_string(),
-            Certificate {
-                id: "w-bounds-indefinite".into(),
-                claim: "W-bounds (Theorem 1)".into(),
-                statement: format!(
-                    "With a = {a}, b = {b}, the state x given (coefficients in the space of {space}, a genuine state of the PDE) has W(x) < 0: \
-                     W is not positive definite, so no λ2 > 0 satisfies λ2 κ ≤ W."
-                ),
-                payload: Payload::positive_definite(recipe(&params, "negative-direction", &zero, Some(&x))),
-            },
-        ));
+    out.push(maker.bound("w-bounds-upper", FactKind::WUpperBound, a, b, &l1));
+    if to_f64(&l2) <= 0.0 {
+        if tight.lambda2 >= 0.0 {
+            return Err(CertifyError::Numerical {
+                what: "the lower bound of W/κ".into(),
+                detail: format!("min W/κ = {:.3e} is too close to 0 to certify either sign", tight.lambda2),
+            });
+        }
+        out.push(maker.negative("w-bounds-indefinite", a, b, &tight.argmin));
     }
-    // a/b_max: above ω₁·1.05 a negative direction exists (PDE statement); below ω₁·0.95 W ≻ 0 on V_N.
-    let ratio = crate::wbounds::a_over_b_max(cfg, Coupling::Corrected, n)?;
-    for (tag, r, form) in
-        [("above", ratio * 1.05, "negative-direction"), ("below", ratio * 0.95, "w-minus-lambda-kappa")]
-    {
-        let rq = round_rational(r, tag == "below");
-        let p = params.with_weights(&to_decimal(&rq), "1");
-        let f = lyapunov::assemble(&p).map_err(cert_err)?;
-        let t = lyapunov::tight_constants(&f).map_err(cert_err)?;
-        let (payload, statement) = if form == "negative-direction" {
-            let x = lyapunov::round_vector(&t.argmin);
-            (
-                Payload::positive_definite(recipe(&p, form, &zero, Some(&x))),
-                format!("With a/b = {} (b = 1), the state x given has W(x) < 0: the largest a/b with W positive definite is below this value (PDE statement).", to_fraction_string(&rq)),
-            )
-        } else {
-            let lam = round_rational(t.lambda2 * 0.99, true);
-            (
-                Payload::positive_definite(recipe(&p, form, &lam, None)),
-                format!(
-                    "With a/b = {} (b = 1), W − λκ ≻ 0 for λ = {} > 0 on the space of {space}.",
-                    to_fraction_string(&rq),
-                    to_fraction_string(&lam)
-                ),
-            )
-        };
-        out.push((
-            format!("w-bounds-ratio-{tag}.json"),
-            Certificate {
-                id: format!("w-bounds-ratio-{tag}"),
-                claim: "W-bounds (Theorem 1)".into(),
-                statement,
-                payload,
-            },
-        ));
-    }
-    if let Some(c) = mu_farkas(cfg)? {
-        out.push(("mu-conditions-infeasible.json".into(), c));
+    // a/b_max = ω₁: above ω₁·1.05 a negative direction exists; below ω₁·0.95 W ≻ 0 on V_N.
+    let ratio = crate::wbounds::a_over_b_max(cfg, Coupling::Corrected, n)
+        .map_err(|e| numerical("the largest a/b with W positive definite")(e.to_string()))?;
+    let above = decimal_of(&round_rational(ratio * 1.05, false));
+    let p = params.with_weights(&above, "1");
+    let t = lyapunov::tight_constants(&lyapunov::assemble(&p).map_err(numerical("W at a/b above ω₁"))?)
+        .map_err(numerical("W at a/b above ω₁"))?;
+    out.push(maker.negative("w-bounds-ratio-above", &above, "1", &t.argmin));
+    let below = decimal_of(&round_rational(ratio * 0.95, true));
+    let p = params.with_weights(&below, "1");
+    let t = lyapunov::tight_constants(&lyapunov::assemble(&p).map_err(numerical("W at a/b below ω₁"))?)
+        .map_err(numerical("W at a/b below ω₁"))?;
+    let lam = round_rational(t.lambda2 * 0.99, true);
+    out.push(maker.bound("w-bounds-ratio-below", FactKind::WLowerBound, &below, "1", &lam));
+    let (_, c3) = facts::mu3_system(&exact);
+    if c3 < BigRational::from_integer(0.into()) {
+        // Farkas multipliers for rows (b, 2aρx_c) ≤ C3, −η1 ≤ 0, −η5 ≤ 0: y = (1, b, 2aρx_c).
+        let [_, _, rho_xc, ..] = &exact.wing;
+        let [ea, eb] = &exact.weights;
+        let two = BigRational::from_integer(2.into());
+        let y = vec!["1/1".to_string(), fraction(eb), fraction(&(&two * ea * rho_xc))];
+        out.push(CertificateFile {
+            witness: Some(y),
+            ..maker.file("mu-conditions-infeasible", FactKind::Mu3Infeasible, a, b)
+        });
     }
     Ok(out)
 }
 
-fn to_decimal(r: &BigRational) -> String {
-    // denominators here are 10⁶: write as an exact decimal
-    let v = wingcheck_cert::exact::to_f64(r);
-    let s = format!("{v:.6}");
-    debug_assert_eq!(parse_rational(&s).ok().as_ref(), Some(r));
+/// Exact decimal text of a rational with denominator 10⁶.
+fn decimal_of(r: &BigRational) -> String {
+    let s = format!("{:.6}", to_f64(r));
+    debug_assert_eq!(parse_rational_bounded(&s, &NumberLimits::CERTIFICATE).ok().as_ref(), Some(r));
     s
 }
 
-/// Farkas certificate that μ3 ≥ 0 is impossible for all η1, η5 ≥ 0 when its constant term
-/// bξEI/(2s⁴) − aρ is negative. Variables (η1, η5); rows: bη1 + 2aρx_cη5 ≤ C3, −η1 ≤ 0, −η5 ≤ 0.
-pub fn mu_farkas(cfg: &Config) -> Result<Option<Certificate>, ClaimsError> {
-    let q = |x: f64| parse_rational(&decimal(x)).map_err(cert_err);
-    let w = &cfg.wing;
-    let (a, b) = (q(cfg.control.a)?, q(cfg.control.b)?);
-    let (xi, ei, s, rho, rxc) = (q(w.xi)?, q(w.ei)?, q(w.span)?, q(w.rho)?, q(w.rho_xc)?);
-    let two = BigRational::from_integer(2.into());
-    let s4 = &s * &s * &s * &s;
-    let c3 = &b * &xi * &ei / (&two * &s4) - &a * &rho;
-    if c3 >= BigRational::from_integer(0.into()) {
-        return Ok(None);
+/// The manifest and file texts of the set for `cfg`: `(file name, text)` pairs, index last.
+pub fn render_set(cfg: &Config) -> Result<Vec<(String, String)>, CertifyError> {
+    let certs = certificates(cfg)?;
+    let mut files = Vec::new();
+    let mut entries = Vec::new();
+    for c in &certs {
+        let text = c.to_text();
+        let name = format!("{}.json", c.id);
+        entries.push(FileEntry { file: name.clone(), id: c.id.clone(), sha256: manifest::sha256_hex(text.as_bytes()) });
+        files.push((name, text));
     }
-    let coef5 = &two * &a * &rxc;
-    let one = BigRational::from_integer(1.into());
-    let zero = BigRational::from_integer(0.into());
-    let rows = vec![vec![b.clone(), coef5.clone()], vec![-one.clone(), zero.clone()], vec![zero.clone(), -one.clone()]];
-    let sys = LinearSystem {
-        a: RationalMatrix::from_rows(rows).expect("rectangular"),
-        b: vec![c3.clone(), zero.clone(), zero.clone()],
-        a_eq: RationalMatrix::zeros(0, 2),
-        b_eq: vec![],
+    let mut claims: Vec<ClaimEntry> = Vec::new();
+    for c in &certs {
+        let claim = manifest::role(&c.id).expect("certify writes known roles").claim;
+        match claims.iter_mut().find(|e| e.claim == claim) {
+            Some(e) => e.needs.push(c.id.clone()),
+            None => claims.push(ClaimEntry { claim: claim.into(), needs: vec![c.id.clone()] }),
+        }
+    }
+    let index = Manifest {
+        format: INDEX_FORMAT.into(),
+        version: INDEX_VERSION,
+        config_sha256: manifest::config_hash(cfg),
+        config: serde_json::to_value(cfg).expect("config serialises"),
+        claims,
+        certificates: entries,
     };
-    let cert = FarkasCertificate { y: vec![one, b, coef5], w: vec![] };
-    Ok(Some(Certificate {
-        id: "mu-conditions-infeasible".into(),
-        claim: "mu-conditions (32)".into(),
-        statement: format!(
-            "With a = {}, b = {}, μ3 = bξEI/(2s⁴) − η1 b − aρ − 2aρx_c η5 ≥ 0 has no solution η1, η5 ≥ 0 (its constant term is {} < 0), so μ1…μ6 > 0 cannot all hold.",
-            cfg.control.a,
-            cfg.control.b,
-            to_fraction_string(&c3)
-        ),
-        payload: Payload::farkas(&sys, &cert),
-    }))
+    let mut text = serde_json::to_string_pretty(&index).expect("manifest serialises");
+    text.push('\n');
+    files.push((INDEX.to_string(), text));
+    Ok(files)
 }
 
-/// Write all certificates into `dir` (created if missing), atomically per file.
-pub fn write_all(cfg: &Config, dir: &Path) -> Result<Vec<PathBuf>, ClaimsError> {
-    std::fs::create_dir_all(dir).map_err(|e| cert_err(format!("cannot create {}: {e}", dir.display())))?;
-    let mut written = Vec::new();
-    for (name, c) in certificates(cfg)? {
-        let path = dir.join(name);
-        write_certificate(&path, &c).map_err(cert_err)?;
-        written.push(path);
+/// Writes the whole set for `cfg` into `dir`, replacing an earlier set there atomically (the
+/// directory holds the old set or the new one at every instant). An existing `dir` is replaced
+/// only if it holds nothing but a certificate set's files (`index.json` and the files it
+/// lists); anything else is refused and left untouched. Returns the files written.
+pub fn write_all(cfg: &Config, dir: &Path) -> Result<Vec<PathBuf>, CertifyError> {
+    let files = render_set(cfg)?;
+    let staging = wingcheck_io::StagingDir::new(dir)?;
+    for (name, text) in &files {
+        staging.write(name, text.as_bytes())?;
     }
-    Ok(written)
+    staging.commit(|old| wingcheck_io::only_listed_files(old, &files_of_set(old)))?;
+    Ok(files.iter().map(|(n, _)| dir.join(n)).collect())
+}
+
+/// The files an existing set in `dir` owns: `index.json` and what it lists (empty if there is
+/// no readable manifest).
+fn files_of_set(dir: &Path) -> BTreeSet<String> {
+    let mut out = BTreeSet::new();
+    let Ok(bytes) = manifest::read_bounded(&dir.join(INDEX)) else { return out };
+    let Ok(v) = serde_json::from_slice::<serde_json::Value>(&bytes) else { return out };
+    if v["format"] != INDEX_FORMAT {
+        return out;
+    }
+    out.insert(INDEX.to_string());
+    for e in v["certificates"].as_array().into_iter().flatten() {
+        if let Some(f) = e["file"].as_str().filter(|f| !f.contains(['/', '\\'])) {
+            out.insert(f.to_string());
+        }
+    }
+    out
 }

@@ -413,12 +413,33 @@ impl Config {
         Self::from_json_str(crate::PAPER_JSON).expect("embedded configs/paper.json is valid")
     }
 
-    /// Parse and validate a JSON document. Unknown keys are rejected.
+    /// Parse and validate a JSON document of at most [`MAX_CONFIG_BYTES`]. Unknown keys and
+    /// anything after the document (other than whitespace) are rejected.
     pub fn from_json_str(text: &str) -> Result<Config, ConfigError> {
+        if text.len() as u64 > MAX_CONFIG_BYTES {
+            return Err(ConfigError::Parse(format!("{} bytes, at most {MAX_CONFIG_BYTES} allowed", text.len())));
+        }
         let de = &mut serde_json::Deserializer::from_str(text);
-        let cfg: Config = serde_path_to_error::deserialize(de).map_err(|e| ConfigError::Parse(describe(&e)))?;
+        let cfg: Config = serde_path_to_error::deserialize(&mut *de).map_err(|e| ConfigError::Parse(describe(&e)))?;
+        de.end().map_err(|e| ConfigError::Parse(format!("trailing data after the JSON document: {e}")))?;
         cfg.validate()?;
         Ok(cfg)
+    }
+
+    /// Reads a config file of at most [`MAX_CONFIG_BYTES`] (never more, so `/dev/zero` fails
+    /// fast) and parses it with [`Config::from_json_str`].
+    pub fn from_file(path: &std::path::Path) -> Result<Config, ConfigError> {
+        use std::io::Read;
+        let read = |reason: String| ConfigError::Read { path: path.display().to_string(), reason };
+        let io = |e: std::io::Error| read(e.to_string());
+        let f = std::fs::File::open(path).map_err(io)?;
+        let mut bytes = Vec::new();
+        f.take(MAX_CONFIG_BYTES + 1).read_to_end(&mut bytes).map_err(io)?;
+        if bytes.len() as u64 > MAX_CONFIG_BYTES {
+            return Err(read(format!("larger than {MAX_CONFIG_BYTES} bytes")));
+        }
+        let text = String::from_utf8(bytes).map_err(|_| read("not UTF-8 text".into()))?;
+        Self::from_json_str(&text)
     }
 
     /// Parse a JSON value (after overrides) and validate it.
@@ -446,6 +467,26 @@ impl Config {
     /// Total number of observer samples in [0, T].
     pub fn total_samples(&self) -> usize {
         (self.horizon.t_end / self.observer.sample_period).round() as usize
+    }
+}
+
+/// Largest configuration document accepted (bytes).
+pub const MAX_CONFIG_BYTES: u64 = 1 << 20;
+
+/// A number in short form (messages, certificate decimals): the shortest round-trip decimal,
+/// positional when it has at most 6 characters (`0.35`, `1000`), otherwise whichever of the
+/// positional and the scientific form is shorter (`1e9`, `1e308`, `0.0123`, `1.234567e-9`).
+/// Both forms read back to the same `f64`, so the text is exact.
+pub fn format_number(x: f64) -> String {
+    let plain = format!("{x}");
+    if plain.len() <= 6 || !x.is_finite() {
+        return plain;
+    }
+    let sci = format!("{x:e}");
+    if sci.len() < plain.len() {
+        sci
+    } else {
+        plain
     }
 }
 

@@ -7,6 +7,14 @@ pub enum ConfigError {
     /// unknown key, missing key). The message is serde_json's, with line and column.
     #[error("config is not valid: {0}")]
     Parse(String),
+    /// The config file could not be read, or is too large or not UTF-8.
+    #[error("cannot read config {path}: {reason}")]
+    Read {
+        /// The file.
+        path: String,
+        /// What went wrong.
+        reason: String,
+    },
     /// A numeric field is NaN or infinite.
     #[error("{field} = {value} is not a finite number")]
     NotFinite {

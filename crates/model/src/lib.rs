@@ -13,6 +13,7 @@ mod config;
 mod error;
 mod overrides;
 mod validate;
+pub mod work;
 
 pub use config::*;
 pub use error::ConfigError;

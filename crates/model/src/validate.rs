@@ -1,6 +1,12 @@
 //! Field-by-field validation with errors that name the field and the allowed range.
 
-use crate::{Config, ConfigError};
+use crate::{format_number, Config, ConfigError};
+
+/// Largest magnitude of a physical parameter (ρ, ρx_c, EI, GJ, I_p, gains, weights): products
+/// of a few of them stay far from f64 overflow. SI-scale wings (EI ~ 1e7) are well inside.
+pub const MAX_MAGNITUDE: f64 = 1e12;
+/// Smallest positive physical parameter (ρ, EI, GJ, I_p).
+pub const MIN_POSITIVE: f64 = 1e-12;
 
 fn finite(field: &str, v: f64) -> Result<f64, ConfigError> {
     if v.is_finite() {
@@ -10,33 +16,38 @@ fn finite(field: &str, v: f64) -> Result<f64, ConfigError> {
     }
 }
 
-fn positive(field: &str, v: f64) -> Result<(), ConfigError> {
-    if finite(field, v)? > 0.0 {
-        Ok(())
-    } else {
-        Err(range(field, v, "> 0"))
-    }
-}
-
-fn non_negative(field: &str, v: f64) -> Result<(), ConfigError> {
-    if finite(field, v)? >= 0.0 {
-        Ok(())
-    } else {
-        Err(range(field, v, ">= 0"))
-    }
-}
-
 fn within(field: &str, v: f64, lo: f64, hi: f64) -> Result<(), ConfigError> {
     let v = finite(field, v)?;
     if (lo..=hi).contains(&v) {
         Ok(())
     } else {
-        Err(range(field, v, &format!("in [{lo}, {hi}]")))
+        Err(range(field, v, &format!("in [{}, {}]", format_number(lo), format_number(hi))))
     }
 }
 
-fn range(field: &str, v: impl ToString, allowed: &str) -> ConfigError {
-    ConfigError::OutOfRange { field: field.to_string(), value: v.to_string(), allowed: allowed.to_string() }
+fn range(field: &str, v: impl Into<Shown>, allowed: &str) -> ConfigError {
+    ConfigError::OutOfRange { field: field.to_string(), value: v.into().0, allowed: allowed.to_string() }
+}
+
+/// A value as shown in messages: floats in [`format_number`]'s short form.
+struct Shown(String);
+
+impl From<f64> for Shown {
+    fn from(x: f64) -> Self {
+        Shown(format_number(x))
+    }
+}
+
+impl From<usize> for Shown {
+    fn from(x: usize) -> Self {
+        Shown(x.to_string())
+    }
+}
+
+impl From<u32> for Shown {
+    fn from(x: u32) -> Self {
+        Shown(x.to_string())
+    }
 }
 
 fn exponent_pair(lo_name: &str, hi_name: &str, lo: u32, hi: u32) -> Result<(), ConfigError> {
@@ -63,29 +74,27 @@ impl Config {
     pub fn validate(&self) -> Result<(), ConfigError> {
         let w = &self.wing;
         within("wing.span", w.span, 1e-6, 1e6)?;
-        positive("wing.rho", w.rho)?;
-        finite("wing.rho_xc", w.rho_xc)?;
-        positive("wing.ei", w.ei)?;
-        positive("wing.gj", w.gj)?;
-        positive("wing.ip", w.ip)?;
-        finite("wing.x_ac", w.x_ac)?;
+        for (name, v) in [("wing.rho", w.rho), ("wing.ei", w.ei), ("wing.gj", w.gj), ("wing.ip", w.ip)] {
+            within(name, v, MIN_POSITIVE, MAX_MAGNITUDE)?;
+        }
+        within("wing.rho_xc", w.rho_xc, -MAX_MAGNITUDE, MAX_MAGNITUDE)?;
+        within("wing.x_ac", w.x_ac, -1e6, 1e6)?;
         within("wing.xi", w.xi, 0.0, 1e3)?;
         if w.rho * w.ip <= w.rho_xc * w.rho_xc {
             return Err(ConfigError::Inconsistent {
                 fields: "wing.rho, wing.ip, wing.rho_xc".into(),
                 reason: format!(
                     "the mass matrix [[ρ, −ρx_c], [−ρx_c, I_p]] must be positive definite: need ρ·I_p > (ρx_c)², got {} <= {}",
-                    w.rho * w.ip,
-                    w.rho_xc * w.rho_xc
+                    format_number(w.rho * w.ip),
+                    format_number(w.rho_xc * w.rho_xc)
                 ),
             });
         }
 
         let c = &self.control;
-        non_negative("control.k1", c.k1)?;
-        non_negative("control.k2", c.k2)?;
-        non_negative("control.a", c.a)?;
-        non_negative("control.b", c.b)?;
+        for (name, v) in [("control.k1", c.k1), ("control.k2", c.k2), ("control.a", c.a), ("control.b", c.b)] {
+            within(name, v, 0.0, MAX_MAGNITUDE)?;
+        }
 
         let o = &self.observer;
         within("observer.sample_period", o.sample_period, 1e-7, 0.1)?;
@@ -101,8 +110,8 @@ impl Config {
         }
         exponent_pair("observer.a1", "observer.a2", o.a1, o.a2)?;
         exponent_pair("observer.b1", "observer.b2", o.b1, o.b2)?;
-        finite("observer.nu1_0", o.nu1_0)?;
-        finite("observer.nu2_0", o.nu2_0)?;
+        within("observer.nu1_0", o.nu1_0, -MAX_MAGNITUDE, MAX_MAGNITUDE)?;
+        within("observer.nu2_0", o.nu2_0, -MAX_MAGNITUDE, MAX_MAGNITUDE)?;
 
         let d = &self.disturbance;
         let g = &d.distributed;
@@ -174,7 +183,11 @@ impl Config {
         }
         let steps = h.t_end / disc.dt;
         if steps > 1e9 {
-            return Err(range("discretisation.dt", disc.dt, &format!(">= t_end / 1e9 = {}", h.t_end / 1e9)));
+            return Err(range(
+                "discretisation.dt",
+                disc.dt,
+                &format!(">= t_end / 1e9 = {}", format_number(h.t_end / 1e9)),
+            ));
         }
         Ok(())
     }

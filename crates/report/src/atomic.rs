@@ -1,113 +1,118 @@
-//! Atomic report directories: everything is rendered into a staging directory next to the
-//! target (same parent, so the final `rename` cannot cross file systems) and renamed into
-//! place at the end. An interrupted or failed run leaves the old report (or nothing), never
-//! half a report. An existing directory is replaced only if it carries the marker file
-//! [`MARKER`] (or is empty); anything else is refused.
+//! Atomic report directories over [`wingcheck_io`]: everything is rendered into a staging
+//! directory beside the target and swapped in at the end (one `renameat2(RENAME_EXCHANGE)` on
+//! Linux), so `--out` holds the complete old report or the complete new one at every instant.
+//! An existing directory is replaced only if it is a report (marker file [`MARKER`]) holding
+//! nothing but the files its marker lists, or is empty; a directory with anything else in it
+//! is refused and left untouched — the tool never deletes files it did not write.
 
-use std::path::{Path, PathBuf};
-use std::time::{SystemTime, UNIX_EPOCH};
+use std::collections::BTreeSet;
+use std::path::Path;
+use std::sync::Mutex;
+
+use wingcheck_io::{only_listed_files, StagingDir};
 
 use crate::ReportError;
 
-/// Name of the marker file that identifies a report directory.
+/// Name of the marker file that identifies a report directory; it lists the report's files.
 pub const MARKER: &str = ".wingcheck-report";
 
-/// Refuse `out` if it exists and is not a report directory (or an empty directory).
+/// Line of the marker after which the report's files are listed, one per line.
+const FILES_HEADER: &str = "files:";
+
+/// The files a report directory owns according to its marker (the marker included). Markers
+/// of older versions without a file list own the report's usual top-level files (`*.svg`,
+/// `*.csv`, `*.html`, `*.json`).
+fn owned_files(dir: &Path) -> Option<Owned> {
+    let text = std::fs::read_to_string(dir.join(MARKER)).ok()?;
+    match text.split_once(&format!("\n{FILES_HEADER}\n")) {
+        Some((_, list)) => {
+            let mut set: BTreeSet<String> = list.lines().filter(|l| !l.is_empty()).map(str::to_string).collect();
+            set.insert(MARKER.to_string());
+            Some(Owned::Listed(set))
+        }
+        None => Some(Owned::Legacy),
+    }
+}
+
+enum Owned {
+    Listed(BTreeSet<String>),
+    Legacy,
+}
+
+fn legacy_allowed(dir: &Path) -> BTreeSet<String> {
+    let mut set = BTreeSet::from([MARKER.to_string()]);
+    if let Ok(entries) = std::fs::read_dir(dir) {
+        for e in entries.filter_map(Result::ok) {
+            let name = e.file_name().to_string_lossy().to_string();
+            let ours = ["svg", "csv", "html", "json"].iter().any(|x| name.ends_with(&format!(".{x}")));
+            if ours && e.file_type().is_ok_and(|t| t.is_file()) {
+                set.insert(name);
+            }
+        }
+    }
+    set
+}
+
+/// `Ok` if `out` may be replaced: missing, an empty directory, or a report holding only its
+/// own files.
 pub fn check_replaceable(out: &Path) -> Result<(), ReportError> {
-    let refuse = || ReportError::NotAReport { path: out.to_path_buf(), marker: MARKER };
     match std::fs::symlink_metadata(out) {
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
         Err(e) => Err(ReportError::io("inspect", out)(e)),
-        Ok(m) if !m.is_dir() => Err(refuse()),
-        Ok(_) => {
-            if out.join(MARKER).is_file() {
-                return Ok(());
+        Ok(m) if !m.is_dir() => Err(ReportError::NotAReport { path: out.to_path_buf(), marker: MARKER }),
+        Ok(_) => match owned_files(out) {
+            Some(Owned::Listed(set)) => Ok(only_listed_files(out, &set)?),
+            Some(Owned::Legacy) => Ok(only_listed_files(out, &legacy_allowed(out))?),
+            None => {
+                let mut entries = std::fs::read_dir(out).map_err(ReportError::io("read directory", out))?;
+                if entries.next().is_none() {
+                    Ok(())
+                } else {
+                    Err(ReportError::NotAReport { path: out.to_path_buf(), marker: MARKER })
+                }
             }
-            let mut entries = std::fs::read_dir(out).map_err(ReportError::io("read directory", out))?;
-            if entries.next().is_none() {
-                Ok(())
-            } else {
-                Err(refuse())
-            }
-        }
+        },
     }
 }
 
 /// A staging directory that is removed on drop unless [`Staging::commit`] moved it into place.
 pub struct Staging {
-    dir: PathBuf,
-    target: PathBuf,
-    committed: bool,
+    dir: StagingDir,
+    written: Mutex<Vec<String>>,
 }
 
 impl Staging {
-    /// Create a fresh staging directory beside `target` (creating `target`'s parent if needed).
+    /// Create a fresh staging directory beside `target` (creating `target`'s parent if needed;
+    /// stale staging directories of dead wingcheck processes for `target` are removed).
     pub fn new(target: &Path) -> Result<Staging, ReportError> {
-        let name = target.file_name().ok_or_else(|| ReportError::InvalidOutDir(target.to_path_buf()))?;
-        let parent = parent_of(target);
-        std::fs::create_dir_all(&parent).map_err(ReportError::io("create directory", &parent))?;
-        let dir = parent.join(format!(".{}.tmp-{}", name.to_string_lossy(), unique_suffix()));
-        std::fs::create_dir(&dir).map_err(ReportError::io("create directory", &dir))?;
-        Ok(Staging { dir, target: target.to_path_buf(), committed: false })
+        Ok(Staging { dir: StagingDir::new(target)?, written: Mutex::new(Vec::new()) })
     }
 
     /// The staging directory.
     pub fn path(&self) -> &Path {
-        &self.dir
+        self.dir.path()
     }
 
-    /// Write one file into the staging directory; returns its name.
+    /// Write one file (mode 0644) into the staging directory; returns its name.
     pub fn write(&self, name: &str, bytes: &[u8]) -> Result<String, ReportError> {
-        let path = self.dir.join(name);
-        std::fs::write(&path, bytes).map_err(ReportError::io("write", &path))?;
+        self.dir.write(name, bytes)?;
+        self.written.lock().expect("no panics while holding the lock").push(name.to_string());
         Ok(name.to_string())
     }
 
-    /// Write the marker and move the staging directory into place. An existing report is
-    /// swapped out by rename first and deleted only after the new one is in place; if the
-    /// final rename fails, the old report is put back.
-    pub fn commit(mut self, marker_text: &str) -> Result<(), ReportError> {
-        self.write(MARKER, marker_text.as_bytes())?;
-        check_replaceable(&self.target)?;
-        let target = self.target.clone();
-        let old = if target.exists() {
-            let name = target.file_name().expect("checked in new").to_string_lossy().to_string();
-            let old = parent_of(&target).join(format!(".{name}.old-{}", unique_suffix()));
-            std::fs::rename(&target, &old).map_err(ReportError::io("move the old report aside from", &target))?;
-            Some(old)
-        } else {
-            None
-        };
-        if let Err(e) = std::fs::rename(&self.dir, &target) {
-            if let Some(old) = &old {
-                let _ = std::fs::rename(old, &target);
-            }
-            return Err(ReportError::io("rename into place", &target)(e));
-        }
-        self.committed = true;
-        if let Some(old) = old {
-            std::fs::remove_dir_all(&old).map_err(ReportError::io("remove the replaced report", &old))?;
-        }
+    /// Write the marker (with the list of files) and swap the staging directory into place.
+    /// The old report is deleted only after the new one is in place.
+    pub fn commit(self, marker_text: &str) -> Result<(), ReportError> {
+        let mut files = self.written.into_inner().expect("no panics while holding the lock");
+        files.sort();
+        let marker = format!("{}\n{FILES_HEADER}\n{}\n", marker_text.trim_end(), files.join("\n"));
+        self.dir.write(MARKER, marker.as_bytes())?;
+        self.dir.commit(|old| {
+            check_replaceable(old).map_err(|e| match e {
+                ReportError::Output(io) => io,
+                other => wingcheck_io::IoError::BadTarget { path: old.to_path_buf(), reason: other.to_string() },
+            })
+        })?;
         Ok(())
     }
-}
-
-impl Drop for Staging {
-    fn drop(&mut self) {
-        if !self.committed {
-            let _ = std::fs::remove_dir_all(&self.dir);
-        }
-    }
-}
-
-fn parent_of(p: &Path) -> PathBuf {
-    match p.parent() {
-        Some(q) if !q.as_os_str().is_empty() => q.to_path_buf(),
-        _ => PathBuf::from("."),
-    }
-}
-
-fn unique_suffix() -> String {
-    let nanos = SystemTime::now().duration_since(UNIX_EPOCH).map(|d| d.subsec_nanos()).unwrap_or(0);
-    format!("{}-{nanos}", std::process::id())
 }

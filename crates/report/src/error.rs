@@ -17,6 +17,10 @@ pub enum ReportError {
         /// The marker file name that identifies a report directory.
         marker: &'static str,
     },
+    /// Writing or swapping in the output directory failed, or the directory holds files the
+    /// tool did not write (the previous report is unchanged).
+    #[error(transparent)]
+    Output(#[from] wingcheck_io::IoError),
     /// A file or directory could not be created, written, renamed or removed.
     #[error("cannot {action} {path}: {source}")]
     Io {

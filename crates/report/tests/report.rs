@@ -215,10 +215,14 @@ fn replaces_an_earlier_report_by_swap_and_leaves_nothing_behind() {
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("r");
     render(&small_cfg(&[]), &out);
-    std::fs::write(out.join("stale.txt"), "from an older version").unwrap();
-    render(&small_cfg(&[]), &out);
-    assert!(!out.join("stale.txt").exists(), "the old report is replaced as a whole");
+    render(&small_cfg(&["control.a=0.5"]), &out);
     assert!(out.join("index.html").is_file());
+    // A file the tool did not write is never deleted: the replacement is refused, naming it.
+    std::fs::write(out.join("stale.txt"), "a user's notes").unwrap();
+    let err = write_report(&small_cfg(&[]), &out, &ReportOptions::default()).unwrap_err();
+    assert!(err.to_string().contains("stale.txt") && err.to_string().contains("did not write"), "{err}");
+    assert_eq!(std::fs::read_to_string(out.join("stale.txt")).unwrap(), "a user's notes");
+    assert!(out.join("index.html").is_file(), "the old report is intact");
     assert_eq!(others(tmp.path(), &["r"]), Vec::<String>::new());
 }
 

@@ -1,0 +1,393 @@
+//! The certificate set: `index.json` and the verifier's own table of roles.
+//!
+//! `index.json` names the configuration the set was made for (the whole config and its
+//! SHA-256), the claims and the facts each needs, and every certificate file with the SHA-256
+//! of its bytes. [`verify_set`] accepts a directory only if
+//! * it holds exactly `index.json` and the files it lists (nothing missing, nothing extra);
+//! * every file is `<id>.json`, its `id` is the listed one and its bytes hash to the listed hash;
+//! * every certificate was made for the manifest's configuration (its wing parameters, and the
+//!   weights a, b where the role says so, equal the config's exactly);
+//! * each claim lists at least the facts the verifier's own [`ROLES`] table requires, and every
+//!   certificate re-derives (see [`super::facts`]).
+
+use std::collections::BTreeSet;
+use std::io::Read;
+use std::path::Path;
+
+use num_rational::BigRational;
+use num_traits::{One, Signed};
+use serde::{Deserialize, Serialize};
+use sha2::{Digest, Sha256};
+use wingcheck_cert::exact::{parse_rational_bounded, NumberLimits};
+use wingcheck_model::Config;
+
+use super::facts::{mu3_system, show, CertificateFile, CheckedFact, ExactParams, FactKind, MAX_FILE_BYTES};
+use super::{format_decimal, CertifyError};
+
+/// File name of the manifest.
+pub const INDEX: &str = "index.json";
+/// Value of the manifest's `"format"` field.
+pub const INDEX_FORMAT: &str = "wingcheck-proofs";
+/// Version of the manifest.
+pub const INDEX_VERSION: u64 = 1;
+
+/// Which weights a certificate of a role must carry.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum WeightsRule {
+    /// The configuration's a, b.
+    Config,
+    /// b = 1 and any a > 0 (a ratio a/b; W is linear in (a, b), so W(a, b) = b·W(a/b, 1)).
+    Ratio,
+}
+
+/// One role in the certificate set: its id, the claim it supports, its fact and weights.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Role {
+    /// Certificate id (the file is `<id>.json`).
+    pub id: &'static str,
+    /// The paper's claim.
+    pub claim: &'static str,
+    /// The fact the certificate must prove.
+    pub fact: FactKind,
+    /// Which weights it must carry.
+    pub weights: WeightsRule,
+}
+
+/// Claim W-bounds (Theorem 1, (22)–(28)).
+pub const W_BOUNDS: &str = "W-bounds (Theorem 1)";
+/// Claim mu-conditions ((29)–(32)).
+pub const MU_CONDITIONS: &str = "mu-conditions (32)";
+
+/// Every role the verifier knows.
+pub const ROLES: [Role; 6] = [
+    Role { id: "w-bounds-lower", claim: W_BOUNDS, fact: FactKind::WLowerBound, weights: WeightsRule::Config },
+    Role { id: "w-bounds-upper", claim: W_BOUNDS, fact: FactKind::WUpperBound, weights: WeightsRule::Config },
+    Role {
+        id: "w-bounds-indefinite",
+        claim: W_BOUNDS,
+        fact: FactKind::WNegativeDirection,
+        weights: WeightsRule::Config,
+    },
+    Role {
+        id: "w-bounds-ratio-above",
+        claim: W_BOUNDS,
+        fact: FactKind::WNegativeDirection,
+        weights: WeightsRule::Ratio,
+    },
+    Role { id: "w-bounds-ratio-below", claim: W_BOUNDS, fact: FactKind::WLowerBound, weights: WeightsRule::Ratio },
+    Role {
+        id: "mu-conditions-infeasible",
+        claim: MU_CONDITIONS,
+        fact: FactKind::Mu3Infeasible,
+        weights: WeightsRule::Config,
+    },
+];
+
+/// The role with this id.
+pub fn role(id: &str) -> Option<&'static Role> {
+    ROLES.iter().find(|r| r.id == id)
+}
+
+/// A claim and the certificate ids it needs.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ClaimEntry {
+    /// Claim name (one of the [`ROLES`] claims).
+    pub claim: String,
+    /// Certificate ids.
+    pub needs: Vec<String>,
+}
+
+/// One certificate file in the manifest.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FileEntry {
+    /// File name, `<id>.json`.
+    pub file: String,
+    /// Certificate id.
+    pub id: String,
+    /// Lowercase hex SHA-256 of the file's bytes.
+    pub sha256: String,
+}
+
+/// `index.json`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Manifest {
+    /// Always [`INDEX_FORMAT`].
+    pub format: String,
+    /// Always [`INDEX_VERSION`].
+    pub version: u64,
+    /// SHA-256 of the compact JSON of `config`.
+    pub config_sha256: String,
+    /// The configuration the set was made for.
+    pub config: serde_json::Value,
+    /// Claims and the certificates each needs.
+    pub claims: Vec<ClaimEntry>,
+    /// Certificate files.
+    pub certificates: Vec<FileEntry>,
+}
+
+/// Lowercase hex SHA-256 of bytes.
+pub fn sha256_hex(bytes: &[u8]) -> String {
+    Sha256::digest(bytes).iter().map(|b| format!("{b:02x}")).collect()
+}
+
+/// SHA-256 of a configuration (its compact JSON, fields in declaration order).
+pub fn config_hash(cfg: &Config) -> String {
+    sha256_hex(serde_json::to_string(cfg).expect("config serialises").as_bytes())
+}
+
+/// The exact parameters a configuration gives (its decimals as the user wrote them).
+pub fn config_params(cfg: &Config) -> Result<ExactParams, CertifyError> {
+    let w = &cfg.wing;
+    let q = |field: &str, x: f64| {
+        parse_rational_bounded(&format_decimal(x), &NumberLimits::CERTIFICATE)
+            .map_err(|e| CertifyError::Invalid { field: field.into(), message: format!("cannot be certified: {e}") })
+    };
+    Ok(ExactParams {
+        wing: [
+            q("wing.span", w.span)?,
+            q("wing.rho", w.rho)?,
+            q("wing.rho_xc", w.rho_xc)?,
+            q("wing.ei", w.ei)?,
+            q("wing.gj", w.gj)?,
+            q("wing.ip", w.ip)?,
+            q("wing.xi", w.xi)?,
+        ],
+        weights: [q("control.a", cfg.control.a)?, q("control.b", cfg.control.b)?],
+    })
+}
+
+/// Reads at most [`MAX_FILE_BYTES`] of a file as UTF-8.
+pub fn read_bounded(path: &Path) -> Result<Vec<u8>, CertifyError> {
+    let io = |e| CertifyError::Io { path: path.to_path_buf(), source: e };
+    let f = std::fs::File::open(path).map_err(io)?;
+    let mut bytes = Vec::new();
+    f.take(MAX_FILE_BYTES + 1).read_to_end(&mut bytes).map_err(io)?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(CertifyError::Invalid {
+            field: path.display().to_string(),
+            message: format!("larger than {MAX_FILE_BYTES} bytes"),
+        });
+    }
+    Ok(bytes)
+}
+
+/// One verified certificate.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VerifiedCert {
+    /// Its role.
+    pub role: &'static Role,
+    /// What was checked.
+    pub fact: CheckedFact,
+}
+
+/// A verified set.
+#[derive(Debug, Clone)]
+pub struct VerifiedSet {
+    /// The configuration (validated).
+    pub config: Config,
+    /// Its hash.
+    pub config_sha256: String,
+    /// The certificates, in manifest order.
+    pub certs: Vec<VerifiedCert>,
+    /// Per claim, the conclusion the verifier draws from its facts.
+    pub conclusions: Vec<(String, String)>,
+}
+
+fn bad(field: &str, message: impl Into<String>) -> CertifyError {
+    CertifyError::Invalid { field: field.into(), message: message.into() }
+}
+
+/// Parses and checks `index.json` text (no certificate is read).
+pub fn parse_manifest(text: &[u8]) -> Result<(Manifest, Config), CertifyError> {
+    let m: Manifest =
+        serde_json::from_slice(text).map_err(|e| bad(INDEX, format!("not a wingcheck proofs manifest: {e}")))?;
+    if m.format != INDEX_FORMAT || m.version != INDEX_VERSION {
+        return Err(bad(
+            INDEX,
+            format!("format {:?} version {}, expected {INDEX_FORMAT:?} version {INDEX_VERSION}", m.format, m.version),
+        ));
+    }
+    let cfg = Config::from_json_value(m.config.clone()).map_err(|e| bad("index.json config", e.to_string()))?;
+    let hash = config_hash(&cfg);
+    if hash != m.config_sha256 {
+        return Err(bad("index.json config_sha256", format!("{} but the config hashes to {hash}", m.config_sha256)));
+    }
+    Ok((m, cfg))
+}
+
+/// Verifies the certificate set in `dir` (see the module documentation).
+pub fn verify_set(dir: &Path) -> Result<VerifiedSet, CertifyError> {
+    let (manifest, cfg) = parse_manifest(&read_bounded(&dir.join(INDEX))?)?;
+    let cfg_params = config_params(&cfg)?;
+    // The directory holds exactly index.json and the listed files.
+    let listed: BTreeSet<&str> = manifest.certificates.iter().map(|e| e.file.as_str()).collect();
+    if listed.len() != manifest.certificates.len() {
+        return Err(bad(INDEX, "a file is listed twice"));
+    }
+    let entries = std::fs::read_dir(dir).map_err(|e| CertifyError::Io { path: dir.to_path_buf(), source: e })?;
+    for entry in entries {
+        let entry = entry.map_err(|e| CertifyError::Io { path: dir.to_path_buf(), source: e })?;
+        let name = entry.file_name().to_string_lossy().to_string();
+        if name != INDEX && !listed.contains(name.as_str()) {
+            return Err(bad(&name, "not listed in index.json (a set holds only the files its manifest lists)"));
+        }
+    }
+    let mut certs: Vec<VerifiedCert> = Vec::new();
+    for e in &manifest.certificates {
+        let role = role(&e.id).ok_or_else(|| bad(&e.file, format!("unknown certificate id {:?}", e.id)))?;
+        if e.file != format!("{}.json", e.id) {
+            return Err(bad(&e.file, format!("file name does not match id {:?}", e.id)));
+        }
+        let bytes = read_bounded(&dir.join(&e.file))?;
+        let hash = sha256_hex(&bytes);
+        if hash != e.sha256 {
+            return Err(bad(&e.file, format!("content hashes to {hash}, index.json lists {}", e.sha256)));
+        }
+        let text = std::str::from_utf8(&bytes).map_err(|_| bad(&e.file, "not UTF-8"))?;
+        let file = CertificateFile::parse(text).map_err(|err| err.in_file(&e.file))?;
+        if file.id != e.id {
+            return Err(bad(&e.file, format!("id {:?} inside, {:?} in index.json", file.id, e.id)));
+        }
+        if file.fact != role.fact {
+            return Err(bad(
+                &e.file,
+                format!("fact {} but role {} needs {}", file.fact.as_str(), role.id, role.fact.as_str()),
+            ));
+        }
+        let params = file.exact_params().map_err(|err| err.in_file(&e.file))?;
+        for (k, (have, want)) in params.wing.iter().zip(&cfg_params.wing).enumerate() {
+            if have != want {
+                return Err(bad(
+                    &e.file,
+                    format!(
+                        "wing.{} = {} but the set's config has {}",
+                        super::facts::WING_FIELDS[k],
+                        show(have),
+                        show(want)
+                    ),
+                ));
+            }
+        }
+        match role.weights {
+            WeightsRule::Config if params.weights != cfg_params.weights => {
+                return Err(bad(
+                    &e.file,
+                    format!(
+                        "weights a = {}, b = {} but the set's config has a = {}, b = {}",
+                        show(&params.weights[0]),
+                        show(&params.weights[1]),
+                        show(&cfg_params.weights[0]),
+                        show(&cfg_params.weights[1])
+                    ),
+                ))
+            }
+            WeightsRule::Ratio if !params.weights[1].is_one() => {
+                return Err(bad(
+                    &e.file,
+                    format!("a ratio certificate needs b = 1, has b = {}", show(&params.weights[1])),
+                ))
+            }
+            _ => {}
+        }
+        let fact = file.check().map_err(|err| err.in_file(&e.file))?;
+        certs.push(VerifiedCert { role, fact });
+    }
+    let conclusions = conclusions(&manifest, &cfg_params, &certs)?;
+    Ok(VerifiedSet { config: cfg, config_sha256: manifest.config_sha256, certs, conclusions })
+}
+
+fn find<'a>(certs: &'a [VerifiedCert], id: &str) -> Option<&'a CheckedFact> {
+    certs.iter().find(|c| c.role.id == id).map(|c| &c.fact)
+}
+
+/// The ids the verifier requires for each claim, given the facts present and the config.
+pub fn required(
+    cfg_params: &ExactParams,
+    lower_lambda: Option<&BigRational>,
+) -> Vec<(&'static str, Vec<&'static str>)> {
+    let mut w = vec!["w-bounds-lower", "w-bounds-upper", "w-bounds-ratio-above", "w-bounds-ratio-below"];
+    if lower_lambda.is_none_or(|l| !l.is_positive()) {
+        w.push("w-bounds-indefinite");
+    }
+    let mut out = vec![(W_BOUNDS, w)];
+    let (_, c3) = mu3_system(cfg_params);
+    if c3.is_negative() {
+        out.push((MU_CONDITIONS, vec!["mu-conditions-infeasible"]));
+    }
+    out
+}
+
+fn conclusions(
+    manifest: &Manifest,
+    cfg_params: &ExactParams,
+    certs: &[VerifiedCert],
+) -> Result<Vec<(String, String)>, CertifyError> {
+    let lower = find(certs, "w-bounds-lower").and_then(|f| f.lambda.clone());
+    let mut sizes = certs.iter().filter_map(|c| c.fact.elements.map(|n| (c.role.id, n)));
+    if let Some((first_id, n)) = sizes.next() {
+        if let Some((id, m)) = sizes.find(|&(_, m)| m != n) {
+            return Err(bad(id, format!("elements = {m}, but {first_id} uses {n}: one discretisation across the set")));
+        }
+    }
+    if let Some(f) = find(certs, "w-bounds-ratio-below") {
+        if !f.lambda.as_ref().is_some_and(|l| l.is_positive()) {
+            return Err(bad("w-bounds-ratio-below.json", "λ must be > 0 (it certifies W positive definite)"));
+        }
+    }
+    let mut used = BTreeSet::new();
+    for (claim, ids) in required(cfg_params, lower.as_ref()) {
+        let entry = manifest
+            .claims
+            .iter()
+            .find(|c| c.claim == claim)
+            .ok_or_else(|| bad(INDEX, format!("claim {claim:?} is missing")))?;
+        for id in ids {
+            if !entry.needs.iter().any(|n| n == id) {
+                return Err(bad(INDEX, format!("claim {claim:?} does not list {id}, which the verifier requires")));
+            }
+        }
+    }
+    for c in &manifest.claims {
+        for id in &c.needs {
+            let r = role(id).ok_or_else(|| bad(INDEX, format!("unknown certificate id {id:?}")))?;
+            if r.claim != c.claim {
+                return Err(bad(INDEX, format!("{id} supports {:?}, not {:?}", r.claim, c.claim)));
+            }
+            if find(certs, id).is_none() {
+                return Err(bad(INDEX, format!("claim {:?} needs {id}, which is not in the set", c.claim)));
+            }
+            used.insert(id.as_str());
+        }
+    }
+    if let Some(c) = certs.iter().find(|c| !used.contains(c.role.id)) {
+        return Err(bad(INDEX, format!("{} is not needed by any claim", c.role.id)));
+    }
+    let mut out = Vec::new();
+    let weights = format!("a = {}, b = {}", show(&cfg_params.weights[0]), show(&cfg_params.weights[1]));
+    let w_text = {
+        let l = lower.expect("required above");
+        let u = find(certs, "w-bounds-upper").and_then(|f| f.lambda.clone()).expect("required above");
+        let n = find(certs, "w-bounds-lower").and_then(|f| f.elements).unwrap_or(0);
+        let definite = if l.is_positive() {
+            "W is positive definite on that space".to_string()
+        } else {
+            "W is not positive definite (exact negative direction), so the printed λ2 > 0 cannot exist".to_string()
+        };
+        let above = find(certs, "w-bounds-ratio-above").map(|f| show(&f.params.weights[0])).expect("required");
+        let below = find(certs, "w-bounds-ratio-below").map(|f| show(&f.params.weights[0])).expect("required");
+        format!(
+            "at {weights}: {} < min W/κ and max W/κ < {} on the {n}-element Galerkin space; {definite}; \
+             W is indefinite for a/b = {above} and positive definite on the Galerkin space for a/b = {below}",
+            show(&l),
+            show(&u)
+        )
+    };
+    out.push((W_BOUNDS.to_string(), w_text));
+    if find(certs, "mu-conditions-infeasible").is_some() {
+        out.push((MU_CONDITIONS.to_string(), format!("at {weights}: μ3 ≥ 0 is infeasible, so (32) cannot hold")));
+    }
+    Ok(out)
+}

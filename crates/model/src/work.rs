@@ -1,0 +1,202 @@
+//! Work estimates made before any work starts: integrator steps, run time, memory and output
+//! size of `simulate`, `check`, `report` and `modes` for a configuration, and the documented
+//! limits above which the command refuses unless `--allow-large` is given.
+//!
+//! The estimates are deliberately simple and err on the high side: cost per step is linear in
+//! the unknowns (sparse Cholesky solves with a banded factor), memory is dominated by the
+//! stored samples, and the JSON output by the pretty-printed numbers.
+
+use crate::{format_number, Config, Method};
+
+/// Seconds per integrator step per unknown, measured on one core (a 20-s default run: 20 000
+/// steps of 96 unknowns in ≈ 20 ms ≈ 1e-8 s per unknown-step), doubled for slower machines.
+pub const SECONDS_PER_UNKNOWN_STEP: f64 = 2e-8;
+/// Bytes per stored output sample of the time series (16 `f64` columns).
+pub const SERIES_BYTES_PER_SAMPLE: f64 = 16.0 * 8.0;
+/// Bytes per number in pretty JSON output (digits, punctuation and indentation), measured on
+/// run.json files of the default configuration (≈ 30) and rounded up.
+pub const JSON_BYTES_PER_NUMBER: f64 = 32.0;
+/// Full-horizon simulations `check` runs at the configured grid (ftdo-vs-dobc: 3 + 2 × 3
+/// sweep points; mu-conditions: 1; UUB: 2; finite-time: 6 shorter digital runs, counted as 8).
+pub const CHECK_RUNS: f64 = 20.0;
+/// Full-horizon simulations `report` runs besides `check`'s: 3 controllers with fields at the
+/// configured grid, and the accuracy study (FD and FE at 8, 16, 32, 64 elements).
+pub const REPORT_EXTRA_RUNS: f64 = 3.0;
+/// Element counts of the report's accuracy study.
+pub const REPORT_ACCURACY_GRIDS: [usize; 4] = [8, 16, 32, 64];
+
+/// Limits above which a command refuses without `--allow-large`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WorkLimits {
+    /// Estimated run time (s).
+    pub seconds: f64,
+    /// Estimated peak memory (bytes).
+    pub memory_bytes: f64,
+    /// Estimated output size (bytes).
+    pub output_bytes: f64,
+}
+
+/// The documented default limits: 10 minutes, 4 GiB of memory, 1 GiB of output.
+pub const DEFAULT_LIMITS: WorkLimits =
+    WorkLimits { seconds: 600.0, memory_bytes: 4.0 * 1073741824.0, output_bytes: 1073741824.0 };
+
+/// An estimate of one command's work.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WorkEstimate {
+    /// What is estimated, e.g. `simulate`.
+    pub what: String,
+    /// Total integrator steps over all simulations.
+    pub steps: f64,
+    /// Estimated run time (s) on one core.
+    pub seconds: f64,
+    /// Estimated peak memory (bytes).
+    pub memory_bytes: f64,
+    /// Estimated output size (bytes).
+    pub output_bytes: f64,
+}
+
+/// A refused estimate.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error(
+    "{what} refused before starting: estimated {details}; the limits are {limits}. \
+     Reduce horizon.t_end, raise discretisation.dt or horizon.sample_every, use fewer elements, \
+     or pass --allow-large to run anyway"
+)]
+pub struct WorkRefused {
+    /// The command.
+    pub what: String,
+    /// The estimate, in words.
+    pub details: String,
+    /// The limits, in words.
+    pub limits: String,
+}
+
+/// Unknowns of the semi-discrete system (displacements and velocities) for `elements`:
+/// FE has 2 Hermite + 1 linear unknowns per element for (q, θ), FD 2 per node plus ghosts.
+pub fn unknowns(method: Method, elements: usize) -> f64 {
+    let per_field = match method {
+        Method::Fe => 3.0 * elements as f64,
+        Method::Fd => 2.0 * (elements as f64 + 3.0),
+    };
+    2.0 * per_field
+}
+
+fn human_bytes(b: f64) -> String {
+    if b >= 1e9 {
+        format!("{:.3} GB", b / 1e9)
+    } else if b >= 1e6 {
+        format!("{:.3} MB", b / 1e6)
+    } else {
+        format!("{:.0} kB", (b / 1e3).ceil())
+    }
+}
+
+fn human_seconds(s: f64) -> String {
+    if s >= 3600.0 {
+        format!("{:.1} h", s / 3600.0)
+    } else if s >= 60.0 {
+        format!("{:.1} min", s / 60.0)
+    } else {
+        format!("{s:.2} s")
+    }
+}
+
+impl WorkEstimate {
+    /// One simulation of `cfg` (at its grid), storing fields if `fields`, writing JSON
+    /// (`json_output`) or CSV.
+    pub fn simulation(cfg: &Config, fields: bool, json_output: Option<bool>) -> WorkEstimate {
+        let steps = (cfg.horizon.t_end / cfg.discretisation.dt).ceil();
+        let samples = (cfg.horizon.t_end / cfg.horizon.sample_every).floor() + 1.0;
+        let n = unknowns(cfg.discretisation.method, cfg.discretisation.elements);
+        let field_values = if fields { 2.0 * cfg.horizon.field_points as f64 } else { 0.0 };
+        let memory = samples * (SERIES_BYTES_PER_SAMPLE + 8.0 * field_values) + 200.0 * n * 8.0;
+        let output = match json_output {
+            None => 0.0,
+            Some(true) => samples * (16.0 + field_values) * JSON_BYTES_PER_NUMBER,
+            Some(false) => samples * 16.0 * 25.0,
+        };
+        WorkEstimate {
+            what: "simulate".into(),
+            steps,
+            seconds: steps * n * SECONDS_PER_UNKNOWN_STEP,
+            memory_bytes: memory,
+            output_bytes: output,
+        }
+    }
+
+    /// `wingcheck check`: [`CHECK_RUNS`] simulations at the configured grid.
+    pub fn check(cfg: &Config) -> WorkEstimate {
+        let one = Self::simulation(cfg, false, None);
+        WorkEstimate {
+            what: "check".into(),
+            steps: one.steps * CHECK_RUNS,
+            seconds: one.seconds * CHECK_RUNS,
+            // UUB keeps one run with fields.
+            memory_bytes: one.memory_bytes * 4.0 + Self::simulation(cfg, true, None).memory_bytes,
+            output_bytes: 0.0,
+        }
+    }
+
+    /// `wingcheck report`: `check`, three runs with fields and the accuracy study; the report
+    /// holds CSV of the series of the three runs.
+    pub fn report(cfg: &Config) -> WorkEstimate {
+        let check = Self::check(cfg);
+        let fields = Self::simulation(cfg, true, Some(false));
+        let mut steps = check.steps + REPORT_EXTRA_RUNS * fields.steps;
+        let mut seconds = check.seconds + REPORT_EXTRA_RUNS * fields.seconds;
+        let mut memory = check.memory_bytes + REPORT_EXTRA_RUNS * fields.memory_bytes;
+        for m in [Method::Fd, Method::Fe] {
+            for &e in &REPORT_ACCURACY_GRIDS {
+                let mut c = cfg.clone();
+                c.discretisation.method = m;
+                c.discretisation.elements = e;
+                let r = Self::simulation(&c, false, None);
+                steps += r.steps;
+                seconds += r.seconds;
+                memory += r.memory_bytes;
+            }
+        }
+        WorkEstimate {
+            what: "report".into(),
+            steps,
+            seconds,
+            memory_bytes: memory,
+            output_bytes: REPORT_EXTRA_RUNS * fields.output_bytes * 2.0,
+        }
+    }
+
+    /// `Ok` within `limits`, else [`WorkRefused`] naming every exceeded quantity.
+    pub fn within(&self, limits: &WorkLimits) -> Result<(), WorkRefused> {
+        let mut over = Vec::new();
+        if self.seconds > limits.seconds {
+            if self.steps > 0.0 {
+                over.push(format!(
+                    "{} steps, ~{} of computing",
+                    format_number(self.steps),
+                    human_seconds(self.seconds)
+                ));
+            } else {
+                over.push(format!("~{} of computing", human_seconds(self.seconds)));
+            }
+        }
+        if self.memory_bytes > limits.memory_bytes {
+            over.push(format!("{} of memory", human_bytes(self.memory_bytes)));
+        }
+        if self.output_bytes > limits.output_bytes {
+            over.push(format!("{} of output", human_bytes(self.output_bytes)));
+        }
+        if over.is_empty() {
+            return Ok(());
+        }
+        Err(WorkRefused {
+            what: self.what.clone(),
+            details: over.join(", "),
+            limits: format!(
+                "{} of computing, {} of memory, {} of output",
+                human_seconds(limits.seconds),
+                human_bytes(limits.memory_bytes),
+                human_bytes(limits.output_bytes)
+            ),
+        })
+    }
+}

@@ -1,0 +1,103 @@
+//! Bounded work on every input: work estimates refuse huge runs before any work starts (with
+//! the estimate and the override flag), and config input is bounded and strict.
+
+mod common;
+
+use std::process::{Command, Output};
+
+use common::paper_with;
+use wingcheck_model::work::{WorkEstimate, DEFAULT_LIMITS};
+use wingcheck_model::Config;
+
+fn wingcheck(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_wingcheck")).args(args).output().expect("binary runs")
+}
+
+fn refused(args: &[&str], must_mention: &[&str]) {
+    let o = wingcheck(args);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "{args:?} should be refused; stderr: {err}");
+    assert!(!err.contains("panicked"), "{err}");
+    for m in must_mention {
+        assert!(err.contains(m), "{args:?}: error should mention {m:?}: {err}");
+    }
+}
+
+#[test]
+fn the_billion_step_run_is_refused_with_its_estimate_and_the_flag() {
+    // t_end = 20 s / dt = 2e-8 s = 1e9 steps (exact division).
+    refused(&["simulate", "--set", "discretisation.dt=2e-8"], &["1e9 steps", "--allow-large"]);
+    refused(&["check", "--set", "discretisation.dt=2e-8"], &["check refused", "--allow-large"]);
+    refused(&["report", "--set", "discretisation.dt=2e-8", "--out", "/nonexistent/never"], &["report refused"]);
+}
+
+#[test]
+fn the_171_gb_output_is_refused_and_nothing_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("run.json");
+    refused(
+        &[
+            "simulate",
+            "--set",
+            "horizon.t_end=1e5",
+            "--set",
+            "horizon.sample_every=1e-3",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &["GB of output", "GB of memory", "--allow-large"],
+    );
+    assert!(!out.exists());
+    // The estimate itself: 1e8 + 1 samples × (16 series + 2 × 21 field values) × 32 bytes.
+    let cfg = paper_with(&["horizon.t_end=1e5", "horizon.sample_every=1e-3"]);
+    let est = WorkEstimate::simulation(&cfg, true, Some(true));
+    assert!(est.output_bytes > 1.5e11 && est.output_bytes < 2.5e11, "{}", est.output_bytes);
+    assert!(est.within(&DEFAULT_LIMITS).is_err());
+}
+
+#[test]
+fn huge_modes_problems_are_refused() {
+    // `modes` works on its own uniform meshes (16 … 2048 elements, sparse shift-invert), so its
+    // work is bounded whatever discretisation.elements says; only --count and --tol are inputs.
+    refused(&["modes", "--count", "1000000"], &["--count 1000000", "[1, 50]"]);
+    refused(&["modes", "--tol", "0"], &["--tol 0", ">= 1e-13"]);
+    refused(&["bench", "--repeats", "0"], &["0 is not in 1..=1000"]);
+}
+
+#[test]
+fn default_work_is_far_inside_the_limits() {
+    // The defaults and an SI-scale wing at 64 elements must never trip the guard.
+    for cfg in [
+        Config::paper(),
+        paper_with(&[
+            "wing.span=6",
+            "wing.ei=1e7",
+            "wing.gj=1e6",
+            "wing.rho=100",
+            "wing.ip=10",
+            "discretisation.elements=64",
+        ]),
+    ] {
+        for est in [
+            WorkEstimate::simulation(&cfg, true, Some(true)),
+            WorkEstimate::check(&cfg),
+            WorkEstimate::report(&cfg),
+        ] {
+            assert!(est.within(&DEFAULT_LIMITS).is_ok(), "{est:?}");
+        }
+    }
+}
+
+#[test]
+fn config_input_is_bounded_and_strict() {
+    refused(&["config", "--config", "/dev/zero"], &["larger than 1048576 bytes"]);
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("c.json");
+    std::fs::write(&p, format!("{} {{\"x\": 1}}", wingcheck_model::PAPER_JSON)).unwrap();
+    refused(&["config", "--config", p.to_str().unwrap()], &["trailing data"]);
+    for field in ["rho", "ei", "gj", "ip"] {
+        let set = format!("wing.{field}=1e308");
+        refused(&["config", "--set", &set], &[&format!("wing.{field} = 1e308 is out of range"), "1e12"]);
+    }
+    refused(&["config", "--set", "control.k1=1e300"], &["control.k1 = 1e300"]);
+}

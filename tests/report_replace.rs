@@ -1,0 +1,51 @@
+//! Kill injection for report replacement: `wingcheck report` is killed (SIGKILL) at several
+//! moments while it replaces an existing report; `--out` must always hold a complete report
+//! (the old one or the new one), and the next run cleans the dead run's staging directory.
+
+use std::path::Path;
+use std::process::{Command, Stdio};
+use std::time::Duration;
+
+const ARGS: [&str; 3] = ["report", "--set", "horizon.t_end=1"];
+
+fn report(out: &Path) -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_wingcheck"));
+    c.args(ARGS).arg("--out").arg(out).stdout(Stdio::null()).stderr(Stdio::null());
+    c
+}
+
+/// A complete report: the marker lists every file, each exists, and nothing else is there.
+fn assert_complete(out: &Path) {
+    let marker = std::fs::read_to_string(out.join(".wingcheck-report")).expect("marker present");
+    let (_, list) = marker.split_once("\nfiles:\n").expect("marker lists the files");
+    let listed: Vec<&str> = list.lines().filter(|l| !l.is_empty()).collect();
+    assert!(listed.contains(&"index.html"), "{listed:?}");
+    for f in &listed {
+        assert!(out.join(f).is_file(), "{f} listed but missing");
+    }
+    let present = std::fs::read_dir(out).unwrap().count();
+    assert_eq!(present, listed.len() + 1, "files besides the listed ones and the marker");
+}
+
+#[test]
+fn out_always_holds_a_complete_report_whenever_report_is_killed() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("r");
+    assert!(report(&out).status().unwrap().success());
+    assert_complete(&out);
+    // Kill points spread over a run (one takes about a second here; the exact moments do not
+    // matter: the property must hold at every instant).
+    for ms in [30, 150, 300, 500, 700] {
+        let mut child = report(&out).spawn().unwrap();
+        std::thread::sleep(Duration::from_millis(ms));
+        let _ = child.kill();
+        let _ = child.wait();
+        assert_complete(&out);
+    }
+    // A last full run succeeds and removes the staging directories the killed runs left.
+    assert!(report(&out).status().unwrap().success());
+    assert_complete(&out);
+    let names: Vec<String> =
+        std::fs::read_dir(tmp.path()).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into()).collect();
+    assert_eq!(names, ["r"], "stale staging directories left: {names:?}");
+}
