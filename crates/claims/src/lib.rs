@@ -15,6 +15,7 @@ mod ledger;
 pub mod lemmas;
 pub mod lyapunov;
 pub mod mu;
+pub mod sdp;
 pub mod socp;
 pub mod study;
 pub mod theory;
