@@ -44,7 +44,15 @@ fn repeated_eigenvalues() {
 fn rounding_level_asymmetry() {
     let n = 12;
     // B = I + 5e-16 asymmetric noise, A = diag(1..n) ⇒ λ = 1 (to 1e-15)
-    let b = Mat::from_fn(n, n, |i, j| if i == j { 1.0 } else if i < j { 5e-16 } else { 0.0 });
+    let b = Mat::from_fn(n, n, |i, j| {
+        if i == j {
+            1.0
+        } else if i < j {
+            5e-16
+        } else {
+            0.0
+        }
+    });
     let a = Mat::from_fn(n, n, |i, j| if i == j { 1.0 + i as f64 } else { 0.0 });
     let r = max_lambda(&a, &b).unwrap();
     assert!(r.accepted && (r.lambda_sdp - 1.0).abs() < 1e-6, "{r:?}");
