@@ -184,8 +184,8 @@ fn is_key_number(v: &Value) -> bool {
 pub fn row_ctx(r: &ClaimRow, figures: &[Figure]) -> RowCtx {
     let evidence: Vec<Kv> = r.evidence.iter().map(|(k, v)| Kv { key: k.clone(), value: value_text(v) }).collect();
     RowCtx {
-        id: r.id.clone(),
-        anchor: claim_anchor(&r.id),
+        id: r.id.to_string(),
+        anchor: claim_anchor(r.id.name()),
         equation: r.equation.clone(),
         claim: r.claim.clone(),
         verdict: r.verdict.name().into(),
@@ -281,8 +281,8 @@ pub fn row_assumptions(ledger: &Ledger) -> Vec<RowAssumption> {
         .iter()
         .flat_map(|r| {
             r.assumptions.iter().map(|a| RowAssumption {
-                id: r.id.clone(),
-                anchor: claim_anchor(&r.id),
+                id: r.id.to_string(),
+                anchor: claim_anchor(r.id.name()),
                 text: a.clone(),
             })
         })

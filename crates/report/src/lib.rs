@@ -227,7 +227,7 @@ fn claim_figures(r: &wingcheck_claims::ClaimRow) -> Vec<Figure> {
         .iter()
         .enumerate()
         .map(|(i, pd)| Figure {
-            file: format!("{}-{}", claim_anchor(&r.id), safe_name(&pd.name)),
+            file: format!("{}-{}", claim_anchor(r.id.name()), safe_name(&pd.name)),
             label: format!("{} plot {}", r.id, i + 1),
             title: pd.title.clone(),
             caption: Caption::default().t(pd.title.clone()).0,

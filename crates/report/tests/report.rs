@@ -125,7 +125,7 @@ fn report_is_well_formed_complete_and_matches_the_ledger() {
     let want: Vec<(String, String, String)> = expected
         .rows
         .iter()
-        .map(|r| (r.id.clone(), r.verdict.name().to_string(), r.basis.name().to_string()))
+        .map(|r| (r.id.to_string(), r.verdict.name().to_string(), r.basis.name().to_string()))
         .collect();
     assert_eq!(rows, want);
 
