@@ -19,6 +19,7 @@
 
 pub mod axis;
 mod heatmap;
+pub mod modal;
 pub mod point;
 mod refine;
 pub mod store;
@@ -209,8 +210,8 @@ impl Search {
     }
 
     /// Evaluate one point (simulation + theory).
-    pub fn evaluate(&self, p: usize, cache: &TheoryCache) -> PointResult {
-        point::evaluate(&self.grid, &self.base, self.options.window, cache, p)
+    pub fn evaluate(&self, p: usize, cache: &TheoryCache, runs: &modal::RunCache) -> PointResult {
+        point::evaluate(&self.grid, &self.base, self.options.window, cache, runs, p)
     }
 
     /// The manifest.
@@ -366,6 +367,7 @@ pub fn run(search: &Search, out: &Path, ctl: RunControl<'_>) -> Result<RunSummar
         p(Progress { done: 0, total });
     }
     let cache = TheoryCache::new(search.options.lyapunov_elements);
+    let runs = modal::RunCache::new();
     let mut summary =
         RunSummary { out_dir: out.to_path_buf(), points_total: search.points(), skipped, ..Default::default() };
     for (i, &c) in todo.iter().enumerate() {
@@ -376,7 +378,7 @@ pub fn run(search: &Search, out: &Path, ctl: RunControl<'_>) -> Result<RunSummar
             .chunk_range(c)
             .into_par_iter()
             .map(|p| {
-                let r = search.evaluate(p, &cache);
+                let r = search.evaluate(p, &cache, &runs);
                 let d = done.fetch_add(1, Ordering::Relaxed) + 1;
                 if let Some(cb) = ctl.progress {
                     cb(Progress { done: d, total });

@@ -1,7 +1,7 @@
 //! A diverging simulation is a recorded outcome of its point, not a crash.
 
 use wingcheck_model::{apply_overrides, Config};
-use wingcheck_search::{Search, SearchOptions, Status, TheoryCache};
+use wingcheck_search::{modal::RunCache, Search, SearchOptions, Status, TheoryCache};
 
 #[test]
 fn diverging_points_are_recorded() {
@@ -10,9 +10,10 @@ fn diverging_points_are_recorded() {
     let base = apply_overrides(&Config::paper(), &["horizon.t_end=1".into(), "observer.rule=explicit".into()]).unwrap();
     let s = Search::new(base, &["observer.kappa1=0.8,1e5".into()], SearchOptions::default()).unwrap();
     let cache = TheoryCache::new(8);
-    let ok = s.evaluate(0, &cache);
+    let runs = RunCache::new();
+    let ok = s.evaluate(0, &cache, &runs);
     assert_eq!(ok.status, Status::Ok, "{}", ok.message);
-    let bad = s.evaluate(1, &cache);
+    let bad = s.evaluate(1, &cache, &runs);
     assert_eq!(bad.status, Status::Diverged);
     assert!(bad.message.contains("diverged"), "{}", bad.message);
     assert_eq!(bad.metric("rms_q_tip"), None);
