@@ -200,6 +200,9 @@ fn bench_search(cfg: &wingcheck_model::Config, as_json: bool) -> anyhow::Result<
         return Ok(());
     }
     println!("search: {} points ({}), one run per thread count", b.points, b.axes.join(" × "));
+    if let Some(l) = b.load_average {
+        println!("machine: {} cores, load average {l:.2} when started (other processes share the cores)", b.cores);
+    }
     println!("threads  wall (s)  points/s  closed loop Σ (s)  theory Σ (s)  failed points");
     for r in &b.runs {
         println!(

@@ -34,6 +34,11 @@ pub struct SearchBench {
     pub axes: Vec<String>,
     /// Points.
     pub points: usize,
+    /// 1-minute load average of the machine when the benchmark started (Linux; None
+    /// elsewhere): timings on a shared machine are only comparable at similar load.
+    pub load_average: Option<f64>,
+    /// Cores available.
+    pub cores: usize,
     /// One run per thread count.
     pub runs: Vec<ThreadTiming>,
     /// Once per search: the modal basis of the wing (s).
@@ -57,6 +62,10 @@ fn median(mut v: Vec<f64>) -> f64 {
 /// Run the benchmark on `base` (the paper config by default): the grid
 /// a ∈ [1e-4, 10] × b ∈ [1e-2, 1e4], n × n log points, with 1 and `max_threads` threads.
 pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<SearchBench, SearchError> {
+    let load_average = std::fs::read_to_string("/proc/loadavg")
+        .ok()
+        .and_then(|s| s.split_whitespace().next().and_then(|x| x.parse().ok()));
+    let cores = std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1);
     let axes = vec![format!("control.a=1e-4..10:log:{n}"), format!("control.b=1e-2..1e4:log:{n}")];
     let search = Search::new(base.clone(), &axes, SearchOptions::default())?;
     let tmp = tempfile::tempdir().map_err(|e| SearchError::Io { path: "temp dir".into(), detail: e.to_string() })?;
@@ -100,6 +109,8 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
     Ok(SearchBench {
         axes,
         points: search.points(),
+        load_average,
+        cores,
         runs,
         modal_basis_seconds,
         input_signal_seconds,
