@@ -27,7 +27,7 @@ pub mod strain;
 pub use disc::{mass_determinant, Discretisation, Interpolation, Parts};
 pub use error_estimate::{simulate_with_error, EstimatedRun, PeakEstimate, PeakEstimates, TIP_TOLERANCE};
 pub use estimate::Estimate;
-pub use run::{simulate, Fields, RunOptions, RunStats, Series, SimOutput};
+pub use run::{check_sample, simulate, Fields, RunOptions, RunStats, Series, SimOutput};
 pub use stepper::{Channel, EnergyLedger, Peak, Peaks, Sample, Stepper};
 
 use thiserror::Error;

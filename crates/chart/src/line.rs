@@ -5,15 +5,15 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use wingcheck_claims::PlotData;
 
-use super::{padded_range, tick_linear, PALETTE, SIZE};
-use crate::ReportError;
+use crate::ChartError;
+use crate::{padded_range, tick_linear, PALETTE, SIZE};
 
 /// Render `pd` as an SVG document (log axes and point markers as the data asks).
-pub fn line_svg(pd: &PlotData) -> Result<String, ReportError> {
+pub fn line_svg(pd: &PlotData) -> Result<String, ChartError> {
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
-        let err = |e: String| ReportError::Chart { name: pd.name.clone(), detail: e };
+        let err = |e: String| ChartError { name: pd.name.clone(), detail: e };
         root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
         let xs = padded_range(pd.lines.iter().flat_map(|l| l.x.iter().copied()), pd.log_x);
         let ys = padded_range(

@@ -3,8 +3,8 @@
 
 use plotters::prelude::*;
 
-use super::{tick, tick_linear, SIZE};
-use crate::ReportError;
+use crate::ChartError;
+use crate::{tick, tick_linear, SIZE};
 
 /// A field sampled on a (t, z) grid.
 #[derive(Debug, Clone)]
@@ -74,8 +74,8 @@ fn edges(c: &[f64]) -> Vec<f64> {
 }
 
 /// Render the heatmap as an SVG document.
-pub fn heatmap_svg(h: &Heatmap) -> Result<String, ReportError> {
-    let err = |e: String| ReportError::Chart { name: h.name.clone(), detail: e };
+pub fn heatmap_svg(h: &Heatmap) -> Result<String, ChartError> {
+    let err = |e: String| ChartError { name: h.name.clone(), detail: e };
     if h.t.len() < 2 || h.z.len() < 2 || h.values.len() != h.t.len() {
         return Err(err("need at least 2 times and 2 grid points".into()));
     }

@@ -1,16 +1,29 @@
-//! Charts as standalone SVG files, drawn with plotters' SVG backend.
+//! Charts as standalone SVG files, drawn with plotters' SVG backend, shared by the report
+//! (line charts, field heatmaps) and the searches (grid heatmaps): one tick format, one set of
+//! colour maps.
 //!
 //! Text: with plotters' default features off no font crate is compiled in; the SVG backend
 //! writes labels as SVG `<text>` elements (font chosen by the viewer) and plotters only
 //! *estimates* their width, so no system font is ever read.
 
-mod heatmap;
+mod field;
+mod grid;
 mod line;
 
-pub use heatmap::{heatmap_svg, Heatmap};
+pub use field::{heatmap_svg, Heatmap};
+pub use grid::{grid_heatmap_svg, GridAxis, GridHeatmap, Mark, MarkShape};
 pub use line::line_svg;
+pub use plotters::style::RGBColor;
 
-use plotters::style::RGBColor;
+/// A chart could not be drawn.
+#[derive(Debug, thiserror::Error)]
+#[error("chart {name}: {detail}")]
+pub struct ChartError {
+    /// The chart's file stem.
+    pub name: String,
+    /// What failed.
+    pub detail: String,
+}
 
 /// Width and height (px) of every chart.
 pub const SIZE: (u32, u32) = (980, 440);
