@@ -177,3 +177,15 @@ fn time_stepping_is_second_order() {
     println!("time refinement differences {d:?}, observed order {p:.2}");
     assert!((p - 2.0).abs() < 0.25, "time order {p}");
 }
+
+/// FD refuses a graded grid (naming the key) instead of silently ignoring it; an error
+/// estimate whose refinement the validation would refuse is refused before any work.
+#[test]
+fn fd_refuses_grading_and_estimates_refuse_an_invalid_refinement() {
+    let sets = ["discretisation.method=fd".to_string(), "discretisation.grading=0.3".to_string()];
+    let e = wingcheck_model::apply_overrides(&wingcheck_model::Config::paper(), &sets).unwrap_err().to_string();
+    assert!(e.contains("discretisation.grading") && e.contains("fe only"), "{e}");
+    let cfg = paper_with(&["discretisation.elements=3000", "horizon.t_end=0.01"]);
+    let e = simulate_with_error(&cfg, RunOptions::default()).unwrap_err().to_string();
+    assert!(e.contains("discretisation.elements"), "{e}");
+}
