@@ -3,7 +3,7 @@
 use clap::Args;
 use serde_json::json;
 use wingcheck_model::apply_overrides;
-use wingcheck_sim::bench::{loglog_slope, time_config, time_modes, Timing};
+use wingcheck_sim::bench::{loglog_slope, time_config, time_error_estimate, time_modes, Timing};
 
 use super::common::ConfigArgs;
 
@@ -33,6 +33,12 @@ pub fn run(a: BenchArgs) -> anyhow::Result<()> {
         _ => {}
     }
     let base = time_config(&cfg, usize::from(a.repeats))?;
+    // the other time scheme, measured in the same run for the cost ratio
+    let other =
+        if cfg.discretisation.stepper == wingcheck_model::TimeScheme::Trapezoid { "trbdf2" } else { "trapezoid" };
+    let other_cfg = apply_overrides(&cfg, &[format!("discretisation.stepper={other}")])?;
+    let other_timing = time_config(&other_cfg, usize::from(a.repeats))?;
+    let estimate_seconds = time_error_estimate(&cfg, usize::from(usize::from(a.repeats)).min(3))?;
     let modes = time_modes(&cfg, 5, usize::from(a.repeats))?;
     let mut grid: Vec<Timing> = Vec::new();
     for n in [8usize, 16, 32, 64, 128] {
@@ -58,6 +64,8 @@ pub fn run(a: BenchArgs) -> anyhow::Result<()> {
             "{}",
             serde_json::to_string_pretty(&json!({
                 "default": base,
+                "other_stepper": { "stepper": other, "timing": other_timing },
+                "error_estimate_seconds": estimate_seconds,
                 "modes": modes,
                 "grid_scaling": grid,
                 "grid_exponent": grid_slope,
@@ -68,21 +76,35 @@ pub fn run(a: BenchArgs) -> anyhow::Result<()> {
         return Ok(());
     }
     println!(
-        "default run ({} controller, {} with {} elements, dt = {} s, T = {} s): {:.2} ms ({} steps, {} unknowns)",
+        "default run ({} controller, {} with {} elements, dt = {} s, {}, T = {} s): {:.2} ms ({} steps, {} unknowns)",
         cfg.control.kind.name(),
         cfg.discretisation.method.name(),
         cfg.discretisation.grid_size(),
         cfg.discretisation.dt,
+        cfg.discretisation.stepper.name(),
         cfg.horizon.t_end,
         base.run_seconds * 1e3,
         base.steps,
         base.unknowns
     );
     println!(
-        "  per step {:.3} µs = {:.2} × one sparse solve ({:.3} µs)",
+        "  per step {:.3} µs = {:.2} × one step-matrix solve ({:.3} µs)",
         base.seconds_per_step * 1e6,
         base.seconds_per_step / base.solve_seconds,
         base.solve_seconds * 1e6
+    );
+    println!(
+        "  {} stepper: {:.2} ms; ratio {} / {} = {:.2} (same run)",
+        other,
+        other_timing.run_seconds * 1e3,
+        cfg.discretisation.stepper.name(),
+        other,
+        base.run_seconds / other_timing.run_seconds
+    );
+    println!(
+        "  with error estimates (refined in h and dt): {:.2} ms = {:.2} × the run",
+        estimate_seconds * 1e3,
+        estimate_seconds / base.run_seconds
     );
     println!(
         "modes (5, with error estimates, {} meshes {:?}): {:.2} ms, worst relative estimate {:.1e}",

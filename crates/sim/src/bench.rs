@@ -131,3 +131,14 @@ pub fn time_modes(cfg: &Config, count: usize, repeats: usize) -> Result<ModesTim
         worst_relative_error: m.modes.iter().map(|e| e.error / e.omega).fold(0.0, f64::max),
     })
 }
+
+/// Median wall time (s) of [`crate::simulate_with_error`] (the run plus its refinements).
+pub fn time_error_estimate(cfg: &Config, repeats: usize) -> Result<f64, SimError> {
+    let mut runs = Vec::new();
+    for _ in 0..repeats.max(1) {
+        let t = Instant::now();
+        crate::simulate_with_error(cfg, RunOptions::default())?;
+        runs.push(t.elapsed().as_secs_f64());
+    }
+    Ok(median(runs))
+}

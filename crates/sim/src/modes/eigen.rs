@@ -133,7 +133,7 @@ pub fn lowest_eigenvalues(disc: &Discretisation, count: usize) -> Result<Vec<Rit
             let r: Vec<f64> = y[c].iter().zip(&x[c]).map(|(a, b)| a - mu[c] * b).collect();
             mass.mul_into(&r, &mut tmp);
             let rnorm = r.iter().zip(&tmp).map(|(a, b)| a * b).sum::<f64>().max(0.0).sqrt();
-            if !(mu[c] > 0.0) {
+            if mu[c].is_nan() || mu[c] <= 0.0 {
                 return Err(SimError::Numerical(format!(
                     "non-positive Ritz value {:e} (K not positive definite?)",
                     mu[c]
