@@ -185,3 +185,18 @@ fn verify_rejects_a_tampered_certificate_with_nonzero_exit() {
     let err = stderr(&bad);
     assert!(err.contains("REJECTED") && err.contains("mu-conditions-infeasible.json"), "{err}");
 }
+
+#[test]
+fn certify_names_the_real_cause_of_io_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let blocker = dir.path().join("blocker");
+    std::fs::write(&blocker, "").unwrap();
+    let o = wingcheck(&["certify", "--out", blocker.join("proofs").to_str().unwrap()]);
+    assert_clean_failure(&o, "cannot create directory");
+    assert!(!stderr(&o).contains("numerical"), "{}", stderr(&o));
+    let o = wingcheck(&["certify", "--out", blocker.to_str().unwrap()]);
+    assert_clean_failure(&o, "exists and is not a directory");
+    assert_eq!(std::fs::read(&blocker).unwrap(), b"", "the file is untouched");
+    let names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
+    assert_eq!(names.len(), 1, "no staging directory left: {names:?}");
+}

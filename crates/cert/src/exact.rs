@@ -58,8 +58,9 @@ pub struct NumberLimits {
 }
 
 impl NumberLimits {
-    /// The limits of certificate files: 64 characters, |exponent| ≤ 64.
-    pub const CERTIFICATE: NumberLimits = NumberLimits { max_chars: 64, max_exponent: 64 };
+    /// The limits of certificate files: 32 characters, |exponent| ≤ 32 (config decimals have
+    /// ≤ 24 characters and magnitudes in [1e-12, 1e12]; certificate fractions ≤ 20 characters).
+    pub const CERTIFICATE: NumberLimits = NumberLimits { max_chars: 32, max_exponent: 32 };
 }
 
 /// [`parse_rational`] with the text's length and decimal exponent bounded by `limits`

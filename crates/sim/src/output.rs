@@ -1,6 +1,5 @@
 //! Writing results: atomic file writes (temp file + rename) and the CSV/JSON forms of a run.
 
-use std::io::Write;
 use std::path::Path;
 
 use serde::Serialize;
@@ -27,20 +26,13 @@ pub enum OutputError {
 /// Write `bytes` to `path` atomically: a temp file in the same directory, fsync, rename.
 /// An interrupted run leaves either the old file or the new one, never a half-written file.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
-    let err = |source| OutputError::Io { path: path.display().to_string(), source };
-    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let name = path.file_name().ok_or_else(|| err(std::io::Error::other("not a file name")))?;
-    let tmp = dir.join(format!(".{}.tmp-{}", name.to_string_lossy(), std::process::id()));
-    let result = (|| {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result.map_err(err)
+    wingcheck_io::write_file_atomic(path, bytes).map_err(|e| OutputError::Io {
+        path: path.display().to_string(),
+        source: match e {
+            wingcheck_io::IoError::Io { source, .. } => source,
+            other => std::io::Error::other(other.to_string()),
+        },
+    })
 }
 
 /// The series as CSV with a header line; numbers in Rust's shortest round-trip form, so the

@@ -235,7 +235,9 @@ pub fn verify_set(dir: &Path) -> Result<VerifiedSet, CertifyError> {
             return Err(bad(&name, "not listed in index.json (a set holds only the files its manifest lists)"));
         }
     }
-    let mut certs: Vec<VerifiedCert> = Vec::new();
+    // Pass 1, no arithmetic beyond bounded parsing: names, hashes, ids, roles, the set's
+    // config and one discretisation across the set.
+    let mut parsed: Vec<(&'static Role, CertificateFile, &str)> = Vec::new();
     for e in &manifest.certificates {
         let role = role(&e.id).ok_or_else(|| bad(&e.file, format!("unknown certificate id {:?}", e.id)))?;
         if e.file != format!("{}.json", e.id) {
@@ -292,7 +294,23 @@ pub fn verify_set(dir: &Path) -> Result<VerifiedSet, CertifyError> {
             }
             _ => {}
         }
-        let fact = file.check().map_err(|err| err.in_file(&e.file))?;
+        parsed.push((role, file, e.file.as_str()));
+    }
+    let mut sizes = Vec::new();
+    for (role, file, name) in &parsed {
+        if file.fact != FactKind::Mu3Infeasible {
+            sizes.push((role.id, file.require_elements().map_err(|err| err.in_file(name))?));
+        }
+    }
+    if let Some(&(first_id, n)) = sizes.first() {
+        if let Some(&(id, m)) = sizes.iter().find(|&&(_, m)| m != n) {
+            return Err(bad(id, format!("elements = {m}, but {first_id} uses {n}: one discretisation across the set")));
+        }
+    }
+    // Pass 2: the exact checks.
+    let mut certs: Vec<VerifiedCert> = Vec::new();
+    for (role, file, name) in parsed {
+        let fact = file.check().map_err(|err| err.in_file(name))?;
         certs.push(VerifiedCert { role, fact });
     }
     let conclusions = conclusions(&manifest, &cfg_params, &certs)?;
@@ -326,12 +344,6 @@ fn conclusions(
     certs: &[VerifiedCert],
 ) -> Result<Vec<(String, String)>, CertifyError> {
     let lower = find(certs, "w-bounds-lower").and_then(|f| f.lambda.clone());
-    let mut sizes = certs.iter().filter_map(|c| c.fact.elements.map(|n| (c.role.id, n)));
-    if let Some((first_id, n)) = sizes.next() {
-        if let Some((id, m)) = sizes.find(|&(_, m)| m != n) {
-            return Err(bad(id, format!("elements = {m}, but {first_id} uses {n}: one discretisation across the set")));
-        }
-    }
     if let Some(f) = find(certs, "w-bounds-ratio-below") {
         if !f.lambda.as_ref().is_some_and(|l| l.is_positive()) {
             return Err(bad("w-bounds-ratio-below.json", "λ must be > 0 (it certifies W positive definite)"));
