@@ -38,7 +38,7 @@ pub fn run(a: BenchArgs) -> anyhow::Result<()> {
         if cfg.discretisation.stepper == wingcheck_model::TimeScheme::Trapezoid { "trbdf2" } else { "trapezoid" };
     let other_cfg = apply_overrides(&cfg, &[format!("discretisation.stepper={other}")])?;
     let other_timing = time_config(&other_cfg, usize::from(a.repeats))?;
-    let estimate_seconds = time_error_estimate(&cfg, usize::from(usize::from(a.repeats)).min(3))?;
+    let estimate_seconds = time_error_estimate(&cfg, usize::from(a.repeats).min(3))?;
     let modes = time_modes(&cfg, 5, usize::from(a.repeats))?;
     let mut grid: Vec<Timing> = Vec::new();
     for n in [8usize, 16, 32, 64, 128] {
