@@ -184,6 +184,8 @@ fn verify_rejects_a_tampered_certificate_with_nonzero_exit() {
     assert!(!bad.status.success());
     let err = stderr(&bad);
     assert!(err.contains("REJECTED") && err.contains("mu-conditions-infeasible.json"), "{err}");
+    // A single file is not a set: refused with the reason.
+    assert_clean_failure(&wingcheck(&["verify", f.to_str().unwrap()]), "verify takes a certificate set directory");
 }
 
 #[test]

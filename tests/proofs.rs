@@ -308,3 +308,47 @@ fn adversarial_numbers_and_sizes_are_refused_before_arithmetic() {
     std::fs::write(p.join("w-bounds-lower.json"), vec![b' '; (1 << 20) + 1]).unwrap();
     assert_rejected(&p, &["larger than 1048576 bytes"]);
 }
+
+#[test]
+fn an_si_scale_wing_certifies_and_a_forged_mu_certificate_is_refuted() {
+    // Span 6 m, EI 1e7, GJ 1e6, ρ 100, I_p 10 with a = 1e-3, b = 2, ξ = 0.01: W ≻ 0 here, and
+    // μ3's constant term bξEI/(2s⁴) − aρ = 2·0.01·1e7/(2·1296) − 0.1 = 62419/810 > 0 (by hand).
+    let cfg = paper_with(&[
+        "wing.span=6",
+        "wing.ei=1e7",
+        "wing.gj=1e6",
+        "wing.rho=100",
+        "wing.ip=10",
+        "control.a=0.001",
+        "control.b=2",
+        "wing.xi=0.01",
+    ]);
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("si");
+    certify::write_all(&cfg, &p).unwrap();
+    let set = verify_set(&p).unwrap();
+    let ids: Vec<&str> = set.certs.iter().map(|c| c.role.id).collect();
+    assert_eq!(ids, ["w-bounds-lower", "w-bounds-upper", "w-bounds-ratio-above", "w-bounds-ratio-below"]);
+    assert!(set.conclusions[0].1.contains("W is positive definite on that space"), "{:?}", set.conclusions);
+    assert!(set.conclusions[1].1.contains("62419/810"), "{:?}", set.conclusions);
+    // Smuggle in the paper's μ3 certificate, re-parametrised for this wing: the verifier builds
+    // the system itself, whose constant term is positive, so the Farkas check fails.
+    let paper = fresh_set();
+    let mut mu = read(&paper.path().join("p"), "mu-conditions-infeasible.json");
+    mu["wing"] = read(&p, "w-bounds-lower.json")["wing"].clone();
+    mu["weights"] = json!({"a": "0.001", "b": "2"});
+    let text = serde_json::to_string_pretty(&mu).unwrap();
+    std::fs::write(p.join("mu-conditions-infeasible.json"), &text).unwrap();
+    edit_index(&p, |v| {
+        v["certificates"].as_array_mut().unwrap().push(json!({
+            "file": "mu-conditions-infeasible.json",
+            "id": "mu-conditions-infeasible",
+            "sha256": manifest::sha256_hex(text.as_bytes()),
+        }));
+        v["claims"]
+            .as_array_mut()
+            .unwrap()
+            .push(json!({"claim": "mu-conditions (32)", "needs": ["mu-conditions-infeasible"]}));
+    });
+    assert_rejected(&p, &["mu-conditions-infeasible.json", "refuted"]);
+}

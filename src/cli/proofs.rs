@@ -45,6 +45,13 @@ pub fn certify(a: CertifyArgs) -> anyhow::Result<()> {
 }
 
 pub fn verify(a: VerifyArgs) -> anyhow::Result<()> {
+    if a.path.is_file() {
+        anyhow::bail!(
+            "{} is a file: verify takes a certificate set directory (index.json and the files it lists), \
+             because a certificate is only checked against its set's configuration",
+            a.path.display()
+        );
+    }
     let start = Instant::now();
     let set = certify::verify_set(&a.path).with_context(|| format!("REJECTED {}", a.path.display()))?;
     let w = &set.config.wing;

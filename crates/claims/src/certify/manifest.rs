@@ -400,6 +400,15 @@ fn conclusions(
     out.push((W_BOUNDS.to_string(), w_text));
     if find(certs, "mu-conditions-infeasible").is_some() {
         out.push((MU_CONDITIONS.to_string(), format!("at {weights}: μ3 ≥ 0 is infeasible, so (32) cannot hold")));
+    } else {
+        let (_, c3) = mu3_system(cfg_params);
+        out.push((
+            MU_CONDITIONS.to_string(),
+            format!(
+                "no certificate: at {weights} the constant term bξEI/(2s⁴) − aρ = {} of μ3 is ≥ 0, so μ3 alone does not refute (32)",
+                show(&c3)
+            ),
+        ));
     }
     Ok(out)
 }
