@@ -1,5 +1,5 @@
 //! The claim checker: for each claim of the paper (table at the end of
-//! `shared/spec/model.md`) a verdict with evidence, the basis it rests on, and the
+//! `docs/model.md`) a verdict with evidence, the basis it rests on, and the
 //! assumptions made where the paper is silent.
 //!
 //! Rows: `W-bounds` and `mu-conditions` ([`wbounds`], [`mu`]) rest on convex optimisation and

@@ -24,7 +24,7 @@ pub struct Config {
     pub horizon: Horizon,
 }
 
-/// Wing parameters (paper Section 4, notation of `shared/spec/model.md`).
+/// Wing parameters (paper Section 4, notation of `docs/model.md`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Wing {

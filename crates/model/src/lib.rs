@@ -1,7 +1,7 @@
 //! Wing model configuration for wingcheck.
 //!
 //! One JSON document holds every parameter of the coupled bending–torsion wing
-//! (paper Section 2, eq. (9)–(10) as corrected in `shared/spec/model.md`), the boundary
+//! (paper Section 2, eq. (9)–(10) as corrected in `docs/model.md`), the boundary
 //! control law (15), the observer (16)–(21) or DOBC (57), the disturbances (56), the
 //! initial condition, the discretisation and the horizon. [`Config::paper`] is the
 //! embedded default (`configs/paper.json`); [`Config::from_json_str`] parses a user file

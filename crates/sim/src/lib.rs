@@ -1,5 +1,5 @@
 //! Simulation of the coupled bending–torsion wing with Kelvin–Voigt damping under boundary
-//! control (paper eq. (9)–(10), corrected in `shared/spec/model.md`).
+//! control (paper eq. (9)–(10), corrected in `docs/model.md`).
 //!
 //! - [`Discretisation`]: two independent spatial discretisations, the paper's finite
 //!   differences ([`fd`]) and finite elements ([`fe`]), both as sparse symmetric M, K (faer).
