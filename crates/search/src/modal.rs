@@ -2,23 +2,31 @@
 //! per point, O(n) work per step, and everything that does not change across points computed
 //! once per search.
 //!
-//! It is the simulator's scheme ([`wingcheck_sim::Stepper`]: trapezoidal rule on
-//! M ẍ + C ẋ + K_c x = f̄ with C = ξK + b·T, K_c = K + a·T, T = diag(k1, k2) at the tip
-//! unknowns; step matrix S = 2M/h + C + (h/2)K_c), written in another basis:
+//! It is the simulator's scheme ([`wingcheck_sim::Stepper`] on M ẍ + C ẋ + K_c x = f̄ with
+//! C = ξK + b·T, K_c = K + a·T, T = diag(k1, k2) at the tip unknowns, whichever
+//! `discretisation.stepper` selects: TR-BDF2, two solves per step, or the trapezoidal rule,
+//! one; every solve has the step matrix S = M/α + C + αK_c, α = γh/2 = (1 − 1/√2)h resp. h/2),
+//! written in another basis:
 //!
 //! - **Modal basis** (per wing, shared): K Φ = M Φ Ω², ΦᵀMΦ = I (Cholesky of M, symmetric
 //!   eigenproblem of L⁻¹KL⁻ᵀ). With x = Φη, v = Φζ the step matrix becomes
-//!   D + β UKUᵀ with D = diag(2/h + (ξ + h/2)ω_i²), β = b + ha/2 and U = the tip rows of Φ
+//!   D + β UTUᵀ with D = diag(1/α + (ξ + α)ω_i²), β = b + αa and U = the tip rows of Φ
 //!   (n×2): diagonal plus rank 2, solved by the Woodbury identity in O(n) — no sparse
-//!   factorisation per point at all.
+//!   factorisation per point at all. TR-BDF2's stages (trapezoid to t + γh, then BDF2 with
+//!   A = 1/(γ(2 − γ)), B = A − 1) and the tip boundary states q'''(s), θ'(s) are advanced with
+//!   the simulator's formulas and constants (`wingcheck_sim::trbdf2`); see [`scheme`].
 //! - **Observer signal** (per observer/disturbance, shared): the observer's σ obeys
-//!   σ_{n+1} − σ_n = h(ḡ − ĝ_k) whatever the plant (the tip boundary condition cancels τ
-//!   and w, see `wingcheck_control::ChannelObserver`), so ĝ_k, and with it the tip input
-//!   ḡ − ĝ of every step, is the same at every point of a sweep over plant or control-law
-//!   keys. It is computed once, together with the step averages φ̄ of the distributed load.
+//!   σ_{n+1} − σ_n = h(ḡ − ĝ_k) whatever the plant and for either scheme (the tip boundary
+//!   condition cancels τ and w in the scheme's own quadrature, see
+//!   `wingcheck_control::ChannelObserver`), so ĝ_k, and with it the tip input ḡ − ĝ of every
+//!   step, is the same at every point of a sweep over plant, control-law or scheme keys. It is
+//!   computed once, together with the step averages φ̄ of the distributed load.
 //!
 //! Same equations, so the results agree with `wingcheck_sim::simulate` to round-off
-//! (tests/modal.rs), not bit for bit. Only the tip quantities the metrics need are recorded.
+//! (tests/modal.rs: ≤ 4e-9 relative on FE wings, whose modal basis carries the round-off of a
+//! dense eigenproblem with ω² spanning many decades; ≤ 3e-11 on FD wings of 24–48 intervals),
+//! not bit for bit.
+//! Only the tip quantities the metrics need are recorded.
 
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
@@ -26,8 +34,12 @@ use std::sync::{Arc, Mutex};
 use faer::{Mat, Side};
 use serde::Serialize;
 use wingcheck_control::{ChannelObserver, TipChannel};
-use wingcheck_model::{Config, ControllerKind, InitialShape};
+use wingcheck_model::{Config, ControllerKind, InitialShape, TimeScheme};
 use wingcheck_sim::{check_sample, Discretisation, Sample, SimError};
+
+mod scheme;
+
+use scheme::{dot, ModalLoop, ModalState, StepInput, StepSolve};
 
 /// Entries kept per cache before it is cleared (bounds memory on sweeps over wing keys).
 const CACHE_ENTRIES: usize = 16;
@@ -218,7 +230,8 @@ impl TipTrace {
 }
 
 /// Run the closed loop of `cfg` on a shared basis and signal (built from configurations that
-/// agree with `cfg` on the keys they read; [`RunCache`] guarantees it).
+/// agree with `cfg` on the keys they read; [`RunCache`] guarantees it), with the scheme
+/// `cfg.discretisation.stepper` selects.
 pub fn run(cfg: &Config, basis: &ModalBasis, signal: &InputSignal) -> Result<TipTrace, SimError> {
     cfg.validate().map_err(SimError::Config)?;
     let n = basis.len();
@@ -228,55 +241,55 @@ pub fn run(cfg: &Config, basis: &ModalBasis, signal: &InputSignal) -> Result<Tip
         ControllerKind::None => [0.0, 0.0],
         _ => [cfg.control.k1, cfg.control.k2],
     };
-    let beta = b + 0.5 * h * a;
-    let (om, u) = (&basis.omega2, &basis.tip);
-    let d_inv: Vec<f64> = om.iter().map(|w| 1.0 / (2.0 / h + (xi + 0.5 * h) * w)).collect();
-    let z: [Vec<f64>; 2] = [0, 1].map(|c| (0..n).map(|i| d_inv[i] * u[c][i]).collect());
-    let coef_zeta: Vec<f64> = d_inv.iter().map(|d| (2.0 / h) * d).collect();
-    let coef_eta: Vec<f64> = (0..n).map(|i| d_inv[i] * om[i]).collect();
-    let load_d: Vec<f64> = (0..n).map(|i| d_inv[i] * basis.load[i]).collect();
-    // Q = Uᵀ D⁻¹ U; G = I + βK Q; H = G⁻¹ βK
-    let dot = |x: &[f64], y: &[f64]| x.iter().zip(y).map(|(p, q)| p * q).sum::<f64>();
-    let q = [[dot(&u[0], &z[0]), dot(&u[0], &z[1])], [dot(&u[1], &z[0]), dot(&u[1], &z[1])]];
-    let wk = [beta * gain[0], beta * gain[1]];
-    let g = [[1.0 + wk[0] * q[0][0], wk[0] * q[0][1]], [wk[1] * q[1][0], 1.0 + wk[1] * q[1][1]]];
-    let det = g[0][0] * g[1][1] - g[0][1] * g[1][0];
-    if !(det.is_finite() && det > 0.0) {
-        return Err(SimError::Numerical(format!("step matrix capacitance is singular (det {det:e})")));
-    }
-    let gi = [[g[1][1] / det, -g[0][1] / det], [-g[1][0] / det, g[0][0] / det]];
-    let hm = [[gi[0][0] * wk[0], gi[0][1] * wk[1]], [gi[1][0] * wk[0], gi[1][1] * wk[1]]];
-
-    let mut eta = basis.eta0.clone();
-    let mut zeta = vec![0.0; n];
-    let mut y = vec![0.0; n];
-    let mut x_tip = [dot(&u[0], &eta), dot(&u[1], &eta)];
-    let mut v_tip = [0.0, 0.0];
+    let scheme = cfg.discretisation.stepper;
+    let alpha = match scheme {
+        TimeScheme::Trapezoid => 0.5 * h,
+        TimeScheme::Trbdf2 => wingcheck_sim::trbdf2::ALPHA * h,
+    };
+    let lp = ModalLoop {
+        u: &basis.tip,
+        solve: StepSolve::new(basis, alpha, xi, b + alpha * a, gain)?,
+        h,
+        alpha,
+        a,
+        b,
+        xi,
+        gain,
+        stiff: [cfg.wing.ei, cfg.wing.gj],
+        sign: [TipChannel::Bending.bc_sign(), TipChannel::Torsion.bc_sign()],
+    };
     let s = cfg.wing.span;
-    let stiff = [cfg.wing.ei, cfg.wing.gj];
-    let sign = [TipChannel::Bending.bc_sign(), TipChannel::Torsion.bc_sign()];
-    let mut w = [
-        match cfg.initial.shape {
-            InitialShape::Linear => 0.0,
-            InitialShape::Cantilever => -3.0 * cfg.initial.q_tip / s.powi(3),
-        },
-        cfg.initial.theta_tip / s,
-    ];
+    let mut st = ModalState {
+        x_tip: [dot(&basis.tip[0], &basis.eta0), dot(&basis.tip[1], &basis.eta0)],
+        eta: basis.eta0.clone(),
+        zeta: vec![0.0; n],
+        y: vec![0.0; n],
+        v_tip: [0.0, 0.0],
+        w: [
+            match cfg.initial.shape {
+                InitialShape::Linear => 0.0,
+                InitialShape::Cantilever => -3.0 * cfg.initial.q_tip / s.powi(3),
+            },
+            cfg.initial.theta_tip / s,
+        ],
+    };
+    let om = &basis.omega2;
     let energy =
-        |eta: &[f64], zeta: &[f64]| 0.5 * (0..n).map(|i| zeta[i] * zeta[i] + om[i] * eta[i] * eta[i]).sum::<f64>();
+        |st: &ModalState| 0.5 * st.zeta.iter().zip(&st.eta).zip(om).map(|((z, e), w)| z * z + w * e * e).sum::<f64>();
     let (m, total, every) = (cfg.steps_per_sample(), cfg.total_samples(), cfg.samples_per_output());
     let period = cfg.observer.sample_period;
     let mut trace = TipTrace::default();
     let mut e0 = 0.0;
-    let mut record = |k: usize, x_tip: [f64; 2], v_tip: [f64; 2], w: [f64; 2], e: f64, tr: &mut TipTrace| {
+    let mut record = |k: usize, st: &ModalState, tr: &mut TipTrace| {
         let gh = [signal.g_hat[0][k], signal.g_hat[1][k]];
-        let tau = [0, 1].map(|c| -gain[c] * (a * x_tip[c] + b * v_tip[c]) - gh[c]);
+        let tau = [0, 1].map(|c| lp.tau(c, st.x_tip[c], st.v_tip[c], gh[c]));
+        let e = energy(st);
         let sample = Sample {
             t: k as f64 * period,
-            q_tip: x_tip[0],
-            theta_tip: x_tip[1],
-            q_tip_rate: v_tip[0],
-            theta_tip_rate: v_tip[1],
+            q_tip: st.x_tip[0],
+            theta_tip: st.x_tip[1],
+            q_tip_rate: st.v_tip[0],
+            theta_tip_rate: st.v_tip[1],
             tau1: tau[0],
             tau2: tau[1],
             g1: signal.g[0][k],
@@ -286,8 +299,8 @@ pub fn run(cfg: &Config, basis: &ModalBasis, signal: &InputSignal) -> Result<Tip
             sigma1: 0.0,
             sigma2: 0.0,
             energy: e,
-            q_tip_shear: w[0],
-            theta_tip_slope: w[1],
+            q_tip_shear: st.w[0],
+            theta_tip_slope: st.w[1],
         };
         if k == 0 {
             e0 = e;
@@ -303,59 +316,24 @@ pub fn run(cfg: &Config, basis: &ModalBasis, signal: &InputSignal) -> Result<Tip
         tr.energy_end = e;
         Ok::<(), SimError>(())
     };
-    record(0, x_tip, v_tip, w, energy(&eta, &zeta), &mut trace)?;
+    record(0, &st, &mut trace)?;
     let mut step = 0;
     for k in 1..=total {
-        let gh = [signal.g_hat[0][k - 1], signal.g_hat[1][k - 1]];
+        let g_hat = [signal.g_hat[0][k - 1], signal.g_hat[1][k - 1]];
         for _ in 0..m {
-            let phi = signal.phi_mean[step];
-            let f = [
-                signal.tip_input[0][step] - a * gain[0] * x_tip[0],
-                signal.tip_input[1][step] - a * gain[1] * x_tip[1],
-            ];
+            let input = StepInput {
+                phi: signal.phi_mean[step],
+                tip_input: [signal.tip_input[0][step], signal.tip_input[1][step]],
+                g_hat,
+            };
             step += 1;
-            // y = D⁻¹ r with r = (2/h)ζ − Ω²η + φ̄ Φᵀf_h + U f, per mode with the factors
-            // D⁻¹ folded in (coef_zeta = 2/h D⁻¹, coef_eta = Ω² D⁻¹, load_d = D⁻¹Φᵀf_h, z = D⁻¹U);
-            // t = Uᵀ y. Iterators over equal-length slices: no bounds checks, vectorised.
-            let (mut t0, mut t1) = (0.0, 0.0);
-            for (((((yi, (&zt, &et)), (&cz, &ce)), &ld), (&z0, &z1)), (&u0, &u1)) in y
-                .iter_mut()
-                .zip(zeta.iter().zip(eta.iter()))
-                .zip(coef_zeta.iter().zip(&coef_eta))
-                .zip(&load_d)
-                .zip(z[0].iter().zip(&z[1]))
-                .zip(u[0].iter().zip(&u[1]))
-            {
-                let v = cz * zt - ce * et + phi * ld + z0 * f[0] + z1 * f[1];
-                *yi = v;
-                t0 += u0 * v;
-                t1 += u1 * v;
-            }
-            let c = [hm[0][0] * t0 + hm[0][1] * t1, hm[1][0] * t0 + hm[1][1] * t1];
-            for (((yi, (zt, et)), &z0), &z1) in y.iter().zip(zeta.iter_mut().zip(eta.iter_mut())).zip(&z[0]).zip(&z[1])
-            {
-                let zbar = yi - z0 * c[0] - z1 * c[1];
-                *et += h * zbar;
-                *zt = 2.0 * zbar - *zt;
-            }
-            // tip rates v̄ = Uᵀ ζ̄ = t − Q c, and the tip boundary states w (as the stepper)
-            let vbar = [t0 - q[0][0] * c[0] - q[0][1] * c[1], t1 - q[1][0] * c[0] - q[1][1] * c[1]];
-            for ch in 0..2 {
-                let xbar = x_tip[ch] + 0.5 * h * vbar[ch];
-                let tau_mean = -gain[ch] * (a * xbar + b * vbar[ch]) - gh[ch];
-                let force = tau_mean + signal.tip_input[ch][step - 1] + gh[ch];
-                let st = stiff[ch];
-                w[ch] = if xi > 0.0 {
-                    (xi * st * w[ch] + h * sign[ch] * force - 0.5 * h * st * w[ch]) / (xi * st + 0.5 * h * st)
-                } else {
-                    sign[ch] * force / st
-                };
-                x_tip[ch] += h * vbar[ch];
-                v_tip[ch] = 2.0 * vbar[ch] - v_tip[ch];
+            match scheme {
+                TimeScheme::Trapezoid => lp.trapezoid_step(&mut st, &input),
+                TimeScheme::Trbdf2 => lp.trbdf2_step(&mut st, &input),
             }
         }
         if k % every == 0 || k == total {
-            record(k, x_tip, v_tip, w, energy(&eta, &zeta), &mut trace)?;
+            record(k, &st, &mut trace)?;
         }
     }
     Ok(trace)
@@ -393,6 +371,7 @@ impl RunCache {
             &cfg.wing,
             &cfg.discretisation.method,
             cfg.discretisation.elements,
+            cfg.discretisation.fd_points,
             cfg.discretisation.grading,
             &cfg.initial,
             &cfg.disturbance.distributed,

@@ -28,7 +28,7 @@ pub use disc::{mass_determinant, Discretisation, Interpolation, Parts};
 pub use error_estimate::{simulate_with_error, EstimatedRun, PeakEstimate, PeakEstimates, TIP_TOLERANCE};
 pub use estimate::Estimate;
 pub use run::{check_sample, simulate, Fields, RunOptions, RunStats, Series, SimOutput};
-pub use stepper::{Channel, EnergyLedger, Peak, Peaks, Sample, Stepper};
+pub use stepper::{trbdf2, Channel, EnergyLedger, Peak, Peaks, Sample, Stepper};
 
 use thiserror::Error;
 

@@ -22,7 +22,7 @@
 //! σ_{n+1} − σ_n = h(ḡ − ĝ) holds to round-off for either scheme.
 
 mod peaks;
-mod trbdf2;
+pub mod trbdf2;
 
 pub use peaks::{Peak, Peaks};
 

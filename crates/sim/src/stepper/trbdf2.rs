@@ -14,15 +14,15 @@
 use super::Stepper;
 
 /// γ = 2 − √2.
-pub(crate) const GAMMA: f64 = 2.0 - std::f64::consts::SQRT_2;
+pub const GAMMA: f64 = 2.0 - std::f64::consts::SQRT_2;
 /// α/h = γ/2 = 1 − 1/√2.
-pub(crate) const ALPHA: f64 = 1.0 - std::f64::consts::FRAC_1_SQRT_2;
+pub const ALPHA: f64 = 1.0 - std::f64::consts::FRAC_1_SQRT_2;
 /// BDF2-stage coefficient A = 1/(γ(2 − γ)).
-const A: f64 = 1.0 / (GAMMA * (2.0 - GAMMA));
+pub const A: f64 = 1.0 / (GAMMA * (2.0 - GAMMA));
 /// BDF2-stage coefficient B = (1 − γ)²/(γ(2 − γ)) = A − 1.
-const B: f64 = (1.0 - GAMMA) * (1.0 - GAMMA) / (GAMMA * (2.0 - GAMMA));
+pub const B: f64 = (1.0 - GAMMA) * (1.0 - GAMMA) / (GAMMA * (2.0 - GAMMA));
 /// Quadrature weights of the step: (w₀, w₁, w₂).
-pub(crate) const WEIGHTS: [f64; 3] = [0.5 / (2.0 - GAMMA), 0.5 / (2.0 - GAMMA), (1.0 - GAMMA) / (2.0 - GAMMA)];
+pub const WEIGHTS: [f64; 3] = [0.5 / (2.0 - GAMMA), 0.5 / (2.0 - GAMMA), (1.0 - GAMMA) / (2.0 - GAMMA)];
 
 impl Stepper {
     /// Right-hand side (M/α) v − K_c x + f̄ into `self.rhs`, solved in place.

@@ -1,0 +1,234 @@
+//! The two schemes of [`wingcheck_sim::Stepper`] in the modal basis: one step of the
+//! trapezoidal rule or of TR-BDF2, each solve with the step matrix as diagonal plus rank 2
+//! (Woodbury), O(n) per step.
+
+use wingcheck_sim::SimError;
+
+use super::ModalBasis;
+
+/// The step matrix S = M/α + C + αK_c of the scheme in the modal basis: D + β U T Uᵀ with
+/// D = diag(1/α + (ξ + α)ω_i²) (1/s), β = b + αa, T = diag(k1, k2) and U the tip rows of Φ;
+/// solved by the Woodbury identity with a 2×2 capacitance matrix, O(n) per solve.
+#[derive(Debug)]
+pub(super) struct StepSolve {
+    /// D⁻¹/α: the factor of ζ in D⁻¹ r.
+    coef_zeta: Vec<f64>,
+    /// D⁻¹Ω²: the factor of η in D⁻¹ r.
+    coef_eta: Vec<f64>,
+    /// D⁻¹Φᵀf_h: the distributed load's shape.
+    load_d: Vec<f64>,
+    /// D⁻¹U.
+    z: [Vec<f64>; 2],
+    /// Q = Uᵀ D⁻¹ U.
+    q: [[f64; 2]; 2],
+    /// H = (I + βT Q)⁻¹ βT.
+    hm: [[f64; 2]; 2],
+}
+
+pub(super) fn dot(x: &[f64], y: &[f64]) -> f64 {
+    x.iter().zip(y).map(|(p, q)| p * q).sum()
+}
+
+impl StepSolve {
+    pub(super) fn new(
+        basis: &ModalBasis,
+        alpha: f64,
+        xi: f64,
+        beta: f64,
+        gain: [f64; 2],
+    ) -> Result<StepSolve, SimError> {
+        let (om, u) = (&basis.omega2, &basis.tip);
+        let d_inv: Vec<f64> = om.iter().map(|w| 1.0 / (1.0 / alpha + (xi + alpha) * w)).collect();
+        let z: [Vec<f64>; 2] = [0, 1].map(|c| d_inv.iter().zip(&u[c]).map(|(d, u)| d * u).collect());
+        let coef_zeta = d_inv.iter().map(|d| d / alpha).collect();
+        let coef_eta = d_inv.iter().zip(om).map(|(d, w)| d * w).collect();
+        let load_d = d_inv.iter().zip(&basis.load).map(|(d, f)| d * f).collect();
+        let q = [[dot(&u[0], &z[0]), dot(&u[0], &z[1])], [dot(&u[1], &z[0]), dot(&u[1], &z[1])]];
+        let wk = [beta * gain[0], beta * gain[1]];
+        let g = [[1.0 + wk[0] * q[0][0], wk[0] * q[0][1]], [wk[1] * q[1][0], 1.0 + wk[1] * q[1][1]]];
+        let det = g[0][0] * g[1][1] - g[0][1] * g[1][0];
+        if !(det.is_finite() && det > 0.0) {
+            return Err(SimError::Numerical(format!("step matrix capacitance is singular (det {det:e})")));
+        }
+        let gi = [[g[1][1] / det, -g[0][1] / det], [-g[1][0] / det, g[0][0] / det]];
+        let hm = [[gi[0][0] * wk[0], gi[0][1] * wk[1]], [gi[1][0] * wk[0], gi[1][1] * wk[1]]];
+        Ok(StepSolve { coef_zeta, coef_eta, load_d, z, q, hm })
+    }
+
+    /// y = D⁻¹ r for r = ζ/α − Ω²η + φ̄ Φᵀf_h + U f (f: tip forces, N and N m); returns Uᵀy.
+    /// Iterators over equal-length slices: no bounds checks, vectorised.
+    fn rhs(&self, u: &[Vec<f64>; 2], zeta: &[f64], eta: &[f64], phi: f64, f: [f64; 2], y: &mut [f64]) -> [f64; 2] {
+        let (mut t0, mut t1) = (0.0, 0.0);
+        for (((((yi, (&zt, &et)), (&cz, &ce)), &ld), (&z0, &z1)), (&u0, &u1)) in y
+            .iter_mut()
+            .zip(zeta.iter().zip(eta))
+            .zip(self.coef_zeta.iter().zip(&self.coef_eta))
+            .zip(&self.load_d)
+            .zip(self.z[0].iter().zip(&self.z[1]))
+            .zip(u[0].iter().zip(&u[1]))
+        {
+            let v = cz * zt - ce * et + phi * ld + z0 * f[0] + z1 * f[1];
+            *yi = v;
+            t0 += u0 * v;
+            t1 += u1 * v;
+        }
+        [t0, t1]
+    }
+
+    /// The Woodbury correction c = H t of y (the solution is y − D⁻¹U c) and the solution's
+    /// tip values Uᵀ(y − D⁻¹U c) = t − Q c, for t = Uᵀy.
+    fn correct(&self, t: [f64; 2]) -> ([f64; 2], [f64; 2]) {
+        let (hm, q) = (&self.hm, &self.q);
+        let c = [hm[0][0] * t[0] + hm[0][1] * t[1], hm[1][0] * t[0] + hm[1][1] * t[1]];
+        (c, [t[0] - q[0][0] * c[0] - q[0][1] * c[1], t[1] - q[1][0] * c[0] - q[1][1] * c[1]])
+    }
+}
+
+/// The modal state of the closed loop: x = Φη, v = Φζ, with the tip values and tip boundary
+/// states carried alongside.
+#[derive(Debug)]
+pub(super) struct ModalState {
+    pub(super) eta: Vec<f64>,
+    pub(super) zeta: Vec<f64>,
+    /// Work buffer: D⁻¹ r of the current solve.
+    pub(super) y: Vec<f64>,
+    /// q(s), θ(s) (m, rad) = Uᵀη.
+    pub(super) x_tip: [f64; 2],
+    /// q̇(s), θ̇(s) (m/s, rad/s) = Uᵀζ.
+    pub(super) v_tip: [f64; 2],
+    /// Tip boundary states q'''(s) (1/m²), θ'(s) (1/m).
+    pub(super) w: [f64; 2],
+}
+
+/// The inputs of one integrator step: φ̄, ḡ − ĝ and ĝ per channel.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct StepInput {
+    pub(super) phi: f64,
+    pub(super) tip_input: [f64; 2],
+    pub(super) g_hat: [f64; 2],
+}
+
+/// Everything a step reads that is fixed over a run.
+#[derive(Debug)]
+pub(super) struct ModalLoop<'a> {
+    pub(super) u: &'a [Vec<f64>; 2],
+    pub(super) solve: StepSolve,
+    pub(super) h: f64,
+    pub(super) alpha: f64,
+    pub(super) a: f64,
+    pub(super) b: f64,
+    pub(super) xi: f64,
+    pub(super) gain: [f64; 2],
+    /// EI (N m²), GJ (N m²).
+    pub(super) stiff: [f64; 2],
+    pub(super) sign: [f64; 2],
+}
+
+impl ModalLoop<'_> {
+    /// Tip forces of the right-hand side: ḡ − ĝ − k a x_tip (the displacement part of the
+    /// control law is in K_c).
+    fn tip_forces(&self, input: &StepInput, x_tip: [f64; 2]) -> [f64; 2] {
+        [0, 1].map(|c| input.tip_input[c] - self.a * self.gain[c] * x_tip[c])
+    }
+
+    /// τ = −k(a x + b v) − ĝ at the tip values (x, v) of channel c.
+    pub(super) fn tau(&self, c: usize, x: f64, v: f64, g_hat: f64) -> f64 {
+        -self.gain[c] * (self.a * x + self.b * v) - g_hat
+    }
+
+    /// One trapezoidal step (α = h/2): S v̄ = (2/h)ζ − Ω²η + f̄, η += h v̄, ζ = 2v̄ − ζ; the
+    /// tip states as `wingcheck_sim::Stepper`'s trapezoidal step.
+    pub(super) fn trapezoid_step(&self, st: &mut ModalState, input: &StepInput) {
+        let h = self.h;
+        let f = self.tip_forces(input, st.x_tip);
+        let t = self.solve.rhs(self.u, &st.zeta, &st.eta, input.phi, f, &mut st.y);
+        let (c, vbar) = self.solve.correct(t);
+        let z = &self.solve.z;
+        for (((yi, (zt, et)), &z0), &z1) in
+            st.y.iter().zip(st.zeta.iter_mut().zip(st.eta.iter_mut())).zip(&z[0]).zip(&z[1])
+        {
+            let zbar = yi - z0 * c[0] - z1 * c[1];
+            *et += h * zbar;
+            *zt = 2.0 * zbar - *zt;
+        }
+        let xi = self.xi;
+        for ch in 0..2 {
+            let xbar = st.x_tip[ch] + 0.5 * h * vbar[ch];
+            let force = self.tau(ch, xbar, vbar[ch], input.g_hat[ch]) + input.tip_input[ch] + input.g_hat[ch];
+            let (s, w) = (self.stiff[ch], st.w[ch]);
+            st.w[ch] = if xi > 0.0 {
+                (xi * s * w + h * self.sign[ch] * force - 0.5 * h * s * w) / (xi * s + 0.5 * h * s)
+            } else {
+                self.sign[ch] * force / s
+            };
+            st.x_tip[ch] += h * vbar[ch];
+            st.v_tip[ch] = 2.0 * vbar[ch] - st.v_tip[ch];
+        }
+    }
+
+    /// One TR-BDF2 step (α = γh/2), as `wingcheck_sim::Stepper`'s. Stage 1 (trapezoid to
+    /// t + γh): S u = ζ/α − Ω²η + f̄, (η_γ, ζ_γ) = (η + 2αu, 2u − ζ). Stage 2 (BDF2 to t + h):
+    /// (η̂, ζ̂) = A(η_γ, ζ_γ) − B(η, ζ), S ζ₁ = ζ̂/α − Ω²η̂ + f̄, η₁ = η̂ + αζ₁. The stage-2
+    /// right-hand side is formed in the pass that finishes stage 1 (its tip forces need only
+    /// the tip values of stage 1); the tip states by the same stages.
+    pub(super) fn trbdf2_step(&self, st: &mut ModalState, input: &StepInput) {
+        use wingcheck_sim::trbdf2::{A, B};
+        let alpha = self.alpha;
+        let (xn, vn) = (st.x_tip, st.v_tip);
+        // Stage 1.
+        let f = self.tip_forces(input, xn);
+        let t = self.solve.rhs(self.u, &st.zeta, &st.eta, input.phi, f, &mut st.y);
+        let (c, u_tip) = self.solve.correct(t);
+        let xg = [0, 1].map(|ch| xn[ch] + 2.0 * alpha * u_tip[ch]);
+        let vg = [0, 1].map(|ch| 2.0 * u_tip[ch] - vn[ch]);
+        let x_hat = [0, 1].map(|ch| A * xg[ch] - B * xn[ch]);
+        // Stage 1's solution u = y − D⁻¹U c; stage 2's D⁻¹ r into y (η ← η̂, ζ ← ζ̂).
+        let f2 = self.tip_forces(input, x_hat);
+        let sv = &self.solve;
+        let (eta_u, zeta_u, zeta_z) = (2.0 * alpha * A, 2.0 * A, A + B);
+        let (mut t0, mut t1) = (0.0, 0.0);
+        for (((((yi, (zt, et)), (&cz, &ce)), &ld), (&z0, &z1)), (&u0, &u1)) in
+            st.y.iter_mut()
+                .zip(st.zeta.iter_mut().zip(st.eta.iter_mut()))
+                .zip(sv.coef_zeta.iter().zip(&sv.coef_eta))
+                .zip(&sv.load_d)
+                .zip(sv.z[0].iter().zip(&sv.z[1]))
+                .zip(self.u[0].iter().zip(&self.u[1]))
+        {
+            // η̂ = A(η + 2αu) − Bη = η + 2αA u and ζ̂ = A(2u − ζ) − Bζ = 2A u − (A + B)ζ (A − B = 1)
+            let us = *yi - z0 * c[0] - z1 * c[1];
+            let (eh, zh) = (*et + eta_u * us, zeta_u * us - zeta_z * *zt);
+            *et = eh;
+            *zt = zh;
+            let v = cz * zh - ce * eh + input.phi * ld + z0 * f2[0] + z1 * f2[1];
+            *yi = v;
+            t0 += u0 * v;
+            t1 += u1 * v;
+        }
+        // Stage 2.
+        let (c2, v1) = sv.correct([t0, t1]);
+        for (((yi, (zt, et)), &z0), &z1) in
+            st.y.iter().zip(st.zeta.iter_mut().zip(st.eta.iter_mut())).zip(&sv.z[0]).zip(&sv.z[1])
+        {
+            *zt = yi - z0 * c2[0] - z1 * c2[1];
+            *et += alpha * *zt;
+        }
+        let x1 = [0, 1].map(|ch| x_hat[ch] + alpha * v1[ch]);
+        // Tip boundary states: ξ S ẇ = s(τ + g) − S w by the same two stages.
+        let xi = self.xi;
+        for ch in 0..2 {
+            let g_mean = input.tip_input[ch] + input.g_hat[ch];
+            let force = |x: f64, v: f64| self.tau(ch, x, v, input.g_hat[ch]) + g_mean;
+            let (fn_, fg, f1) = (force(xn[ch], vn[ch]), force(xg[ch], vg[ch]), force(x1[ch], v1[ch]));
+            let (s, sg, w) = (self.stiff[ch], self.sign[ch], st.w[ch]);
+            st.w[ch] = if xi > 0.0 {
+                let wg = (xi * s * w + alpha * (sg * (fn_ + fg) - s * w)) / (xi * s + alpha * s);
+                (A * wg - B * w + alpha * sg * f1 / (xi * s)) / (1.0 + alpha / xi)
+            } else {
+                sg * f1 / s
+            };
+        }
+        st.x_tip = x1;
+        st.v_tip = v1;
+    }
+}
