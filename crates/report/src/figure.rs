@@ -4,7 +4,7 @@
 use serde::Serialize;
 use wingcheck_claims::{Line, PlotData};
 
-use crate::chart::{heatmap_svg, line_svg, Heatmap};
+use crate::chart::{heatmap_svg, line_svg, Heatmap, LineChart};
 use crate::stats::fmt_num;
 use crate::ReportError;
 
@@ -37,8 +37,8 @@ impl Caption {
 /// What is drawn.
 #[derive(Debug, Clone)]
 pub enum Chart {
-    /// Lines / points.
-    Line(PlotData),
+    /// Lines / points / steps.
+    Line(LineChart),
     /// A field over (t, z).
     Heat(Heatmap),
 }
@@ -70,7 +70,7 @@ impl Figure {
     /// Draw the SVG and write the CSV.
     pub fn render(&self) -> Result<Rendered, ReportError> {
         Ok(match &self.chart {
-            Chart::Line(pd) => Rendered { svg: line_svg(pd)?, csv: pd.to_csv() },
+            Chart::Line(c) => Rendered { svg: line_svg(c)?, csv: c.data.to_csv() },
             Chart::Heat(h) => Rendered { svg: heatmap_svg(h)?, csv: h.to_csv() },
         })
     }

@@ -231,7 +231,7 @@ fn claim_figures(r: &wingcheck_claims::ClaimRow) -> Vec<Figure> {
             label: format!("{} plot {}", r.id, i + 1),
             title: pd.title.clone(),
             caption: Caption::default().t(pd.title.clone()).0,
-            chart: Chart::Line(pd.clone()),
+            chart: Chart::Line(pd.clone().into()),
         })
         .collect()
 }

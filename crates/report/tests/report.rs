@@ -80,9 +80,9 @@ fn report_is_well_formed_complete_and_matches_the_ledger() {
 
     // Every image is a non-empty, well-formed SVG; every figure links its CSV.
     let figures: Vec<_> = doc.descendants().filter(|n| n.has_tag_name("figure")).collect();
-    // 18 paper figures (3–20) + 4 FTDO/DOBC overlays + 1 accuracy figure + the ledger's own plots.
+    // 18 paper figures (3–20) + 2 DOBC − FTDO difference maps + 1 accuracy figure + the ledger's own plots.
     let ledger_plots: usize = summary.ledger.rows.iter().map(|r| r.plots.len()).sum();
-    assert_eq!(figures.len(), 18 + 4 + 1 + ledger_plots);
+    assert_eq!(figures.len(), 18 + 2 + 1 + ledger_plots);
     for f in &figures {
         let img = f.descendants().find(|n| n.has_tag_name("img")).expect("figure has an image");
         let src = img.attribute("src").unwrap();
