@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use wingcheck_search::{merge, run, Progress, RunControl, Search, SearchOptions, Shard};
+use wingcheck_search::{merge, run, Progress, RunControl, RunSummary, Search, SearchOptions, Shard};
 
 use super::common::ConfigArgs;
 
@@ -33,9 +33,12 @@ pub struct SearchArgs {
     /// Points per chunk (the unit of resumption and sharding).
     #[arg(long, default_value_t = 32)]
     chunk_size: usize,
-    /// Worker threads (default: all cores).
+    /// Worker threads (default: all cores; at most 4 × the cores).
     #[arg(long)]
     threads: Option<usize>,
+    /// Run a search above the work limits (1e6 points or 2 estimated core-hours).
+    #[arg(long)]
+    allow_large: bool,
 }
 
 fn parse_window(s: &str) -> Result<(f64, f64), String> {
@@ -87,12 +90,18 @@ pub fn run_search(a: SearchArgs) -> anyhow::Result<()> {
     let s = run(
         &search,
         &a.out,
-        RunControl { shard: a.shard, progress: Some(&on_progress), threads: a.threads, ..Default::default() },
+        RunControl {
+            shard: a.shard,
+            progress: Some(&on_progress),
+            threads: a.threads,
+            allow_large: a.allow_large,
+            ..Default::default()
+        },
     )?;
     bar.finish_and_clear();
     println!(
-        "{} of {} points evaluated ({} already done) in {:.1} s; simulation {:.1} s, theory {:.1} s (summed over points)",
-        s.evaluated, s.points_total, s.skipped, s.wall_seconds, s.sim_seconds, s.theory_seconds
+        "{} of {} points evaluated ({} already done), {} of them failed, in {:.1} s; simulation {:.1} s, theory {:.1} s (summed over points)",
+        s.evaluated, s.points_total, s.skipped, s.failed, s.wall_seconds, s.sim_seconds, s.theory_seconds
     );
     if s.complete {
         println!("results in {}: {}", s.out_dir.display(), s.files.join(", "));
@@ -102,11 +111,34 @@ pub fn run_search(a: SearchArgs) -> anyhow::Result<()> {
             a.shard.k, a.shard.n
         );
     }
+    exit_on_failures(&s);
     Ok(())
+}
+
+/// Exit status 2 when the results are complete but some points failed (1 is an error).
+fn exit_on_failures(s: &RunSummary) {
+    let failed = match s.failed_total {
+        Some((diverged, errors)) => {
+            if diverged + errors > 0 {
+                println!(
+                    "{} of {} points failed ({diverged} diverged, {errors} errors): listed with their reasons in {}",
+                    diverged + errors,
+                    s.points_total,
+                    s.out_dir.join("failures.csv").display()
+                );
+            }
+            diverged + errors
+        }
+        None => s.failed,
+    };
+    if failed > 0 {
+        std::process::exit(2);
+    }
 }
 
 pub fn run_merge(a: MergeArgs) -> anyhow::Result<()> {
     let s = merge(&a.dirs, &a.out)?;
     println!("merged {} points into {}: {}", s.points_total, s.out_dir.display(), s.files.join(", "));
+    exit_on_failures(&s);
     Ok(())
 }

@@ -57,7 +57,22 @@ fn parse_f64(spec: &str, what: &str, s: &str) -> Result<f64, SearchError> {
     if !x.is_finite() {
         return Err(axis_err(spec, format!("{what} `{s}` is not finite")));
     }
+    check_representable(spec, what, s, x)?;
     Ok(x)
+}
+
+/// Refuse a number whose text is not zero but whose f64 is 0 or subnormal (e.g. `1e-400`,
+/// which parses to 0 and would be echoed as such): |x| must be 0 or ≥ f64::MIN_POSITIVE.
+fn check_representable(spec: &str, what: &str, s: &str, x: f64) -> Result<(), SearchError> {
+    let mantissa = s.trim().split(['e', 'E']).next().unwrap_or("");
+    let nonzero_text = mantissa.chars().any(|c| c.is_ascii_digit() && c != '0');
+    if (x == 0.0 && nonzero_text) || (x != 0.0 && x.abs() < f64::MIN_POSITIVE) {
+        return Err(axis_err(
+            spec,
+            format!("{what} `{}` is below the smallest normal f64 ({:e}) in magnitude", s.trim(), f64::MIN_POSITIVE),
+        ));
+    }
+    Ok(())
 }
 
 impl Axis {
@@ -94,6 +109,11 @@ impl Axis {
             let values: Vec<String> = rhs.split(',').map(|v| v.trim().to_string()).collect();
             if values.iter().any(String::is_empty) {
                 return Err(axis_err(spec, "empty value in the list"));
+            }
+            for v in &values {
+                if let Ok(x) = v.parse::<f64>() {
+                    check_representable(spec, "value", v, x)?;
+                }
             }
             Spacing::List { values }
         };
@@ -279,9 +299,10 @@ impl Grid {
         Grid { axes, dims }
     }
 
-    /// Number of points (product of the axis lengths).
+    /// Number of points (product of the axis lengths; saturates at `usize::MAX`, which the
+    /// work limits refuse long before).
     pub fn len(&self) -> usize {
-        self.dims.iter().product()
+        self.dims.iter().fold(1usize, |acc, &n| acc.saturating_mul(n))
     }
 
     /// True if there are no points.

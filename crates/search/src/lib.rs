@@ -18,22 +18,24 @@
 //! config, collected in index order.
 
 pub mod axis;
+mod exec;
 mod heatmap;
+pub mod limits;
+pub mod modal;
 pub mod point;
 mod refine;
 pub mod store;
 pub mod theory;
 
-use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
-use std::time::Instant;
+use std::path::PathBuf;
 
-use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use wingcheck_model::Config;
 
 pub use axis::{parse_axes, validate_axes, Axis, Grid, Spacing};
+pub use exec::{finalize, merge, run};
 pub use heatmap::heatmap_svg;
+pub use limits::{WorkEstimate, MAX_CORE_SECONDS, MAX_POINTS, MAX_POINTS_OVERRIDE};
 pub use point::{PointResult, Status, METRICS};
 pub use refine::{boundaries, boundary_csv, BoundaryRow};
 pub use theory::{Theory, TheoryCache, Verdicts};
@@ -78,6 +80,9 @@ pub enum SearchError {
         /// The first few missing chunk numbers.
         first: Vec<usize>,
     },
+    /// The search is above a work limit (see [`limits`]).
+    #[error("search too large: {0}")]
+    TooLarge(String),
     /// A theory computation failed (eigenproblem, SOCP).
     #[error("theory ({what}): {detail}")]
     Theory {
@@ -180,16 +185,19 @@ impl Search {
                 return Err(SearchError::Options(format!("--refine {t}: the tolerance must lie in (0, 1)")));
             }
         }
-        if let Some((a, b)) = o.window {
-            if !(a.is_finite() && b.is_finite() && a <= b) {
-                return Err(SearchError::Options(format!("metric window [{a}, {b}] must be finite with t0 ≤ t1")));
-            }
+        if let Some(w) = o.window {
+            check_window(&base, &axes, w)?;
         }
         if !(1..=64).contains(&o.lyapunov_elements) {
             return Err(SearchError::Options("lyapunov elements must lie in [1, 64]".into()));
         }
         store::best_json(&[], &[], &o.best_metric, 0)?;
         Ok(Search { base, grid: Grid::new(axes), options })
+    }
+
+    /// The work estimate of the whole search ([`limits::estimate`]).
+    pub fn estimate(&self) -> WorkEstimate {
+        limits::estimate(&self.base, &self.grid.axes)
     }
 
     /// Number of points.
@@ -209,8 +217,8 @@ impl Search {
     }
 
     /// Evaluate one point (simulation + theory).
-    pub fn evaluate(&self, p: usize, cache: &TheoryCache) -> PointResult {
-        point::evaluate(&self.grid, &self.base, self.options.window, cache, p)
+    pub fn evaluate(&self, p: usize, cache: &TheoryCache, runs: &modal::RunCache) -> PointResult {
+        point::evaluate(&self.grid, &self.base, self.options.window, cache, runs, p)
     }
 
     /// The manifest.
@@ -239,6 +247,36 @@ impl Search {
     fn from_manifest(m: Manifest) -> Result<Search, SearchError> {
         Search::from_axes(m.base_config, m.axes, m.options)
     }
+}
+
+/// The metric window [t0, t1] must be finite, 0 ≤ t0 < t1 ≤ T and hold an output sample, for
+/// the base config and for every value of every axis (others at the base): a window outside
+/// the horizon would give empty metrics.
+fn check_window(base: &Config, axes: &[Axis], (t0, t1): (f64, f64)) -> Result<(), SearchError> {
+    if !(t0.is_finite() && t1.is_finite() && 0.0 <= t0 && t0 < t1) {
+        return Err(SearchError::Options(format!("--window {t0},{t1}: needs finite 0 ≤ t0 < t1 (s)")));
+    }
+    let mut cfgs = vec![base.clone()];
+    for a in axes {
+        let idx: Vec<usize> = match &a.spacing {
+            Spacing::List { values } => (0..values.len().min(256)).collect(),
+            _ => vec![0, a.len() - 1],
+        };
+        cfgs.extend(idx.into_iter().filter_map(|i| wingcheck_model::apply_overrides(base, &[a.override_expr(i)]).ok()));
+    }
+    for cfg in &cfgs {
+        let t_end = cfg.horizon.t_end;
+        let dt_out = cfg.samples_per_output() as f64 * cfg.observer.sample_period;
+        let tol = 1e-9 * (1.0 + t1.abs());
+        let has_sample = (t1 / dt_out + 1e-9).floor() * dt_out >= t0 - tol || t1 >= t_end - tol;
+        if t1 > t_end + tol || !has_sample {
+            return Err(SearchError::Options(format!(
+                "--window {t0},{t1}: must lie inside the horizon [0, {t_end}] s and hold an output sample \
+                 (every {dt_out} s)"
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// Shard K of N (1-based K), parsed from `K/N`.
@@ -295,8 +333,11 @@ pub struct RunControl<'a> {
     pub progress: Option<&'a (dyn Fn(Progress) + Sync)>,
     /// Stop after this many chunks have been written (to test interruption).
     pub stop_after_chunks: Option<usize>,
-    /// Worker threads (a local rayon pool); None: the current pool (all cores by default).
+    /// Worker threads (a local rayon pool, 1..=[`limits::max_threads`]); None: the current
+    /// pool (all cores by default).
     pub threads: Option<usize>,
+    /// Run even above [`MAX_POINTS`] / [`MAX_CORE_SECONDS`] (never above [`MAX_POINTS_OVERRIDE`]).
+    pub allow_large: bool,
 }
 
 /// What a run or merge did.
@@ -320,192 +361,9 @@ pub struct RunSummary {
     pub theory_seconds: f64,
     /// Wall time of the invocation (s).
     pub wall_seconds: f64,
-}
-
-fn check_manifest(dir: &Path, text: &str) -> Result<(), SearchError> {
-    let path = dir.join("manifest.json");
-    if path.exists() {
-        if store::read(&path)? != text {
-            return Err(SearchError::Mismatch {
-                dir: dir.display().to_string(),
-                reason: "manifest.json describes a different search (config, axes or options); use another --out"
-                    .into(),
-            });
-        }
-    } else {
-        store::write_atomic(&path, text.as_bytes())?;
-    }
-    Ok(())
-}
-
-/// Run (this shard of) a search into `out`, resuming from chunks already there; when every
-/// chunk of the search is present, write the final files ([`finalize`]).
-pub fn run(search: &Search, out: &Path, ctl: RunControl<'_>) -> Result<RunSummary, SearchError> {
-    if let Some(n) = ctl.threads {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
-            .build()
-            .map_err(|e| SearchError::Options(format!("cannot start {n} threads: {e}")))?;
-        return pool.install(|| run(search, out, RunControl { threads: None, ..ctl }));
-    }
-    let start = Instant::now();
-    store::mkdir(&out.join(store::CHUNK_DIR))?;
-    check_manifest(out, &search.manifest_text())?;
-    let mine: Vec<usize> = (0..search.chunks()).filter(|&c| ctl.shard.owns(c)).collect();
-    let mut todo = Vec::new();
-    let mut skipped = 0;
-    for &c in &mine {
-        match store::read_chunk(out, c, search.chunk_range(c))? {
-            Some(_) => skipped += search.chunk_range(c).len(),
-            None => todo.push(c),
-        }
-    }
-    let total: usize = todo.iter().map(|&c| search.chunk_range(c).len()).sum();
-    let done = AtomicUsize::new(0);
-    if let Some(p) = ctl.progress {
-        p(Progress { done: 0, total });
-    }
-    let cache = TheoryCache::new(search.options.lyapunov_elements);
-    let mut summary =
-        RunSummary { out_dir: out.to_path_buf(), points_total: search.points(), skipped, ..Default::default() };
-    for (i, &c) in todo.iter().enumerate() {
-        if ctl.stop_after_chunks == Some(i) {
-            break;
-        }
-        let points: Vec<PointResult> = search
-            .chunk_range(c)
-            .into_par_iter()
-            .map(|p| {
-                let r = search.evaluate(p, &cache);
-                let d = done.fetch_add(1, Ordering::Relaxed) + 1;
-                if let Some(cb) = ctl.progress {
-                    cb(Progress { done: d, total });
-                }
-                r
-            })
-            .collect();
-        store::write_atomic(&store::chunk_path(out, c), store::chunk_text(&points).as_bytes())?;
-        summary.evaluated += points.len();
-        summary.sim_seconds += points.iter().map(|p| p.sim_seconds).sum::<f64>();
-        summary.theory_seconds += points.iter().map(|p| p.theory_seconds).sum::<f64>();
-        let completed: Vec<usize> = mine.iter().copied().filter(|&c| store::chunk_path(out, c).exists()).collect();
-        let progress = serde_json::json!({
-            "shard": format!("{}/{}", ctl.shard.k, ctl.shard.n),
-            "chunks_owned": mine.len(),
-            "completed_chunks": completed,
-        });
-        let name = format!("progress-{}-of-{}.json", ctl.shard.k, ctl.shard.n);
-        store::write_atomic(
-            &out.join(name),
-            (serde_json::to_string_pretty(&progress).expect("json") + "\n").as_bytes(),
-        )?;
-    }
-    if (0..search.chunks()).all(|c| store::chunk_path(out, c).exists()) {
-        summary.files = finalize(out)?;
-        summary.complete = true;
-    }
-    summary.wall_seconds = start.elapsed().as_secs_f64();
-    Ok(summary)
-}
-
-/// Combine shard directories into `out`: check that they hold the same search, copy every
-/// chunk (the first valid copy found, in the order of `dirs`) and [`finalize`].
-pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<RunSummary, SearchError> {
-    let start = Instant::now();
-    let first = dirs.first().ok_or_else(|| SearchError::Options("merge needs at least one directory".into()))?;
-    let text = store::read(&first.join("manifest.json"))?;
-    for d in &dirs[1..] {
-        if store::read(&d.join("manifest.json"))? != text {
-            return Err(SearchError::Mismatch {
-                dir: d.display().to_string(),
-                reason: format!("manifest.json differs from {}'s: not shards of the same search", first.display()),
-            });
-        }
-    }
-    let manifest: Manifest = serde_json::from_str(&text).map_err(|e| SearchError::Io {
-        path: first.join("manifest.json").display().to_string(),
-        detail: e.to_string(),
-    })?;
-    let search = Search::from_manifest(manifest)?;
-    store::mkdir(&out.join(store::CHUNK_DIR))?;
-    check_manifest(out, &text)?;
-    let mut missing = Vec::new();
-    for c in 0..search.chunks() {
-        let mut found = false;
-        for d in dirs {
-            if store::read_chunk(d, c, search.chunk_range(c))?.is_some() {
-                let target = store::chunk_path(out, c);
-                if store::chunk_path(d, c) != target {
-                    store::write_atomic(&target, store::read(&store::chunk_path(d, c))?.as_bytes())?;
-                }
-                found = true;
-                break;
-            }
-        }
-        if !found {
-            missing.push(c);
-        }
-    }
-    if !missing.is_empty() {
-        return Err(SearchError::MissingChunks {
-            missing: missing.len(),
-            total: search.chunks(),
-            first: missing.iter().take(8).copied().collect(),
-        });
-    }
-    let files = finalize(out)?;
-    Ok(RunSummary {
-        out_dir: out.to_path_buf(),
-        points_total: search.points(),
-        complete: true,
-        files,
-        wall_seconds: start.elapsed().as_secs_f64(),
-        ..Default::default()
-    })
-}
-
-/// Assemble the final files of a complete directory from `manifest.json` and the chunk files,
-/// in index order: `results.csv`, `results.json`, `best.json`, `boundary.csv`, heatmaps
-/// (2-D searches) and `timings.csv`. Returns the file names written.
-pub fn finalize(dir: &Path) -> Result<Vec<String>, SearchError> {
-    let path = dir.join("manifest.json");
-    let manifest: Manifest = serde_json::from_str(&store::read(&path)?)
-        .map_err(|e| SearchError::Io { path: path.display().to_string(), detail: e.to_string() })?;
-    let search = Search::from_manifest(manifest)?;
-    let mut points = Vec::with_capacity(search.points());
-    let mut missing = Vec::new();
-    for c in 0..search.chunks() {
-        match store::read_chunk(dir, c, search.chunk_range(c))? {
-            Some(p) => points.extend(p),
-            None => missing.push(c),
-        }
-    }
-    if !missing.is_empty() {
-        return Err(SearchError::MissingChunks {
-            missing: missing.len(),
-            total: search.chunks(),
-            first: missing.iter().take(8).copied().collect(),
-        });
-    }
-    let keys: Vec<String> = search.grid.axes.iter().map(|a| a.key.clone()).collect();
-    let o = &search.options;
-    let mut files: Vec<(String, String)> = vec![
-        ("results.csv".into(), store::results_csv(&keys, &points)),
-        ("results.json".into(), store::results_json(&keys, &points)),
-        ("best.json".into(), store::best_json(&keys, &points, &o.best_metric, o.best_count)?),
-    ];
-    let cache = TheoryCache::new(o.lyapunov_elements);
-    let rows = boundaries(&search, &points, &cache, o.refine);
-    files.push(("boundary.csv".into(), boundary_csv(&search.grid, &rows)));
-    if search.grid.axes.len() == 2 && search.grid.dims().iter().all(|&n| n >= 2) {
-        for (metric, log) in [("rms_q_tip", true), ("rms_theta_tip", true), ("settling_time", false)] {
-            let svg = heatmap_svg(&search, &points, metric, log, &rows)?;
-            files.push((format!("heatmap-{metric}.svg"), svg));
-        }
-    }
-    files.push(("timings.csv".into(), store::timings_csv(&points)));
-    for (name, text) in &files {
-        store::write_atomic(&dir.join(name), text.as_bytes())?;
-    }
-    Ok(files.into_iter().map(|(n, _)| n).collect())
+    /// Points evaluated in this invocation whose status is not `ok`.
+    pub failed: usize,
+    /// When complete: points of the whole search whose status is not `ok` (listed in
+    /// `failures.csv`), by status: (diverged, error).
+    pub failed_total: Option<(usize, usize)>,
 }

@@ -5,9 +5,10 @@ use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 use wingcheck_model::{apply_overrides, Config, ControllerKind};
-use wingcheck_sim::{simulate, RunOptions, Series, SimError};
+use wingcheck_sim::{simulate, RunOptions, SimError};
 
 use crate::axis::Grid;
+use crate::modal::{RunCache, TipTrace};
 use crate::theory::{Theory, TheoryCache};
 
 /// Metric columns, in output order. Units: λ's of W/κ dimensionless-by-construction
@@ -133,8 +134,8 @@ fn max_abs(v: impl Iterator<Item = f64>) -> Option<f64> {
 }
 
 /// Settling time (see [`METRICS`]).
-pub fn settling_time(s: &Series) -> Option<f64> {
-    let n = s.len();
+pub fn settling_time(s: &TipTrace) -> Option<f64> {
+    let n = s.t.len();
     if n == 0 {
         return None;
     }
@@ -151,12 +152,11 @@ pub fn settling_time(s: &Series) -> Option<f64> {
 }
 
 /// The simulation metrics (positions 9.. of [`METRICS`]).
-fn sim_metrics(s: &Series, win: (f64, f64)) -> [Option<f64>; 12] {
+fn sim_metrics(s: &TipTrace, win: (f64, f64)) -> [Option<f64>; 12] {
     let tol = 1e-9 * (1.0 + win.1.abs());
-    let idx: Vec<usize> = (0..s.len()).filter(|&k| s.t[k] >= win.0 - tol && s.t[k] <= win.1 + tol).collect();
+    let idx: Vec<usize> = (0..s.t.len()).filter(|&k| s.t[k] >= win.0 - tol && s.t[k] <= win.1 + tol).collect();
     let w = |c: &[f64]| idx.iter().map(|&k| c[k]).collect::<Vec<f64>>();
     let (q, th) = (w(&s.q_tip), w(&s.theta_tip));
-    let gt = |g: &[f64], h: &[f64]| idx.iter().map(|&k| g[k] - h[k]).collect::<Vec<f64>>();
     [
         rms(q.iter().copied()),
         max_abs(q.iter().copied()),
@@ -167,15 +167,19 @@ fn sim_metrics(s: &Series, win: (f64, f64)) -> [Option<f64>; 12] {
         rms(s.tau1.iter().copied()),
         max_abs(s.tau2.iter().copied()),
         rms(s.tau2.iter().copied()),
-        rms(gt(&s.g1, &s.g1_hat).into_iter()),
-        rms(gt(&s.g2, &s.g2_hat).into_iter()),
-        s.energy.last().copied(),
+        rms(w(&s.g1_tilde).into_iter()),
+        rms(w(&s.g2_tilde).into_iter()),
+        (!s.t.is_empty()).then_some(s.energy_end),
     ]
 }
 
-fn sup_tilde(s: &Series) -> (f64, f64) {
-    let sup = |g: &[f64], h: &[f64]| g.iter().zip(h).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
-    (sup(&s.g1, &s.g1_hat), sup(&s.g2, &s.g2_hat))
+/// The closed loop of `cfg`: the modal runner on the shared basis and observer signal, or the
+/// simulator itself where the modal basis is not available (mass matrix not positive definite).
+pub fn closed_loop(cfg: &Config, runs: &RunCache) -> Result<TipTrace, SimError> {
+    match &*runs.basis(cfg) {
+        Ok(basis) => crate::modal::run(cfg, basis, &runs.signal(cfg)),
+        Err(_) => simulate(cfg, RunOptions::default()).map(|o| TipTrace::from_series(&o.series)),
+    }
 }
 
 fn sim_message(e: &SimError) -> (Status, String) {
@@ -186,7 +190,14 @@ fn sim_message(e: &SimError) -> (Status, String) {
 }
 
 /// Evaluate point `p` of `grid` on `base`. Never panics on a bad point: failures are a status.
-pub fn evaluate(grid: &Grid, base: &Config, win: Option<(f64, f64)>, cache: &TheoryCache, p: usize) -> PointResult {
+pub fn evaluate(
+    grid: &Grid,
+    base: &Config,
+    win: Option<(f64, f64)>,
+    cache: &TheoryCache,
+    runs: &RunCache,
+    p: usize,
+) -> PointResult {
     let mut r = PointResult {
         index: p,
         values: grid.texts(p),
@@ -207,40 +218,35 @@ pub fn evaluate(grid: &Grid, base: &Config, win: Option<(f64, f64)>, cache: &The
         }
     };
     let start = Instant::now();
-    let sim = simulate(&cfg, RunOptions::default());
-    let mut zetas = None;
-    match &sim {
-        Ok(out) => {
-            let m = sim_metrics(&out.series, window(&cfg, win));
-            r.metrics[9..].copy_from_slice(&m);
-            if cfg.control.kind == ControllerKind::Ftdo {
-                zetas = Some(sup_tilde(&out.series));
-            }
-        }
-        Err(e) => (r.status, r.message) = sim_message(e),
+    match closed_loop(&cfg, runs) {
+        Ok(trace) => r.metrics[9..].copy_from_slice(&sim_metrics(&trace, window(&cfg, win))),
+        Err(e) => (r.status, r.message) = sim_message(&e),
     }
+    // ζ3, ζ4 are sup |g̃| of the FTDO run; g̃ does not depend on the plant, so they come from
+    // the shared FTDO observer signal, whatever the point's controller.
+    let mut ftdo = cfg.clone();
+    ftdo.control.kind = ControllerKind::Ftdo;
+    let zetas = Some(runs.signal(&ftdo).sup_tilde(&ftdo));
     r.sim_seconds = start.elapsed().as_secs_f64();
 
-    let start = Instant::now();
-    let verdicts = cache.verdicts(&cfg);
-    r.theory_seconds = start.elapsed().as_secs_f64();
-    let feasible = matches!(&verdicts, Ok(v) if v.feasible_32() == Some(true));
-    if feasible && cfg.control.kind != ControllerKind::Ftdo {
-        // ζ3, ζ4 are defined by the FTDO's observer error: one extra run at the same point.
-        let start = Instant::now();
-        let mut ftdo = cfg.clone();
-        ftdo.control.kind = ControllerKind::Ftdo;
-        if let Ok(out) = simulate(&ftdo, RunOptions::default()) {
-            zetas = Some(sup_tilde(&out.series));
-        }
-        r.sim_seconds += start.elapsed().as_secs_f64();
-    }
     let start = Instant::now();
     let g_hmax = cache.g_hmax(&cfg);
     let bounds = zetas.map(|(z3, z4)| (g_hmax, z3, z4));
     match cache.evaluate(&cfg, bounds) {
         Ok(t) => fill_theory(&mut r, &t, g_hmax, zetas),
         Err(e) => {
+            // keep what the theory did decide (W ≻ 0, (32)) when only λ, ε failed
+            if let Ok(v) = cache.verdicts(&cfg) {
+                let partial = Theory {
+                    lambda2: Some(v.lambda2),
+                    lambda1: Some(v.lambda1),
+                    w_pd: Some(v.w_positive_definite()),
+                    lambda3_max: v.lambda3_max,
+                    feasible_32: v.feasible_32(),
+                    ..Default::default()
+                };
+                fill_theory(&mut r, &partial, g_hmax, zetas);
+            }
             if r.status == Status::Ok {
                 r.status = Status::Error;
             }
@@ -272,8 +278,8 @@ fn fill_theory(r: &mut PointResult, t: &Theory, g_hmax: f64, zetas: Option<(f64,
 mod tests {
     use super::*;
 
-    fn series(q: &[f64], th: &[f64]) -> Series {
-        Series {
+    fn series(q: &[f64], th: &[f64]) -> TipTrace {
+        TipTrace {
             t: (0..q.len()).map(|k| k as f64 * 0.5).collect(),
             q_tip: q.to_vec(),
             theta_tip: th.to_vec(),
@@ -296,9 +302,10 @@ mod tests {
     fn window_metrics() {
         // window [0.5, 1.0] holds samples k = 1, 2: q = 3, −4 → RMS √12.5, max 4
         let mut s = series(&[1.0, 3.0, -4.0], &[1.0, 1.0, 1.0]);
-        for c in [&mut s.tau1, &mut s.tau2, &mut s.g1, &mut s.g2, &mut s.g1_hat, &mut s.g2_hat, &mut s.energy] {
+        for c in [&mut s.tau1, &mut s.tau2] {
             *c = vec![0.0, 1.0, 2.0];
         }
+        (s.g1_tilde, s.g2_tilde, s.energy_end) = (vec![0.0; 3], vec![0.0; 3], 2.0);
         let m = sim_metrics(&s, (0.5, 1.0));
         assert_eq!(m[0], Some(12.5f64.sqrt()));
         assert_eq!(m[1], Some(4.0));

@@ -233,3 +233,55 @@ pub fn timings_csv(points: &[PointResult]) -> String {
     }
     out
 }
+
+/// `failures.csv`: every point whose status is not `ok`, in index order: `index,<axis keys>,
+/// status,message` (header only when every point succeeded).
+pub fn failures_csv(keys: &[String], points: &[PointResult]) -> String {
+    let mut out = String::from("index,");
+    for k in keys {
+        out.push_str(&csv_field(k));
+        out.push(',');
+    }
+    out.push_str("status,message\n");
+    for p in points.iter().filter(|p| p.status != Status::Ok) {
+        out.push_str(&p.index.to_string());
+        out.push(',');
+        for v in &p.values {
+            out.push_str(&csv_field(v));
+            out.push(',');
+        }
+        out.push_str(p.status.name());
+        out.push(',');
+        out.push_str(&csv_field(&p.message));
+        out.push('\n');
+    }
+    out
+}
+
+/// Write a set of files into `dir` all or nothing: every file goes to a temp file in `dir`
+/// first (where a full disk shows), and only when all are written are they renamed into
+/// place; on a failure the temp files are removed and no file of the set is touched.
+pub fn write_set(dir: &Path, files: &[(String, String)]) -> Result<(), SearchError> {
+    use std::io::Write;
+    let tmp = |name: &str| dir.join(format!(".{name}.set-tmp-{}", std::process::id()));
+    let mut written = Vec::with_capacity(files.len());
+    let stage = |name: &str, text: &str| -> std::io::Result<()> {
+        let mut f = std::fs::File::create(tmp(name))?;
+        f.write_all(text.as_bytes())?;
+        f.sync_all()
+    };
+    for (name, text) in files {
+        written.push(name);
+        if let Err(e) = stage(name, text) {
+            for n in &written {
+                let _ = std::fs::remove_file(tmp(n));
+            }
+            return Err(SearchError::Io { path: dir.join(name).display().to_string(), detail: e.to_string() });
+        }
+    }
+    for (name, _) in files {
+        std::fs::rename(tmp(name), dir.join(name))
+            .map_err(|e| SearchError::Io { path: dir.join(name).display().to_string(), detail: e.to_string() })?;
+    }
+    Ok(())
+}

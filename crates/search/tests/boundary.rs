@@ -76,10 +76,11 @@ fn coarse_verdicts_follow_the_ratio() {
     let base = short();
     let search = Search::new(base.clone(), &["control.a=1e-5..1:log:6".into()], SearchOptions::default()).unwrap();
     let cache = TheoryCache::new(8);
+    let runs = wingcheck_search::modal::RunCache::new();
     let w_ref = a_over_b_max(&base, Coupling::Corrected, 8).unwrap();
     let mu_ref = MuData::closed_form_ratio(&base);
     for p in 0..search.points() {
-        let r = search.evaluate(p, &cache);
+        let r = search.evaluate(p, &cache, &runs);
         let a: f64 = r.values[0].parse().unwrap();
         assert_eq!(r.w_positive_definite, Some(a < w_ref), "a = {a}");
         assert_eq!(r.feasible_32, Some(a < mu_ref), "a = {a}");

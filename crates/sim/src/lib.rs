@@ -20,7 +20,7 @@ pub mod sparse;
 mod stepper;
 
 pub use disc::{mass_determinant, Discretisation, Interpolation, Parts};
-pub use run::{simulate, Fields, RunOptions, RunStats, Series, SimOutput};
+pub use run::{check_sample, simulate, Fields, RunOptions, RunStats, Series, SimOutput};
 pub use stepper::{Channel, EnergyLedger, Sample, Stepper};
 
 use thiserror::Error;

@@ -1,0 +1,308 @@
+//! Running, merging and finalising search directories.
+//!
+//! A directory is a search's own if it holds a `manifest.json` that parses as a [`Manifest`];
+//! `search` and `merge` write only into such a directory (of the same search), an empty one,
+//! or a new one, and refuse anything else. On failure they leave nothing behind: a directory
+//! they created (or found empty) is removed again unless it holds completed chunks, which a
+//! rerun resumes from. The final files are written all or nothing ([`store::write_set`]).
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::Instant;
+
+use rayon::prelude::*;
+
+use crate::modal::RunCache;
+use crate::point::{PointResult, Status};
+use crate::refine::{boundaries, boundary_csv};
+use crate::{heatmap_svg, limits, store, Manifest, Progress, RunControl, RunSummary, Search, SearchError, TheoryCache};
+
+fn mismatch(dir: &Path, reason: impl Into<String>) -> SearchError {
+    SearchError::Mismatch { dir: dir.display().to_string(), reason: reason.into() }
+}
+
+/// How `prepare_out` found the output directory.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Found {
+    /// Did not exist: created.
+    Created,
+    /// Existed and was empty.
+    Empty,
+    /// Held this search already (resume).
+    Ours,
+}
+
+/// Make `out` ready for the search with manifest `text`, refusing directories that are not a
+/// search's own.
+fn prepare_out(out: &Path, text: &str) -> Result<Found, SearchError> {
+    let found = if out.exists() {
+        if !out.is_dir() {
+            return Err(mismatch(out, "exists and is not a directory"));
+        }
+        let manifest = out.join("manifest.json");
+        if manifest.exists() {
+            let have = store::read(&manifest)?;
+            if serde_json::from_str::<Manifest>(&have).is_err() {
+                return Err(mismatch(out, "manifest.json is not a wingcheck search manifest; use another --out"));
+            }
+            if have != text {
+                return Err(mismatch(
+                    out,
+                    "manifest.json describes a different search (config, axes or options); use another --out",
+                ));
+            }
+            Found::Ours
+        } else {
+            let mut entries = std::fs::read_dir(out)
+                .map_err(|e| SearchError::Io { path: out.display().to_string(), detail: e.to_string() })?;
+            if entries.next().is_some() {
+                return Err(mismatch(
+                    out,
+                    "exists, is not empty and is not a wingcheck search directory (no manifest.json); use a new or empty --out",
+                ));
+            }
+            Found::Empty
+        }
+    } else {
+        Found::Created
+    };
+    let setup = || -> Result<(), SearchError> {
+        store::mkdir(&out.join(store::CHUNK_DIR))?;
+        if found != Found::Ours {
+            store::write_atomic(&out.join("manifest.json"), text.as_bytes())?;
+        }
+        Ok(())
+    };
+    if let Err(e) = setup() {
+        clean_up(out, found, true);
+        return Err(e);
+    }
+    Ok(found)
+}
+
+/// After a failure: remove what this invocation created in a directory it created or found
+/// empty, unless completed chunks are there (and `force` is false).
+fn clean_up(out: &Path, found: Found, force: bool) {
+    if found == Found::Ours {
+        return;
+    }
+    let has_chunks = std::fs::read_dir(out.join(store::CHUNK_DIR))
+        .map(|mut d| d.any(|e| e.is_ok_and(|e| e.file_name().to_string_lossy().starts_with("chunk-"))))
+        .unwrap_or(false);
+    if has_chunks && !force {
+        return;
+    }
+    match found {
+        Found::Created => {
+            let _ = std::fs::remove_dir_all(out);
+        }
+        _ => {
+            if let Ok(entries) = std::fs::read_dir(out) {
+                for e in entries.flatten() {
+                    let p = e.path();
+                    let _ = if p.is_dir() { std::fs::remove_dir_all(&p) } else { std::fs::remove_file(&p) };
+                }
+            }
+        }
+    }
+}
+
+/// Run (this shard of) a search into `out`, resuming from chunks already there; when every
+/// chunk of the search is present, write the final files ([`finalize`]). Refused before any
+/// work above the limits ([`limits::check`]) or with a bad thread count.
+pub fn run(search: &Search, out: &Path, ctl: RunControl<'_>) -> Result<RunSummary, SearchError> {
+    limits::check(&search.estimate(), ctl.allow_large)?;
+    if let Some(n) = ctl.threads {
+        limits::check_threads(n)?;
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .map_err(|e| SearchError::Options(format!("cannot start {n} threads: {e}")))?;
+        return pool.install(|| run(search, out, RunControl { threads: None, ..ctl }));
+    }
+    let found = prepare_out(out, &search.manifest_text())?;
+    let result = run_in(search, out, &ctl);
+    if result.is_err() {
+        clean_up(out, found, false);
+    }
+    result
+}
+
+fn run_in(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<RunSummary, SearchError> {
+    let start = Instant::now();
+    let mut todo = Vec::new();
+    let (mut skipped, mut owned, mut completed) = (0, 0usize, 0usize);
+    for c in (0..search.chunks()).filter(|&c| ctl.shard.owns(c)) {
+        owned += 1;
+        match store::read_chunk(out, c, search.chunk_range(c))? {
+            Some(_) => {
+                skipped += search.chunk_range(c).len();
+                completed += 1;
+            }
+            None => todo.push(c),
+        }
+    }
+    let total: usize = todo.iter().map(|&c| search.chunk_range(c).len()).sum();
+    let done = AtomicUsize::new(0);
+    if let Some(p) = ctl.progress {
+        p(Progress { done: 0, total });
+    }
+    let cache = TheoryCache::new(search.options.lyapunov_elements);
+    let runs = RunCache::new();
+    let mut summary =
+        RunSummary { out_dir: out.to_path_buf(), points_total: search.points(), skipped, ..Default::default() };
+    let progress_name = format!("progress-{}-of-{}.json", ctl.shard.k, ctl.shard.n);
+    for (i, &c) in todo.iter().enumerate() {
+        if ctl.stop_after_chunks == Some(i) {
+            break;
+        }
+        let points: Vec<PointResult> = search
+            .chunk_range(c)
+            .into_par_iter()
+            .map(|p| {
+                let r = search.evaluate(p, &cache, &runs);
+                let d = done.fetch_add(1, Ordering::Relaxed) + 1;
+                if let Some(cb) = ctl.progress {
+                    cb(Progress { done: d, total });
+                }
+                r
+            })
+            .collect();
+        store::write_atomic(&store::chunk_path(out, c), store::chunk_text(&points).as_bytes())?;
+        completed += 1;
+        summary.evaluated += points.len();
+        summary.failed += points.iter().filter(|p| p.status != Status::Ok).count();
+        summary.sim_seconds += points.iter().map(|p| p.sim_seconds).sum::<f64>();
+        summary.theory_seconds += points.iter().map(|p| p.theory_seconds).sum::<f64>();
+        let progress = serde_json::json!({
+            "shard": format!("{}/{}", ctl.shard.k, ctl.shard.n),
+            "chunks_owned": owned,
+            "chunks_completed": completed,
+        });
+        store::write_atomic(
+            &out.join(&progress_name),
+            (serde_json::to_string_pretty(&progress).expect("json") + "\n").as_bytes(),
+        )?;
+    }
+    if (0..search.chunks()).all(|c| store::chunk_path(out, c).exists()) {
+        let (files, failed) = finalize(out)?;
+        summary.files = files;
+        summary.failed_total = Some(failed);
+        summary.complete = true;
+    }
+    summary.wall_seconds = start.elapsed().as_secs_f64();
+    Ok(summary)
+}
+
+/// Combine shard directories into `out`: check that they hold the same search and that every
+/// chunk is present somewhere (before writing anything), copy every chunk (the first valid
+/// copy found, in the order of `dirs`) and [`finalize`]. On failure nothing is left in `out`
+/// that was not there before.
+pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<RunSummary, SearchError> {
+    let start = Instant::now();
+    let first = dirs.first().ok_or_else(|| SearchError::Options("merge needs at least one directory".into()))?;
+    let text = store::read(&first.join("manifest.json"))?;
+    for d in &dirs[1..] {
+        if store::read(&d.join("manifest.json"))? != text {
+            return Err(mismatch(
+                d,
+                format!("manifest.json differs from {}'s: not shards of the same search", first.display()),
+            ));
+        }
+    }
+    let manifest: Manifest = serde_json::from_str(&text).map_err(|e| SearchError::Io {
+        path: first.join("manifest.json").display().to_string(),
+        detail: e.to_string(),
+    })?;
+    let search = Search::from_manifest(manifest)?;
+    let mut sources = Vec::with_capacity(search.chunks());
+    let mut missing = Vec::new();
+    for c in 0..search.chunks() {
+        let mut found = None;
+        for d in dirs {
+            if store::read_chunk(d, c, search.chunk_range(c))?.is_some() {
+                found = Some(d);
+                break;
+            }
+        }
+        match found {
+            Some(d) => sources.push(d),
+            None => missing.push(c),
+        }
+    }
+    if !missing.is_empty() {
+        return Err(SearchError::MissingChunks {
+            missing: missing.len(),
+            total: search.chunks(),
+            first: missing.iter().take(8).copied().collect(),
+        });
+    }
+    let found = prepare_out(out, &text)?;
+    let copy_and_finalize = || -> Result<(Vec<String>, (usize, usize)), SearchError> {
+        for (c, d) in sources.iter().enumerate() {
+            let target = store::chunk_path(out, c);
+            if store::chunk_path(d, c) != target {
+                store::write_atomic(&target, store::read(&store::chunk_path(d, c))?.as_bytes())?;
+            }
+        }
+        finalize(out)
+    };
+    let (files, failed) = copy_and_finalize().inspect_err(|_| clean_up(out, found, true))?;
+    Ok(RunSummary {
+        out_dir: out.to_path_buf(),
+        points_total: search.points(),
+        complete: true,
+        files,
+        failed_total: Some(failed),
+        wall_seconds: start.elapsed().as_secs_f64(),
+        ..Default::default()
+    })
+}
+
+/// Assemble the final files of a complete directory from `manifest.json` and the chunk files,
+/// in index order: `results.csv`, `results.json`, `best.json`, `failures.csv`,
+/// `boundary.csv`, heatmaps (2-D searches) and `timings.csv`, written all or nothing.
+/// Returns the file names written and the number of failed points (diverged, error).
+pub fn finalize(dir: &Path) -> Result<(Vec<String>, (usize, usize)), SearchError> {
+    let path = dir.join("manifest.json");
+    let manifest: Manifest = serde_json::from_str(&store::read(&path)?)
+        .map_err(|e| SearchError::Io { path: path.display().to_string(), detail: e.to_string() })?;
+    let search = Search::from_manifest(manifest)?;
+    let mut points = Vec::with_capacity(search.points());
+    let mut missing = Vec::new();
+    for c in 0..search.chunks() {
+        match store::read_chunk(dir, c, search.chunk_range(c))? {
+            Some(p) => points.extend(p),
+            None => missing.push(c),
+        }
+    }
+    if !missing.is_empty() {
+        return Err(SearchError::MissingChunks {
+            missing: missing.len(),
+            total: search.chunks(),
+            first: missing.iter().take(8).copied().collect(),
+        });
+    }
+    let keys: Vec<String> = search.grid.axes.iter().map(|a| a.key.clone()).collect();
+    let o = &search.options;
+    let mut files: Vec<(String, String)> = vec![
+        ("results.csv".into(), store::results_csv(&keys, &points)),
+        ("results.json".into(), store::results_json(&keys, &points)),
+        ("best.json".into(), store::best_json(&keys, &points, &o.best_metric, o.best_count)?),
+        ("failures.csv".into(), store::failures_csv(&keys, &points)),
+    ];
+    let cache = TheoryCache::new(o.lyapunov_elements);
+    let rows = boundaries(&search, &points, &cache, o.refine);
+    files.push(("boundary.csv".into(), boundary_csv(&search.grid, &rows)));
+    if search.grid.axes.len() == 2 && search.grid.dims().iter().all(|&n| n >= 2) {
+        for (metric, log) in [("rms_q_tip", true), ("rms_theta_tip", true), ("settling_time", false)] {
+            let svg = heatmap_svg(&search, &points, metric, log, &rows)?;
+            files.push((format!("heatmap-{metric}.svg"), svg));
+        }
+    }
+    files.push(("timings.csv".into(), store::timings_csv(&points)));
+    store::write_set(dir, &files)?;
+    let diverged = points.iter().filter(|p| p.status == Status::Diverged).count();
+    let errors = points.iter().filter(|p| p.status == Status::Error).count();
+    Ok((files.into_iter().map(|(n, _)| n).collect(), (diverged, errors)))
+}
