@@ -22,6 +22,7 @@ if [ ! -f "$report/index.html" ]; then
     exit 1
 fi
 mkdir -p "$out"
+rm -f "$out"/[0-9][0-9]-*.png
 profile="$(mktemp -d)"
 trap 'rm -rf "$profile"' EXIT
 index="$(cd "$report" && pwd)/index.html"

@@ -27,6 +27,11 @@ impl Caption {
         self.0.push(Part { text: s.into(), key: None });
         self
     }
+    /// Append a computed count with its key.
+    pub fn count(mut self, key: impl Into<String>, v: usize) -> Self {
+        self.0.push(Part { text: v.to_string(), key: Some(key.into()) });
+        self
+    }
     /// Append a computed number (4 significant digits) with its key.
     pub fn n(mut self, key: impl Into<String>, v: f64) -> Self {
         self.0.push(Part { text: fmt_num(v), key: Some(key.into()) });
@@ -41,6 +46,8 @@ pub enum Chart {
     Line(LineChart),
     /// A field over (t, z).
     Heat(Heatmap),
+    /// The (a, b) region map.
+    Region(Box<crate::region::RegionMap>),
 }
 
 /// A figure of the report.
@@ -72,6 +79,7 @@ impl Figure {
         Ok(match &self.chart {
             Chart::Line(c) => Rendered { svg: line_svg(c)?, csv: c.data.to_csv() },
             Chart::Heat(h) => Rendered { svg: heatmap_svg(h)?, csv: h.to_csv() },
+            Chart::Region(r) => Rendered { svg: r.svg()?, csv: r.to_csv() },
         })
     }
 }
