@@ -119,7 +119,7 @@ fn bench_check(cfg: &wingcheck_model::Config, repeats: usize, as_json: bool) -> 
         totals.push(t.elapsed().as_secs_f64());
         for (i, r) in ledger.rows.iter().enumerate() {
             if rows.len() <= i {
-                rows.push((r.id.clone(), Vec::new()));
+                rows.push((r.id.to_string(), Vec::new()));
             }
             rows[i].1.push(r.seconds);
         }

@@ -201,7 +201,7 @@ pub fn check(cfg: &Config, channel: Channel) -> Result<ClaimRow, ClaimsError> {
     );
     let plots = plots(ix, bound, &fil, &imp3, &exp3, &runs, &sweep, &g);
     Ok(ClaimRow {
-        id: format!("finite-time-{n}"),
+        id: if n == "1" { crate::ClaimId::FiniteTime1 } else { crate::ClaimId::FiniteTime2 },
         equation: eq.into(),
         claim: format!("g̃{n} reaches 0 no later than t_f{n}, if {kap}"),
         verdict,

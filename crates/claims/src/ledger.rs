@@ -18,6 +18,11 @@ pub enum Verdict {
     HoldsAfterCorrection,
     /// Formally valid but uninformative (e.g. a bound orders of magnitude above the truth).
     Vacuous,
+    /// True, but only because the hypothesis makes it trivial (e.g. a reaching-time bound of 0 s
+    /// when the observer error starts at zero); nothing was tested.
+    TriviallyTrue,
+    /// Part of the claim is reproduced and part is not; the summary says which.
+    PartlyReproduced,
     /// Not decided (not computed, or the evidence is not strong enough); the row says why.
     Inconclusive,
 }
@@ -30,6 +35,8 @@ impl Verdict {
             Verdict::Fails => "fails",
             Verdict::HoldsAfterCorrection => "holds-after-correction",
             Verdict::Vacuous => "vacuous",
+            Verdict::TriviallyTrue => "trivially-true",
+            Verdict::PartlyReproduced => "partly-reproduced",
             Verdict::Inconclusive => "inconclusive",
         }
     }
@@ -41,6 +48,9 @@ impl Verdict {
 pub enum Basis {
     /// A certificate re-checked in exact rational arithmetic (proof, for the stated discretisation).
     ExactCertificate,
+    /// A closed-form argument (stated in the row and the docs) whose conditions are evaluated in
+    /// exact rational arithmetic from the configuration's decimals.
+    Analytic,
     /// A floating-point solver's answer (SDP/LP/eigenvalues): evidence, not proof.
     FloatSolver,
     /// Simulation of the closed loop: evidence for the simulated cases only.
@@ -52,6 +62,7 @@ impl Basis {
     pub fn name(self) -> &'static str {
         match self {
             Basis::ExactCertificate => "exact-certificate",
+            Basis::Analytic => "analytic",
             Basis::FloatSolver => "float-solver",
             Basis::Simulation => "simulation",
         }
@@ -114,11 +125,104 @@ fn csv_field(s: &str) -> String {
     }
 }
 
+/// The claims of the paper, in the paper's order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+pub enum ClaimId {
+    /// Theorem 1, (22)–(28).
+    #[serde(rename = "W-bounds")]
+    WBounds,
+    /// (29)–(32).
+    #[serde(rename = "mu-conditions")]
+    MuConditions,
+    /// Theorem 2, (33)–(37).
+    #[serde(rename = "UUB")]
+    Uub,
+    /// Theorem 3, (38).
+    #[serde(rename = "finite-time-1")]
+    FiniteTime1,
+    /// Theorem 3, (39).
+    #[serde(rename = "finite-time-2")]
+    FiniteTime2,
+    /// Lemmas 1–3.
+    #[serde(rename = "lemmas")]
+    Lemmas,
+    /// Section 4: FTDO vs DOBC.
+    #[serde(rename = "ftdo-vs-dobc")]
+    FtdoVsDobc,
+}
+
+impl ClaimId {
+    /// Every claim, in the paper's order.
+    pub const ALL: [ClaimId; 7] = [
+        ClaimId::WBounds,
+        ClaimId::MuConditions,
+        ClaimId::Uub,
+        ClaimId::FiniteTime1,
+        ClaimId::FiniteTime2,
+        ClaimId::Lemmas,
+        ClaimId::FtdoVsDobc,
+    ];
+
+    /// The id as printed.
+    pub fn name(self) -> &'static str {
+        match self {
+            ClaimId::WBounds => "W-bounds",
+            ClaimId::MuConditions => "mu-conditions",
+            ClaimId::Uub => "UUB",
+            ClaimId::FiniteTime1 => "finite-time-1",
+            ClaimId::FiniteTime2 => "finite-time-2",
+            ClaimId::Lemmas => "lemmas",
+            ClaimId::FtdoVsDobc => "ftdo-vs-dobc",
+        }
+    }
+
+    /// Where in the paper.
+    pub fn equation(self) -> &'static str {
+        match self {
+            ClaimId::WBounds => "(22)–(28), Theorem 1",
+            ClaimId::MuConditions => "(29)–(32)",
+            ClaimId::Uub => "(33)–(37), Theorem 2",
+            ClaimId::FiniteTime1 => "(38), Theorem 3",
+            ClaimId::FiniteTime2 => "(39), Theorem 3",
+            ClaimId::Lemmas => "Lemmas 1–3, (12)–(14)",
+            ClaimId::FtdoVsDobc => "Section 4, Figs 3–20",
+        }
+    }
+}
+
+impl std::fmt::Display for ClaimId {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.pad(self.name())
+    }
+}
+
+/// A typed evidence struct as the row's key → value map (its serde serialisation); every
+/// value must be finite (checked by [`Ledger::non_finite`]).
+pub fn evidence_map<T: Serialize>(e: &T) -> BTreeMap<String, Value> {
+    match serde_json::to_value(e) {
+        Ok(Value::Object(m)) => m.into_iter().collect(),
+        _ => BTreeMap::new(),
+    }
+}
+
+fn find_non_finite(v: &Value, path: &str, out: &mut Vec<String>) {
+    match v {
+        Value::Null => out.push(path.to_string()),
+        Value::Number(n) if n.as_f64().is_none_or(|x| !x.is_finite()) => out.push(path.to_string()),
+        Value::Array(a) => a.iter().enumerate().for_each(|(i, x)| find_non_finite(x, &format!("{path}[{i}]"), out)),
+        Value::Object(m) => m.iter().for_each(|(k, x)| find_non_finite(x, &format!("{path}.{k}"), out)),
+        Value::String(s) if s.contains("NaN") || s.split(|c: char| !c.is_alphanumeric()).any(|w| w == "inf") => {
+            out.push(path.to_string())
+        }
+        _ => {}
+    }
+}
+
 /// One claim's row.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ClaimRow {
-    /// Claim id (`W-bounds`, `mu-conditions`, `UUB`, `finite-time-1`, `finite-time-2`, `lemmas`, `ftdo-vs-dobc`).
-    pub id: String,
+    /// Claim id.
+    pub id: ClaimId,
     /// Where in the paper (equation numbers, theorem).
     pub equation: String,
     /// The claim in words.
@@ -151,10 +255,10 @@ pub struct ClaimRow {
 
 impl ClaimRow {
     /// A row that has not been decided, with the reason.
-    pub fn inconclusive(id: &str, equation: &str, claim: &str, reason: &str) -> ClaimRow {
+    pub fn inconclusive(id: ClaimId, claim: &str, reason: &str) -> ClaimRow {
         ClaimRow {
-            id: id.into(),
-            equation: equation.into(),
+            id,
+            equation: id.equation().into(),
             claim: claim.into(),
             verdict: Verdict::Inconclusive,
             basis: Basis::Simulation,
@@ -189,6 +293,31 @@ pub struct Ledger {
 impl Ledger {
     /// Row by id.
     pub fn row(&self, id: &str) -> Option<&ClaimRow> {
-        self.rows.iter().find(|r| r.id == id)
+        self.rows.iter().find(|r| r.id.name() == id)
+    }
+
+    /// JSON paths of every null, NaN or infinite value (and of texts printing NaN / "= inf")
+    /// in the ledger; empty for a valid ledger.
+    pub fn non_finite(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        match serde_json::to_value(self) {
+            Ok(v) => find_non_finite(&v, "$", &mut out),
+            Err(e) => out.push(format!("$ (does not serialise: {e})")),
+        }
+        for r in &self.rows {
+            for (what, text) in
+                [("summary", &r.summary), ("correction", r.correction.as_ref().unwrap_or(&String::new()))]
+            {
+                if text.contains("NaN") || text.split(|c: char| !c.is_alphanumeric()).any(|w| w == "inf") {
+                    out.push(format!("{}.{what}", r.id));
+                }
+            }
+            for p in &r.plots {
+                if p.lines.iter().any(|l| l.x.iter().chain(&l.y).any(|v| !v.is_finite())) {
+                    out.push(format!("{}.plots.{}", r.id, p.name));
+                }
+            }
+        }
+        out
     }
 }

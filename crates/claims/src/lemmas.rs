@@ -264,7 +264,7 @@ pub fn check(_cfg: &Config) -> Result<ClaimRow, ClaimsError> {
         },
     ];
     Ok(ClaimRow {
-        id: "lemmas".into(),
+        id: crate::ClaimId::Lemmas,
         equation: "Lemmas 1–3, (11)–(14)".into(),
         claim: "the inequalities used in the proofs".into(),
         verdict,

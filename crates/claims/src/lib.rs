@@ -9,16 +9,20 @@
 
 pub mod certify;
 pub mod comparison;
+pub mod convex;
 pub mod finite_time;
 mod ledger;
 pub mod lemmas;
 pub mod lyapunov;
 pub mod mu;
 pub mod socp;
+pub mod study;
+pub mod theory;
 pub mod uub;
 pub mod wbounds;
 
-pub use ledger::{Basis, ClaimRow, Ledger, Line, PlotData, Verdict};
+pub use ledger::{evidence_map, Basis, ClaimId, ClaimRow, Ledger, Line, PlotData, Verdict};
+pub use study::Study;
 
 use sha2::{Digest, Sha256};
 use wingcheck_model::Config;
@@ -46,18 +50,69 @@ pub fn config_sha256(cfg: &Config) -> String {
     h.finalize().iter().map(|b| format!("{b:02x}")).collect()
 }
 
-/// Run every check on `cfg` and assemble the ledger, in the paper's order.
+/// Run every check on `cfg` and assemble the ledger, in the paper's order, with a fresh
+/// [`Study`] (each distinct simulation runs once).
 pub fn check_all(cfg: &Config) -> Result<Ledger, ClaimsError> {
-    let w = wbounds::check(cfg)?;
-    let m = mu::check(cfg, &w)?;
+    check_all_with(cfg, &Study::new())
+}
+
+fn isolate(id: ClaimId, claim: &str, r: Result<ClaimRow, ClaimsError>) -> ClaimRow {
+    r.unwrap_or_else(|e| ClaimRow::inconclusive(id, claim, &format!("not decided: {e}")))
+}
+
+/// [`check_all`] with a caller's study (e.g. shared with the report's own runs). A row whose
+/// computation fails becomes `inconclusive` with the reason; the other rows are still
+/// computed, so this only returns `Ok`.
+pub fn check_all_with(cfg: &Config, study: &Study) -> Result<Ledger, ClaimsError> {
+    let w = wbounds::check(cfg);
+    let m = mu::check(cfg, study);
+    let uub_row = match (&w, &m) {
+        (Ok(w), Ok(m)) => isolate(
+            ClaimId::Uub,
+            "q, θ uniformly ultimately bounded, with the printed bound",
+            uub::check(cfg, w, m, study),
+        ),
+        _ => ClaimRow::inconclusive(
+            ClaimId::Uub,
+            "q, θ uniformly ultimately bounded, with the printed bound",
+            "not decided: it needs the W-bounds and mu-conditions rows, which could not be computed",
+        ),
+    };
     let rows = vec![
-        w.row.clone(),
-        m.row.clone(),
-        uub::check(cfg, &w, &m)?,
-        finite_time::check(cfg, finite_time::Channel::Bending)?,
-        finite_time::check(cfg, finite_time::Channel::Torsion)?,
-        lemmas::check(cfg)?,
-        comparison::check(cfg)?,
+        isolate(ClaimId::WBounds, "0 ≤ λ2 κ ≤ W ≤ λ1 κ with the printed λ1, λ2, y1–y3", w.map(|w| w.row)),
+        isolate(ClaimId::MuConditions, "conditions on the gains and the η's make Ẇ ≤ −λW + ε", m.map(|m| m.row)),
+        uub_row,
+        isolate(
+            ClaimId::FiniteTime1,
+            "finite-time convergence of g̃1 within (38)",
+            finite_time::check(cfg, finite_time::Channel::Bending),
+        ),
+        isolate(
+            ClaimId::FiniteTime2,
+            "finite-time convergence of g̃2 within (39)",
+            finite_time::check(cfg, finite_time::Channel::Torsion),
+        ),
+        isolate(ClaimId::Lemmas, "Lemmas 1–3", lemmas::check(cfg)),
+        isolate(
+            ClaimId::FtdoVsDobc,
+            "FTDO gives clearly better vibration suppression than DOBC",
+            comparison::check(cfg, study),
+        ),
     ];
-    Ok(Ledger { tool: format!("wingcheck {}", env!("CARGO_PKG_VERSION")), config_sha256: config_sha256(cfg), rows })
+    let mut ledger =
+        Ledger { tool: format!("wingcheck {}", env!("CARGO_PKG_VERSION")), config_sha256: config_sha256(cfg), rows };
+    // A non-finite value is a bug of the row that produced it: never print it, say so instead.
+    for i in 0..ledger.rows.len() {
+        let one = Ledger { tool: String::new(), config_sha256: String::new(), rows: vec![ledger.rows[i].clone()] };
+        let bad = one.non_finite();
+        if !bad.is_empty() {
+            let r = &ledger.rows[i];
+            ledger.rows[i] = ClaimRow::inconclusive(
+                r.id,
+                &r.claim,
+                &format!("internal error: the computation produced non-finite values at {}", bad.join(", ")),
+            );
+        }
+    }
+    Ok(ledger)
 }

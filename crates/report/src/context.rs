@@ -270,8 +270,9 @@ fn pivot(r: &ClaimRow) -> Option<Pivot> {
     Some(Pivot { columns, rows })
 }
 
-/// The ledger row's context; `figures` are the row's plots already turned into figures.
-pub fn row_ctx(r: &ClaimRow, figures: &[Figure]) -> RowCtx {
+/// The ledger row's context; `figures` are the row's plots already turned into figures,
+/// `digest` its ledger digest.
+pub fn row_ctx(r: &ClaimRow, figures: &[Figure], digest: crate::digest::Digest) -> RowCtx {
     let id = r.id.to_string();
     let evidence: Vec<Kv> = r
         .evidence
@@ -290,7 +291,7 @@ pub fn row_ctx(r: &ClaimRow, figures: &[Figure]) -> RowCtx {
         basis: r.basis.name().into(),
         summary: r.summary.clone(),
         correction: r.correction.clone(),
-        digest: crate::digest::digest(r),
+        digest,
         evidence,
         pivot: pivot(r),
         lead_figure,

@@ -1,13 +1,20 @@
 //! The ledger table's digest of a claim row: one sentence of finding and the two or three
 //! decisive numbers with units and their error or basis, derived from the row's evidence.
 //!
-//! The claim rows carry their evidence as a serialised key → value map; the keys read here are
-//! the evidence fields of each claim (documented in the claims crate). Every key is optional:
-//! a missing one drops that number, and a row without the needed keys falls back to the first
-//! sentence of its summary, so the table never shows a raw identifier or a made-up value.
+//! Claims with typed evidence (W-bounds, mu-conditions, UUB) are read through their types
+//! ([`WBoundsEvidence`], [`MuEvidence`], [`UubEvidence`], deserialised from the row's
+//! evidence map with unknown fields denied), with the error estimates those types carry. The
+//! other claims (finite-time, lemmas, ftdo-vs-dobc) still carry string-keyed evidence; their
+//! numbers are read by key here, each optional: a missing key drops that number, and a row
+//! without the keys its sentence needs falls back to the first sentence of its summary, so the
+//! table never shows a raw identifier or a made-up value.
 
 use serde::Serialize;
-use wingcheck_claims::ClaimRow;
+use wingcheck_claims::mu::MuEvidence;
+use wingcheck_claims::theory::Decision;
+use wingcheck_claims::uub::UubEvidence;
+use wingcheck_claims::wbounds::WBoundsEvidence;
+use wingcheck_claims::{ClaimId, ClaimRow};
 
 use crate::stats::fmt_num;
 
@@ -37,21 +44,6 @@ type Spec = (&'static str, &'static str, &'static str, f64, &'static str);
 
 fn spec(id: &str) -> &'static [Spec] {
     match id {
-        "W-bounds" => &[
-            ("lambda2_printed", "printed λ2 = y2 − y3", "", 1.0, "exact"),
-            ("lambda2_tight", "tight λ2* = min W/κ at the configured a, b", "", 1.0, "Galerkin, O(h²)"),
-            ("a_over_b_max", "W ≻ 0 iff a/b <", "1/s", 1.0, "closed form"),
-        ],
-        "mu-conditions" => &[
-            ("lambda3_max", "best λ3 at the configured a, b", "", 1.0, "SOCP solver"),
-            ("a_over_b_boundary_closed_form", "(32) feasible iff a/b <", "1/s", 1.0, "closed form"),
-            ("best_lambda", "best decay rate λ where feasible", "1/s", 1.0, "SOCP solver"),
-        ],
-        "UUB" => &[
-            ("bound_q_at_T", "bound (37) on |q| at T", "m", 1.0, "formula at solver η"),
-            ("measured_max_abs_q_second_half", "simulated max |q|, second half", "m", 1.0, "simulation"),
-            ("ratio_bound_over_measured_q", "bound / simulated", "", 1.0, "ratio"),
-        ],
         "finite-time-1" | "finite-time-2" => &[
             ("bound_s", "bound t_f", "s", 1.0, "formula"),
             ("measured_s", "Filippov reaching time", "s", 1.0, "ODE solve"),
@@ -86,44 +78,7 @@ fn first_sentence(s: &str) -> String {
 fn finding(r: &ClaimRow) -> Option<String> {
     let n = |k: &str| r.number(k);
     let b = |k: &str| r.evidence.get(k).and_then(|v| v.as_bool());
-    Some(match r.id.to_string().as_str() {
-        "W-bounds" => {
-            let (l2p, l2t, rmax) = (n("lambda2_printed")?, n("lambda2_tight")?, n("a_over_b_max")?);
-            let ab = n("a")? / n("b")?;
-            let printed = if l2p < 0.0 {
-                "The printed λ2 = y2 − y3 is negative, so 0 ≤ λ2κ ≤ W fails as printed"
-            } else {
-                "The printed λ2 is positive"
-            };
-            let here = if l2t < 0.0 {
-                format!("; at the configured a/b = {} W itself is indefinite", fmt_num(ab))
-            } else {
-                String::new()
-            };
-            format!("{printed}; W ≻ 0 holds exactly for a/b < ω1 = {} 1/s{here}.", fmt_num(rmax))
-        }
-        "mu-conditions" => {
-            let (l3, rs) = (n("lambda3_max")?, n("a_over_b_boundary_closed_form")?);
-            if l3 < 0.0 {
-                format!(
-                    "(29)–(32) cannot hold at the configured gains (best λ3 < 0); they are satisfiable only for a/b < {}, where the guaranteed decay rate is {} 1/s.",
-                    fmt_num(rs),
-                    n("best_lambda").map_or("tiny".into(), fmt_num)
-                )
-            } else {
-                format!("(29)–(32) are satisfiable at the configured gains (feasible for a/b < {}).", fmt_num(rs))
-            }
-        }
-        "UUB" => {
-            let ratio = n("ratio_bound_over_measured_q")?;
-            let w0 = match (n("w0_16_elements"), n("w0_64_elements")) {
-                (Some(a), Some(b)) if b > 1.5 * a => {
-                    ", and infinite for the paper's initial shape (W(0) grows under refinement)"
-                }
-                _ => "",
-            };
-            format!("Where its hypotheses hold, the bound is {} × the simulated envelope{w0}.", fmt_num(ratio))
-        }
+    Some(match r.id.name() {
         "finite-time-1" | "finite-time-2" => {
             let (bound, sweep) = (n("bound_s")?, n("sweep_max_ratio")?);
             let s0 = n("sigma0")?;
@@ -162,9 +117,102 @@ fn finding(r: &ClaimRow) -> Option<String> {
     })
 }
 
+/// The row's evidence as its typed struct (None if it does not deserialise).
+fn typed<T: serde::de::DeserializeOwned>(r: &ClaimRow) -> Option<T> {
+    serde_json::from_value(serde_json::Value::Object(r.evidence.clone().into_iter().collect())).ok()
+}
+
+fn q(label: &str, value: f64, unit: &str, error: String) -> Quantity {
+    let unit = if unit.is_empty() { String::new() } else { format!(" {unit}") };
+    Quantity { label: label.into(), value: format!("{}{unit}", fmt_num(value)), error }
+}
+
+fn pm(e: f64) -> String {
+    format!("± {}", fmt_num(e))
+}
+
+fn w_bounds(e: &WBoundsEvidence) -> Digest {
+    let ab = e.a / e.b;
+    let printed = if e.lambda2_printed < 0.0 {
+        "The printed λ2 = y2 − y3 is negative, so 0 ≤ λ2κ ≤ W fails as printed"
+    } else {
+        "The printed λ2 = y2 − y3 is positive"
+    };
+    let here = match e.w_positive_definite {
+        Decision::No => format!("; at the configured a/b = {} W itself is indefinite", fmt_num(ab)),
+        Decision::Yes => format!("; the configured a/b = {} lies inside", fmt_num(ab)),
+        Decision::Undecided => format!("; the configured a/b = {} is within the error of the boundary", fmt_num(ab)),
+    };
+    Digest {
+        finding: format!("{printed}; W ≻ 0 holds exactly for a/b < ω1 = {} rad/s{here}.", fmt_num(e.a_over_b_max)),
+        numbers: vec![
+            q("printed λ2 = y2 − y3", e.lambda2_printed, "", "exact".into()),
+            q("tight λ2* = min W/κ at the configured a, b", e.lambda2_tight, "", pm(e.lambda2_tight_error)),
+            q("W ≻ 0 iff a/b < ω1", e.a_over_b_max, "rad/s", pm(e.a_over_b_max_error)),
+        ],
+    }
+}
+
+fn mu(e: &MuEvidence) -> Digest {
+    let ab = e.a / e.b;
+    let finding = if e.satisfiable {
+        format!(
+            "(29)–(32) are satisfiable at the configured a/b = {} (feasible for a/b < r* = {}).",
+            fmt_num(ab),
+            fmt_num(e.a_over_b_boundary)
+        )
+    } else {
+        format!(
+            "(29)–(32) cannot hold at the configured a/b = {}; they are satisfiable only for a/b < r* = {}{}.",
+            fmt_num(ab),
+            fmt_num(e.a_over_b_boundary),
+            e.best.map_or(String::new(), |b| format!(", where the best decay rate is λ = {} 1/s", fmt_num(b.lambda)))
+        )
+    };
+    let mut numbers = Vec::new();
+    if let Some(l3) = e.lambda3_sup {
+        numbers.push(q("sup over the η's of λ3 at the configured a, b", l3, "", "closed form".into()));
+    }
+    numbers.push(q("(32) feasible iff a/b < r*", e.a_over_b_boundary, "rad/s", "closed form".into()));
+    if let Some(b) = e.best {
+        numbers.push(q("best decay rate λ where feasible", b.lambda, "1/s", "SOCP, re-verified".into()));
+    }
+    Digest { finding, numbers }
+}
+
+fn uub(e: &UubEvidence) -> Digest {
+    let w0 = if e.w0_diverges {
+        ", and infinite for the paper's initial shape (W(0) grows without bound under refinement)"
+    } else {
+        ""
+    };
+    Digest {
+        finding: format!(
+            "Where its hypotheses hold (a = {}, b = {}), the bound is {} × the simulated envelope{w0}.",
+            fmt_num(e.evaluated_at_a),
+            fmt_num(e.evaluated_at_b),
+            fmt_num(e.ratio_bound_over_measured_q)
+        ),
+        numbers: vec![
+            q("bound (37) on |q| at T", e.bound_q_at_t_end_m, "m", "formula".into()),
+            q("simulated max |q|, second half", e.measured_max_abs_q_second_half_m, "m", "simulation".into()),
+            q("decay time 1/λ", e.decay_time_constant_s, "s", "SOCP".into()),
+        ],
+    }
+}
+
 /// The digest of a row.
 pub fn digest(r: &ClaimRow) -> Digest {
-    let numbers = spec(&r.id.to_string())
+    let typed_digest = match r.id {
+        ClaimId::WBounds => typed::<WBoundsEvidence>(r).map(|e| w_bounds(&e)),
+        ClaimId::MuConditions => typed::<MuEvidence>(r).map(|e| mu(&e)),
+        ClaimId::Uub => typed::<UubEvidence>(r).map(|e| uub(&e)),
+        _ => None,
+    };
+    if let Some(d) = typed_digest {
+        return d;
+    }
+    let numbers = spec(r.id.name())
         .iter()
         .filter_map(|(key, label, unit, scale, basis)| {
             let v = r.number(key)?;

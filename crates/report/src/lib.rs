@@ -204,6 +204,8 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     timings.push(StageTiming { name: "region map".into(), seconds: region.1 });
     let (mut ledger, runs, region) = (ledger.0?, runs.0?, region.0?);
     report(progress, "region map", 1, 1);
+    // Digests read the rows' typed evidence, so they are taken before the wall times move out.
+    let digests: Vec<digest::Digest> = ledger.rows.iter().map(digest::digest).collect();
     let region_fig = region.as_ref().map(|r| r.figure());
     // Wall times are not reproducible content: the rows' own `seconds` and evidence keys
     // named `seconds` / `*_seconds` move to the wall-time block of the provenance section.
@@ -275,7 +277,7 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
         config_sha256: config_sha256(cfg),
         config_json: cfg.to_json_pretty(),
         platform: format!("{}/{}", std::env::consts::OS, std::env::consts::ARCH),
-        rows: ledger.rows.iter().zip(&row_figs).map(|(r, f)| row_ctx(r, f)).collect(),
+        rows: ledger.rows.iter().zip(&row_figs).zip(digests).map(|((r, f), d)| row_ctx(r, f, d)).collect(),
         groups: groups
             .iter()
             .map(|g| GroupCtx {
