@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Screenshots of a rendered report for a person to look at: the top of the page and every
 # section (each <h2 id> and <section id> of index.html), 1280 × 1000 px each, with headless
-# Chromium. Usage: scripts/screenshot.sh [REPORT_DIR (reports/paper)] [OUT_DIR (target/screenshots)]
+# Chromium; with FIGURES=1 also every figure (<figure id>).
+# Usage: [FIGURES=1] scripts/screenshot.sh [REPORT_DIR (reports/paper)] [OUT_DIR (target/screenshots)]
 # A section is shown by loading the page in an iframe at index.html#id (headless Chromium does
 # not scroll the top-level page to a fragment before the capture).
 set -euo pipefail
@@ -34,7 +35,9 @@ shot() { # name url
 }
 shot 00-top "file://$index"
 n=1
-for id in $(grep -oE '<(h2|section)[^>]* id="[^"]+"' "$index" | sed -E 's/.* id="([^"]+)"/\1/'); do
+tags='h2|section'
+if [ "${FIGURES:-0}" = 1 ]; then tags='h2|section|figure'; fi
+for id in $(grep -oE "<($tags)[^>]* id=\"[^\"]+\"" "$index" | sed -E 's/.* id="([^"]+)"/\1/'); do
     wrapper="$out/.frame-$id.html"
     printf '<!DOCTYPE html><html><head><style>body{margin:0}iframe{border:0;width:1280px;height:1000px}</style></head><body><iframe src="file://%s#%s"></iframe></body></html>\n' "$index" "$id" >"$wrapper"
     shot "$(printf '%02d' "$n")-$id" "file://$(cd "$out" && pwd)/.frame-$id.html"

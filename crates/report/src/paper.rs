@@ -61,6 +61,7 @@ impl Field {
 struct Ctx<'a> {
     t_half: f64,
     t_end: f64,
+    sample_every: f64,
     none: &'a SimOutput,
 }
 
@@ -199,7 +200,8 @@ fn gerr(n: u32, run: &str, desc: &str, ch: u8, out: &SimOutput, c: &Ctx) -> Figu
     let v = g_tilde(out, ch);
     let t = &out.series.t;
     let unit = if ch == 1 { "N" } else { "N m" };
-    let thr = fmt_num(GTILDE_THRESHOLD);
+    let thr = crate::chart::tick(GTILDE_THRESHOLD);
+    let h = c.sample_every;
     let settle = settle_time(t, &v, GTILDE_THRESHOLD);
     let mut cap = Caption::default()
         .t(format!("Disturbance estimation error |g̃{ch}(t)| = |g{ch} − ĝ{ch}| {desc} (paper Figure {n}), log scale. max |g̃{ch}| over [{}, {}] s: ", c.t_half, c.t_end))
@@ -219,11 +221,15 @@ fn gerr(n: u32, run: &str, desc: &str, ch: u8, out: &SimOutput, c: &Ctx) -> Figu
             cap = cap
                 .t(format!("; |g̃{ch}| ≤ {thr} {unit} (the threshold used throughout) from t_f = "))
                 .n(format!("fig{n}.settle_time"), ts)
-                .t(" s on");
-            chart.vlines.push((ts, format!("t_f = {} s", fmt_num(ts))));
+                .t(format!(" s on (resolved to the output sampling, every {} s)", crate::chart::tick(h)));
+            chart.vlines.push((ts, format!("t_f = {} s", crate::chart::tick(ts))));
             if ts > 0.0 && ts < 0.1 * c.t_end {
-                chart.x_range = Some((0.0, 4.0 * ts));
-                cap = cap.t(format!("; time axis zoomed to [0, {}] s, the whole run is in the CSV", fmt_num(4.0 * ts)));
+                let zoom = (4.0 * ts).max(20.0 * h);
+                chart.x_range = Some((0.0, zoom));
+                cap = cap.t(format!(
+                    "; time axis zoomed to [0, {}] s, the whole run is in the CSV",
+                    crate::chart::tick(zoom)
+                ));
             }
             cap = cap.t(".");
         }
@@ -245,7 +251,7 @@ fn gerr(n: u32, run: &str, desc: &str, ch: u8, out: &SimOutput, c: &Ctx) -> Figu
 /// Figures 3–20 in three groups (no control, FTDO, DOBC).
 pub fn paper_figures(cfg: &Config, runs: &Runs) -> Vec<Group> {
     let t_end = cfg.horizon.t_end;
-    let c = Ctx { t_half: t_end / 2.0, t_end, none: &runs.none };
+    let c = Ctx { t_half: t_end / 2.0, t_end, sample_every: cfg.horizon.sample_every, none: &runs.none };
     let (none, ftdo, dobc) = (&runs.none, &runs.ftdo, &runs.dobc);
     let wo = "without control";
     let pf = "with the proposed control (FTDO)";

@@ -178,7 +178,11 @@ where
     let x_range = chart.x_range();
     let y_range = chart.y_range();
     let colours = colours(pd);
-    let keep = |(x, y): &(f64, f64)| x.is_finite() && y.is_finite() && (!log_x || *x > 0.0) && (!log_y || *y > 0.0);
+    // Points outside a zoomed x range are dropped (plotters would pin them to the frame).
+    let (xa, xb) = c.x_range.unwrap_or((f64::NEG_INFINITY, f64::INFINITY));
+    let keep = |(x, y): &(f64, f64)| {
+        x.is_finite() && y.is_finite() && (!log_x || *x > 0.0) && (!log_y || *y > 0.0) && *x >= xa && *x <= xb
+    };
     for (i, line) in pd.lines.iter().enumerate() {
         let color = colours[i];
         let width = px(if i == 0 { 3 } else { 2 });
