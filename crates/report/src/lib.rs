@@ -219,6 +219,9 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
                 row_walltimes.push((format!("ledger row {}: {k}", r.id), v));
             }
         }
+        for (k, v) in r.evidence.iter_mut() {
+            strip_walltimes(v, &format!("ledger row {}: {k}", r.id), &mut row_walltimes);
+        }
     }
 
     // Stage 2: figure data and captions.
@@ -321,6 +324,29 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     timings.push(StageTiming { name: "write".into(), seconds: t.elapsed().as_secs_f64() });
     report(progress, "write", 1, 1);
     Ok(ReportSummary { out_dir: out_dir.to_path_buf(), timings, files, ledger })
+}
+
+/// Move wall-time keys nested anywhere inside `v` (objects in objects or arrays) to `out`.
+fn strip_walltimes(v: &mut serde_json::Value, path: &str, out: &mut Vec<(String, f64)>) {
+    match v {
+        serde_json::Value::Object(m) => {
+            let keys: Vec<String> = m.keys().filter(|k| is_walltime_key(k)).cloned().collect();
+            for k in keys {
+                if let Some(x) = m.remove(&k).and_then(|x| x.as_f64()) {
+                    out.push((format!("{path}.{k}"), x));
+                }
+            }
+            for (k, x) in m.iter_mut() {
+                strip_walltimes(x, &format!("{path}.{k}"), out);
+            }
+        }
+        serde_json::Value::Array(a) => {
+            for (i, x) in a.iter_mut().enumerate() {
+                strip_walltimes(x, &format!("{path}[{i}]"), out);
+            }
+        }
+        _ => {}
+    }
 }
 
 /// Evidence keys that hold wall times (`seconds`, `*_seconds`), by convention.
