@@ -6,7 +6,9 @@ mod common;
 
 use common::paper_with;
 use wingcheck_claims::lyapunov::Coupling;
+use wingcheck_claims::convex::check_lambda3;
 use wingcheck_claims::mu::MuData;
+use wingcheck_claims::Study;
 use wingcheck_claims::{certify, mu, uub, wbounds, Basis, Verdict};
 use wingcheck_model::Method;
 use wingcheck_sim::{modes, Discretisation};
@@ -83,38 +85,51 @@ fn mu_conditions_boundary_matches_the_closed_form() {
     // Reference: the quadratic αβx² − (αI_p + βρ)x + ρI_p − (2ρx_c)² = 0 with α = 0.00375,
     // β = 0.0375 (solved by hand) has larger root 2793.2, so r* = 3.580e-4.
     assert!((r - 3.5801e-4).abs() < 1e-7, "r* = {r}");
-    let inside = MuData::new(&cfg, 0.9 * r, 1.0).max_lambda3().unwrap();
-    let outside = MuData::new(&cfg, 1.1 * r, 1.0).max_lambda3().unwrap();
-    assert!(inside.solved() && inside.x[0] > 0.0);
-    assert!(outside.solved() && outside.x[0] < 0.0);
-    assert!(MuData::new(&cfg, 1.0, 1.0).feasibility().unwrap().infeasible());
+    // the re-verified solver agrees in sign on both sides of the closed-form boundary
+    let inside = check_lambda3(&MuData::new(&cfg, 0.9 * r, 1.0));
+    let outside = check_lambda3(&MuData::new(&cfg, 1.1 * r, 1.0));
+    assert!(inside.accepted && inside.solver_value > 0.0, "{inside:?}");
+    assert!(outside.accepted && outside.solver_value < 0.0, "{outside:?}");
+    // the exact criterion: at a = b = 1 μ3 ≤ bξEI/(2s⁴) − aρ = 0.6·0.2/32 − 10 < 0
+    assert_eq!(
+        MuData::new(&cfg, 1.0, 1.0).obstruction_exact(2.0, 1.0),
+        Some(wingcheck_claims::theory::Obstruction::Mu3Constant)
+    );
 }
 
 #[test]
 fn mu_conditions_fail_at_the_paper_gains_and_hold_for_tiny_a() {
     let cfg = paper_with(&[]);
-    let w = wbounds::check(&cfg).unwrap();
-    let m = mu::check(&cfg, &w).unwrap();
+    let study = Study::new();
+    let m = mu::check(&cfg, &study).unwrap();
     assert_eq!(m.row.verdict, Verdict::Fails);
-    assert_eq!(m.row.basis, Basis::ExactCertificate);
-    assert!(m.row.number("lambda3_max").unwrap() < 0.0);
+    assert_eq!(m.row.basis, Basis::Analytic);
+    assert!(m.row.number("lambda3_sup").unwrap() < 0.0);
+    assert_eq!(m.row.certificates, vec!["mu-conditions-infeasible.json".to_string()]);
     let small = paper_with(&["control.a=0.0001"]);
-    let m2 = mu::check(&small, &wbounds::check(&small).unwrap()).unwrap();
+    let m2 = mu::check(&small, &study).unwrap();
     assert_eq!(m2.row.verdict, Verdict::Holds);
-    assert!(m2.lambda.unwrap() > 0.0 && m2.epsilon.unwrap() > 0.0);
+    let best = m2.best().unwrap();
+    assert!(best.lambda > 0.0 && best.epsilon > 0.0 && best.verified_exact);
+    assert!(m2.evidence.epsilon_socp.as_ref().unwrap().accepted);
 }
 
 #[test]
 fn uub_bound_is_valid_but_vacuous() {
     let cfg = paper_with(&[]);
     let w = wbounds::check(&cfg).unwrap();
-    let m = mu::check(&cfg, &w).unwrap();
-    let row = uub::check(&cfg, &w, &m).unwrap();
+    let study = Study::new();
+    let m = mu::check(&cfg, &study).unwrap();
+    let row = uub::check(&cfg, &w, &m, &study).unwrap();
     assert_eq!(row.verdict, Verdict::Vacuous);
+    // vacuous analytically: W(0) = ∞ for the linear initial shape
+    assert_eq!(row.basis, Basis::Analytic);
+    assert_eq!(row.evidence["w0_diverges"], true);
     assert_eq!(row.evidence["bound_violated"], serde_json::json!(false));
     assert!(row.number("ratio_bound_over_measured_q").unwrap() > 1e3);
     // W(0) grows under refinement: the paper's q(z,0) = z/s is not in H² (q'(0) ≠ 0).
-    assert!(row.number("w0_64_elements").unwrap() > 2.0 * row.number("w0_16_elements").unwrap());
+    let w0 = &row.evidence["w0_by_elements"];
+    assert!(w0[2][1].as_f64().unwrap() > 2.0 * w0[0][1].as_f64().unwrap());
 }
 
 #[test]

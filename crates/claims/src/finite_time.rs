@@ -69,6 +69,13 @@ fn tkey(t: f64) -> String {
     format!("{t:e}")
 }
 
+fn reach_value(t: Option<f64>) -> Value {
+    match t {
+        Some(t) => json!(t),
+        None => json!("not reached within the run"),
+    }
+}
+
 /// Check the finite-time claim of one channel ((38) with Theorem 3, or (39) with Theorem 4).
 pub fn check(cfg: &Config, channel: Channel) -> Result<ClaimRow, ClaimsError> {
     let clock = Instant::now();
@@ -112,7 +119,7 @@ pub fn check(cfg: &Config, channel: Channel) -> Result<ClaimRow, ClaimsError> {
     ev.insert("hypothesis_holds".into(), json!(hypothesis));
     ev.insert("bound_s".into(), json!(bound));
     ev.insert("bound_literal_s".into(), json!(literal));
-    ev.insert("measured_s".into(), json!(fil.reach_s));
+    ev.insert("measured_s".into(), reach_value(fil.reach_s));
     ev.insert("measured_error_s".into(), json!(fil.error_s));
     ev.insert("filippov_method".into(), json!(fil.method));
     let stays = fil.reach_s.is_some() && hypothesis;
@@ -123,8 +130,10 @@ pub fn check(cfg: &Config, channel: Channel) -> Result<ClaimRow, ClaimsError> {
     // Sharpness: constant g = κ_sw sign σ0 (the hypothesis at equality) attains the bound.
     let s_ref = if sigma0 != 0.0 { sigma0 } else { 1.0 };
     let gsharp = gain.switching * s_ref.signum();
-    let sharp = filippov_reach(&gain, &|_| gsharp, s_ref, 60.0, FILIPPOV_STEPS)?.reach_s.unwrap_or(f64::NAN)
-        / bound_38(gain.linear, gain.fractional, a1, a2, s_ref)?;
+    let sharp_bound = bound_38(gain.linear, gain.fractional, a1, a2, s_ref)?;
+    let sharp = filippov_reach(&gain, &|_| gsharp, s_ref, 60.0, FILIPPOV_STEPS)?
+        .reach_s
+        .map_or(f64::MAX, |r| (r / sharp_bound).min(f64::MAX));
     ev.insert("sharp_ratio".into(), json!(sharp));
     // σ0 sweep with the configured g.
     let mut sweep = (Vec::new(), Vec::new());
@@ -133,7 +142,9 @@ pub fn check(cfg: &Config, channel: Channel) -> Result<ClaimRow, ClaimsError> {
         let mut worst: f64 = 0.0;
         for s in [s0, -s0] {
             let f = filippov_reach(&gain, &gfun, s, 60.0, FILIPPOV_STEPS)?;
-            worst = worst.max(f.reach_s.unwrap_or(f64::INFINITY) / bound_38(gain.linear, gain.fractional, a1, a2, s)?);
+            let b = bound_38(gain.linear, gain.fractional, a1, a2, s)?;
+            // not reached within 60 s: the ratio saturates at f64::MAX (finite)
+            worst = worst.max(f.reach_s.map_or(f64::MAX, |r| (r / b).min(f64::MAX)));
         }
         sweep.0.push(s0);
         sweep.1.push(worst);
@@ -142,18 +153,22 @@ pub fn check(cfg: &Config, channel: Channel) -> Result<ClaimRow, ClaimsError> {
     ev.insert("sweep_max_ratio".into(), json!(sweep_max));
     let mut stays_band = true;
     let mut excess: f64 = 0.0;
+    let r_t_end = t_end;
     for r in &runs {
         let c = &r.channels[ix];
         let name = r.rule.name();
         let k = tkey(r.period);
-        ev.insert(format!("{name}_reach_s_T{k}"), json!(c.reach_s));
-        ev.insert(format!("{name}_sigma_after_max_T{k}"), json!(c.sigma_after_max));
+        ev.insert(format!("{name}_reach_s_T{k}"), reach_value(c.reach_s));
+        ev.insert(
+            format!("{name}_sigma_after_max_T{k}"),
+            if c.reach_s.is_some() { json!(c.sigma_after_max) } else { json!("not reached within the run") },
+        );
         ev.insert(format!("{name}_gtilde_max_T{k}"), json!(c.gtilde_max));
         ev.insert(format!("{name}_ghat_jump_max_T{k}"), json!(c.ghat_jump_max));
         ev.insert(format!("{name}_tau_jump_max_T{k}"), json!(c.tau_jump_max));
         if r.rule == ObserverRule::Implicit {
             stays_band &= c.reach_s.is_some() && c.sigma_after_max <= r.period * z * (1.0 + 1e-9) + 1e-15;
-            excess = excess.max(c.reach_s.unwrap_or(f64::INFINITY) - fil.reach_s.unwrap_or(0.0));
+            excess = excess.max(c.reach_s.unwrap_or(r_t_end) - fil.reach_s.unwrap_or(0.0));
         }
     }
     ev.insert("implicit_stays_in_band".into(), json!(stays_band));
@@ -164,36 +179,50 @@ pub fn check(cfg: &Config, channel: Channel) -> Result<ClaimRow, ClaimsError> {
         (Some(a), Some(b)) => (a.clone(), b.clone()),
         _ => return Err(reach::num_err("finite_time", "missing T = 1e-3 runs".into())),
     };
-    let measured = fil.reach_s.unwrap_or(f64::INFINITY);
-    let ok = measured <= bound + fil.error_s + 1e-12 * bound.max(1.0);
+    let measured = fil.reach_s.unwrap_or(f64::MAX);
+    let ok = fil.reach_s.is_some() && measured <= bound + fil.error_s + 1e-12 * bound.max(1.0);
+    // the σ0 sweep is the non-trivial test when σ(0) = 0
+    let sweep_ok = sweep_max <= 1.0 + 1e-6;
     let verdict = if !hypothesis {
         Verdict::Inconclusive
-    } else if ok {
-        Verdict::Holds
-    } else {
+    } else if !ok || !sweep_ok {
         Verdict::Fails
+    } else if sigma0 == 0.0 {
+        Verdict::TriviallyTrue
+    } else {
+        Verdict::Holds
     };
-    let trivial = if sigma0 == 0.0 {
+    let trivial = if sigma0 == 0.0 && hypothesis {
         "σ(0) = 0, so the bound is 0 and σ never leaves 0 (trivially true); the σ0 sweep below is the non-trivial test. "
     } else {
         ""
     };
     let summary = format!(
-        "{trivial}σ{n}(0) = {sigma0:.4e}, ζ{n} = sup|g{n}| = {z} ≤ κ = {ks} ({hyp}). Bound ({b38}) as read: t_f ≤ {bound:.4e} s; \
-         Filippov reaching time of σ̇ = g − φ(σ): {measured:.4e} s (±{err:.0e}), ratio {ratio}; σ stays at 0 after \
-         (|g| ≤ ζ < κ_sw). The bound is sharp: for g ≡ κ_sw·sign σ0 the time equals the bound (ratio {sharp:.9}); \
-         over σ0 ∈ [1e-3, 1e2] with the paper's g the worst ratio is {sweep_max:.3}. Digital: implicit observer \
+        "{trivial}σ{n}(0) = {sigma0:.4e}, ζ{n} = sup|g{n}| = {z} {cmp} κ = {ks} ({hyp}). Bound ({b38}) as read: t_f ≤ {bound:.4e} s; \
+         Filippov reaching time of σ̇ = g − φ(σ): {measured_text} (±{err:.0e}), ratio {ratio}{stays_text}. The bound is sharp: for g ≡ κ_sw·sign σ0 the time equals the bound (ratio {sharp:.9}); \
+         over σ0 ∈ [1e-3, 1e2] with the paper's g the worst ratio is {sweep_text}. Digital: implicit observer \
          enters the band |σ| ≤ Tκ_sw at most {excess:.1e} s after the Filippov time and stays (|σ_k| ≤ Tζ: {stays_band}); \
          afterwards g̃ at the samples is O(T·ġ) (T = 1e-3: max|g̃| = {gi:.2e}, sup|ġ| = {gdot:.2e}). The explicit observer \
          chatters: max|g̃| = {ge:.2}, max jump of τ = {te:.2} at T = 1e-3, not vanishing as T → 0 (only σ's band \
          shrinks, max|σ| = {se:.1e}). The theorem promises g̃ = σ̇ = 0 after t_f in continuous time (Filippov, \
          ĝ equal to the equivalent value g); a digital implementation gets O(T) only with the implicit rule. The \
          literal reading Q0^(a2 − a1/a2) would give {literal:.3e} s.",
+        measured_text = match fil.reach_s {
+            Some(t) => format!("{t:.4e} s"),
+            None => "not reached within 60 s".into(),
+        },
         ks = gain.switching,
+        cmp = if hypothesis { "≤" } else { ">" },
+        stays_text = if stays { "; σ stays at 0 after (|g| ≤ ζ ≤ κ_sw)" } else { "" },
         hyp = if hypothesis { "hypothesis holds" } else { "hypothesis FAILS: theorem not applicable" },
         b38 = if ix == 0 { "38" } else { "39" },
         err = fil.error_s,
-        ratio = if bound > 0.0 { format!("{:.3}", measured / bound) } else { "n/a (both 0)".into() },
+        ratio = match fil.reach_s {
+            None => "n/a (not reached)".to_string(),
+            Some(_) if bound > 0.0 => format!("{:.3}", measured / bound),
+            Some(_) => "n/a (both 0)".into(),
+        },
+        sweep_text = if sweep_max >= f64::MAX { "unbounded (some σ0 not reached within 60 s)".to_string() } else { format!("{sweep_max:.3}") },
         gi = imp3.gtilde_max,
         ge = exp3.gtilde_max,
         te = exp3.tau_jump_max,
@@ -262,8 +291,8 @@ fn plots(
     let sigma_plot = PlotData {
         name: format!("finite-time-sigma{n}"),
         title: format!(
-            "|σ{n}(t)|: Filippov limit reaches 0 at {:.4} s, bound ({}) = {bound:.4} s; digital T = 1 ms",
-            fil.reach_s.unwrap_or(f64::NAN),
+            "|σ{n}(t)|: Filippov limit reaches 0 {}, bound ({}) = {bound:.4} s; digital T = 1 ms",
+            fil.reach_s.map_or("not within 60 s".to_string(), |t| format!("at {t:.4} s")),
             if ix == 0 { 38 } else { 39 }
         ),
         x_label: "t (s)".into(),

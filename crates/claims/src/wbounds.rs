@@ -353,7 +353,7 @@ pub fn summary(e: &WBoundsEvidence) -> (String, Option<String>) {
             (
                 format!("{printed}{structural}. At {rt} < {omega} {pd}: {tight}."),
                 Some(format!(
-                    "replace λ2 = y2 − y3 by the tight λ2* = inf W/κ = {:.5e} and λ1 by λ1* = {:.5e}; positive iff a/b < ω₁ (cross term −bρx_c∫q̇θ̇)",
+                    "replace λ2 = y2 − y3 by the tight λ2* = infimum of W/κ = {:.5e} and λ1 by λ1* = {:.5e}; positive iff a/b < ω₁ (cross term −bρx_c∫q̇θ̇)",
                     e.lambda2_tight, e.lambda1_tight
                 )),
             )

@@ -99,6 +99,17 @@ impl Config {
         ] {
             within(name, v, 0.0, 1e6)?;
         }
+        // the reaching-time bounds (38), (39) divide by the linear and fractional gains
+        for (name, v) in [
+            ("observer.kappa1", o.kappa1),
+            ("observer.kappa3", o.kappa3),
+            ("observer.kappa4", o.kappa4),
+            ("observer.kappa6", o.kappa6),
+        ] {
+            if v <= 0.0 {
+                return Err(range(name, v, "> 0 (the reaching-time bound (38)/(39) divides by it) and ≤ 1e6"));
+            }
+        }
         exponent_pair("observer.a1", "observer.a2", o.a1, o.a2)?;
         exponent_pair("observer.b1", "observer.b2", o.b1, o.b2)?;
         finite("observer.nu1_0", o.nu1_0)?;

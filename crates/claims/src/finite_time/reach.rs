@@ -191,6 +191,7 @@ pub struct DigitalChannel {
     pub reach_s: Option<f64>,
     /// max |σ_k| after reaching (units of g): implicit — over the samples after the entry sample
     /// (≤ T·sup|g| when the observer slides); explicit — from the first crossing on (chatter band).
+    /// If never reached: max |σ_k| over the whole run.
     pub sigma_after_max: f64,
     /// max |g(t_k) − ĝ_k| over the chatter window (units of g): the sampled g̃.
     pub gtilde_max: f64,
@@ -324,7 +325,8 @@ pub fn digital_run(
             ch.sigma_after_max = sig_hist[i].get(from..).unwrap_or(&[]).iter().fold(0.0, |m, x| m.max(x.abs()));
         } else {
             ch.reach_s = None;
-            ch.sigma_after_max = f64::NAN;
+            // never reached: the band was never entered, report max |σ_k| over the whole run
+            ch.sigma_after_max = sig_hist[i].iter().fold(0.0, |m, x| m.max(x.abs()));
         }
     }
     Ok(DigitalRun { rule, period, window: (w0, t_end), channels: out })
