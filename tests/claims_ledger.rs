@@ -208,7 +208,9 @@ fn documented_ledger_shape_is_the_produced_one() {
     assert_eq!(keys(&ex_row["evidence"]), keys(&row["evidence"]));
     assert_eq!(keys(&ex_row["evidence"]["best"]), keys(&row["evidence"]["best"]));
     // every verdict and basis named in the doc's vocabulary tables exists
-    for v in ["holds", "fails", "holds-after-correction", "vacuous", "trivially-true", "partly-reproduced", "inconclusive"] {
+    for v in
+        ["holds", "fails", "holds-after-correction", "vacuous", "trivially-true", "partly-reproduced", "inconclusive"]
+    {
         assert!(doc.contains(&format!("`{v}`")), "verdict {v} undocumented");
     }
     for b in ["exact-certificate", "analytic", "float-solver", "simulation"] {

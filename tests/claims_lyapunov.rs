@@ -5,8 +5,8 @@
 mod common;
 
 use common::paper_with;
-use wingcheck_claims::lyapunov::Coupling;
 use wingcheck_claims::convex::check_lambda3;
+use wingcheck_claims::lyapunov::Coupling;
 use wingcheck_claims::mu::MuData;
 use wingcheck_claims::Study;
 use wingcheck_claims::{certify, mu, uub, wbounds, Basis, Verdict};

@@ -18,8 +18,9 @@ pub struct BenchArgs {
     /// Print JSON.
     #[arg(long)]
     json: bool,
-    /// What to measure: the simulator (`sim`), the claim checker (`check`) or the report (`report`).
-    #[arg(long, default_value = "sim", value_parser = ["sim", "check", "report"])]
+    /// What to measure: the simulator (`sim`), the claim checker (`check`), the report
+    /// (`report`) or the search (`search`: the 32×32 paper grid with 1 and 2 threads).
+    #[arg(long, default_value = "sim", value_parser = ["sim", "check", "report", "search"])]
     what: String,
 }
 
@@ -28,6 +29,7 @@ pub fn run(a: BenchArgs) -> anyhow::Result<()> {
     match a.what.as_str() {
         "check" => return bench_check(&cfg, a.repeats, a.json),
         "report" => return bench_report(&cfg, a.repeats, a.json),
+        "search" => return bench_search(&cfg, a.json),
         _ => {}
     }
     let base = time_config(&cfg, a.repeats)?;
@@ -187,6 +189,54 @@ fn bench_report(cfg: &wingcheck_model::Config, repeats: usize, as_json: bool) ->
     println!("wingcheck report: {:.3} s (median of {})", median(runs.clone()), runs.len());
     for t in &summary.timings {
         println!("  {:<12} {:>7.3} s (last run)", t.name, t.seconds);
+    }
+    Ok(())
+}
+
+fn bench_search(cfg: &wingcheck_model::Config, as_json: bool) -> anyhow::Result<()> {
+    let b = wingcheck_search::bench::bench_search(cfg, 32, &[1, 2])?;
+    if as_json {
+        println!("{}", serde_json::to_string_pretty(&b)?);
+        return Ok(());
+    }
+    println!("search: {} points ({}), one run per thread count", b.points, b.axes.join(" × "));
+    if let Some(l) = b.load_average {
+        println!("machine: {} cores, load average {l:.2} when started (other processes share the cores)", b.cores);
+    }
+    println!("threads  wall (s)  points/s  closed loop Σ (s)  theory Σ (s)  failed points");
+    for r in &b.runs {
+        println!(
+            "{:>7}  {:>8.2}  {:>8.1}  {:>17.2}  {:>12.2}  {:>13}",
+            r.threads, r.wall_seconds, r.points_per_second, r.closed_loop_seconds, r.theory_seconds, r.failed
+        );
+    }
+    let n = b.points as f64;
+    if let Some(r) = b.runs.first() {
+        println!(
+            "per point (1 thread): closed loop {:.2} ms, theory {:.2} ms",
+            1e3 * r.closed_loop_seconds / n,
+            1e3 * r.theory_seconds / n
+        );
+    }
+    println!(
+        "one point's closed loop: modal runner {:.2} ms vs the simulator {:.2} ms ({:.1}× faster)",
+        1e3 * b.modal_point_seconds,
+        1e3 * b.simulator_point_seconds,
+        b.simulator_point_seconds / b.modal_point_seconds
+    );
+    println!(
+        "once per search: modal basis {:.2} ms, observer signal {:.2} ms; final files {:.2} s",
+        1e3 * b.modal_basis_seconds,
+        1e3 * b.input_signal_seconds,
+        b.finalize_seconds
+    );
+    if let Some(r) = b.runs.last() {
+        println!(
+            "10 000 points at {} threads: ≈ {:.0} s (at the measured {:.1} points/s)",
+            r.threads,
+            1e4 / r.points_per_second,
+            r.points_per_second
+        );
     }
     Ok(())
 }

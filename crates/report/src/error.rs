@@ -78,3 +78,9 @@ impl ReportError {
         move |source| ReportError::Io { action, path, source }
     }
 }
+
+impl From<wingcheck_chart::ChartError> for ReportError {
+    fn from(e: wingcheck_chart::ChartError) -> Self {
+        ReportError::Chart { name: e.name, detail: e.detail }
+    }
+}

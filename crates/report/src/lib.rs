@@ -17,7 +17,7 @@
 
 mod accuracy;
 pub mod atomic;
-mod chart;
+use wingcheck_chart as chart;
 mod context;
 mod digest;
 mod error;

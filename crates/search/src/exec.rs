@@ -130,19 +130,19 @@ pub fn run(search: &Search, out: &Path, ctl: RunControl<'_>) -> Result<RunSummar
 
 fn run_in(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<RunSummary, SearchError> {
     let start = Instant::now();
-    let mut todo = Vec::new();
-    let (mut skipped, mut owned, mut completed) = (0, 0usize, 0usize);
+    // Two passes over this shard's chunks (streamed, never collected): count what is done,
+    // then evaluate the rest.
+    let is_done = |c: usize| store::read_chunk(out, c, search.chunk_range(c)).map(|p| p.is_some());
+    let (mut skipped, mut owned, mut completed, mut total) = (0, 0usize, 0usize, 0usize);
     for c in (0..search.chunks()).filter(|&c| ctl.shard.owns(c)) {
         owned += 1;
-        match store::read_chunk(out, c, search.chunk_range(c))? {
-            Some(_) => {
-                skipped += search.chunk_range(c).len();
-                completed += 1;
-            }
-            None => todo.push(c),
+        if is_done(c)? {
+            skipped += search.chunk_range(c).len();
+            completed += 1;
+        } else {
+            total += search.chunk_range(c).len();
         }
     }
-    let total: usize = todo.iter().map(|&c| search.chunk_range(c).len()).sum();
     let done = AtomicUsize::new(0);
     if let Some(p) = ctl.progress {
         p(Progress { done: 0, total });
@@ -152,10 +152,15 @@ fn run_in(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<RunSummar
     let mut summary =
         RunSummary { out_dir: out.to_path_buf(), points_total: search.points(), skipped, ..Default::default() };
     let progress_name = format!("progress-{}-of-{}.json", ctl.shard.k, ctl.shard.n);
-    for (i, &c) in todo.iter().enumerate() {
-        if ctl.stop_after_chunks == Some(i) {
+    let mut written = 0;
+    for c in (0..search.chunks()).filter(|&c| ctl.shard.owns(c)) {
+        if ctl.stop_after_chunks == Some(written) {
             break;
         }
+        if is_done(c)? {
+            continue;
+        }
+        written += 1;
         let points: Vec<PointResult> = search
             .chunk_range(c)
             .into_par_iter()

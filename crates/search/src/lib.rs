@@ -18,6 +18,7 @@
 //! config, collected in index order.
 
 pub mod axis;
+pub mod bench;
 mod exec;
 mod heatmap;
 pub mod limits;

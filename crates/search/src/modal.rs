@@ -226,6 +226,9 @@ pub fn run(cfg: &Config, basis: &ModalBasis, signal: &InputSignal) -> Result<Tip
     let (om, u) = (&basis.omega2, &basis.tip);
     let d_inv: Vec<f64> = om.iter().map(|w| 1.0 / (2.0 / h + (xi + 0.5 * h) * w)).collect();
     let z: [Vec<f64>; 2] = [0, 1].map(|c| (0..n).map(|i| d_inv[i] * u[c][i]).collect());
+    let coef_zeta: Vec<f64> = d_inv.iter().map(|d| (2.0 / h) * d).collect();
+    let coef_eta: Vec<f64> = (0..n).map(|i| d_inv[i] * om[i]).collect();
+    let load_d: Vec<f64> = (0..n).map(|i| d_inv[i] * basis.load[i]).collect();
     // Q = Uᵀ D⁻¹ U; G = I + βK Q; H = G⁻¹ βK
     let dot = |x: &[f64], y: &[f64]| x.iter().zip(y).map(|(p, q)| p * q).sum::<f64>();
     let q = [[dot(&u[0], &z[0]), dot(&u[0], &z[1])], [dot(&u[1], &z[0]), dot(&u[1], &z[1])]];
@@ -305,20 +308,29 @@ pub fn run(cfg: &Config, basis: &ModalBasis, signal: &InputSignal) -> Result<Tip
                 signal.tip_input[1][step] - a * gain[1] * x_tip[1],
             ];
             step += 1;
-            // y = D⁻¹ r with r = (2/h)ζ − Ω²η + φ̄ Φᵀf_h + U f;  t = Uᵀ y
+            // y = D⁻¹ r with r = (2/h)ζ − Ω²η + φ̄ Φᵀf_h + U f, per mode with the factors
+            // D⁻¹ folded in (coef_zeta = 2/h D⁻¹, coef_eta = Ω² D⁻¹, load_d = D⁻¹Φᵀf_h, z = D⁻¹U);
+            // t = Uᵀ y. Iterators over equal-length slices: no bounds checks, vectorised.
             let (mut t0, mut t1) = (0.0, 0.0);
-            for i in 0..n {
-                let r = (2.0 / h) * zeta[i] - om[i] * eta[i] + phi * basis.load[i] + u[0][i] * f[0] + u[1][i] * f[1];
-                let yi = d_inv[i] * r;
-                y[i] = yi;
-                t0 += u[0][i] * yi;
-                t1 += u[1][i] * yi;
+            for (((((yi, (&zt, &et)), (&cz, &ce)), &ld), (&z0, &z1)), (&u0, &u1)) in y
+                .iter_mut()
+                .zip(zeta.iter().zip(eta.iter()))
+                .zip(coef_zeta.iter().zip(&coef_eta))
+                .zip(&load_d)
+                .zip(z[0].iter().zip(&z[1]))
+                .zip(u[0].iter().zip(&u[1]))
+            {
+                let v = cz * zt - ce * et + phi * ld + z0 * f[0] + z1 * f[1];
+                *yi = v;
+                t0 += u0 * v;
+                t1 += u1 * v;
             }
             let c = [hm[0][0] * t0 + hm[0][1] * t1, hm[1][0] * t0 + hm[1][1] * t1];
-            for i in 0..n {
-                let zbar = y[i] - z[0][i] * c[0] - z[1][i] * c[1];
-                eta[i] += h * zbar;
-                zeta[i] = 2.0 * zbar - zeta[i];
+            for (((yi, (zt, et)), &z0), &z1) in y.iter().zip(zeta.iter_mut().zip(eta.iter_mut())).zip(&z[0]).zip(&z[1])
+            {
+                let zbar = yi - z0 * c[0] - z1 * c[1];
+                *et += h * zbar;
+                *zt = 2.0 * zbar - *zt;
             }
             // tip rates v̄ = Uᵀ ζ̄ = t − Q c, and the tip boundary states w (as the stepper)
             let vbar = [t0 - q[0][0] * c[0] - q[0][1] * c[1], t1 - q[1][0] * c[0] - q[1][1] * c[1]];

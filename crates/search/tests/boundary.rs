@@ -114,3 +114,48 @@ fn fast_theory_matches_the_claims_functions() {
     let ub = (cfg.wing.span.powi(3) / t.lambda2.unwrap() * bp.epsilon / bp.lambda).sqrt();
     assert!(rel(t.uub_bound_q.unwrap(), ub) < 1e-9);
 }
+
+#[test]
+fn refined_boundaries_meet_the_closed_forms_to_1e_6() {
+    let base = short();
+    let tol = 1e-6;
+    // grid step along a: a factor √10 (1e-5..1, 11 log points), so every crossing starts in a
+    // bracket of log-width ln √10 and bisection (geometric midpoints) needs
+    // ⌈log2(ln √10 / ln(1 + tol))⌉ = 21 theory evaluations to reach hi/lo − 1 ≤ tol.
+    let search = Search::new(
+        base.clone(),
+        &["control.a=1e-5..1:log:11".into()],
+        SearchOptions { refine: Some(tol), chunk_size: 4, ..Default::default() },
+    )
+    .expect("valid search");
+    let dir = tempfile::tempdir().unwrap();
+    run(&search, dir.path(), RunControl::default()).expect("runs");
+    let evaluations = (0.5 * 10f64.ln() / tol.ln_1p()).log2().ceil() as usize;
+    assert_eq!(evaluations, 21);
+    let rows = |kind: &str| -> Vec<(f64, f64, f64, usize)> {
+        let text = std::fs::read_to_string(dir.path().join("boundary.csv")).unwrap();
+        text.lines()
+            .filter(|l| l.starts_with(kind))
+            .map(|l| {
+                let f: Vec<&str> = l.split(',').collect();
+                (f[3].parse().unwrap(), f[4].parse().unwrap(), f[5].parse().unwrap(), f[7].parse().unwrap())
+            })
+            .collect()
+    };
+    // Closed form 1 (crates/claims wbounds, item 3): W ≻ 0 iff a/b < ω₁, the fundamental
+    // frequency of the undamped wing on the Galerkin space — here from the simulator's own FE
+    // modes (uniform 8-element mesh, the space of the Lyapunov forms), independent code.
+    let uniform = apply_overrides(&base, &["discretisation.grading=0".into()]).unwrap();
+    let disc = wingcheck_sim::Discretisation::with(&uniform, wingcheck_model::Method::Fe, 8);
+    let omega1 = wingcheck_sim::modes::natural_frequencies(&disc, 1).unwrap()[0];
+    // Closed form 2 (crates/claims mu, module docs): (32) feasible iff a/b < r*.
+    let r_star = MuData::closed_form_ratio(&base);
+    for (kind, reference) in [("w_positive_definite", omega1), ("feasible_32", r_star)] {
+        let r = rows(kind);
+        assert_eq!(r.len(), 1, "{kind}: one crossing along a: {r:?}");
+        let (lo, hi, est, n) = r[0];
+        assert!(hi / lo - 1.0 <= tol, "{kind}: bracket [{lo}, {hi}] refined to {tol}");
+        assert_eq!(n, evaluations, "{kind}: the stated number of theory evaluations");
+        assert!((est / reference - 1.0).abs() <= tol, "{kind}: estimate {est} vs closed form {reference}");
+    }
+}

@@ -10,11 +10,11 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use wingcheck_claims::PlotData;
 
-use super::{
+use crate::ChartError;
+use crate::{
     decade_label, linear_ticks, log_labels, log_ticks, padded_range, px, scaled_svg_header, tick, tick_linear, Ticked,
     CANVAS, PALETTE,
 };
-use crate::ReportError;
 
 /// How a line is drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -59,9 +59,9 @@ impl LineChart {
 const LEGEND_W: u32 = 230;
 
 /// Render the chart as an SVG document.
-pub fn line_svg(c: &LineChart) -> Result<String, ReportError> {
+pub fn line_svg(c: &LineChart) -> Result<String, ChartError> {
     let pd = &c.data;
-    let err = |e: String| ReportError::Chart { name: pd.name.clone(), detail: e };
+    let err = |e: String| ChartError { name: pd.name.clone(), detail: e };
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, CANVAS).into_drawing_area();

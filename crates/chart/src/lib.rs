@@ -1,24 +1,38 @@
-//! Charts as standalone SVG files, drawn with plotters' SVG backend.
+//! Charts as standalone SVG files, drawn with plotters' SVG backend, shared by the report
+//! (line charts, field heatmaps) and the searches (grid heatmaps): one tick format, one set of
+//! colour maps.
 //!
 //! Text: with plotters' default features off no font crate is compiled in; the SVG backend
 //! writes labels as SVG `<text>` elements (font chosen by the viewer) and plotters only
 //! *estimates* their width, so no system font is ever read.
+
 //!
 //! Resolution: plotters' SVG backend writes integer coordinates, which turns smooth curves
-//! into false one-pixel staircases. Every chart is therefore drawn on a canvas [`SCALE`] times
-//! the displayed size and the SVG's `viewBox` maps it back ([`scaled_svg_header`]): curves
-//! are placed to 1/[`SCALE`] px. Fields are embedded as PNG rasters with vector axes
-//! ([`heatmap`]).
+//! into false one-pixel staircases. Line charts and field maps are therefore drawn on a canvas
+//! [`SCALE`] times the displayed size and the SVG's `viewBox` maps it back
+//! ([`scaled_svg_header`]): curves are placed to 1/[`SCALE`] px. Fields are embedded as PNG
+//! rasters with vector axes ([`heatmap_svg`]).
 
-mod heatmap;
+mod field;
+mod grid;
 mod line;
 mod ticks;
 
-pub use heatmap::{heatmap_svg, Heatmap};
+pub use field::{heatmap_svg, Heatmap};
+pub use grid::{grid_heatmap_svg, GridAxis, GridHeatmap, Mark, MarkShape};
 pub use line::{line_svg, LineChart, LineStyle};
+pub use plotters::style::RGBColor;
 pub use ticks::{linear_ticks, log_ticks, Ticked};
 
-use plotters::style::RGBColor;
+/// A chart could not be drawn.
+#[derive(Debug, thiserror::Error)]
+#[error("chart {name}: {detail}")]
+pub struct ChartError {
+    /// The chart's file stem.
+    pub name: String,
+    /// What failed.
+    pub detail: String,
+}
 
 /// Displayed width and height (px) of every chart.
 pub const SIZE: (u32, u32) = (980, 440);
@@ -34,6 +48,14 @@ pub const fn px(v: u32) -> u32 {
 /// The canvas size.
 pub const CANVAS: (u32, u32) = (SIZE.0 * SCALE, SIZE.1 * SCALE);
 
+/// Replace the root element's `width`/`height` (canvas pixels) by the displayed size, keeping
+/// the canvas `viewBox`.
+pub fn scaled_svg_header(svg: String) -> String {
+    let from = format!("<svg width=\"{}\" height=\"{}\"", CANVAS.0, CANVAS.1);
+    let to = format!("<svg width=\"{}\" height=\"{}\"", SIZE.0, SIZE.1);
+    svg.replacen(&from, &to, 1)
+}
+
 /// Line colours (the "tab10" palette).
 pub const PALETTE: [RGBColor; 8] = [
     RGBColor(31, 119, 180),
@@ -45,14 +67,6 @@ pub const PALETTE: [RGBColor; 8] = [
     RGBColor(227, 119, 194),
     RGBColor(23, 190, 207),
 ];
-
-/// Replace the root element's `width`/`height` (canvas pixels) by the displayed size, keeping
-/// the canvas `viewBox`.
-pub fn scaled_svg_header(svg: String) -> String {
-    let from = format!("<svg width=\"{}\" height=\"{}\"", CANVAS.0, CANVAS.1);
-    let to = format!("<svg width=\"{}\" height=\"{}\"", SIZE.0, SIZE.1);
-    svg.replacen(&from, &to, 1)
-}
 
 /// Tick label: short, deterministic.
 pub fn tick(v: f64) -> String {

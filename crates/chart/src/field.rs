@@ -12,8 +12,8 @@ use plotters::prelude::*;
 
 use plotters::coord::types::RangedCoordf64;
 
-use super::{linear_ticks, px, scaled_svg_header, tick, tick_linear, Ticked, CANVAS, SCALE};
-use crate::ReportError;
+use crate::ChartError;
+use crate::{linear_ticks, px, scaled_svg_header, tick, tick_linear, Ticked, CANVAS, SCALE};
 
 /// A field sampled on a (t, z) grid.
 #[derive(Debug, Clone)]
@@ -136,8 +136,8 @@ fn raster_png(h: &Heatmap, w: usize, hgt: usize, vmax: f64) -> Result<Vec<u8>, S
 }
 
 /// Render the heatmap as an SVG document (raster field, vector axes).
-pub fn heatmap_svg(h: &Heatmap) -> Result<String, ReportError> {
-    let err = |e: String| ReportError::Chart { name: h.name.clone(), detail: e };
+pub fn heatmap_svg(h: &Heatmap) -> Result<String, ChartError> {
+    let err = |e: String| ChartError { name: h.name.clone(), detail: e };
     if h.t.len() < 2 || h.z.len() < 2 || h.values.len() != h.t.len() || h.values.iter().any(|r| r.len() != h.z.len()) {
         return Err(err("need at least 2 times and 2 grid points, and one value per (t, z)".into()));
     }

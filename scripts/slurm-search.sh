@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# One shard of a wingcheck search per task of a Slurm job array.
+#
+#   jid=$(sbatch --parsable --array=1-16 scripts/slurm-search.sh OUT SEARCH-ARGS...)
+#   sbatch --dependency=afterany:$jid --wrap "wingcheck merge OUT/shard-* --out OUT/all"
+#
+# The array must be numbered 1..N (task K runs shard K/N, N = SLURM_ARRAY_TASK_COUNT) and
+# writes OUT/shard-K, with SLURM_CPUS_PER_TASK threads (default 1). WINGCHECK (default
+# `wingcheck`) is the binary. A task exits 0 when its shard is complete (a shard whose
+# points partly failed is complete too: merge reports them), 1 on an error. A failed task
+# can be resubmitted alone with the shard count given explicitly,
+# `SHARDS=16 sbatch --array=K --export=ALL,SHARDS scripts/slurm-search.sh ...`; it resumes
+# from its completed chunks.
+#SBATCH --job-name=wingcheck-search
+#SBATCH --cpus-per-task=1
+#SBATCH --output=slurm-search-%A_%a.out
+set -euo pipefail
+if [ $# -lt 2 ]; then
+    echo "usage: sbatch --array=1-N $0 OUT SEARCH-ARGS..." >&2
+    exit 1
+fi
+out=$1
+shift
+k=${SLURM_ARRAY_TASK_ID:?submit as a job array: sbatch --array=1-N}
+n=${SHARDS:-${SLURM_ARRAY_TASK_COUNT:?submit as a job array: sbatch --array=1-N}}
+if [ -z "${SHARDS:-}" ] && { [ "${SLURM_ARRAY_TASK_MIN:-1}" != 1 ] || [ "${SLURM_ARRAY_TASK_MAX:-$n}" != "$n" ]; }; then
+    echo "the array must be numbered 1..N (got ${SLURM_ARRAY_TASK_MIN}..${SLURM_ARRAY_TASK_MAX})" >&2
+    exit 1
+fi
+mkdir -p "$out"
+status=0
+"${WINGCHECK:-wingcheck}" search "$@" --threads "${SLURM_CPUS_PER_TASK:-1}" --shard "$k/$n" --out "$out/shard-$k" || status=$?
+# 2 = complete with failed points (reported by merge)
+if [ "$status" -eq 2 ]; then status=0; fi
+exit "$status"
