@@ -54,6 +54,10 @@ pub fn log_ticks(lo: f64, hi: f64, data: &[f64]) -> Vec<f64> {
             out = fine;
         }
     }
+    if out.len() < 2 {
+        // Narrower than one 1-2-5 step: label the ends.
+        out = vec![lo, hi];
+    }
     out
 }
 

@@ -262,10 +262,12 @@ impl RegionMap {
                 .n("region.median_feasible", fi)
                 .t(" m; elsewhere: ")
                 .n("region.median_infeasible", inf)
-                .t(if fi > inf {
+                .t(if fi > 1.05 * inf {
                     " m — the theorems' conditions hold where the tip performance is worse. "
+                } else if inf > 1.05 * fi {
+                    " m — the tip performance is better where the theorems' conditions hold. "
                 } else {
-                    " m. "
+                    " m — within 5 %: the hypotheses do not separate good from poor tip performance here. "
                 });
         } else if s.median_feasible.is_none() {
             cap = cap.t("No cell satisfies both hypotheses. ");
@@ -401,7 +403,12 @@ impl RegionMap {
                     .map_err(e)?;
             }
             side.draw(&Rectangle::new([(bx, by), (bx + bw, by + bh)], BLACK.stroke_width(px(1)))).map_err(e)?;
-            for t in crate::chart::log_ticks(10f64.powf(vlo), 10f64.powf(vhi), &[]) {
+            let mut bar_ticks = crate::chart::log_ticks(10f64.powf(vlo), 10f64.powf(vhi), &[]);
+            if bar_ticks.len() < 2 {
+                // A narrow range (less than a 1-2-5 step): label its ends.
+                bar_ticks = vec![10f64.powf(vlo), 10f64.powf(vhi)];
+            }
+            for t in bar_ticks {
                 let u = (t.log10() - vlo) / (vhi - vlo);
                 let yy = by + bh - (u * bh as f64) as i32;
                 side.draw(&PathElement::new(
@@ -409,7 +416,12 @@ impl RegionMap {
                     BLACK.stroke_width(px(1)),
                 ))
                 .map_err(e)?;
-                side.draw(&Text::new(tick(t), (bx + bw + px(8) as i32, yy - px(8) as i32), font.clone())).map_err(e)?;
+                side.draw(&Text::new(
+                    crate::stats::fmt_num(t),
+                    (bx + bw + px(8) as i32, yy - px(8) as i32),
+                    font.clone(),
+                ))
+                .map_err(e)?;
             }
             let mut y = by + bh + px(40) as i32;
             let x = px(12) as i32;
