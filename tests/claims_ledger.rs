@@ -14,7 +14,7 @@ fn cfg_with(sets: &[String]) -> Config {
 }
 
 fn short(extra: &[&str]) -> Config {
-    let mut sets: Vec<String> = vec!["horizon.t_end=2".into()];
+    let mut sets: Vec<String> = vec!["horizon.t_end=1".into()];
     sets.extend(extra.iter().map(|s| s.to_string()));
     cfg_with(&sets)
 }

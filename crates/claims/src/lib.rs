@@ -15,6 +15,7 @@ mod ledger;
 pub mod lemmas;
 pub mod lyapunov;
 pub mod mu;
+pub mod sdp;
 pub mod socp;
 pub mod study;
 pub mod theory;
@@ -64,41 +65,54 @@ fn isolate(id: ClaimId, claim: &str, r: Result<ClaimRow, ClaimsError>) -> ClaimR
 /// computation fails becomes `inconclusive` with the reason; the other rows are still
 /// computed, so this only returns `Ok`.
 pub fn check_all_with(cfg: &Config, study: &Study) -> Result<Ledger, ClaimsError> {
-    let w = wbounds::check(cfg);
-    let m = mu::check(cfg, study);
-    let uub_row = match (&w, &m) {
-        (Ok(w), Ok(m)) => isolate(
-            ClaimId::Uub,
-            "q, θ uniformly ultimately bounded, with the printed bound",
-            uub::check(cfg, w, m, study),
-        ),
-        _ => ClaimRow::inconclusive(
-            ClaimId::Uub,
-            "q, θ uniformly ultimately bounded, with the printed bound",
-            "not decided: it needs the W-bounds and mu-conditions rows, which could not be computed",
-        ),
-    };
-    let rows = vec![
-        isolate(ClaimId::WBounds, "0 ≤ λ2 κ ≤ W ≤ λ1 κ with the printed λ1, λ2, y1–y3", w.map(|w| w.row)),
-        isolate(ClaimId::MuConditions, "conditions on the gains and the η's make Ẇ ≤ −λW + ε", m.map(|m| m.row)),
-        uub_row,
-        isolate(
-            ClaimId::FiniteTime1,
-            "finite-time convergence of g̃1 within (38)",
-            finite_time::check(cfg, finite_time::Channel::Bending),
-        ),
-        isolate(
-            ClaimId::FiniteTime2,
-            "finite-time convergence of g̃2 within (39)",
-            finite_time::check(cfg, finite_time::Channel::Torsion),
-        ),
-        isolate(ClaimId::Lemmas, "Lemmas 1–3", lemmas::check(cfg)),
-        isolate(
-            ClaimId::FtdoVsDobc,
-            "FTDO gives clearly better vibration suppression than DOBC",
-            comparison::check(cfg, study),
-        ),
-    ];
+    const UUB_CLAIM: &str = "q, θ uniformly ultimately bounded, with the printed bound";
+    // Two independent groups of rows on two threads (each row is deterministic, so the
+    // ledger does not depend on the schedule; the study's cache is thread-safe).
+    let (theory_rows, sim_rows) = std::thread::scope(|scope| {
+        let sims = scope.spawn(|| {
+            [
+                isolate(
+                    ClaimId::FiniteTime1,
+                    "finite-time convergence of g̃1 within (38)",
+                    finite_time::check(cfg, finite_time::Channel::Bending),
+                ),
+                isolate(
+                    ClaimId::FiniteTime2,
+                    "finite-time convergence of g̃2 within (39)",
+                    finite_time::check(cfg, finite_time::Channel::Torsion),
+                ),
+                isolate(
+                    ClaimId::FtdoVsDobc,
+                    "FTDO gives clearly better vibration suppression than DOBC",
+                    comparison::check(cfg, study),
+                ),
+            ]
+        });
+        let w = wbounds::check(cfg);
+        let m = mu::check(cfg, study);
+        let uub_row = match (&w, &m) {
+            (Ok(w), Ok(m)) => isolate(ClaimId::Uub, UUB_CLAIM, uub::check(cfg, w, m, study)),
+            _ => ClaimRow::inconclusive(
+                ClaimId::Uub,
+                UUB_CLAIM,
+                "not decided: it needs the W-bounds and mu-conditions rows, which could not be computed",
+            ),
+        };
+        let theory = [
+            isolate(ClaimId::WBounds, "0 ≤ λ2 κ ≤ W ≤ λ1 κ with the printed λ1, λ2, y1–y3", w.map(|w| w.row)),
+            isolate(ClaimId::MuConditions, "conditions on the gains and the η's make Ẇ ≤ −λW + ε", m.map(|m| m.row)),
+            uub_row,
+            isolate(ClaimId::Lemmas, "Lemmas 1–3", lemmas::check(cfg)),
+        ];
+        let sims = sims.join().unwrap_or_else(|_| {
+            [ClaimId::FiniteTime1, ClaimId::FiniteTime2, ClaimId::FtdoVsDobc]
+                .map(|id| ClaimRow::inconclusive(id, id.name(), "not decided: the computation panicked"))
+        });
+        (theory, sims)
+    });
+    let [w_row, m_row, uub_row, lemmas_row] = theory_rows;
+    let [ft1, ft2, cmp] = sim_rows;
+    let rows = vec![w_row, m_row, uub_row, ft1, ft2, lemmas_row, cmp];
     let mut ledger =
         Ledger { tool: format!("wingcheck {}", env!("CARGO_PKG_VERSION")), config_sha256: config_sha256(cfg), rows };
     // A non-finite value is a bug of the row that produced it: never print it, say so instead.

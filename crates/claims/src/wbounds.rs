@@ -137,27 +137,23 @@ fn richardson(c: f64, f: f64) -> f64 {
     (4.0 * f - c) / 3.0
 }
 
-fn dense_rows(m: &faer::Mat<f64>) -> Vec<Vec<f64>> {
-    (0..m.nrows()).map(|i| (0..m.ncols()).map(|j| m[(i, j)]).collect()).collect()
-}
-
 /// SDP cross-check at N = 2 (dimension 22): max λ s.t. W − λκ ⪰ 0 and max μ s.t. −W − μκ ⪰ 0
-/// (so λ1 = −μ), solved by clarabel. Returns (λ2, λ1, seconds).
+/// (so λ1 = −μ), solved by clarabel on the congruent problem ([`crate::sdp::max_lambda`]) and
+/// re-verified. Returns (λ2, λ1, seconds).
 pub fn sdp_cross_check(cfg: &Config, coupling: Coupling) -> Result<(f64, f64, f64), ClaimsError> {
     let f = lyapunov::assemble(&LyapunovParams::from_config(cfg, coupling, 2)).map_err(num("assembly"))?;
     let w = lyapunov::to_dense(&f.w);
-    let k = dense_rows(&lyapunov::to_dense(&f.kappa));
-    let neg_w: Vec<Vec<f64>> = dense_rows(&w).into_iter().map(|r| r.into_iter().map(|v| -v).collect()).collect();
-    let lower = wingcheck_lapack::sdp::max_generalized_lambda(&dense_rows(&w), &k)
-        .map_err(|e| ClaimsError::Numerical { what: "SDP".into(), detail: e.to_string() })?;
-    let upper = wingcheck_lapack::sdp::max_generalized_lambda(&neg_w, &k)
-        .map_err(|e| ClaimsError::Numerical { what: "SDP".into(), detail: e.to_string() })?;
-    match (lower.lambda, upper.lambda) {
-        (Some(l2), Some(m)) => Ok((l2, -m, lower.solve_time + upper.solve_time)),
-        _ => Err(ClaimsError::Numerical {
+    let k = lyapunov::to_dense(&f.kappa);
+    let neg_w = faer::Mat::from_fn(w.nrows(), w.ncols(), |i, j| -w[(i, j)]);
+    let lower = crate::sdp::max_lambda(&w, &k).map_err(num("SDP"))?;
+    let upper = crate::sdp::max_lambda(&neg_w, &k).map_err(num("SDP"))?;
+    if lower.accepted && upper.accepted {
+        Ok((lower.lambda_sdp, -upper.lambda_sdp, lower.seconds + upper.seconds))
+    } else {
+        Err(ClaimsError::Numerical {
             what: "SDP".into(),
-            detail: format!("clarabel status {:?} / {:?}", lower.status, upper.status),
-        }),
+            detail: format!("clarabel status {} / {} (not accepted after re-verification)", lower.status, upper.status),
+        })
     }
 }
 
