@@ -364,9 +364,24 @@ fn claim_figures(r: &wingcheck_claims::ClaimRow) -> Vec<Figure> {
             label: format!("{} plot {}", r.id, i + 1),
             title: pd.title.clone(),
             caption: Caption::default().t(pd.title.clone()).0,
-            chart: Chart::Line(pd.clone().into()),
+            chart: Chart::Line(held_as_steps(pd.clone())),
         })
         .collect()
+}
+
+/// The digital observer's outputs ĝ and the commands τ are held over a sample period (zero-order
+/// hold): sampled series of them against time are drawn as steps, not as dots.
+fn held_as_steps(mut pd: wingcheck_claims::PlotData) -> chart::LineChart {
+    let mut styles = Vec::with_capacity(pd.lines.len());
+    let over_time = pd.x_label.starts_with("t (");
+    for l in &mut pd.lines {
+        let held = over_time && l.points && (l.label.starts_with('ĝ') || l.label.starts_with('τ'));
+        if held {
+            l.points = false;
+        }
+        styles.push(if held { chart::LineStyle::Step } else { chart::LineStyle::Solid });
+    }
+    chart::LineChart { styles, ..chart::LineChart::from(pd) }
 }
 
 /// Render the page from the template.
