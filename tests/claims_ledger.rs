@@ -90,8 +90,17 @@ fn verdict_matches_evidence(l: &Ledger) {
                     Decision::Undecided => Verdict::Inconclusive,
                 };
                 assert_eq!(r.verdict, expect, "W-bounds");
-                // "W is positive definite" only where decided so
-                assert_eq!(r.summary.contains("W is positive definite"), d == Decision::Yes, "{}", r.summary);
+                // "W is positive definite" only where decided so and λ2* exceeds its stated error
+                let (l2, err) = (
+                    r.evidence["lambda2_tight"].as_f64().unwrap(),
+                    r.evidence["lambda2_tight_error"].as_f64().unwrap(),
+                );
+                assert_eq!(
+                    r.summary.contains("W is positive definite"),
+                    d == Decision::Yes && l2 > err,
+                    "{}",
+                    r.summary
+                );
             }
             ClaimId::MuConditions => {
                 assert_eq!(r.verdict == Verdict::Holds, r.evidence["satisfiable"] == true);

@@ -38,7 +38,8 @@ pub struct CrossCheck {
     /// |solver − closed form| relative to the problem's scale (ε: the value; λ3*: the largest
     /// row magnitude m_i, the scale to which the solver resolves a row).
     pub relative_difference: f64,
-    /// Solve time (s); not reproducible content.
+    /// Solve time (s); not reproducible content, so not serialised.
+    #[serde(skip)]
     pub seconds: f64,
 }
 

@@ -254,7 +254,8 @@ pub fn check(cfg: &Config, channel: Channel) -> Result<ClaimRow, ClaimsError> {
     })
 }
 
-fn sigma0_other(cfg: &Config, ix: usize) -> Result<f64, ClaimsError> {
+/// σ(0) of channel `ix` (0: bending, 1: torsion) from the configured initial state.
+pub fn sigma0_other(cfg: &Config, ix: usize) -> Result<f64, ClaimsError> {
     let c = reach::digital_config(cfg, cfg.observer.rule, cfg.observer.sample_period, 1.0);
     Ok(wingcheck_sim::Stepper::new(&c)?.channels[ix].sigma)
 }

@@ -22,7 +22,6 @@
 use std::collections::BTreeMap;
 use std::time::Instant;
 
-use num_rational::Ratio;
 use serde_json::{json, Value};
 use wingcheck_model::Config;
 
@@ -116,6 +115,15 @@ pub fn lemma2_ratio(span: f64, degree: usize, derivative: bool) -> Result<f64, C
     Ok(if derivative { unit } else { unit / (span * span) })
 }
 
+/// An exact rational as text: `p` for integers, `p/q` otherwise.
+fn exact_text(r: &num_rational::BigRational) -> String {
+    if r.is_integer() {
+        r.numer().to_string()
+    } else {
+        wingcheck_cert::exact::to_fraction_string(r)
+    }
+}
+
 /// Reaching time of Q̇ = −φ1 Q − φ2 Q^φ3 − ψ(t) from Q0 by RK4 in time, independent of (14)
 /// (s). Step h = 1% of the local time-to-go estimate Q/(|Q̇|(1 − φ3)) (so Q^{1−φ3}, the natural
 /// variable near 0, shrinks geometrically); stops when that estimate is below 1e-13·t and adds it.
@@ -145,7 +153,7 @@ pub fn lemma3_numeric(phi1: f64, phi2: f64, phi3: f64, q0: f64, psi: &dyn Fn(f64
 }
 
 /// Check Lemmas 1–3.
-pub fn check(_cfg: &Config) -> Result<ClaimRow, ClaimsError> {
+pub fn check(cfg: &Config) -> Result<ClaimRow, ClaimsError> {
     let clock = Instant::now();
     let mut ev: BTreeMap<String, Value> = BTreeMap::new();
     // Lemma 1.
@@ -154,39 +162,47 @@ pub fn check(_cfg: &Config) -> Result<ClaimRow, ClaimsError> {
     ev.insert("lemma1_max_ratio".into(), json!(l1));
     ev.insert("lemma1_holds".into(), json!(l1_holds));
     ev.insert("lemma1_sharp_constant".into(), json!(0.5));
-    // Lemma 2, printed and corrected, on the paper's span.
-    let span = 2.0;
+    // Lemma 2, printed and corrected, on the configured span f.
+    let span = cfg.wing.span;
     let mut printed = Vec::new();
     let mut corrected = Vec::new();
     for k in 1..=MAX_DEGREE {
         printed.push(lemma2_ratio(span, k, false)?);
         corrected.push(lemma2_ratio(span, k, true)?);
     }
-    let printed_holds = printed.iter().all(|&r| r <= 1.0);
     let corr_max = corrected.iter().cloned().fold(0.0, f64::max);
+    // Exact counterexample on [0, f]: ω = z^k with 2k + 1 > f²: ω(f)² = f^(2k) > f∫_0^f z^(2k) dz
+    // = f^(2k+2)/(2k+1); the corrected form f∫ω'² = k² f^(2k)/(2k−1) ≥ f^(2k) holds (k² ≥ 2k − 1).
+    let f = wingcheck_cert::exact::parse_rational(&format!("{span}"))
+        .unwrap_or_else(|_| num_rational::BigRational::from_integer(2.into()));
+    let k = ((span * span - 1.0) / 2.0).floor().max(0.0) as u32 + 1;
+    let k = (k..k + 4).find(|&k| num_rational::BigRational::from_integer((2 * k + 1).into()) > &f * &f).unwrap_or(k);
+    let f2k = num_traits::Pow::pow(&f, 2 * k);
+    let lhs = f2k.clone();
+    let rhs = &f2k * &f * &f / num_rational::BigRational::from_integer((2 * k + 1).into());
+    let rhs_corr = &f2k * num_rational::BigRational::from_integer((k * k).into())
+        / num_rational::BigRational::from_integer((2 * k - 1).into());
+    let cex = lhs > rhs;
+    let printed_holds = printed.iter().all(|&r| r <= 1.0) && !cex;
     ev.insert("lemma2_printed_ratio_by_degree".into(), json!(printed));
     ev.insert("lemma2_printed_holds".into(), json!(printed_holds));
     ev.insert("lemma2_corrected_ratio_by_degree".into(), json!(corrected));
     ev.insert("lemma2_corrected_max_ratio".into(), json!(corr_max));
-    // Exact counterexample: f = 2, ω(z) = z²: ω(2)² = 16, f ∫_0^2 z⁴ dz = 2 · 32/5 = 64/5.
-    let lhs = Ratio::<i64>::from_integer(16);
-    let rhs = Ratio::<i64>::from_integer(2) * Ratio::new(32, 5);
-    let cex = lhs > rhs;
-    // Corrected form on the same ω: 2 ∫_0^2 (2z)² dz = 2 · 32/3 = 64/3 ≥ 16.
-    let rhs_corr = Ratio::<i64>::from_integer(2) * Ratio::new(32, 3);
+    let show = |r: &num_rational::BigRational| wingcheck_cert::exact::to_f64(r);
     ev.insert(
         "lemma2_counterexample".into(),
-        json!({"f": 2, "omega": "z^2", "lhs_omega_f_sq": lhs.to_string(), "rhs_printed": rhs.to_string(),
-               "printed_violated": cex, "rhs_corrected": rhs_corr.to_string(), "corrected_holds": lhs <= rhs_corr}),
+        json!({"f": span, "omega": format!("z^{k}"), "lhs_omega_f_sq": exact_text(&lhs), "rhs_printed": exact_text(&rhs),
+               "printed_violated": cex, "rhs_corrected": exact_text(&rhs_corr), "corrected_holds": lhs <= rhs_corr}),
     );
-    // Lemma 3 on a parameter grid.
-    let p = 7.0 / 13.0;
+    // Lemma 3 on a parameter grid: p = a1/a2 of the configured observer, Q0 including σ2(0)²/2.
+    let p = cfg.observer.a1 as f64 / cfg.observer.a2 as f64;
+    let q0_config = 0.5 * crate::finite_time::sigma0_other(cfg, 1)?.powi(2);
     let (mut cases, mut max_err, mut ineq, mut viol) = (0, 0.0_f64, 0, 0);
     let (mut xs, mut ys) = (Vec::new(), Vec::new());
     for &phi1 in &[0.1, 1.6, 10.0] {
         for &phi2 in &[0.1, 2f64.powf(p) * 4.0, 50.0] {
             for &phi3 in &[0.1, p, 0.9] {
-                for &q0 in &[1e-4, 0.0277582623780638, 1.0, 100.0] {
+                for &q0 in &[1e-4, q0_config.max(1e-6), 1.0, 100.0] {
                     let exact = lemma3_time(phi1, phi2, phi3, q0)?;
                     let num = lemma3_numeric(phi1, phi2, phi3, q0, &|_| 0.0);
                     max_err = max_err.max((num - exact).abs() / exact);
@@ -220,14 +236,19 @@ pub fn check(_cfg: &Config) -> Result<ClaimRow, ClaimsError> {
     let summary = format!(
         "Lemma 1 (11) holds as printed but loosely: max ab/(a²/p + p b²) = {l1:.6} (the sharp form is \
          ab ≤ a²/(2p) + p b²/2, constant ½; a²/p − ab + p b² = (a/√p − √p b/2)² + ¾ p b² ≥ 0). Lemma 2 (12) is \
-         false as printed: on [0, 2] the best ratio ω(2)²/(2∫ω²) over polynomials with ω(0) = 0 grows with the degree \
-         ({r1:.2} at degree 1, {r8:.1} at degree {MAX_DEGREE}, unbounded); exact counterexample ω = z²: 16 > 64/5. \
+         {l2_verdict}: on [0, {span}] the best ratio ω(f)²/(f∫ω²) over polynomials with ω(0) = 0 grows with the degree \
+         ({r1:.3} at degree 1, {r8:.3} at degree {MAX_DEGREE}, unbounded as the degree grows); exact counterexample ω = z^{k}: \
+         ω(f)² = {cl:.4e} {cmp} f∫ω² = {cr:.4e}. \
          Corrected: ω(z)² ≤ z∫_0^z ω'² ≤ f∫_0^f ω'² (Cauchy–Schwarz), sharp constant 1 (max ratio found {corr_max:.12}, \
          attained by ω = z) — the form (36) actually uses. Lemma 3: (14) is the exact reaching time of \
          Q̇ = −φ1Q − φ2Q^φ3 (independent RK4: max relative difference {max_err:.1e} over {cases} cases) and bounds \
          every inequality case tried ({viol} violations in {ineq}); it is sharp.",
         r1 = printed[0],
         r8 = printed[MAX_DEGREE - 1],
+        l2_verdict = if printed_holds { "not refuted here" } else { "false as printed" },
+        cl = show(&lhs),
+        cr = show(&rhs),
+        cmp = if cex { ">" } else { "≤" },
     );
     let degrees: Vec<f64> = (1..=MAX_DEGREE).map(|k| k as f64).collect();
     let line = |label: &str, x: Vec<f64>, y: Vec<f64>, points: bool| Line { label: label.into(), x, y, points };
@@ -235,7 +256,7 @@ pub fn check(_cfg: &Config) -> Result<ClaimRow, ClaimsError> {
         PlotData {
             name: "lemmas-lemma2".into(),
             title: format!(
-                "Lemma 2 on [0, 2]: best ratio over polynomials of degree ≤ K; printed (12) reaches {:.1}, corrected form {:.6}",
+                "Lemma 2 on [0, {span}]: best ratio over polynomials of degree ≤ K; printed (12) reaches {:.1}, corrected form {:.6}",
                 printed[MAX_DEGREE - 1],
                 corr_max
             ),
@@ -279,10 +300,9 @@ pub fn check(_cfg: &Config) -> Result<ClaimRow, ClaimsError> {
         highlights: Vec::new(),
         assumptions: vec![
             "Lemma 2 read with ω̄ = ω̄(z) at any z ∈ [0, f]; searched at z = f (the worst point for increasing ω)".into(),
-            format!("Lemma 2 search space: polynomials Σ_{{k=1}}^K c_k z^k, K ≤ {MAX_DEGREE}, on the paper's span f = 2"),
-            "Lemma 3 grid: φ1 ∈ {0.1, 1.6, 10}, φ2 ∈ {0.1, 2^(7/13)·4, 50}, φ3 ∈ {0.1, 7/13, 0.9}, Q0 ∈ {1e-4, σ2(0)²/2, 1, 100}; \
-             inequality cases ψ = c φ2 (1 + sin 5t), c ∈ {0.1, 1}"
-                .into(),
+            format!("Lemma 2 search space: polynomials Σ_{{k=1}}^K c_k z^k, K ≤ {MAX_DEGREE}, on the configured span f = {span}"),
+            format!("Lemma 3 grid: φ1 ∈ {{0.1, 1.6, 10}}, φ2 ∈ {{0.1, 2^p·4, 50}}, φ3 ∈ {{0.1, p, 0.9}} with p = a1/a2 = {p:.6}, Q0 ∈ {{1e-4, σ2(0)²/2 = {q0_config:.4e}, 1, 100}}; \
+             inequality cases ψ = c φ2 (1 + sin 5t), c ∈ {{0.1, 1}}"),
         ],
         certificates: vec![],
         plots,

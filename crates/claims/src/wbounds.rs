@@ -344,7 +344,7 @@ pub fn summary(e: &WBoundsEvidence) -> (String, Option<String>) {
             let pd = if e.lambda2_tight > e.lambda2_tight_error {
                 "W is positive definite".to_string()
             } else {
-                format!("W is positive definite (a/b < ω₁), but λ2* is within its error of 0 at this resolution")
+                "a/b < ω₁ − its error, so W ≻ 0, though λ2* is within its stated error of 0 at this resolution".to_string()
             };
             (
                 format!("{printed}{structural}. At {rt} < {omega} {pd}: {tight}."),

@@ -64,12 +64,15 @@ pub struct Theory {
     pub uub_bound_q: Option<f64>,
 }
 
+/// (wing JSON, a, b, k1, k2 bits): everything the theory verdicts depend on.
+type VerdictKey = (String, u64, u64, u64, u64);
+
 /// Caches shared by all points of a search (thread-safe; values are pure functions of their
 /// keys, so caching never changes a result).
 pub struct TheoryCache {
     elements: usize,
     pencils: Mutex<HashMap<String, Arc<WPencil>>>,
-    verdicts: Mutex<HashMap<(String, u64, u64, u64, u64), Verdicts>>,
+    verdicts: Mutex<HashMap<VerdictKey, Verdicts>>,
     g_hmax: Mutex<HashMap<String, f64>>,
 }
 
