@@ -208,13 +208,23 @@ fn bench_search(cfg: &wingcheck_model::Config, as_json: bool) -> anyhow::Result<
     if let Some(l) = b.load_average {
         println!("machine: {} cores, load average {l:.2} when started (other processes share the cores)", b.cores);
     }
-    println!("threads  wall (s)  points/s  closed loop Σ (s)  theory Σ (s)  failed points");
+    println!("threads  wall (s)  points/s  CPU (s)  points/CPU-s  closed loop Σ (s)  theory Σ (s)  failed points");
     for r in &b.runs {
+        let cpu = r.cpu_seconds.map_or("-".to_string(), |c| format!("{c:.2}"));
+        let per_cpu = r.cpu_seconds.map_or("-".to_string(), |c| format!("{:.1}", b.points as f64 / c));
         println!(
-            "{:>7}  {:>8.2}  {:>8.1}  {:>17.2}  {:>12.2}  {:>13}",
-            r.threads, r.wall_seconds, r.points_per_second, r.closed_loop_seconds, r.theory_seconds, r.failed
+            "{:>7}  {:>8.2}  {:>8.1}  {:>7}  {:>12}  {:>17.2}  {:>12.2}  {:>13}",
+            r.threads,
+            r.wall_seconds,
+            r.points_per_second,
+            cpu,
+            per_cpu,
+            r.closed_loop_seconds,
+            r.theory_seconds,
+            r.failed
         );
     }
+    println!("(Σ columns are wall times summed over points: they include time the threads were preempted)");
     let n = b.points as f64;
     if let Some(r) = b.runs.first() {
         println!(

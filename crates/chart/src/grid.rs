@@ -233,7 +233,7 @@ pub fn grid_heatmap_svg(h: &GridHeatmap) -> Result<String, ChartError> {
         cb.configure_mesh()
             .disable_mesh()
             .disable_x_axis()
-            .y_labels(if log { (span.ceil() as usize + 1).clamp(2, 12) } else { 7 })
+            .y_labels(if log && span >= 1.0 { (span.ceil() as usize + 1).min(12) } else { 7 })
             .y_label_formatter(&|v| if log { decade_tick(*v, span) } else { tick(*v) })
             .label_style(("sans-serif", 12))
             .draw()

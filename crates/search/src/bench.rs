@@ -25,6 +25,20 @@ pub struct ThreadTiming {
     pub theory_seconds: f64,
     /// Points that failed (see failures.csv of a real run).
     pub failed: usize,
+    /// CPU time of the process during the run (user + system, s; Linux `/proc/self/stat`,
+    /// None elsewhere): on a shared machine, points per CPU-second is the load-independent figure.
+    pub cpu_seconds: Option<f64>,
+}
+
+/// User + system CPU time of this process (s), from `/proc/self/stat` (fields 14, 15, in the
+/// kernel's USER_HZ = 100 ticks per second).
+fn process_cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // fields after the parenthesised command name (which may contain spaces)
+    let rest = stat.rsplit_once(')')?.1;
+    let f: Vec<&str> = rest.split_whitespace().collect();
+    let ticks = f.get(11)?.parse::<f64>().ok()? + f.get(12)?.parse::<f64>().ok()?;
+    Some(ticks / 100.0)
 }
 
 /// The benchmark's result.
@@ -73,9 +87,10 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
     let mut finalize_seconds = 0.0;
     for (k, &threads) in thread_counts.iter().enumerate() {
         let dir = tmp.path().join(format!("run-{k}"));
-        let start = Instant::now();
+        let (start, cpu0) = (Instant::now(), process_cpu_seconds());
         let s = run(&search, &dir, RunControl { threads: Some(threads), ..Default::default() })?;
         let wall = start.elapsed().as_secs_f64();
+        let cpu_seconds = cpu0.zip(process_cpu_seconds()).map(|(a, b)| b - a);
         runs.push(ThreadTiming {
             threads,
             wall_seconds: wall,
@@ -83,6 +98,7 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
             closed_loop_seconds: s.sim_seconds,
             theory_seconds: s.theory_seconds,
             failed: s.failed,
+            cpu_seconds,
         });
         let start = Instant::now();
         finalize(&dir)?;

@@ -4,7 +4,7 @@
 //! `search` and `merge` write only into such a directory (of the same search), an empty one,
 //! or a new one, and refuse anything else. On failure they leave nothing behind: a directory
 //! they created (or found empty) is removed again unless it holds completed chunks, which a
-//! rerun resumes from. The final files are written all or nothing ([`store::write_set`]).
+//! rerun resumes from. The final files are written all or nothing ([`store::FileSet`]).
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -290,24 +290,23 @@ pub fn finalize(dir: &Path) -> Result<(Vec<String>, (usize, usize)), SearchError
     }
     let keys: Vec<String> = search.grid.axes.iter().map(|a| a.key.clone()).collect();
     let o = &search.options;
-    let mut files: Vec<(String, String)> = vec![
-        ("results.csv".into(), store::results_csv(&keys, &points)),
-        ("results.json".into(), store::results_json(&keys, &points)),
-        ("best.json".into(), store::best_json(&keys, &points, &o.best_metric, o.best_count)?),
-        ("failures.csv".into(), store::failures_csv(&keys, &points)),
-    ];
+    // each file is staged as soon as it is built, so only one file's text is in memory
+    let mut set = store::FileSet::new(dir);
+    set.stage("results.csv", &store::results_csv(&keys, &points))?;
+    set.stage("results.json", &store::results_json(&keys, &points))?;
+    set.stage("best.json", &store::best_json(&keys, &points, &o.best_metric, o.best_count)?)?;
+    set.stage("failures.csv", &store::failures_csv(&keys, &points))?;
     let cache = TheoryCache::new(o.lyapunov_elements);
     let rows = boundaries(&search, &points, &cache, o.refine);
-    files.push(("boundary.csv".into(), boundary_csv(&search.grid, &rows)));
+    set.stage("boundary.csv", &boundary_csv(&search.grid, &rows))?;
     if search.grid.axes.len() == 2 && search.grid.dims().iter().all(|&n| n >= 2) {
         for (metric, log) in [("rms_q_tip", true), ("rms_theta_tip", true), ("settling_time", false)] {
-            let svg = heatmap_svg(&search, &points, metric, log, &rows)?;
-            files.push((format!("heatmap-{metric}.svg"), svg));
+            set.stage(&format!("heatmap-{metric}.svg"), &heatmap_svg(&search, &points, metric, log, &rows)?)?;
         }
     }
-    files.push(("timings.csv".into(), store::timings_csv(&points)));
-    store::write_set(dir, &files)?;
+    set.stage("timings.csv", &store::timings_csv(&points))?;
+    let files = set.commit()?;
     let diverged = points.iter().filter(|p| p.status == Status::Diverged).count();
     let errors = points.iter().filter(|p| p.status == Status::Error).count();
-    Ok((files.into_iter().map(|(n, _)| n).collect(), (diverged, errors)))
+    Ok((files, (diverged, errors)))
 }

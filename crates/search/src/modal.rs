@@ -50,6 +50,12 @@ impl ModalBasis {
     pub fn new(cfg: &Config) -> Result<ModalBasis, SimError> {
         let disc = Discretisation::new(cfg);
         let n = disc.dim();
+        if n > crate::limits::MODAL_MAX_UNKNOWNS {
+            return Err(SimError::Numerical(format!(
+                "{n} unknowns: above the modal runner's {} (dense eigenproblem)",
+                crate::limits::MODAL_MAX_UNKNOWNS
+            )));
+        }
         let dense = |v: Vec<f64>| Mat::from_fn(n, n, |i, j| v[i * n + j]);
         let (m, k) = (dense(disc.mass.to_dense()), dense(disc.stiffness.to_dense()));
         let llt = m

@@ -184,13 +184,29 @@ pub fn point_json(keys: &[String], p: &PointResult) -> Value {
     })
 }
 
-/// `results.json`: `{"axes": [keys], "metrics": [names], "points": [point_json …]}`.
+/// The points of `results.json`, serialised one at a time (the JSON tree of one point exists
+/// only while it is written, so memory does not hold a tree of every point).
+struct PointsSeq<'a> {
+    keys: &'a [String],
+    points: &'a [PointResult],
+}
+
+impl Serialize for PointsSeq<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_seq(self.points.iter().map(|p| point_json(self.keys, p)))
+    }
+}
+
+/// `results.json`: `{"axes": [keys], "metrics": [names], "points": [point_json …]}` (keys in
+/// that order, as serde_json's map of a `json!` document sorts them).
 pub fn results_json(keys: &[String], points: &[PointResult]) -> String {
-    let doc = json!({
-        "axes": keys,
-        "metrics": METRICS,
-        "points": points.iter().map(|p| point_json(keys, p)).collect::<Vec<_>>(),
-    });
+    #[derive(Serialize)]
+    struct Doc<'a> {
+        axes: &'a [String],
+        metrics: &'a [&'a str],
+        points: PointsSeq<'a>,
+    }
+    let doc = Doc { axes: keys, metrics: &METRICS, points: PointsSeq { keys, points } };
     serde_json::to_string_pretty(&doc).expect("results serialise") + "\n"
 }
 
@@ -258,30 +274,58 @@ pub fn failures_csv(keys: &[String], points: &[PointResult]) -> String {
     out
 }
 
-/// Write a set of files into `dir` all or nothing: every file goes to a temp file in `dir`
-/// first (where a full disk shows), and only when all are written are they renamed into
-/// place; on a failure the temp files are removed and no file of the set is touched.
-pub fn write_set(dir: &Path, files: &[(String, String)]) -> Result<(), SearchError> {
-    use std::io::Write;
-    let tmp = |name: &str| dir.join(format!(".{name}.set-tmp-{}", std::process::id()));
-    let mut written = Vec::with_capacity(files.len());
-    let stage = |name: &str, text: &str| -> std::io::Result<()> {
-        let mut f = std::fs::File::create(tmp(name))?;
-        f.write_all(text.as_bytes())?;
-        f.sync_all()
-    };
-    for (name, text) in files {
-        written.push(name);
-        if let Err(e) = stage(name, text) {
-            for n in &written {
-                let _ = std::fs::remove_file(tmp(n));
+/// Writes a set of files into a directory all or nothing: [`FileSet::stage`] writes each file
+/// to a temp file in the directory at once (where a full disk shows, and so its text can be
+/// dropped), [`FileSet::commit`] renames them all into place; dropped without a commit (an
+/// error on the way), it removes its temp files and no file of the set is touched.
+pub struct FileSet {
+    dir: PathBuf,
+    staged: Vec<String>,
+    committed: bool,
+}
+
+impl FileSet {
+    /// An empty set for `dir`.
+    pub fn new(dir: &Path) -> FileSet {
+        FileSet { dir: dir.to_path_buf(), staged: Vec::new(), committed: false }
+    }
+
+    fn tmp(&self, name: &str) -> PathBuf {
+        self.dir.join(format!(".{name}.set-tmp-{}", std::process::id()))
+    }
+
+    /// Write `text` to the temp file of `name`.
+    pub fn stage(&mut self, name: &str, text: &str) -> Result<(), SearchError> {
+        use std::io::Write;
+        self.staged.push(name.to_string());
+        let tmp = self.tmp(name);
+        let write = || -> std::io::Result<()> {
+            let mut f = std::fs::File::create(&tmp)?;
+            f.write_all(text.as_bytes())?;
+            f.sync_all()
+        };
+        write().map_err(|e| SearchError::Io { path: self.dir.join(name).display().to_string(), detail: e.to_string() })
+    }
+
+    /// Rename every staged file into place; returns their names.
+    pub fn commit(mut self) -> Result<Vec<String>, SearchError> {
+        for name in &self.staged {
+            std::fs::rename(self.tmp(name), self.dir.join(name)).map_err(|e| SearchError::Io {
+                path: self.dir.join(name).display().to_string(),
+                detail: e.to_string(),
+            })?;
+        }
+        self.committed = true;
+        Ok(std::mem::take(&mut self.staged))
+    }
+}
+
+impl Drop for FileSet {
+    fn drop(&mut self) {
+        if !self.committed {
+            for name in &self.staged {
+                let _ = std::fs::remove_file(self.tmp(name));
             }
-            return Err(SearchError::Io { path: dir.join(name).display().to_string(), detail: e.to_string() });
         }
     }
-    for (name, _) in files {
-        std::fs::rename(tmp(name), dir.join(name))
-            .map_err(|e| SearchError::Io { path: dir.join(name).display().to_string(), detail: e.to_string() })?;
-    }
-    Ok(())
 }

@@ -120,3 +120,24 @@ fn a_failed_write_of_the_final_files_leaves_no_partial_result_set() {
     std::fs::remove_dir(dir.join(&blocker)).unwrap();
     assert!(wingcheck_search::finalize(&dir).is_ok());
 }
+
+#[test]
+fn the_estimate_takes_the_costliest_value_of_each_axis() {
+    // paper horizon 20 s: dt = 1e-4 gives 200 000 steps (observer sample 1 ms = 10 steps);
+    // 32 FE elements give 96 unknowns (3 per element)
+    let specs = vec!["discretisation.dt=1e-3,1e-4".to_string(), "discretisation.elements=16,32".to_string()];
+    let s = Search::new(Config::paper(), &specs, SearchOptions::default()).unwrap();
+    let w = s.estimate();
+    assert_eq!((w.points, w.steps_per_point, w.unknowns), (4, 200_000, 96));
+    // every point is charged the costliest corner (dt = 1e-4 and 32 elements): 4 × that
+    // corner's single-point estimate
+    let corner = Search::new(
+        apply_overrides(&Config::paper(), &["discretisation.dt=1e-4".into(), "discretisation.elements=32".into()])
+            .unwrap(),
+        &["control.a=1".into()],
+        SearchOptions::default(),
+    )
+    .unwrap()
+    .estimate();
+    assert!((w.core_seconds - 4.0 * corner.core_seconds).abs() <= 1e-12 * w.core_seconds, "{w:?} vs {corner:?}");
+}

@@ -88,3 +88,14 @@ fn other_discretisations_and_wings() {
         1e-7,
     );
 }
+
+#[test]
+fn large_wings_run_the_simulator_itself() {
+    // FE with 240 elements = 720 unknowns > MODAL_MAX_UNKNOWNS: the fallback path is the
+    // simulator, so the trace equals simulate's exactly.
+    let c = cfg(&["horizon.t_end=0.02", "discretisation.elements=240"]);
+    assert!(wingcheck_search::modal::ModalBasis::new(&c).is_err());
+    let fast = closed_loop(&c, &RunCache::new()).unwrap();
+    let reference = TipTrace::from_series(&simulate(&c, RunOptions::default()).unwrap().series);
+    assert_eq!(fast, reference);
+}
