@@ -61,27 +61,6 @@ pub fn log_ticks(lo: f64, hi: f64, data: &[f64]) -> Vec<f64> {
     out
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn linear_ticks_are_round() {
-        assert_eq!(linear_ticks(0.0, 20.0, 5), vec![0.0, 5.0, 10.0, 15.0, 20.0]);
-        assert_eq!(linear_ticks(-0.11, 0.11, 4), vec![-0.1, -0.05, 0.0, 0.05, 0.1]);
-    }
-
-    #[test]
-    fn log_ticks_use_the_data_or_decades() {
-        // A grid study at N = 2, 4, 8, 16: the ticks are those N.
-        assert_eq!(log_ticks(1.8, 18.0, &[2.0, 4.0, 8.0, 16.0, 2.0]), vec![2.0, 4.0, 8.0, 16.0]);
-        // Many decades: powers of ten.
-        assert_eq!(log_ticks(0.5e-3, 2e2, &[]), vec![1e-3, 1e-2, 1e-1, 1.0, 1e1, 1e2]);
-        // Less than two decades, no data: 1-2-5.
-        assert_eq!(log_ticks(0.9, 30.0, &[]), vec![1.0, 2.0, 5.0, 10.0, 20.0]);
-    }
-}
-
 /// A plotters coordinate with tick positions chosen here ([`linear_ticks`], [`log_ticks`])
 /// instead of plotters' own (which give a single tick on short log axes).
 pub struct Ticked<R> {
@@ -118,5 +97,26 @@ impl<R: plotters::coord::ranged1d::Ranged<ValueType = f64>> plotters::coord::ran
 
     fn axis_pixel_range(&self, limit: (i32, i32)) -> std::ops::Range<i32> {
         self.inner.axis_pixel_range(limit)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn linear_ticks_are_round() {
+        assert_eq!(linear_ticks(0.0, 20.0, 5), vec![0.0, 5.0, 10.0, 15.0, 20.0]);
+        assert_eq!(linear_ticks(-0.11, 0.11, 4), vec![-0.1, -0.05, 0.0, 0.05, 0.1]);
+    }
+
+    #[test]
+    fn log_ticks_use_the_data_or_decades() {
+        // A grid study at N = 2, 4, 8, 16: the ticks are those N.
+        assert_eq!(log_ticks(1.8, 18.0, &[2.0, 4.0, 8.0, 16.0, 2.0]), vec![2.0, 4.0, 8.0, 16.0]);
+        // Many decades: powers of ten.
+        assert_eq!(log_ticks(0.5e-3, 2e2, &[]), vec![1e-3, 1e-2, 1e-1, 1.0, 1e1, 1e2]);
+        // Less than two decades, no data: 1-2-5.
+        assert_eq!(log_ticks(0.9, 30.0, &[]), vec![1.0, 2.0, 5.0, 10.0, 20.0]);
     }
 }
