@@ -416,12 +416,7 @@ impl RegionMap {
                     BLACK.stroke_width(px(1)),
                 ))
                 .map_err(e)?;
-                side.draw(&Text::new(
-                    crate::stats::fmt_num(t),
-                    (bx + bw + px(8) as i32, yy - px(8) as i32),
-                    font.clone(),
-                ))
-                .map_err(e)?;
+                side.draw(&Text::new(tick(t), (bx + bw + px(8) as i32, yy - px(8) as i32), font.clone())).map_err(e)?;
             }
             let mut y = by + bh + px(40) as i32;
             let x = px(12) as i32;
