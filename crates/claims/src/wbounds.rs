@@ -302,7 +302,9 @@ pub fn evidence(cfg: &Config) -> Result<WBoundsEvidence, ClaimsError> {
 pub fn verdict(e: &WBoundsEvidence) -> (Verdict, Basis) {
     match e.w_positive_definite {
         Decision::Yes => (Verdict::HoldsAfterCorrection, Basis::FloatSolver),
-        Decision::No => (Verdict::Fails, if e.witness_w.is_some() { Basis::ExactCertificate } else { Basis::Analytic }),
+        Decision::No => {
+            (Verdict::Fails, if e.witness_w.is_some() { Basis::ExactCertificate } else { Basis::FloatSolver })
+        }
         Decision::Undecided => (Verdict::Inconclusive, Basis::FloatSolver),
     }
 }
