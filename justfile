@@ -23,6 +23,7 @@ report:
 check:
     cargo run --release -- check
 
-# Render the report with headless Chromium (apt-get install chromium) for a person to look at.
-screenshot:
-    chromium --headless --no-sandbox --disable-gpu --disable-quic --no-first-run --disable-background-networking --disable-component-update --disable-sync --user-data-dir=$(mktemp -d) --window-size=1400,4000 --screenshot=reports/paper/screenshot.png reports/paper/index.html
+# Screenshots of the report (top of the page and every section) with headless Chromium, into
+# target/screenshots/, for a person to look at. Works without just: scripts/screenshot.sh.
+screenshot report="reports/paper" out="target/screenshots":
+    bash scripts/screenshot.sh {{report}} {{out}}

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use wingcheck_report::{write_report, Progress, ReportOptions};
+use wingcheck_report::{write_report, Overall, ReportOptions};
 
 use super::common::{progress_bar, ConfigArgs};
 
@@ -22,15 +22,17 @@ pub struct ReportArgs {
 pub fn run(a: ReportArgs) -> anyhow::Result<()> {
     let cfg = a.config.load()?;
     a.work.guard(&wingcheck_model::work::WorkEstimate::report(&cfg))?;
-    let bar = progress_bar(1, "report");
-    let on_progress = |p: Progress| {
+    // One bar over the whole report (per mille of the overall fraction): it never restarts.
+    let bar = progress_bar(1000, "report");
+    let on_progress = |p: Overall| {
         if let Some(b) = &bar {
             b.set_message(format!("report: {}", p.stage));
-            b.set_length(p.total as u64);
-            b.set_position(p.done as u64);
+            b.set_position((p.fraction * 1000.0).round() as u64);
         }
     };
-    let summary = write_report(&cfg, &a.out, &ReportOptions { progress: Some(&on_progress) })?;
+    let command_line = std::env::args().collect::<Vec<_>>().join(" ");
+    let opts = ReportOptions { progress: None, overall: Some(&on_progress), command_line: Some(&command_line) };
+    let summary = write_report(&cfg, &a.out, &opts)?;
     if let Some(b) = bar {
         b.finish_and_clear();
     }

@@ -1,10 +1,19 @@
 //! Heatmaps of a field v(z,t) (t on x, z on y) with a colour bar; diverging colour map
 //! symmetric about 0 (blue < 0 < red).
+//!
+//! The field is a PNG raster (one pixel per displayed pixel, bilinear in t and z between the
+//! samples, so span rows do not show as bands) embedded in the SVG as a data URI; axes, ticks,
+//! labels and the colour bar stay vector. The colour scale is ±max |v| over t ≥
+//! [`Heatmap::scale_from`]: the large initial condition would otherwise wash out the residual
+//! motion; earlier values saturate, and a dashed line marks where the scale starts.
 
+use base64::Engine;
 use plotters::prelude::*;
 
+use plotters::coord::types::RangedCoordf64;
+
 use crate::ChartError;
-use crate::{tick, tick_linear, SIZE};
+use crate::{linear_ticks, px, scaled_svg_header, tick, tick_linear, Ticked, CANVAS, SCALE};
 
 /// A field sampled on a (t, z) grid.
 #[derive(Debug, Clone)]
@@ -19,10 +28,9 @@ pub struct Heatmap {
     pub values: Vec<Vec<f64>>,
     /// Label of the colour bar (quantity and unit).
     pub value_label: String,
+    /// The colour scale is set by the samples with t ≥ this (s).
+    pub scale_from: f64,
 }
-
-/// Time columns drawn at most (the CSV has every sample).
-const MAX_COLUMNS: usize = 250;
 
 impl Heatmap {
     /// The data as CSV: one row per sample time, one column per grid point.
@@ -40,6 +48,23 @@ impl Heatmap {
             out.push('\n');
         }
         out
+    }
+
+    /// Half-width of the colour scale: max |v| over t ≥ `scale_from` (1 if that is 0).
+    pub fn scale(&self) -> f64 {
+        let m = self
+            .t
+            .iter()
+            .zip(&self.values)
+            .filter(|(t, _)| **t >= self.scale_from)
+            .flat_map(|(_, row)| row.iter())
+            .filter(|v| v.is_finite())
+            .fold(0.0_f64, |m, v| m.max(v.abs()));
+        if m > 0.0 {
+            m
+        } else {
+            1.0
+        }
     }
 }
 
@@ -61,50 +86,79 @@ fn coolwarm(u: f64) -> RGBColor {
     RGBColor(c(0), c(1), c(2))
 }
 
-/// Cell edges around increasing centres: midpoints, ends at the first/last centre.
-fn edges(c: &[f64]) -> Vec<f64> {
+/// Index k and weight w with x = (1−w)·c[k] + w·c[k+1] (clamped to the ends).
+fn locate(c: &[f64], x: f64) -> (usize, f64) {
     let n = c.len();
-    let mut e = Vec::with_capacity(n + 1);
-    e.push(c[0]);
-    for i in 1..n {
-        e.push(0.5 * (c[i - 1] + c[i]));
-    }
-    e.push(c[n - 1]);
-    e
+    let k = c.partition_point(|v| *v <= x).saturating_sub(1).min(n - 2);
+    let w = ((x - c[k]) / (c[k + 1] - c[k])).clamp(0.0, 1.0);
+    (k, if w.is_finite() { w } else { 0.0 })
 }
 
-/// Render the heatmap as an SVG document.
+/// Colour levels of the raster (an indexed PNG: one byte per pixel, small files).
+const LEVELS: usize = 128;
+
+/// PNG (indexed colour, [`LEVELS`] levels of [`coolwarm`]) of the field on a `w × h` pixel
+/// raster covering [t0, t1] × [z0, z1], top row = z1.
+fn raster_png(h: &Heatmap, w: usize, hgt: usize, vmax: f64) -> Result<Vec<u8>, String> {
+    let (t0, t1) = (h.t[0], h.t[h.t.len() - 1]);
+    let (z0, z1) = (h.z[0], h.z[h.z.len() - 1]);
+    let cols: Vec<(usize, f64)> = (0..w).map(|i| locate(&h.t, t0 + (t1 - t0) * (i as f64 + 0.5) / w as f64)).collect();
+    let rows: Vec<(usize, f64)> =
+        (0..hgt).map(|j| locate(&h.z, z1 - (z1 - z0) * (j as f64 + 0.5) / hgt as f64)).collect();
+    let mut data = Vec::with_capacity(w * hgt);
+    for &(j, wz) in &rows {
+        for &(k, wt) in &cols {
+            let v = |kk: usize, jj: usize| h.values[kk][jj];
+            let a = (1.0 - wz) * v(k, j) + wz * v(k, j + 1);
+            let b = (1.0 - wz) * v(k + 1, j) + wz * v(k + 1, j + 1);
+            let u = (0.5 + 0.5 * ((1.0 - wt) * a + wt * b) / vmax).clamp(0.0, 1.0);
+            let u = if u.is_finite() { u } else { 0.5 };
+            data.push(((u * LEVELS as f64) as usize).min(LEVELS - 1) as u8);
+        }
+    }
+    let palette: Vec<u8> = (0..LEVELS)
+        .flat_map(|i| {
+            let c = coolwarm((i as f64 + 0.5) / LEVELS as f64);
+            [c.0, c.1, c.2]
+        })
+        .collect();
+    let mut out = Vec::new();
+    {
+        let mut enc = png::Encoder::new(&mut out, w as u32, hgt as u32);
+        enc.set_color(png::ColorType::Indexed);
+        enc.set_depth(png::BitDepth::Eight);
+        enc.set_palette(palette);
+        enc.set_compression(png::Compression::Default);
+        let mut wr = enc.write_header().map_err(|e| e.to_string())?;
+        wr.write_image_data(&data).map_err(|e| e.to_string())?;
+    }
+    Ok(out)
+}
+
+/// Render the heatmap as an SVG document (raster field, vector axes).
 pub fn heatmap_svg(h: &Heatmap) -> Result<String, ChartError> {
     let err = |e: String| ChartError { name: h.name.clone(), detail: e };
-    if h.t.len() < 2 || h.z.len() < 2 || h.values.len() != h.t.len() {
-        return Err(err("need at least 2 times and 2 grid points".into()));
+    if h.t.len() < 2 || h.z.len() < 2 || h.values.len() != h.t.len() || h.values.iter().any(|r| r.len() != h.z.len()) {
+        return Err(err("need at least 2 times and 2 grid points, and one value per (t, z)".into()));
     }
-    let vmax = h.values.iter().flatten().filter(|v| v.is_finite()).fold(0.0_f64, |m, v| m.max(v.abs()));
-    let vmax = if vmax > 0.0 { vmax } else { 1.0 };
-    let stride = h.t.len().div_ceil(MAX_COLUMNS);
-    let cols: Vec<usize> = (0..h.t.len()).step_by(stride).collect();
-    let tc: Vec<f64> = cols.iter().map(|&k| h.t[k]).collect();
-    let te = edges(&tc);
-    let ze = edges(&h.z);
+    let vmax = h.scale();
+    let (t0, t1) = (h.t[0], h.t[h.t.len() - 1]);
+    let (z0, z1) = (h.z[0], h.z[h.z.len() - 1]);
     let mut svg = String::new();
+    let plot_px;
     {
-        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, CANVAS).into_drawing_area();
         root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
-        let (main, bar) = root.split_horizontally(SIZE.0 - 120);
+        let (main, bar) = root.split_horizontally(CANVAS.0 - px(130));
         let mut chart = ChartBuilder::on(&main)
-            .margin(12)
-            .x_label_area_size(44)
-            .y_label_area_size(60)
-            .build_cartesian_2d(te[0]..te[te.len() - 1], ze[0]..ze[ze.len() - 1])
+            .margin(px(12))
+            .x_label_area_size(px(46))
+            .y_label_area_size(px(64))
+            .build_cartesian_2d(
+                Ticked::<RangedCoordf64>::new(t0..t1, linear_ticks(t0, t1, 10)),
+                Ticked::<RangedCoordf64>::new(z0..z1, linear_ticks(z0, z1, 5)),
+            )
             .map_err(|e| err(e.to_string()))?;
-        let mut cells = Vec::with_capacity(cols.len() * h.z.len());
-        for (c, &k) in cols.iter().enumerate() {
-            for j in 0..h.z.len() {
-                let color = coolwarm(0.5 + 0.5 * h.values[k][j] / vmax);
-                cells.push(Rectangle::new([(te[c], ze[j]), (te[c + 1], ze[j + 1])], color.filled()));
-            }
-        }
-        chart.draw_series(cells).map_err(|e| err(e.to_string()))?;
         chart
             .configure_mesh()
             .disable_mesh()
@@ -112,19 +166,31 @@ pub fn heatmap_svg(h: &Heatmap) -> Result<String, ChartError> {
             .y_desc("z (m)")
             .x_label_formatter(&|v| tick(*v))
             .y_label_formatter(&|v| tick(*v))
-            .label_style(("sans-serif", 14))
-            .axis_desc_style(("sans-serif", 15))
+            .label_style(("sans-serif", px(18)))
+            .axis_desc_style(("sans-serif", px(19)))
+            .axis_style(BLACK.stroke_width(px(1)))
+            .set_all_tick_mark_size(px(5))
             .draw()
             .map_err(|e| err(e.to_string()))?;
+        plot_px = chart.plotting_area().get_pixel_range();
+        if h.scale_from > t0 && h.scale_from < t1 {
+            chart
+                .draw_series(DashedLineSeries::new(
+                    vec![(h.scale_from, z0), (h.scale_from, z1)],
+                    px(6),
+                    px(4),
+                    BLACK.mix(0.7).stroke_width(px(2)),
+                ))
+                .map_err(|e| err(e.to_string()))?;
+        }
 
         let mut cb = ChartBuilder::on(&bar)
-            .margin_top(12)
-            .margin_bottom(56)
-            .margin_left(10)
-            .margin_right(4)
-            .right_y_label_area_size(64)
-            .caption(h.value_label.as_str(), ("sans-serif", 14))
-            .build_cartesian_2d(0.0..1.0, -vmax..vmax)
+            .margin_top(px(28))
+            .margin_bottom(px(58))
+            .margin_left(px(10))
+            .margin_right(px(4))
+            .right_y_label_area_size(px(70))
+            .build_cartesian_2d(0.0..1.0, Ticked::<RangedCoordf64>::new(-vmax..vmax, linear_ticks(-vmax, vmax, 6)))
             .map_err(|e| err(e.to_string()))?;
         let steps = 64;
         cb.draw_series((0..steps).map(|i| {
@@ -136,14 +202,37 @@ pub fn heatmap_svg(h: &Heatmap) -> Result<String, ChartError> {
         cb.configure_mesh()
             .disable_mesh()
             .disable_x_axis()
-            .y_labels(7)
             .y_label_formatter(&|v| tick_linear(*v, 2.0 * vmax))
-            .label_style(("sans-serif", 13))
+            .label_style(("sans-serif", px(17)))
+            .axis_style(BLACK.stroke_width(px(1)))
+            .set_all_tick_mark_size(px(4))
             .draw()
             .map_err(|e| err(e.to_string()))?;
+        bar.draw(&Text::new(
+            h.value_label.clone(),
+            (px(8) as i32, px(6) as i32),
+            ("sans-serif", px(18)).into_font().color(&BLACK),
+        ))
+        .map_err(|e| err(e.to_string()))?;
         root.present().map_err(|e| err(e.to_string()))?;
     }
-    Ok(svg)
+    // The raster, one pixel per displayed pixel, placed under the axes (right after the
+    // background rectangle, so the axis lines are drawn over its border).
+    let (xr, yr) = plot_px;
+    let (w, hgt) =
+        (((xr.end - xr.start) as u32 / SCALE).max(2) as usize, ((yr.end - yr.start) as u32 / SCALE).max(2) as usize);
+    let png = raster_png(h, w, hgt, vmax).map_err(err)?;
+    let image = format!(
+        "<image x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" preserveAspectRatio=\"none\" href=\"data:image/png;base64,{}\"/>\n",
+        xr.start,
+        yr.start,
+        xr.end - xr.start,
+        yr.end - yr.start,
+        base64::engine::general_purpose::STANDARD.encode(png)
+    );
+    let at = svg.find("/>\n").map(|i| i + 3).ok_or_else(|| err("unexpected SVG layout".into()))?;
+    svg.insert_str(at, &image);
+    Ok(scaled_svg_header(svg))
 }
 
 #[cfg(test)]
@@ -156,5 +245,13 @@ mod tests {
         assert_eq!(coolwarm(0.0), RGBColor(59, 76, 192));
         assert_eq!(coolwarm(0.5), RGBColor(242, 242, 242));
         assert_eq!(coolwarm(1.0), RGBColor(180, 4, 38));
+    }
+
+    #[test]
+    fn locate_interpolates_and_clamps() {
+        let c = [0.0, 1.0, 3.0];
+        assert_eq!(locate(&c, 2.0), (1, 0.5));
+        assert_eq!(locate(&c, -1.0), (0, 0.0));
+        assert_eq!(locate(&c, 5.0), (1, 1.0));
     }
 }

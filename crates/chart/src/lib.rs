@@ -6,14 +6,23 @@
 //! writes labels as SVG `<text>` elements (font chosen by the viewer) and plotters only
 //! *estimates* their width, so no system font is ever read.
 
+//!
+//! Resolution: plotters' SVG backend writes integer coordinates, which turns smooth curves
+//! into false one-pixel staircases. Line charts and field maps are therefore drawn on a canvas
+//! [`SCALE`] times the displayed size and the SVG's `viewBox` maps it back
+//! ([`scaled_svg_header`]): curves are placed to 1/[`SCALE`] px. Fields are embedded as PNG
+//! rasters with vector axes ([`heatmap_svg`]).
+
 mod field;
 mod grid;
 mod line;
+mod ticks;
 
 pub use field::{heatmap_svg, Heatmap};
 pub use grid::{grid_heatmap_svg, GridAxis, GridHeatmap, Mark, MarkShape};
-pub use line::line_svg;
+pub use line::{line_svg, LineChart, LineStyle};
 pub use plotters::style::RGBColor;
+pub use ticks::{linear_ticks, log_ticks, Ticked};
 
 /// A chart could not be drawn.
 #[derive(Debug, thiserror::Error)]
@@ -25,8 +34,27 @@ pub struct ChartError {
     pub detail: String,
 }
 
-/// Width and height (px) of every chart.
+/// Displayed width and height (px) of every chart.
 pub const SIZE: (u32, u32) = (980, 440);
+
+/// Drawing-canvas pixels per displayed pixel.
+pub const SCALE: u32 = 4;
+
+/// `v` displayed pixels in canvas pixels.
+pub const fn px(v: u32) -> u32 {
+    v * SCALE
+}
+
+/// The canvas size.
+pub const CANVAS: (u32, u32) = (SIZE.0 * SCALE, SIZE.1 * SCALE);
+
+/// Replace the root element's `width`/`height` (canvas pixels) by the displayed size, keeping
+/// the canvas `viewBox`.
+pub fn scaled_svg_header(svg: String) -> String {
+    let from = format!("<svg width=\"{}\" height=\"{}\"", CANVAS.0, CANVAS.1);
+    let to = format!("<svg width=\"{}\" height=\"{}\"", SIZE.0, SIZE.1);
+    svg.replacen(&from, &to, 1)
+}
 
 /// Line colours (the "tab10" palette).
 pub const PALETTE: [RGBColor; 8] = [
@@ -62,6 +90,31 @@ pub fn tick(v: f64) -> String {
             None => s,
         }
     }
+}
+
+/// Whether `v` is an integer power of ten (to rounding).
+fn is_decade(v: f64) -> bool {
+    v > 0.0 && (v.log10() - v.log10().round()).abs() < 1e-9
+}
+
+/// 10^k with a superscript exponent (`10⁻³`).
+pub fn decade_label(v: f64) -> String {
+    const SUP: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
+    let k = v.log10().round() as i32;
+    let mut s = String::from("10");
+    if k < 0 {
+        s.push('⁻');
+    }
+    for d in k.unsigned_abs().to_string().bytes() {
+        s.push(SUP[(d - b'0') as usize]);
+    }
+    s
+}
+
+/// Labels of log-axis ticks in one format: all as 10ᵏ when every tick is a power of ten and
+/// some lie outside [0.01, 1000], else [`tick`] for all.
+pub fn log_labels(ticks: &[f64]) -> bool {
+    ticks.iter().all(|t| is_decade(*t)) && ticks.iter().any(|t| !(1e-2..=1e3).contains(t))
 }
 
 /// Tick label on a linear axis spanning `span`: values that are round-off away from 0

@@ -1,115 +1,289 @@
-//! Line / point charts of a [`PlotData`] (linear or logarithmic axes).
+//! Line / point / step charts of a [`PlotData`] (linear or logarithmic axes), with the legend
+//! in a panel beside the plot (never over the data), optional zoomed x range, vertical
+//! markers (e.g. a reaching time t_f), horizontal reference levels (a threshold) and dashed
+//! reference lines (e.g. an O(h²) slope).
 
+use plotters::coord::combinators::LogCoord;
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use wingcheck_claims::PlotData;
 
 use crate::ChartError;
-use crate::{padded_range, tick_linear, PALETTE, SIZE};
+use crate::{
+    decade_label, linear_ticks, log_labels, log_ticks, padded_range, px, scaled_svg_header, tick, tick_linear, Ticked,
+    CANVAS, PALETTE,
+};
 
-/// Render `pd` as an SVG document (log axes and point markers as the data asks).
-pub fn line_svg(pd: &PlotData) -> Result<String, ChartError> {
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
-        let err = |e: String| ChartError { name: pd.name.clone(), detail: e };
-        root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
-        let xs = padded_range(pd.lines.iter().flat_map(|l| l.x.iter().copied()), pd.log_x);
-        let ys = padded_range(
-            pd.lines.iter().flat_map(|l| l.x.iter().zip(&l.y).filter(|(x, _)| !pd.log_x || **x > 0.0).map(|(_, y)| *y)),
-            pd.log_y,
-        );
-        let x_lin = xs.0..xs.1;
-        let y_lin = ys.0..ys.1;
-        // Spans for the round-off snapping of linear tick labels (0: log axis, no snapping).
-        let spans = (if pd.log_x { 0.0 } else { xs.1 - xs.0 }, if pd.log_y { 0.0 } else { ys.1 - ys.0 });
-        let r = match (pd.log_x, pd.log_y) {
-            (false, false) => draw(&root, pd, x_lin, y_lin, spans),
-            (true, false) => draw(&root, pd, x_lin.log_scale(), y_lin, spans),
-            (false, true) => draw(&root, pd, x_lin, y_lin.log_scale(), spans),
-            (true, true) => draw(&root, pd, x_lin.log_scale(), y_lin.log_scale(), spans),
-        };
-        r.map_err(err)?;
-        root.present().map_err(|e| err(e.to_string()))?;
-    }
-    Ok(svg)
+/// How a line is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum LineStyle {
+    /// Polyline through the samples (or markers when the line asks for points).
+    #[default]
+    Solid,
+    /// Zero-order hold: the value is held until the next sample (sampled signals).
+    Step,
+    /// Dashed polyline (reference lines, bounds).
+    Dashed,
 }
 
-fn draw<X, Y>(root: &DrawingArea<SVGBackend, Shift>, pd: &PlotData, x: X, y: Y, spans: (f64, f64)) -> Result<(), String>
+/// A chart: the data and how to show it.
+#[derive(Debug, Clone)]
+pub struct LineChart {
+    /// The data (labels with units, lines).
+    pub data: PlotData,
+    /// Style per line (missing entries: [`LineStyle::Solid`]).
+    pub styles: Vec<LineStyle>,
+    /// Show only this x range (the data outside is still in the CSV).
+    pub x_range: Option<(f64, f64)>,
+    /// Vertical markers at x with a label (e.g. `t_f = 0.054 s`).
+    pub vlines: Vec<(f64, String)>,
+    /// Horizontal levels at y with a label (e.g. the |g̃| threshold).
+    pub hlines: Vec<(f64, String)>,
+}
+
+impl From<PlotData> for LineChart {
+    fn from(data: PlotData) -> Self {
+        LineChart { data, styles: Vec::new(), x_range: None, vlines: Vec::new(), hlines: Vec::new() }
+    }
+}
+
+impl LineChart {
+    fn style(&self, i: usize) -> LineStyle {
+        self.styles.get(i).copied().unwrap_or_default()
+    }
+}
+
+/// Width (displayed px) of the legend panel right of the plot.
+const LEGEND_W: u32 = 230;
+
+/// Render the chart as an SVG document.
+pub fn line_svg(c: &LineChart) -> Result<String, ChartError> {
+    let pd = &c.data;
+    let err = |e: String| ChartError { name: pd.name.clone(), detail: e };
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, CANVAS).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
+        let labelled = pd.lines.iter().any(|l| !l.label.is_empty()) || !c.vlines.is_empty() || !c.hlines.is_empty();
+        let (plot, legend) = if labelled {
+            let (a, b) = root.split_horizontally(CANVAS.0 - px(LEGEND_W));
+            (a, Some(b))
+        } else {
+            (root.clone(), None)
+        };
+        let in_x = |x: f64| c.x_range.is_none_or(|(a, b)| x >= a && x <= b);
+        let xs = match c.x_range {
+            Some((a, b)) if b > a => (a, b),
+            _ => padded_range(pd.lines.iter().flat_map(|l| l.x.iter().copied()), pd.log_x),
+        };
+        let ys = padded_range(
+            pd.lines
+                .iter()
+                .flat_map(|l| {
+                    l.x.iter().zip(&l.y).filter(|(x, _)| (!pd.log_x || **x > 0.0) && in_x(**x)).map(|(_, y)| *y)
+                })
+                .chain(c.hlines.iter().map(|h| h.0)),
+            pd.log_y,
+        );
+        let data_x: Vec<f64> = pd.lines.iter().flat_map(|l| l.x.iter().copied()).collect();
+        let xt = if pd.log_x { log_ticks(xs.0, xs.1, &data_x) } else { linear_ticks(xs.0, xs.1, 8) };
+        let yt = if pd.log_y { log_ticks(ys.0, ys.1, &[]) } else { linear_ticks(ys.0, ys.1, 6) };
+        // Tick label style per axis: a linear span (round-off snapping), or log (10ᵏ or plain).
+        let spans = (
+            if pd.log_x { -(log_labels(&xt) as u8 as f64) } else { xs.1 - xs.0 },
+            if pd.log_y { -(log_labels(&yt) as u8 as f64) } else { ys.1 - ys.0 },
+        );
+        let (xr, yr) = (xs.0..xs.1, ys.0..ys.1);
+        let r = match (pd.log_x, pd.log_y) {
+            (false, false) => draw(&plot, c, lin(xr, xt), lin(yr, yt), spans),
+            (true, false) => draw(&plot, c, log(xr, xt), lin(yr, yt), spans),
+            (false, true) => draw(&plot, c, lin(xr, xt), log(yr, yt), spans),
+            (true, true) => draw(&plot, c, log(xr, xt), log(yr, yt), spans),
+        };
+        r.map_err(err)?;
+        if let Some(area) = legend {
+            draw_legend(&area, c).map_err(err)?;
+        }
+        root.present().map_err(|e| err(e.to_string()))?;
+    }
+    Ok(scaled_svg_header(svg))
+}
+
+/// A tick label: `span` is the linear axis span, or on a log axis −1 for 10ᵏ labels.
+fn label(v: f64, log: bool, span: f64) -> String {
+    match (log, span < 0.0) {
+        (true, true) => decade_label(v),
+        (true, false) => tick(v),
+        (false, _) => tick_linear(v, span),
+    }
+}
+
+fn lin(r: std::ops::Range<f64>, ticks: Vec<f64>) -> Ticked<RangedCoordf64> {
+    Ticked::new(r, ticks)
+}
+
+fn log(r: std::ops::Range<f64>, ticks: Vec<f64>) -> Ticked<LogCoord<f64>> {
+    Ticked::new(r.log_scale(), ticks)
+}
+
+/// Colour index of each line: a labelled line takes the next colour; an unlabelled one
+/// (e.g. the markers of the previous line) reuses the last.
+fn colours(pd: &PlotData) -> Vec<RGBColor> {
+    let mut next = 0usize;
+    pd.lines
+        .iter()
+        .map(|l| {
+            if !l.label.is_empty() || next == 0 {
+                next += 1;
+            }
+            PALETTE[(next - 1) % PALETTE.len()]
+        })
+        .collect()
+}
+
+/// Colour of markers and levels.
+const MARK: RGBColor = RGBColor(90, 90, 90);
+
+fn draw<X, Y>(root: &DrawingArea<SVGBackend, Shift>, c: &LineChart, x: X, y: Y, spans: (f64, f64)) -> Result<(), String>
 where
     X: AsRangedCoord<Value = f64>,
     Y: AsRangedCoord<Value = f64>,
     X::CoordDescType: ValueFormatter<f64>,
     Y::CoordDescType: ValueFormatter<f64>,
 {
+    let pd = &c.data;
     let mut chart = ChartBuilder::on(root)
-        .margin(12)
-        .x_label_area_size(44)
-        .y_label_area_size(72)
+        .margin(px(12))
+        .x_label_area_size(px(46))
+        .y_label_area_size(px(76))
         .build_cartesian_2d(x, y)
         .map_err(|e| e.to_string())?;
+    let (log_x, log_y) = (pd.log_x, pd.log_y);
     chart
         .configure_mesh()
         .x_desc(pd.x_label.as_str())
         .y_desc(pd.y_label.as_str())
-        .x_label_formatter(&|v| tick_linear(*v, spans.0))
-        .y_label_formatter(&|v| tick_linear(*v, spans.1))
-        .label_style(("sans-serif", 14))
-        .axis_desc_style(("sans-serif", 15))
+        .x_label_formatter(&|v| label(*v, log_x, spans.0))
+        .y_label_formatter(&|v| label(*v, log_y, spans.1))
+        .label_style(("sans-serif", px(18)))
+        .axis_desc_style(("sans-serif", px(19)))
+        .bold_line_style(BLACK.mix(0.1).stroke_width(px(1)))
         .light_line_style(WHITE.mix(0.0))
+        .axis_style(BLACK.stroke_width(px(1)))
+        .set_all_tick_mark_size(px(5))
         .draw()
         .map_err(|e| e.to_string())?;
-    // A labelled line takes the next colour; an unlabelled one (e.g. the markers of the
-    // previous line) reuses the last.
-    let mut next = 0usize;
-    for line in &pd.lines {
-        if !line.label.is_empty() || next == 0 {
-            next += 1;
-        }
-        let color = PALETTE[(next - 1) % PALETTE.len()];
-        // The first line is drawn wider so that it stays visible under later ones it overlaps.
-        let width = if next == 1 { 3 } else { 2 };
-        let keep =
-            |(x, y): &(f64, f64)| x.is_finite() && y.is_finite() && (!pd.log_x || *x > 0.0) && (!pd.log_y || *y > 0.0);
-        let pts: Vec<(f64, f64)> = line.x.iter().copied().zip(line.y.iter().copied()).collect();
-        let series = if line.points {
+    let x_range = chart.x_range();
+    let y_range = chart.y_range();
+    let colours = colours(pd);
+    // Points outside a zoomed x range are dropped (plotters would pin them to the frame).
+    let (xa, xb) = c.x_range.unwrap_or((f64::NEG_INFINITY, f64::INFINITY));
+    let keep = |(x, y): &(f64, f64)| {
+        x.is_finite() && y.is_finite() && (!log_x || *x > 0.0) && (!log_y || *y > 0.0) && *x >= xa && *x <= xb
+    };
+    for (i, line) in pd.lines.iter().enumerate() {
+        let color = colours[i];
+        let width = px(if i == 0 { 3 } else { 2 });
+        let mut pts: Vec<(f64, f64)> = line.x.iter().copied().zip(line.y.iter().copied()).collect();
+        if line.points {
             let pts: Vec<(f64, f64)> = pts.into_iter().filter(keep).collect();
-            chart.draw_series(pts.into_iter().map(|p| Circle::new(p, 4, color.filled()))).map_err(|e| e.to_string())?
-        } else {
-            // Break the polyline where a value cannot be drawn (e.g. 0 on a log axis).
-            let mut segments: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
-            for p in pts {
-                if keep(&p) {
-                    segments.last_mut().expect("non-empty").push(p);
-                } else if !segments.last().expect("non-empty").is_empty() {
-                    segments.push(Vec::new());
+            chart
+                .draw_series(pts.into_iter().map(|p| Circle::new(p, px(4), color.filled())))
+                .map_err(|e| e.to_string())?;
+            continue;
+        }
+        if c.style(i) == LineStyle::Step {
+            let mut held = Vec::with_capacity(2 * pts.len());
+            for k in 0..pts.len() {
+                held.push(pts[k]);
+                if let Some(n) = pts.get(k + 1) {
+                    held.push((n.0, pts[k].1));
                 }
             }
-            chart
-                .draw_series(
-                    segments
-                        .into_iter()
-                        .filter(|s| !s.is_empty())
-                        .map(|s| PathElement::new(s, color.stroke_width(width))),
-                )
-                .map_err(|e| e.to_string())?
-        };
-        if !line.label.is_empty() {
-            series
-                .label(line.label.as_str())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(3)));
+            pts = held;
+        }
+        // Break the polyline where a value cannot be drawn (e.g. 0 on a log axis).
+        let mut segments: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
+        for p in pts {
+            if keep(&p) {
+                segments.last_mut().expect("non-empty").push(p);
+            } else if !segments.last().expect("non-empty").is_empty() {
+                segments.push(Vec::new());
+            }
+        }
+        for s in segments.into_iter().filter(|s| !s.is_empty()) {
+            if c.style(i) == LineStyle::Dashed {
+                chart
+                    .draw_series(DashedLineSeries::new(s, px(8), px(5), color.stroke_width(width)))
+                    .map_err(|e| e.to_string())?;
+            } else {
+                chart
+                    .draw_series(std::iter::once(PathElement::new(s, color.stroke_width(width))))
+                    .map_err(|e| e.to_string())?;
+            }
         }
     }
-    if pd.lines.iter().any(|l| !l.label.is_empty()) {
+    for (x, _) in &c.vlines {
+        let s = vec![(*x, y_range.start), (*x, y_range.end)];
         chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK.mix(0.4))
-            .label_font(("sans-serif", 14))
-            .draw()
+            .draw_series(DashedLineSeries::new(s, px(6), px(4), MARK.stroke_width(px(2))))
             .map_err(|e| e.to_string())?;
+    }
+    for (y, _) in &c.hlines {
+        let s = vec![(x_range.start, *y), (x_range.end, *y)];
+        chart
+            .draw_series(DashedLineSeries::new(s, px(3), px(4), MARK.stroke_width(px(2))))
+            .map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}
+
+/// The legend panel: one entry per labelled line (swatch as drawn: line, dashes or marker),
+/// then the markers and levels.
+fn draw_legend(area: &DrawingArea<SVGBackend, Shift>, c: &LineChart) -> Result<(), String> {
+    let pd = &c.data;
+    let colours = colours(pd);
+    let font = ("sans-serif", px(17)).into_font().color(&BLACK);
+    let mut y = px(24) as i32;
+    let x0 = px(10) as i32;
+    let step = px(26) as i32;
+    let e = |e: DrawingAreaErrorKind<std::io::Error>| e.to_string();
+    for (i, line) in pd.lines.iter().enumerate() {
+        if line.label.is_empty() {
+            continue;
+        }
+        let color = colours[i];
+        // A line followed by an unlabelled marker series of the same colour gets both.
+        let marked = line.points || pd.lines.get(i + 1).is_some_and(|n| n.label.is_empty() && n.points);
+        if !line.points {
+            let w = px(3);
+            let seg = vec![(x0, y), (x0 + px(28) as i32, y)];
+            if c.style(i) == LineStyle::Dashed {
+                area.draw(&PathElement::new(vec![(x0, y), (x0 + px(10) as i32, y)], color.stroke_width(w)))
+                    .map_err(e)?;
+                area.draw(&PathElement::new(
+                    vec![(x0 + px(16) as i32, y), (x0 + px(28) as i32, y)],
+                    color.stroke_width(w),
+                ))
+                .map_err(e)?;
+            } else {
+                area.draw(&PathElement::new(seg, color.stroke_width(w))).map_err(e)?;
+            }
+        }
+        if marked {
+            area.draw(&Circle::new((x0 + px(14) as i32, y), px(4), color.filled())).map_err(e)?;
+        }
+        area.draw(&Text::new(line.label.clone(), (x0 + px(36) as i32, y - px(9) as i32), font.clone())).map_err(e)?;
+        y += step;
+    }
+    for (_, label) in c.vlines.iter().chain(&c.hlines) {
+        area.draw(&PathElement::new(vec![(x0, y), (x0 + px(10) as i32, y)], MARK.stroke_width(px(2)))).map_err(e)?;
+        area.draw(&PathElement::new(vec![(x0 + px(16) as i32, y), (x0 + px(28) as i32, y)], MARK.stroke_width(px(2))))
+            .map_err(e)?;
+        area.draw(&Text::new(label.clone(), (x0 + px(36) as i32, y - px(9) as i32), font.clone())).map_err(e)?;
+        y += step;
     }
     Ok(())
 }

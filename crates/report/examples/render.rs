@@ -3,20 +3,19 @@
 
 use std::path::PathBuf;
 
-use wingcheck_report::{write_report, Progress, ReportOptions};
+use wingcheck_report::{write_report, Overall, ReportOptions};
 
 fn main() {
     let mut args = std::env::args().skip(1);
     let out = PathBuf::from(args.next().unwrap_or_else(|| "reports/paper".into()));
     let sets: Vec<String> = args.collect();
     let cfg = wingcheck_model::apply_overrides(&wingcheck_model::Config::paper(), &sets).expect("valid overrides");
-    let bar = indicatif::ProgressBar::new(1);
-    let on_progress = |p: Progress| {
+    let bar = indicatif::ProgressBar::new(1000);
+    let on_progress = |p: Overall| {
         bar.set_message(p.stage.to_string());
-        bar.set_length(p.total as u64);
-        bar.set_position(p.done as u64);
+        bar.set_position((p.fraction * 1000.0).round() as u64);
     };
-    let result = write_report(&cfg, &out, &ReportOptions { progress: Some(&on_progress) });
+    let result = write_report(&cfg, &out, &ReportOptions { overall: Some(&on_progress), ..Default::default() });
     bar.finish_and_clear();
     match result {
         Ok(s) => {

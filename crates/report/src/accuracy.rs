@@ -8,6 +8,7 @@ use serde::Serialize;
 use wingcheck_claims::{Line, PlotData};
 use wingcheck_sim::SimOutput;
 
+use crate::chart::{LineChart, LineStyle};
 use crate::figure::{Caption, Chart, Figure};
 use crate::runs::{GRIDS, METHODS};
 use crate::stats::{fmt_num, loglog_slope};
@@ -81,22 +82,38 @@ pub fn accuracy(accuracy: &[Vec<SimOutput>]) -> (Figure, Vec<AccuracyRow>) {
             });
         }
     }
-    let cap = cap.t("the error of the finest grid is the extrapolation correction itself.");
+    let cap = cap.t(
+        "the error of the finest grid is the extrapolation correction itself. Dashed: an O(N⁻²) reference slope (through twice the largest error at the coarsest grid).",
+    );
+    let x: Vec<f64> = GRIDS.iter().map(|&g| g as f64).collect();
+    let top = lines.iter().filter_map(|l| l.y.first().copied()).filter(|v| v.is_finite()).fold(0.0_f64, f64::max);
+    let n0 = x[0];
+    let mut styles = vec![LineStyle::Solid; lines.len()];
+    if top > 0.0 {
+        lines.push(Line {
+            label: "O(N⁻²) reference".into(),
+            x: x.clone(),
+            y: x.iter().map(|n| 2.0 * top * (n0 / n).powi(2)).collect(),
+            points: false,
+        });
+        styles.push(LineStyle::Dashed);
+    }
     let pd = PlotData {
         name: "accuracy".into(),
         title: "Tip error vs grid size".into(),
-        x_label: "elements".into(),
-        y_label: "max tip error".into(),
+        x_label: "elements N".into(),
+        y_label: "max tip error (q: m, θ: rad)".into(),
         log_x: true,
         log_y: true,
         lines,
     };
+    let chart = LineChart { styles, ..LineChart::from(pd) };
     let fig = Figure {
         file: "accuracy-tip-error".into(),
         label: "Accuracy A1".into(),
         title: "Tip error vs grid size, FD and FE".into(),
         caption: cap.0,
-        chart: Chart::Line(pd),
+        chart: Chart::Line(chart),
     };
     (fig, rows)
 }

@@ -10,14 +10,17 @@ use crate::accuracy::AccuracyRow;
 use crate::figure::{Figure, Part};
 use crate::stats::fmt_num;
 
-/// Evidence entries shown in the ledger table's "key numbers" column.
-const KEY_NUMBERS: usize = 4;
-
 /// Root of the template context.
 #[derive(Serialize)]
 pub struct Page {
     /// Tool name and version.
     pub tool: String,
+    /// Provenance: git commit, rustc, date, command line.
+    pub build: Build,
+    /// The (a, b) region map, when it could be computed.
+    pub region: Option<FigCtx>,
+    /// Why there is no region map (when there is none).
+    pub region_missing: String,
     /// SHA-256 of the configuration's canonical JSON.
     pub config_sha256: String,
     /// The configuration, pretty JSON.
@@ -42,6 +45,21 @@ pub struct Page {
     pub row_assumptions: Vec<RowAssumption>,
     /// Wall time per stage (the only non-reproducible content of the page).
     pub timings: Vec<Timing>,
+}
+
+/// Build and run provenance.
+#[derive(Serialize)]
+pub struct Build {
+    /// Git commit of the checkout the tool was built from, or `unknown`.
+    pub git_commit: String,
+    /// rustc version.
+    pub rustc: String,
+    /// UTC date of the run (volatile).
+    pub date: String,
+    /// The command line (volatile).
+    pub command_line: String,
+    /// Total wall time (s, volatile).
+    pub total_seconds: String,
 }
 
 /// A figure as the template sees it.
@@ -94,6 +112,18 @@ pub struct Kv {
     pub key: String,
     /// Formatted value.
     pub value: String,
+    /// Unit (from the key's naming convention: `_s` seconds, `q` m, `theta` rad, …), or empty.
+    pub unit: String,
+}
+
+/// Evidence with a common `label.` prefix pivoted into a table: one row per metric, one
+/// column per label (e.g. controller × metric).
+#[derive(Serialize)]
+pub struct Pivot {
+    /// Column labels.
+    pub columns: Vec<String>,
+    /// Rows: metric, unit, one value per column (`—` when missing).
+    pub rows: Vec<(String, String, Vec<String>)>,
 }
 
 /// A ledger row.
@@ -115,15 +145,19 @@ pub struct RowCtx {
     pub summary: String,
     /// Correction, if any.
     pub correction: Option<String>,
-    /// First evidence entries.
-    pub key_numbers: Vec<Kv>,
-    /// All evidence.
+    /// The ledger's digest: finding sentence and decisive numbers.
+    pub digest: crate::digest::Digest,
+    /// Scalar evidence without a label prefix.
     pub evidence: Vec<Kv>,
+    /// Evidence with label prefixes, pivoted.
+    pub pivot: Option<Pivot>,
+    /// The decisive figure (the row's first plot).
+    pub lead_figure: Option<FigCtx>,
     /// Assumptions.
     pub assumptions: Vec<String>,
     /// Certificate files.
     pub certificates: Vec<String>,
-    /// The row's plots.
+    /// The row's other plots.
     pub figures: Vec<FigCtx>,
 }
 
@@ -163,52 +197,107 @@ pub fn claim_anchor(id: &str) -> String {
     format!("claim-{}", crate::figure::safe_name(id))
 }
 
+/// A value with sensible digits: integers as integers, other numbers to 4 significant digits,
+/// arrays and objects compactly (numbers inside formatted the same way).
 fn value_text(v: &Value) -> String {
     match v {
-        Value::Number(n) => n.as_f64().map(fmt_num).unwrap_or_else(|| n.to_string()),
+        Value::Number(n) => match (n.as_i64(), n.as_f64()) {
+            (Some(i), _) => i.to_string(),
+            (None, Some(f)) if f.fract() == 0.0 && f.abs() < 1e6 => format!("{f:.0}"),
+            (None, Some(f)) => fmt_num(f),
+            _ => n.to_string(),
+        },
         Value::String(s) => s.clone(),
-        other => other.to_string(),
+        Value::Bool(b) => if *b { "yes" } else { "no" }.into(),
+        Value::Null => "—".into(),
+        Value::Array(a) => format!("[{}]", a.iter().map(value_text).collect::<Vec<_>>().join(", ")),
+        Value::Object(m) => {
+            format!("{{{}}}", m.iter().map(|(k, v)| format!("{k}: {}", value_text(v))).collect::<Vec<_>>().join(", "))
+        }
     }
 }
 
-/// Scalars fit the ledger table; arrays, objects and long strings stay in the claim's section.
-fn is_key_number(v: &Value) -> bool {
-    match v {
-        Value::Number(_) | Value::Bool(_) => true,
-        Value::String(s) => s.chars().count() <= 40,
-        _ => false,
+/// The unit of an evidence key by the claims crate's naming convention, or "".
+pub fn unit_of(key: &str) -> &'static str {
+    let k = key.rsplit('.').next().unwrap_or(key);
+    if k.ends_with("_rad_s") {
+        "rad/s"
+    } else if k.ends_with("_s") || k.contains("_s_T") || k == "seconds" {
+        "s"
+    } else if k.contains("gtilde1") || k.contains("tau1") {
+        "N"
+    } else if k.contains("gtilde2") || k.contains("tau2") {
+        "N m"
+    } else if k.contains("theta") {
+        "rad"
+    } else if k.contains("_q_")
+        || k.ends_with("_q")
+        || k.starts_with("rms_q")
+        || k.starts_with("max_q")
+        || k.ends_with("_m")
+    {
+        "m"
+    } else {
+        ""
     }
 }
 
-/// The ledger row's context; `figures` are the row's plots already turned into figures.
-pub fn row_ctx(r: &ClaimRow, figures: &[Figure]) -> RowCtx {
-    let evidence: Vec<Kv> = r.evidence.iter().map(|(k, v)| Kv { key: k.clone(), value: value_text(v) }).collect();
+/// Evidence keys of the form `label.metric` pivoted (None if there are none).
+fn pivot(r: &ClaimRow) -> Option<Pivot> {
+    let mut columns: Vec<String> = Vec::new();
+    let mut metrics: Vec<String> = Vec::new();
+    for k in r.evidence.keys() {
+        if let Some((l, m)) = k.split_once('.') {
+            if !columns.iter().any(|c| c == l) {
+                columns.push(l.to_string());
+            }
+            if !metrics.iter().any(|c| c == m) {
+                metrics.push(m.to_string());
+            }
+        }
+    }
+    if columns.is_empty() {
+        return None;
+    }
+    let rows = metrics
+        .iter()
+        .map(|m| {
+            let vals =
+                columns.iter().map(|c| r.evidence.get(&format!("{c}.{m}")).map_or("—".into(), value_text)).collect();
+            (m.replace('_', " "), unit_of(m).to_string(), vals)
+        })
+        .collect();
+    Some(Pivot { columns, rows })
+}
+
+/// The ledger row's context; `figures` are the row's plots already turned into figures,
+/// `digest` its ledger digest.
+pub fn row_ctx(r: &ClaimRow, figures: &[Figure], digest: crate::digest::Digest) -> RowCtx {
+    let id = r.id.to_string();
+    let evidence: Vec<Kv> = r
+        .evidence
+        .iter()
+        .filter(|(k, _)| !k.contains('.'))
+        .map(|(k, v)| Kv { key: k.replace('_', " "), value: value_text(v), unit: unit_of(k).into() })
+        .collect();
+    let mut figs = figures.iter().map(FigCtx::from);
+    let lead_figure = figs.next();
     RowCtx {
-        id: r.id.to_string(),
-        anchor: claim_anchor(r.id.name()),
+        anchor: claim_anchor(&id),
+        id,
         equation: r.equation.clone(),
         claim: r.claim.clone(),
         verdict: r.verdict.name().into(),
         basis: r.basis.name().into(),
         summary: r.summary.clone(),
         correction: r.correction.clone(),
-        key_numbers: if r.highlights.is_empty() {
-            r.evidence
-                .iter()
-                .filter(|(_, v)| is_key_number(v))
-                .take(KEY_NUMBERS)
-                .map(|(k, v)| Kv { key: k.clone(), value: value_text(v) })
-                .collect()
-        } else {
-            r.highlights
-                .iter()
-                .filter_map(|k| r.evidence.get(k).map(|v| Kv { key: k.clone(), value: value_text(v) }))
-                .collect()
-        },
+        digest,
         evidence,
+        pivot: pivot(r),
+        lead_figure,
         assumptions: r.assumptions.clone(),
         certificates: r.certificates.clone(),
-        figures: figures.iter().map(FigCtx::from).collect(),
+        figures: figs.collect(),
     }
 }
 
@@ -267,7 +356,7 @@ pub fn assumptions(cfg: &Config) -> Vec<Assumption> {
             "horizon.*",
         ),
         a(
-            "typos in the model (shared/spec/model.md)",
+            "typos in the printed model (see model.md, the model as simulated)",
             "tip third derivative q'''(s,t) in the boundary condition and observer; b q̇(s) in the DOBC law (57)".into(),
             "—",
         ),
@@ -282,7 +371,7 @@ pub fn row_assumptions(ledger: &Ledger) -> Vec<RowAssumption> {
         .flat_map(|r| {
             r.assumptions.iter().map(|a| RowAssumption {
                 id: r.id.to_string(),
-                anchor: claim_anchor(r.id.name()),
+                anchor: claim_anchor(&r.id.to_string()),
                 text: a.clone(),
             })
         })

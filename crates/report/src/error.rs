@@ -64,6 +64,12 @@ pub enum ReportError {
         /// What went wrong.
         detail: String,
     },
+    /// The (a, b) region map could not be set up (its search was refused).
+    #[error("region map: {detail}")]
+    Region {
+        /// What went wrong.
+        detail: String,
+    },
     /// The HTML template failed to render.
     #[error("cannot render the HTML template: {0}")]
     Template(#[from] minijinja::Error),

@@ -4,7 +4,7 @@
 use serde::Serialize;
 use wingcheck_claims::{Line, PlotData};
 
-use crate::chart::{heatmap_svg, line_svg, Heatmap};
+use crate::chart::{heatmap_svg, line_svg, Heatmap, LineChart};
 use crate::stats::fmt_num;
 use crate::ReportError;
 
@@ -27,6 +27,11 @@ impl Caption {
         self.0.push(Part { text: s.into(), key: None });
         self
     }
+    /// Append a computed count with its key.
+    pub fn count(mut self, key: impl Into<String>, v: usize) -> Self {
+        self.0.push(Part { text: v.to_string(), key: Some(key.into()) });
+        self
+    }
     /// Append a computed number (4 significant digits) with its key.
     pub fn n(mut self, key: impl Into<String>, v: f64) -> Self {
         self.0.push(Part { text: fmt_num(v), key: Some(key.into()) });
@@ -37,10 +42,12 @@ impl Caption {
 /// What is drawn.
 #[derive(Debug, Clone)]
 pub enum Chart {
-    /// Lines / points.
-    Line(PlotData),
+    /// Lines / points / steps.
+    Line(LineChart),
     /// A field over (t, z).
     Heat(Heatmap),
+    /// The (a, b) region map.
+    Region(Box<crate::region::RegionMap>),
 }
 
 /// A figure of the report.
@@ -70,8 +77,9 @@ impl Figure {
     /// Draw the SVG and write the CSV.
     pub fn render(&self) -> Result<Rendered, ReportError> {
         Ok(match &self.chart {
-            Chart::Line(pd) => Rendered { svg: line_svg(pd)?, csv: pd.to_csv() },
+            Chart::Line(c) => Rendered { svg: line_svg(c)?, csv: c.data.to_csv() },
             Chart::Heat(h) => Rendered { svg: heatmap_svg(h)?, csv: h.to_csv() },
+            Chart::Region(r) => Rendered { svg: r.svg()?, csv: r.to_csv() },
         })
     }
 }

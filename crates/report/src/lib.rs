@@ -19,9 +19,12 @@ mod accuracy;
 pub mod atomic;
 use wingcheck_chart as chart;
 mod context;
+mod digest;
 mod error;
 mod figure;
 mod paper;
+mod provenance;
+mod region;
 mod runs;
 mod stats;
 
@@ -37,16 +40,19 @@ pub use error::ReportError;
 pub use runs::GRIDS;
 pub use stats::fmt_num;
 
-use crate::context::{assumptions, claim_anchor, row_assumptions, row_ctx, FigCtx, GroupCtx, Page, Timing};
+use crate::context::{assumptions, claim_anchor, row_assumptions, row_ctx, Build, FigCtx, GroupCtx, Page, Timing};
 use crate::figure::{safe_name, Caption, Chart, Figure};
 
 /// The page template.
 const TEMPLATE: &str = include_str!("../templates/index.html");
 
+/// The model as simulated: the repository's `docs/model.md`, copied into every report.
+const MODEL_MD: &str = include_str!("../../../docs/model.md");
+
 /// Progress of a stage, for a progress bar owned by the caller.
 #[derive(Debug, Clone, Copy)]
 pub struct Progress<'a> {
-    /// Stage name (`ledger`, `simulations`, `charts`, …).
+    /// Stage name (`ledger`, `simulations`, `region map`, `charts`, …).
     pub stage: &'a str,
     /// Units done in this stage.
     pub done: usize,
@@ -54,11 +60,64 @@ pub struct Progress<'a> {
     pub total: usize,
 }
 
+/// Overall progress of [`write_report`] for a progress bar: a fraction in [0, 1] that never
+/// decreases across stages (the stages' own counts restart; this does not).
+#[derive(Debug, Clone, Copy)]
+pub struct Overall<'a> {
+    /// The stage that moved.
+    pub stage: &'a str,
+    /// Fraction of the whole report done.
+    pub fraction: f64,
+}
+
 /// Options of [`write_report`] that do not change its content.
 #[derive(Default, Clone, Copy)]
 pub struct ReportOptions<'a> {
-    /// Called as work completes (possibly from worker threads).
+    /// Called as work completes (possibly from worker threads), per stage.
     pub progress: Option<&'a (dyn Fn(Progress) + Sync)>,
+    /// Called as work completes with the overall, monotone fraction.
+    pub overall: Option<&'a (dyn Fn(Overall) + Sync)>,
+    /// The command line that asked for the report (shown in the provenance section).
+    pub command_line: Option<&'a str>,
+}
+
+/// Stage weights of the overall fraction (the first three run concurrently).
+const WEIGHTS: [(&str, f64); 6] =
+    [("ledger", 0.35), ("simulations", 0.15), ("region map", 0.35), ("charts", 0.1), ("html", 0.04), ("write", 0.01)];
+
+/// Turns per-stage counts into one monotone fraction.
+struct Tracker<'a> {
+    stages: std::sync::Mutex<(Vec<f64>, f64)>,
+    progress: Option<&'a (dyn Fn(Progress) + Sync)>,
+    overall: Option<&'a (dyn Fn(Overall) + Sync)>,
+}
+
+impl<'a> Tracker<'a> {
+    fn new(o: &ReportOptions<'a>) -> Self {
+        Tracker {
+            stages: std::sync::Mutex::new((vec![0.0; WEIGHTS.len()], 0.0)),
+            progress: o.progress,
+            overall: o.overall,
+        }
+    }
+
+    fn update(&self, p: Progress) {
+        if let Some(cb) = self.progress {
+            cb(p);
+        }
+        let Some(cb) = self.overall else { return };
+        let fraction = {
+            let mut g = self.stages.lock().expect("progress lock");
+            if let Some(i) = WEIGHTS.iter().position(|(n, _)| *n == p.stage) {
+                let f = if p.total == 0 { 1.0 } else { (p.done as f64 / p.total as f64).clamp(0.0, 1.0) };
+                g.0[i] = g.0[i].max(f);
+            }
+            let sum: f64 = g.0.iter().zip(WEIGHTS).map(|(f, (_, w))| f * w).sum();
+            g.1 = g.1.max(sum.min(1.0));
+            g.1
+        };
+        cb(Overall { stage: p.stage, fraction });
+    }
 }
 
 /// Wall time of one stage.
@@ -89,6 +148,19 @@ fn report(progress: Option<&(dyn Fn(Progress) + Sync)>, stage: &str, done: usize
     }
 }
 
+/// The region map's stage: ω1 from the run's discretisation, r* in closed form, then the search.
+fn region_stage(
+    cfg: &Config,
+    progress: Option<&(dyn Fn(Progress) + Sync)>,
+) -> Result<Option<region::RegionMap>, ReportError> {
+    let Some(omega1) = paper::omega1(cfg) else { return Ok(None) };
+    let r_star = wingcheck_claims::mu::MuData::closed_form_ratio(cfg);
+    if !(r_star.is_finite() && r_star > 0.0) {
+        return Ok(None);
+    }
+    region::region_map(cfg, omega1, r_star, progress).map(Some)
+}
+
 /// Render the report for `cfg` into `out_dir` (created, or an earlier report there replaced).
 ///
 /// Refuses an existing `out_dir` that is neither a report (marker file [`MARKER`]) nor an
@@ -97,11 +169,14 @@ fn report(progress: Option<&(dyn Fn(Progress) + Sync)>, stage: &str, done: usize
 pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Result<ReportSummary, ReportError> {
     atomic::check_replaceable(out_dir)?;
     let staging = atomic::Staging::new(out_dir)?;
-    let progress = opts.progress;
+    let started = Instant::now();
+    let tracker = Tracker::new(opts);
+    let on_progress = |p: Progress| tracker.update(p);
+    let progress: Option<&(dyn Fn(Progress) + Sync)> = Some(&on_progress);
     let mut timings = Vec::new();
 
-    // Stage 1: the ledger and the simulations, concurrently.
-    let (ledger, runs) = rayon::join(
+    // Stage 1: the ledger, the simulations and the region map, concurrently.
+    let (ledger, (runs, region)) = rayon::join(
         || {
             let t = Instant::now();
             report(progress, "ledger", 0, 1);
@@ -110,14 +185,28 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
             (l, t.elapsed().as_secs_f64())
         },
         || {
-            let t = Instant::now();
-            let r = runs::run_all(cfg, progress);
-            (r, t.elapsed().as_secs_f64())
+            rayon::join(
+                || {
+                    let t = Instant::now();
+                    let r = runs::run_all(cfg, progress);
+                    (r, t.elapsed().as_secs_f64())
+                },
+                || {
+                    let t = Instant::now();
+                    let r = region_stage(cfg, progress);
+                    (r, t.elapsed().as_secs_f64())
+                },
+            )
         },
     );
     timings.push(StageTiming { name: "ledger".into(), seconds: ledger.1 });
     timings.push(StageTiming { name: "simulations".into(), seconds: runs.1 });
-    let (mut ledger, runs) = (ledger.0?, runs.0?);
+    timings.push(StageTiming { name: "region map".into(), seconds: region.1 });
+    let (mut ledger, runs, region) = (ledger.0?, runs.0?, region.0?);
+    report(progress, "region map", 1, 1);
+    // Digests read the rows' typed evidence, so they are taken before the wall times move out.
+    let digests: Vec<digest::Digest> = ledger.rows.iter().map(digest::digest).collect();
+    let region_fig = region.as_ref().map(|r| r.figure());
     // Wall times are not reproducible content: the rows' own `seconds` and evidence keys
     // named `seconds` / `*_seconds` move to the wall-time block of the provenance section.
     let mut row_walltimes = Vec::new();
@@ -129,6 +218,9 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
             if let Some(v) = r.evidence.remove(&k).and_then(|v| v.as_f64()) {
                 row_walltimes.push((format!("ledger row {}: {k}", r.id), v));
             }
+        }
+        for (k, v) in r.evidence.iter_mut() {
+            strip_walltimes(v, &format!("ledger row {}: {k}", r.id), &mut row_walltimes);
         }
     }
 
@@ -147,6 +239,7 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
         .flat_map(|g| g.figures.iter())
         .chain(comparison.iter())
         .chain(std::iter::once(&acc_fig))
+        .chain(region_fig.iter())
         .chain(row_figs.iter().flatten())
         .collect();
     let total = all.len();
@@ -171,10 +264,23 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     let t = Instant::now();
     let mut page = Page {
         tool: ledger.tool.clone(),
+        build: Build {
+            git_commit: provenance::GIT_COMMIT.into(),
+            rustc: provenance::RUSTC_VERSION.into(),
+            date: provenance::utc_string(std::time::SystemTime::now()),
+            command_line: opts.command_line.unwrap_or("(library call)").into(),
+            total_seconds: String::new(),
+        },
+        region: region_fig.as_ref().map(FigCtx::from),
+        region_missing: if region_fig.is_none() {
+            "The region map was not drawn: the fundamental frequency or the closed-form (32) boundary of this configuration is not a positive finite number.".into()
+        } else {
+            String::new()
+        },
         config_sha256: config_sha256(cfg),
         config_json: cfg.to_json_pretty(),
         platform: format!("{}/{}", std::env::consts::OS, std::env::consts::ARCH),
-        rows: ledger.rows.iter().zip(&row_figs).map(|(r, f)| row_ctx(r, f)).collect(),
+        rows: ledger.rows.iter().zip(&row_figs).zip(digests).map(|((r, f), d)| row_ctx(r, f, d)).collect(),
         groups: groups
             .iter()
             .map(|g| GroupCtx {
@@ -198,8 +304,11 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
         .chain(row_walltimes)
         .map(|(name, seconds)| Timing { name, seconds: format!("{seconds:.3}") })
         .collect();
+    page.build.total_seconds = format!("{:.3}", started.elapsed().as_secs_f64());
     let html = render_html(&page)?;
     files.push(staging.write("index.html", html.as_bytes())?);
+    // The model as simulated (docs/model.md of the repository), so the report is self-contained.
+    files.push(staging.write("model.md", MODEL_MD.as_bytes())?);
     // The canonical compact JSON, so that `sha256sum config.json` equals the hash shown.
     files.push(staging.write("config.json", serde_json::to_string(cfg).expect("config serialises").as_bytes())?);
     files.push(
@@ -213,7 +322,31 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     files.push(MARKER.to_string());
     files.sort();
     timings.push(StageTiming { name: "write".into(), seconds: t.elapsed().as_secs_f64() });
+    report(progress, "write", 1, 1);
     Ok(ReportSummary { out_dir: out_dir.to_path_buf(), timings, files, ledger })
+}
+
+/// Move wall-time keys nested anywhere inside `v` (objects in objects or arrays) to `out`.
+fn strip_walltimes(v: &mut serde_json::Value, path: &str, out: &mut Vec<(String, f64)>) {
+    match v {
+        serde_json::Value::Object(m) => {
+            let keys: Vec<String> = m.keys().filter(|k| is_walltime_key(k)).cloned().collect();
+            for k in keys {
+                if let Some(x) = m.remove(&k).and_then(|x| x.as_f64()) {
+                    out.push((format!("{path}.{k}"), x));
+                }
+            }
+            for (k, x) in m.iter_mut() {
+                strip_walltimes(x, &format!("{path}.{k}"), out);
+            }
+        }
+        serde_json::Value::Array(a) => {
+            for (i, x) in a.iter_mut().enumerate() {
+                strip_walltimes(x, &format!("{path}[{i}]"), out);
+            }
+        }
+        _ => {}
+    }
 }
 
 /// Evidence keys that hold wall times (`seconds`, `*_seconds`), by convention.
@@ -227,13 +360,28 @@ fn claim_figures(r: &wingcheck_claims::ClaimRow) -> Vec<Figure> {
         .iter()
         .enumerate()
         .map(|(i, pd)| Figure {
-            file: format!("{}-{}", claim_anchor(r.id.name()), safe_name(&pd.name)),
+            file: format!("{}-{}", claim_anchor(&r.id.to_string()), safe_name(&pd.name)),
             label: format!("{} plot {}", r.id, i + 1),
             title: pd.title.clone(),
             caption: Caption::default().t(pd.title.clone()).0,
-            chart: Chart::Line(pd.clone()),
+            chart: Chart::Line(held_as_steps(pd.clone())),
         })
         .collect()
+}
+
+/// The digital observer's outputs ĝ and the commands τ are held over a sample period (zero-order
+/// hold): sampled series of them against time are drawn as steps, not as dots.
+fn held_as_steps(mut pd: wingcheck_claims::PlotData) -> chart::LineChart {
+    let mut styles = Vec::with_capacity(pd.lines.len());
+    let over_time = pd.x_label.starts_with("t (");
+    for l in &mut pd.lines {
+        let held = over_time && l.points && (l.label.starts_with('ĝ') || l.label.starts_with('τ'));
+        if held {
+            l.points = false;
+        }
+        styles.push(if held { chart::LineStyle::Step } else { chart::LineStyle::Solid });
+    }
+    chart::LineChart { styles, ..chart::LineChart::from(pd) }
 }
 
 /// Render the page from the template.

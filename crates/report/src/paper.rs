@@ -1,16 +1,23 @@
-//! The paper's Figures 3–20 reproduced from the runs, and the FTDO-vs-DOBC overlays.
+//! The paper's Figures 3–20 reproduced from the runs, and the DOBC − FTDO difference maps.
 //! Every number in a caption is computed here from the series it describes.
 
+use wingcheck_claims::comparison::{settle_time, GTILDE_THRESHOLD};
 use wingcheck_model::Config;
 use wingcheck_sim::SimOutput;
 
-use crate::chart::Heatmap;
+use crate::chart::{Heatmap, LineChart};
 use crate::figure::{line_plot, Caption, Chart, Figure};
 use crate::runs::Runs;
-use crate::stats::{diff, max_abs, rms, settling_time};
+use crate::stats::{diff, fmt_num, max_abs, rms};
 
-/// Threshold for the settling time of the disturbance estimation errors (N or N m).
-pub const G_EPS: f64 = 1e-3;
+/// The colour scale of the field maps is set by the samples with t ≥ this (s), so that the
+/// residual motion is visible rather than the initial condition (at most half the horizon).
+pub const FIELD_SCALE_FROM_S: f64 = 2.0;
+
+/// Start of the field maps' colour-scale window for a horizon `t_end` (s).
+pub fn field_scale_from(t_end: f64) -> f64 {
+    FIELD_SCALE_FROM_S.min(0.5 * t_end)
+}
 
 /// A group of figures under one heading.
 pub struct Group {
@@ -54,16 +61,30 @@ impl Field {
 struct Ctx<'a> {
     t_half: f64,
     t_end: f64,
+    sample_every: f64,
     none: &'a SimOutput,
 }
 
-fn heat(n: u32, run: &str, desc: &str, f: Field, out: &SimOutput, c: &Ctx) -> Figure {
+fn field_values(out: &SimOutput, f: Field) -> (&[f64], &[f64], &Vec<Vec<f64>>) {
     let fields = out.fields.as_ref().expect("runs of paper figures record fields");
-    let values = match f {
-        Field::Q => fields.q.clone(),
-        Field::Theta => fields.theta.clone(),
+    let v = match f {
+        Field::Q => &fields.q,
+        Field::Theta => &fields.theta,
     };
-    let t = &out.series.t;
+    (&out.series.t, &fields.z, v)
+}
+
+/// "colour scale ±X u, set by t ≥ t0 s …" caption text.
+fn scale_caption(cap: Caption, key: String, h: &Heatmap, unit: &str) -> Caption {
+    cap.t(" Colour scale ±").n(key, h.scale()).t(format!(
+        " {unit}, set by t ≥ {} s (dashed line); larger values before it saturate.",
+        crate::chart::tick(h.scale_from)
+    ))
+}
+
+fn heat(n: u32, run: &str, desc: &str, f: Field, out: &SimOutput, c: &Ctx) -> Figure {
+    let (t, z, values) = field_values(out, f);
+    let values = values.clone();
     let row_max = |k: usize| values[k].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
     let per_t: Vec<f64> = (0..t.len()).map(row_max).collect();
     let late = max_abs(t, &per_t, c.t_half, c.t_end);
@@ -80,18 +101,21 @@ fn heat(n: u32, run: &str, desc: &str, f: Field, out: &SimOutput, c: &Ctx) -> Fi
         .t(format!(" {u}; at t = {} s: ", c.t_end))
         .n(format!("fig{n}.max_abs_end"), end)
         .t(format!(" {u}."));
+    let h = Heatmap {
+        name: format!("fig{n}"),
+        t: t.to_vec(),
+        z: z.to_vec(),
+        values,
+        value_label: format!("{s} ({u})"),
+        scale_from: field_scale_from(c.t_end),
+    };
+    let caption = scale_caption(caption, format!("fig{n}.scale"), &h, u);
     Figure {
         file: format!("fig{n:02}-{}-{run}", if matches!(f, Field::Q) { "q" } else { "theta" }),
         label: format!("Figure {n}"),
         title: format!("{} {s}(z,t) {desc}", f.what()),
         caption: caption.0,
-        chart: Chart::Heat(Heatmap {
-            name: format!("fig{n}"),
-            t: t.clone(),
-            z: fields.z.clone(),
-            values,
-            value_label: format!("{s} ({u})"),
-        }),
+        chart: Chart::Heat(h),
     }
 }
 
@@ -109,12 +133,15 @@ fn tau(n: u32, run: &str, desc: &str, ch: u8, out: &SimOutput, c: &Ctx) -> Figur
         label: format!("Figure {n}"),
         title: format!("τ{ch}(t) {desc}"),
         caption: caption.0,
-        chart: Chart::Line(line_plot(
-            &format!("fig{n}"),
-            &format!("τ{ch}(t) {desc}"),
-            &format!("τ{ch} ({unit})"),
-            vec![(format!("τ{ch}"), &s.t, v.clone())],
-        )),
+        chart: Chart::Line(
+            line_plot(
+                &format!("fig{n}"),
+                &format!("τ{ch}(t) {desc}"),
+                &format!("τ{ch} ({unit})"),
+                vec![(String::new(), &s.t, v.clone())],
+            )
+            .into(),
+        ),
     }
 }
 
@@ -144,12 +171,15 @@ fn tip(n: u32, run: &str, desc: &str, f: Field, out: &SimOutput, c: &Ctx) -> Fig
         label: format!("Figure {n}"),
         title: format!("{s}(s,t) {desc}"),
         caption: caption.0,
-        chart: Chart::Line(line_plot(
-            &format!("fig{n}"),
-            &format!("{s}(s,t) {desc}"),
-            &format!("{s}(s,t) ({u})"),
-            vec![(format!("{s}(s,t)"), t, v)],
-        )),
+        chart: Chart::Line(
+            line_plot(
+                &format!("fig{n}"),
+                &format!("{s}(s,t) {desc}"),
+                &format!("{s}(s,t) ({u})"),
+                vec![(String::new(), t, v)],
+            )
+            .into(),
+        ),
     }
 }
 
@@ -163,40 +193,65 @@ pub fn g_tilde(out: &SimOutput, ch: u8) -> Vec<f64> {
     }
 }
 
-fn settle_caption(cap: Caption, key: String, t: &[f64], v: &[f64], unit: &str) -> Caption {
-    match settling_time(t, v, G_EPS) {
-        Some(ts) => cap.t(format!("; |g̃| ≤ {G_EPS} {unit} from t = ")).n(key, ts).t(" s on."),
-        None => cap.t(format!("; |g̃| still exceeds {G_EPS} {unit} at the end of the run.")),
-    }
-}
-
+/// |g̃| of a channel on a log axis with the threshold [`GTILDE_THRESHOLD`] and the time from
+/// which |g̃| stays below it (t_f) marked; the x axis is zoomed to [0, 4 t_f] when t_f is
+/// less than a tenth of the horizon (the convergence would otherwise sit in the first pixel).
 fn gerr(n: u32, run: &str, desc: &str, ch: u8, out: &SimOutput, c: &Ctx) -> Figure {
     let v = g_tilde(out, ch);
     let t = &out.series.t;
     let unit = if ch == 1 { "N" } else { "N m" };
-    let cap = Caption::default()
-        .t(format!("Disturbance estimation error g̃{ch}(t) = g{ch} − ĝ{ch} {desc} (paper Figure {n}). max |g̃{ch}| over [{}, {}] s: ", c.t_half, c.t_end))
+    let thr = crate::chart::tick(GTILDE_THRESHOLD);
+    let h = c.sample_every;
+    let settle = settle_time(t, &v, GTILDE_THRESHOLD);
+    let mut cap = Caption::default()
+        .t(format!("Disturbance estimation error |g̃{ch}(t)| = |g{ch} − ĝ{ch}| {desc} (paper Figure {n}), log scale. max |g̃{ch}| over [{}, {}] s: ", c.t_half, c.t_end))
         .n(format!("fig{n}.max_abs_late"), max_abs(t, &v, c.t_half, c.t_end))
         .t(format!(" {unit}"));
-    let cap = settle_caption(cap, format!("fig{n}.settle_time"), t, &v, unit);
+    let mut chart: LineChart = line_plot(
+        &format!("fig{n}"),
+        &format!("|g̃{ch}(t)| {desc}"),
+        &format!("|g̃{ch}| ({unit})"),
+        vec![(String::new(), t, v.iter().map(|x| x.abs()).collect())],
+    )
+    .into();
+    chart.data.log_y = true;
+    chart.hlines.push((GTILDE_THRESHOLD, format!("|g̃| = {thr} {unit}")));
+    match settle {
+        Some(ts) => {
+            cap = cap
+                .t(format!("; |g̃{ch}| ≤ {thr} {unit} (the threshold used throughout) from t_f = "))
+                .n(format!("fig{n}.settle_time"), ts)
+                .t(format!(" s on (resolved to the output sampling, every {} s)", crate::chart::tick(h)));
+            chart.vlines.push((ts, format!("t_f = {} s", crate::chart::tick(ts))));
+            if ts > 0.0 && ts < 0.1 * c.t_end {
+                let zoom = (4.0 * ts).max(20.0 * h);
+                chart.x_range = Some((0.0, zoom));
+                cap = cap.t(format!(
+                    "; time axis zoomed to [0, {}] s, the whole run is in the CSV",
+                    crate::chart::tick(zoom)
+                ));
+            }
+            cap = cap.t(".");
+        }
+        None => {
+            cap = cap.t(format!(
+                "; |g̃{ch}| still exceeds {thr} {unit} (the threshold used throughout) at the end of the run."
+            ))
+        }
+    }
     Figure {
         file: format!("fig{n:02}-gtilde{ch}-{run}"),
         label: format!("Figure {n}"),
-        title: format!("g̃{ch}(t) {desc}"),
+        title: format!("|g̃{ch}(t)| {desc}"),
         caption: cap.0,
-        chart: Chart::Line(line_plot(
-            &format!("fig{n}"),
-            &format!("g̃{ch}(t) {desc}"),
-            &format!("g̃{ch} ({unit})"),
-            vec![(format!("g̃{ch}"), t, v)],
-        )),
+        chart: Chart::Line(chart),
     }
 }
 
 /// Figures 3–20 in three groups (no control, FTDO, DOBC).
 pub fn paper_figures(cfg: &Config, runs: &Runs) -> Vec<Group> {
     let t_end = cfg.horizon.t_end;
-    let c = Ctx { t_half: t_end / 2.0, t_end, none: &runs.none };
+    let c = Ctx { t_half: t_end / 2.0, t_end, sample_every: cfg.horizon.sample_every, none: &runs.none };
     let (none, ftdo, dobc) = (&runs.none, &runs.ftdo, &runs.dobc);
     let wo = "without control";
     let pf = "with the proposed control (FTDO)";
@@ -205,7 +260,7 @@ pub fn paper_figures(cfg: &Config, runs: &Runs) -> Vec<Group> {
         Group {
             id: "paper-none",
             title: "Without control (paper Figures 3–4)".into(),
-            intro: "τ1 = τ2 = 0; the disturbances (56) act.".into(),
+            intro: format!("τ1 = τ2 = 0; the disturbances (56) act. {}", period_note(cfg)),
             figures: vec![heat(3, "none", wo, Field::Q, none, &c), heat(4, "none", wo, Field::Theta, none, &c)],
         },
         Group {
@@ -241,76 +296,77 @@ pub fn paper_figures(cfg: &Config, runs: &Runs) -> Vec<Group> {
     ]
 }
 
-/// FTDO-vs-DOBC overlays: tip q, tip θ (with the uncontrolled wing), |g̃1|, |g̃2| (log scale).
+/// DOBC − FTDO difference maps of q(z,t) and θ(z,t): where and when the two observers give
+/// different wing motion (the tip overlays are in the ftdo-vs-dobc claim's section).
 pub fn comparison_figures(cfg: &Config, runs: &Runs) -> Vec<Figure> {
     let (t0, t1) = (cfg.horizon.t_end / 2.0, cfg.horizon.t_end);
-    let t = &runs.ftdo.series.t;
     let mut figs = Vec::new();
     for (i, f) in [Field::Q, Field::Theta].into_iter().enumerate() {
-        let pick = |o: &SimOutput| match f {
-            Field::Q => o.series.q_tip.clone(),
-            Field::Theta => o.series.theta_tip.clone(),
-        };
+        let (t, z, a) = field_values(&runs.ftdo, f);
+        let (_, _, b) = field_values(&runs.dobc, f);
+        let values: Vec<Vec<f64>> = a.iter().zip(b).map(|(ra, rb)| diff(rb, ra)).collect();
         let (s, u) = (f.sym(), f.unit());
-        let (a, b, z) = (pick(&runs.ftdo), pick(&runs.dobc), pick(&runs.none));
-        let (ra, rb) = (rms(t, &a, t0, t1), rms(&runs.dobc.series.t, &b, t0, t1));
-        let key = format!("cmp.{}", if i == 0 { "q" } else { "theta" });
+        let key = format!("cmp.d{}", if i == 0 { "q" } else { "theta" });
+        let per_t: Vec<f64> = values.iter().map(|r| r.iter().fold(0.0_f64, |m, v| m.max(v.abs()))).collect();
+        let (_, _, ftdo_rows) = field_values(&runs.ftdo, f);
+        let ftdo_t: Vec<f64> = ftdo_rows.iter().map(|r| r.iter().fold(0.0_f64, |m, v| m.max(v.abs()))).collect();
+        let h = Heatmap {
+            name: format!("cmp-d{s}"),
+            t: t.to_vec(),
+            z: z.to_vec(),
+            values,
+            value_label: format!("Δ{s} ({u})"),
+            scale_from: field_scale_from(t1),
+        };
         let cap = Caption::default()
             .t(format!(
-                "Tip {} {s}(s,t): FTDO, DOBC and no control. RMS over [{t0}, {t1}] s: FTDO ",
+                "Difference of the {} fields, DOBC − FTDO, Δ{s}(z,t). max |Δ{s}| over the span and [{t0}, {t1}] s: ",
                 f.what().to_lowercase()
             ))
-            .n(format!("{key}.rms_ftdo"), ra)
-            .t(format!(" {u}, DOBC "))
-            .n(format!("{key}.rms_dobc"), rb)
-            .t(format!(" {u}, no control "))
-            .n(format!("{key}.rms_none"), rms(&runs.none.series.t, &z, t0, t1))
-            .t(format!(" {u}; DOBC/FTDO ratio "))
-            .n(format!("{key}.ratio"), rb / ra)
-            .t(".");
+            .n(format!("{key}.max_abs_late"), max_abs(t, &per_t, t0, t1))
+            .t(format!(" {u}, against max |{s}| of the FTDO run over the same window: "))
+            .n(format!("{key}.ftdo_max_abs_late"), max_abs(t, &ftdo_t, t0, t1))
+            .t(format!(" {u}."));
+        let cap = scale_caption(cap, format!("{key}.scale"), &h, u);
         figs.push(Figure {
-            file: format!("cmp-{}-tip", if i == 0 { "q" } else { "theta" }),
+            file: format!("cmp-d{}", if i == 0 { "q" } else { "theta" }),
             label: format!("Evidence E{}", i + 1),
-            title: format!("{s}(s,t): FTDO vs DOBC"),
+            title: format!("Δ{s}(z,t) = DOBC − FTDO"),
             caption: cap.0,
-            chart: Chart::Line(line_plot(
-                &format!("cmp-{s}"),
-                &format!("{s}(s,t): FTDO vs DOBC"),
-                &format!("{s}(s,t) ({u})"),
-                vec![
-                    ("FTDO".into(), t, a),
-                    ("DOBC".into(), &runs.dobc.series.t, b),
-                    ("no control".into(), &runs.none.series.t, z),
-                ],
-            )),
-        });
-    }
-    for ch in [1u8, 2] {
-        let unit = if ch == 1 { "N" } else { "N m" };
-        let a: Vec<f64> = g_tilde(&runs.ftdo, ch).iter().map(|v| v.abs()).collect();
-        let b: Vec<f64> = g_tilde(&runs.dobc, ch).iter().map(|v| v.abs()).collect();
-        let cap = Caption::default()
-            .t(format!(
-                "|g̃{ch}(t)| on a log scale, FTDO vs DOBC (zero values are not drawn). max over [{t0}, {t1}] s: FTDO "
-            ))
-            .n(format!("cmp.g{ch}.max_ftdo"), max_abs(t, &a, t0, t1))
-            .t(format!(" {unit}, DOBC "))
-            .n(format!("cmp.g{ch}.max_dobc"), max_abs(&runs.dobc.series.t, &b, t0, t1))
-            .t(format!(" {unit}."));
-        let mut pd = line_plot(
-            &format!("cmp-g{ch}"),
-            &format!("|g̃{ch}|: FTDO vs DOBC"),
-            &format!("|g̃{ch}| ({unit})"),
-            vec![("FTDO".into(), t, a), ("DOBC".into(), &runs.dobc.series.t, b)],
-        );
-        pd.log_y = true;
-        figs.push(Figure {
-            file: format!("cmp-gtilde{ch}"),
-            label: format!("Evidence E{}", ch + 2),
-            title: format!("|g̃{ch}|: FTDO vs DOBC"),
-            caption: cap.0,
-            chart: Chart::Line(pd),
+            chart: Chart::Heat(h),
         });
     }
     figs
+}
+
+/// The fundamental (lowest natural) angular frequency ω1 (rad/s) of the configured wing on the
+/// run's own discretisation.
+pub fn omega1(cfg: &Config) -> Option<f64> {
+    let disc = wingcheck_sim::Discretisation::new(cfg);
+    wingcheck_sim::modes::natural_frequencies(&disc, 1).ok()?.first().copied().filter(|w| w.is_finite() && *w > 0.0)
+}
+
+/// A sentence on the fundamental period 2π/ω1 against the horizon.
+pub fn period_note(cfg: &Config) -> String {
+    let t_end = cfg.horizon.t_end;
+    match omega1(cfg) {
+        Some(w) => {
+            let period = 2.0 * std::f64::consts::PI / w;
+            if period > t_end {
+                format!(
+                    "The fundamental period 2π/ω1 = {} s (ω1 = {} rad/s) exceeds the horizon T = {} s: the wing completes {} of its slowest oscillation, so the uncontrolled \"vibration\" is a slow drift of the initial deflection, not an oscillation.",
+                    fmt_num(period), fmt_num(w), crate::chart::tick(t_end), fmt_num(t_end / period)
+                )
+            } else {
+                format!(
+                    "The fundamental period 2π/ω1 = {} s (ω1 = {} rad/s); the horizon T = {} s spans {} periods.",
+                    fmt_num(period),
+                    fmt_num(w),
+                    crate::chart::tick(t_end),
+                    fmt_num(t_end / period)
+                )
+            }
+        }
+        None => "The fundamental frequency could not be computed for this configuration.".into(),
+    }
 }

@@ -16,16 +16,6 @@ pub fn rms(t: &[f64], v: &[f64], t0: f64, t1: f64) -> f64 {
     }
 }
 
-/// The first sample time from which |v| stays ≤ eps to the end: `Some(t_0)` if already
-/// settled at the first sample, `None` if the last sample still exceeds eps.
-pub fn settling_time(t: &[f64], v: &[f64], eps: f64) -> Option<f64> {
-    match v.iter().rposition(|x| x.abs() > eps || x.is_nan()) {
-        None => t.first().copied(),
-        Some(i) if i + 1 < t.len() => Some(t[i + 1]),
-        Some(_) => None,
-    }
-}
-
 fn window<'a>(t: &'a [f64], v: &'a [f64], t0: f64, t1: f64) -> impl Iterator<Item = f64> + 'a {
     t.iter().zip(v).filter(move |(t, _)| **t >= t0 && **t <= t1).map(|(_, v)| *v)
 }
@@ -80,9 +70,6 @@ mod tests {
         let t = [0.0, 1.0, 2.0, 3.0];
         let v = [5.0, -2.0, 0.5, 0.1];
         assert_eq!(max_abs(&t, &v, 1.0, 3.0), 2.0);
-        assert_eq!(settling_time(&t, &v, 1.0), Some(2.0));
-        assert_eq!(settling_time(&t, &v, 0.01), None);
-        assert_eq!(settling_time(&t, &v, 10.0), Some(0.0));
         // y = x^-2 exactly.
         assert!((loglog_slope(&[1.0, 2.0, 4.0], &[1.0, 0.25, 0.0625]) + 2.0).abs() < 1e-12);
     }

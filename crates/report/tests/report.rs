@@ -80,9 +80,9 @@ fn report_is_well_formed_complete_and_matches_the_ledger() {
 
     // Every image is a non-empty, well-formed SVG; every figure links its CSV.
     let figures: Vec<_> = doc.descendants().filter(|n| n.has_tag_name("figure")).collect();
-    // 18 paper figures (3–20) + 4 FTDO/DOBC overlays + 1 accuracy figure + the ledger's own plots.
+    // 18 paper figures (3–20) + 2 DOBC − FTDO difference maps + 1 accuracy figure + the region map + the ledger's own plots.
     let ledger_plots: usize = summary.ledger.rows.iter().map(|r| r.plots.len()).sum();
-    assert_eq!(figures.len(), 18 + 4 + 1 + ledger_plots);
+    assert_eq!(figures.len(), 18 + 2 + 1 + 1 + ledger_plots);
     for f in &figures {
         let img = f.descendants().find(|n| n.has_tag_name("img")).expect("figure has an image");
         let src = img.attribute("src").unwrap();
@@ -118,8 +118,10 @@ fn report_is_well_formed_complete_and_matches_the_ledger() {
         .children()
         .filter(|n| n.has_tag_name("tr"))
         .map(|tr| {
-            let cell = |c: &str| text(tr.children().find(|td| has_class(td, c)).unwrap()).trim().to_string();
-            (cell("id"), cell("verdict"), cell("basis"))
+            let td = |c: &str| tr.children().find(|td| has_class(td, c)).unwrap();
+            let cell = |c: &str| text(td(c)).trim().to_string();
+            let id = td("id").descendants().find(|n| n.has_tag_name("a")).map(text).unwrap_or_default();
+            (id, cell("verdict"), cell("basis"))
         })
         .collect();
     let want: Vec<(String, String, String)> = expected
@@ -245,9 +247,109 @@ fn unwritable_output_is_a_clear_error_and_an_interrupted_run_leaves_no_temp_dir(
             panic!("interrupted");
         }
     };
-    let r =
-        std::panic::catch_unwind(|| write_report(&small_cfg(&[]), &out, &ReportOptions { progress: Some(&panicky) }));
+    let r = std::panic::catch_unwind(|| {
+        write_report(&small_cfg(&[]), &out, &ReportOptions { progress: Some(&panicky), ..Default::default() })
+    });
     assert!(r.is_err());
     assert!(!out.exists());
     assert_eq!(others(tmp.path(), &["blocker"]), Vec::<String>::new(), "no temp dir left after interruption");
+}
+
+/// Text of every `<text>` element of an SVG.
+fn svg_texts(svg: &str) -> Vec<String> {
+    let doc = parse_xml(svg).expect("SVG is XML");
+    doc.descendants().filter(|n| n.has_tag_name("text")).map(|n| text(n).trim().to_string()).collect()
+}
+
+/// An axis label with a unit: ends in `(unit)` with a non-empty unit.
+fn has_unit(label: &str) -> bool {
+    label.ends_with(')') && label.rfind('(').is_some_and(|i| label.len() - i > 2)
+}
+
+#[test]
+fn ledger_digest_charts_sizes_links_and_provenance() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("paper");
+    let cfg = small_cfg(&[]);
+    let summary = render(&cfg, &out);
+    let html = read(&out.join("index.html"));
+    let doc = parse_xml(&html).expect("well-formed");
+
+    // No raw evidence identifier in the ledger table: no evidence key of any row (keys are
+    // snake_case / dotted identifiers) appears in its finding or numbers cells.
+    let table = doc.descendants().find(|n| n.attribute("id") == Some("ledger-table")).unwrap();
+    let cells: String = table
+        .descendants()
+        .filter(|n| has_class(n, "finding") || has_class(n, "numbers"))
+        .map(text)
+        .collect::<Vec<_>>()
+        .join(" ");
+    for r in &summary.ledger.rows {
+        for key in r.evidence.keys().filter(|k| k.contains('_') || k.contains('.')) {
+            assert!(!cells.contains(key.as_str()), "ledger shows the raw evidence key {key}");
+        }
+        assert!(!r.summary.is_empty());
+    }
+    // Every row has a one-sentence finding and at least two decisive numbers.
+    for tr in table.descendants().filter(|n| n.has_tag_name("tr") && n.attribute("id").is_some()) {
+        let finding = tr.children().find(|c| has_class(c, "finding")).map(text).unwrap_or_default();
+        assert!(finding.trim().ends_with('.'), "finding is a sentence: {finding}");
+        let numbers = tr.descendants().filter(|n| n.has_tag_name("li")).count();
+        assert!(numbers >= 2, "{:?}: {numbers} decisive numbers", tr.attribute("id"));
+    }
+
+    // Every chart the report draws from its own runs (paper figures, difference maps, accuracy,
+    // region map) has x and y axis labels with units. (The claims' own plots carry the labels
+    // the claim checker gives them.)
+    let mut total_svg = 0usize;
+    for f in summary.files.iter().filter(|f| f.ends_with(".svg")) {
+        let svg = read(&out.join(f));
+        total_svg += svg.len();
+        if f.starts_with("claim-") {
+            continue;
+        }
+        let labels: Vec<String> = svg_texts(&svg).into_iter().filter(|t| has_unit(t)).collect();
+        assert!(labels.len() >= 2, "{f}: axis labels with units, found {labels:?}");
+    }
+    // Total SVG within the page budget (1.5 MB; heatmaps are PNG rasters inside the SVGs).
+    assert!(total_svg <= 1_500_000, "total SVG {total_svg} bytes");
+
+    // No link or resource outside the report: relative, no parent directory, no scheme; and
+    // no mention of material outside the repository.
+    for a in doc.descendants().filter_map(|n| n.attribute("src").or(n.attribute("href"))) {
+        assert!(!a.contains("://") && !a.starts_with('/') && !a.contains(".."), "link outside the report: {a}");
+    }
+    assert!(!html.contains("shared/"), "the report cites a path outside the repository");
+    assert_eq!(
+        read(&out.join("model.md")),
+        read(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/model.md").as_path())
+    );
+
+    // Provenance holds the commit of the checkout (reference: git itself), or `unknown`.
+    let commit = doc.descendants().find(|n| n.attribute("id") == Some("git-commit")).map(text).unwrap();
+    let head = std::process::Command::new("git")
+        .args(["rev-parse", "HEAD"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .ok()
+        .filter(|o| o.status.success())
+        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string());
+    match head {
+        Some(h) => assert_eq!(commit, h, "provenance commit vs git rev-parse HEAD"),
+        None => assert_eq!(commit, "unknown"),
+    }
+    assert!(html.contains("rustc "), "compiler version in the provenance");
+}
+
+#[test]
+fn overall_progress_never_goes_back_and_ends_at_one() {
+    let tmp = tempfile::tempdir().unwrap();
+    let seen = std::sync::Mutex::new(Vec::new());
+    let on = |p: wingcheck_report::Overall| seen.lock().unwrap().push(p.fraction);
+    write_report(&small_cfg(&[]), &tmp.path().join("r"), &ReportOptions { overall: Some(&on), ..Default::default() })
+        .unwrap();
+    let v = seen.into_inner().unwrap();
+    assert!(v.len() > 10, "{} updates", v.len());
+    assert!(v.windows(2).all(|w| w[1] >= w[0]), "the overall fraction went back: {v:?}");
+    assert!((v.last().unwrap() - 1.0).abs() < 1e-12, "ends at {}", v.last().unwrap());
 }
