@@ -14,8 +14,7 @@ use rayon::prelude::*;
 
 use crate::modal::RunCache;
 use crate::point::{PointResult, Status};
-use crate::refine::{boundaries, boundary_csv};
-use crate::{heatmap_svg, limits, store, Manifest, Progress, RunControl, RunSummary, Search, SearchError, TheoryCache};
+use crate::{finalize, limits, store, Manifest, Progress, RunControl, RunSummary, Search, SearchError, TheoryCache};
 
 fn mismatch(dir: &Path, reason: impl Into<String>) -> SearchError {
     SearchError::Mismatch { dir: dir.display().to_string(), reason: reason.into() }
@@ -262,51 +261,4 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<RunSummary, SearchError> {
         wall_seconds: start.elapsed().as_secs_f64(),
         ..Default::default()
     })
-}
-
-/// Assemble the final files of a complete directory from `manifest.json` and the chunk files,
-/// in index order: `results.csv`, `results.json`, `best.json`, `failures.csv`,
-/// `boundary.csv`, heatmaps (2-D searches) and `timings.csv`, written all or nothing.
-/// Returns the file names written and the number of failed points (diverged, error).
-pub fn finalize(dir: &Path) -> Result<(Vec<String>, (usize, usize)), SearchError> {
-    let path = dir.join("manifest.json");
-    let manifest: Manifest = serde_json::from_str(&store::read(&path)?)
-        .map_err(|e| SearchError::Io { path: path.display().to_string(), detail: e.to_string() })?;
-    let search = Search::from_manifest(manifest)?;
-    let mut points = Vec::with_capacity(search.points());
-    let mut missing = Vec::new();
-    for c in 0..search.chunks() {
-        match store::read_chunk(dir, c, search.chunk_range(c))? {
-            Some(p) => points.extend(p),
-            None => missing.push(c),
-        }
-    }
-    if !missing.is_empty() {
-        return Err(SearchError::MissingChunks {
-            missing: missing.len(),
-            total: search.chunks(),
-            first: missing.iter().take(8).copied().collect(),
-        });
-    }
-    let keys: Vec<String> = search.grid.axes.iter().map(|a| a.key.clone()).collect();
-    let o = &search.options;
-    // each file is staged as soon as it is built, so only one file's text is in memory
-    let mut set = store::FileSet::new(dir);
-    set.stage("results.csv", &store::results_csv(&keys, &points))?;
-    set.stage("results.json", &store::results_json(&keys, &points))?;
-    set.stage("best.json", &store::best_json(&keys, &points, &o.best_metric, o.best_count)?)?;
-    set.stage("failures.csv", &store::failures_csv(&keys, &points))?;
-    let cache = TheoryCache::new(o.lyapunov_elements);
-    let rows = boundaries(&search, &points, &cache, o.refine);
-    set.stage("boundary.csv", &boundary_csv(&search.grid, &rows))?;
-    if search.grid.axes.len() == 2 && search.grid.dims().iter().all(|&n| n >= 2) {
-        for (metric, log) in [("rms_q_tip", true), ("rms_theta_tip", true), ("settling_time", false)] {
-            set.stage(&format!("heatmap-{metric}.svg"), &heatmap_svg(&search, &points, metric, log, &rows)?)?;
-        }
-    }
-    set.stage("timings.csv", &store::timings_csv(&points))?;
-    let files = set.commit()?;
-    let diverged = points.iter().filter(|p| p.status == Status::Diverged).count();
-    let errors = points.iter().filter(|p| p.status == Status::Error).count();
-    Ok((files, (diverged, errors)))
 }
