@@ -106,6 +106,11 @@ fn clean_up(out: &Path, found: Found, force: bool) {
     }
 }
 
+/// Points evaluated with one set of caches ([`TheoryCache`], [`RunCache`]) before they are
+/// dropped and rebuilt: bounds their memory (the verdict cache holds ≈ 300 bytes per point)
+/// while a sweep over wing keys rebuilds each wing's basis and pencil only once per window.
+const CACHE_POINTS: usize = 1024;
+
 /// Run (this shard of) a search into `out`, resuming from chunks already there; when every
 /// chunk of the search is present, write the final files ([`finalize`]). Refused before any
 /// work above the limits ([`limits::check`]) or with a bad thread count.
@@ -146,10 +151,10 @@ fn run_in(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<RunSummar
     if let Some(p) = ctl.progress {
         p(Progress { done: 0, total });
     }
-    let cache = TheoryCache::new(search.options.lyapunov_elements);
-    let runs = RunCache::new();
     let mut summary =
         RunSummary { out_dir: out.to_path_buf(), points_total: search.points(), skipped, ..Default::default() };
+    let (mut cache, mut runs, mut cache_points) =
+        (TheoryCache::new(search.options.lyapunov_elements), RunCache::new(), 0);
     let progress_name = format!("progress-{}-of-{}.json", ctl.shard.k, ctl.shard.n);
     let mut written = 0;
     for c in (0..search.chunks()).filter(|&c| ctl.shard.owns(c)) {
@@ -160,6 +165,13 @@ fn run_in(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<RunSummar
             continue;
         }
         written += 1;
+        // The caches are renewed every CACHE_POINTS points: their entries are keyed by what a
+        // point's config shares with others (wing, observer; a, b, … for the verdicts), so a
+        // search-long cache would grow with the number of points.
+        if cache_points + search.chunk_range(c).len() > CACHE_POINTS {
+            (cache, runs, cache_points) = (TheoryCache::new(search.options.lyapunov_elements), RunCache::new(), 0);
+        }
+        cache_points += search.chunk_range(c).len();
         let points: Vec<PointResult> = search
             .chunk_range(c)
             .into_par_iter()
