@@ -14,8 +14,7 @@ use rayon::prelude::*;
 
 use crate::modal::RunCache;
 use crate::point::{PointResult, Status};
-use crate::refine::{boundaries, boundary_csv};
-use crate::{heatmap_svg, limits, store, Manifest, Progress, RunControl, RunSummary, Search, SearchError, TheoryCache};
+use crate::{finalize, limits, store, Manifest, Progress, RunControl, RunSummary, Search, SearchError, TheoryCache};
 
 fn mismatch(dir: &Path, reason: impl Into<String>) -> SearchError {
     SearchError::Mismatch { dir: dir.display().to_string(), reason: reason.into() }
@@ -107,6 +106,11 @@ fn clean_up(out: &Path, found: Found, force: bool) {
     }
 }
 
+/// Points evaluated with one set of caches ([`TheoryCache`], [`RunCache`]) before they are
+/// dropped and rebuilt: bounds their memory (the verdict cache holds ≈ 300 bytes per point)
+/// while a sweep over wing keys rebuilds each wing's basis and pencil only once per window.
+const CACHE_POINTS: usize = 1024;
+
 /// Run (this shard of) a search into `out`, resuming from chunks already there; when every
 /// chunk of the search is present, write the final files ([`finalize`]). Refused before any
 /// work above the limits ([`limits::check`]) or with a bad thread count.
@@ -147,10 +151,10 @@ fn run_in(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<RunSummar
     if let Some(p) = ctl.progress {
         p(Progress { done: 0, total });
     }
-    let cache = TheoryCache::new(search.options.lyapunov_elements);
-    let runs = RunCache::new();
     let mut summary =
         RunSummary { out_dir: out.to_path_buf(), points_total: search.points(), skipped, ..Default::default() };
+    let (mut cache, mut runs, mut cache_points) =
+        (TheoryCache::new(search.options.lyapunov_elements), RunCache::new(), 0);
     let progress_name = format!("progress-{}-of-{}.json", ctl.shard.k, ctl.shard.n);
     let mut written = 0;
     for c in (0..search.chunks()).filter(|&c| ctl.shard.owns(c)) {
@@ -161,6 +165,13 @@ fn run_in(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<RunSummar
             continue;
         }
         written += 1;
+        // The caches are renewed every CACHE_POINTS points: their entries are keyed by what a
+        // point's config shares with others (wing, observer; a, b, … for the verdicts), so a
+        // search-long cache would grow with the number of points.
+        if cache_points + search.chunk_range(c).len() > CACHE_POINTS {
+            (cache, runs, cache_points) = (TheoryCache::new(search.options.lyapunov_elements), RunCache::new(), 0);
+        }
+        cache_points += search.chunk_range(c).len();
         let points: Vec<PointResult> = search
             .chunk_range(c)
             .into_par_iter()
@@ -262,51 +273,4 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<RunSummary, SearchError> {
         wall_seconds: start.elapsed().as_secs_f64(),
         ..Default::default()
     })
-}
-
-/// Assemble the final files of a complete directory from `manifest.json` and the chunk files,
-/// in index order: `results.csv`, `results.json`, `best.json`, `failures.csv`,
-/// `boundary.csv`, heatmaps (2-D searches) and `timings.csv`, written all or nothing.
-/// Returns the file names written and the number of failed points (diverged, error).
-pub fn finalize(dir: &Path) -> Result<(Vec<String>, (usize, usize)), SearchError> {
-    let path = dir.join("manifest.json");
-    let manifest: Manifest = serde_json::from_str(&store::read(&path)?)
-        .map_err(|e| SearchError::Io { path: path.display().to_string(), detail: e.to_string() })?;
-    let search = Search::from_manifest(manifest)?;
-    let mut points = Vec::with_capacity(search.points());
-    let mut missing = Vec::new();
-    for c in 0..search.chunks() {
-        match store::read_chunk(dir, c, search.chunk_range(c))? {
-            Some(p) => points.extend(p),
-            None => missing.push(c),
-        }
-    }
-    if !missing.is_empty() {
-        return Err(SearchError::MissingChunks {
-            missing: missing.len(),
-            total: search.chunks(),
-            first: missing.iter().take(8).copied().collect(),
-        });
-    }
-    let keys: Vec<String> = search.grid.axes.iter().map(|a| a.key.clone()).collect();
-    let o = &search.options;
-    // each file is staged as soon as it is built, so only one file's text is in memory
-    let mut set = store::FileSet::new(dir);
-    set.stage("results.csv", &store::results_csv(&keys, &points))?;
-    set.stage("results.json", &store::results_json(&keys, &points))?;
-    set.stage("best.json", &store::best_json(&keys, &points, &o.best_metric, o.best_count)?)?;
-    set.stage("failures.csv", &store::failures_csv(&keys, &points))?;
-    let cache = TheoryCache::new(o.lyapunov_elements);
-    let rows = boundaries(&search, &points, &cache, o.refine);
-    set.stage("boundary.csv", &boundary_csv(&search.grid, &rows))?;
-    if search.grid.axes.len() == 2 && search.grid.dims().iter().all(|&n| n >= 2) {
-        for (metric, log) in [("rms_q_tip", true), ("rms_theta_tip", true), ("settling_time", false)] {
-            set.stage(&format!("heatmap-{metric}.svg"), &heatmap_svg(&search, &points, metric, log, &rows)?)?;
-        }
-    }
-    set.stage("timings.csv", &store::timings_csv(&points))?;
-    let files = set.commit()?;
-    let diverged = points.iter().filter(|p| p.status == Status::Diverged).count();
-    let errors = points.iter().filter(|p| p.status == Status::Error).count();
-    Ok((files, (diverged, errors)))
 }

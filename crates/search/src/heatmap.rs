@@ -3,7 +3,7 @@
 
 use wingcheck_chart::{grid_heatmap_svg, GridAxis, GridHeatmap, Mark, MarkShape, RGBColor};
 
-use crate::point::{metric_index, PointResult};
+use crate::point::PointVerdicts;
 use crate::refine::{BoundaryRow, KINDS};
 use crate::{Axis, Search, SearchError};
 
@@ -65,12 +65,14 @@ fn metric_text(metric: &str, window: (f64, f64)) -> (String, String, String) {
     }
 }
 
-/// Render `metric` over a 2-D search (x = first axis, y = second), log colour scale if `log`.
+/// Render `metric` over a 2-D search (x = first axis, y = second), log colour scale if `log`;
+/// `values`: the metric at every point, `verdicts`: every point's verdicts (index order).
 /// Marks: the W ≻ 0 and (32) boundaries between grid cells, the theorem-feasible cells
 /// (both hold), and refined boundary points.
 pub fn heatmap_svg(
     search: &Search,
-    points: &[PointResult],
+    values: Vec<Option<f64>>,
+    verdicts: &[PointVerdicts],
     metric: &str,
     log: bool,
     boundary: &[BoundaryRow],
@@ -80,8 +82,10 @@ pub fn heatmap_svg(
     let grid = &search.grid;
     let (ax, ay) = (grid_axis(&grid.axes[0]), grid_axis(&grid.axes[1]));
     let (nx, ny) = (grid.dims()[0], grid.dims()[1]);
-    let mi = metric_index(metric).ok_or_else(|| err(format!("unknown metric {metric}")))?;
-    let values = (0..nx * ny).map(|k| points[grid.index(&[k / ny, k % ny])].metrics[mi]).collect();
+    if values.len() != nx * ny || verdicts.len() != nx * ny {
+        return Err(err(format!("{} values and {} verdicts for {nx} × {ny} cells", values.len(), verdicts.len())));
+    }
+    // row-major with the first axis slowest: point grid.index([i, j]) = i·ny + j, the chart's order
     // cell edges in axis values, for the boundary segments between cells
     let edge = |a: &GridAxis, i: usize| -> f64 {
         let c = |k: usize| if a.log { a.centres[k].log10() } else { a.centres[k] };
@@ -104,7 +108,7 @@ pub fn heatmap_svg(
         (0, W_COLOUR, "boundary of W ≻ 0 (Theorem 1) between grid cells"),
         (1, MU_COLOUR, "boundary of (29)–(32) feasibility between grid cells"),
     ] {
-        let v = |p: usize| if kind == 0 { points[p].w_positive_definite } else { points[p].feasible_32 };
+        let v = |p: usize| if kind == 0 { verdicts[p].w_positive_definite } else { verdicts[p].feasible_32 };
         let mut seg = Vec::new();
         for i in 0..nx {
             for j in 0..ny {
@@ -120,7 +124,7 @@ pub fn heatmap_svg(
         marks.push(Mark { label: label.into(), colour, shape: MarkShape::Segments, points: seg });
     }
     let both = (0..nx * ny)
-        .filter(|&p| points[p].theorem_feasible() == Some(true))
+        .filter(|&p| verdicts[p].theorem_feasible() == Some(true))
         .map(|p| {
             let m = grid.multi(p);
             (ax.centres[m[0]], ay.centres[m[1]])

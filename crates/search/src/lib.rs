@@ -17,6 +17,7 @@
 //! Results never depend on the number of rayon threads: points are pure functions of their
 //! config, collected in index order.
 
+mod assemble;
 pub mod axis;
 pub mod bench;
 mod exec;
@@ -33,11 +34,12 @@ use std::path::PathBuf;
 use serde::{Deserialize, Serialize};
 use wingcheck_model::Config;
 
+pub use assemble::{assemble, finalize, ChunkStream};
 pub use axis::{parse_axes, validate_axes, Axis, Grid, Spacing};
-pub use exec::{finalize, merge, run};
+pub use exec::{merge, run};
 pub use heatmap::heatmap_svg;
 pub use limits::{WorkEstimate, MAX_CORE_SECONDS, MAX_POINTS, MAX_POINTS_OVERRIDE};
-pub use point::{PointResult, Status, METRICS};
+pub use point::{PointResult, PointVerdicts, Status, METRICS};
 pub use refine::{boundaries, boundary_csv, BoundaryRow};
 pub use theory::{Theory, TheoryCache, Verdicts};
 
@@ -192,7 +194,7 @@ impl Search {
         if !(1..=64).contains(&o.lyapunov_elements) {
             return Err(SearchError::Options("lyapunov elements must lie in [1, 64]".into()));
         }
-        store::best_json(&[], &[], &o.best_metric, 0)?;
+        store::BestPoints::new(&o.best_metric, 0)?;
         Ok(Search { base, grid: Grid::new(axes), options })
     }
 

@@ -6,12 +6,14 @@ use wingcheck_model::{apply_overrides, Config, Method};
 use crate::axis::{Axis, Spacing};
 use crate::SearchError;
 
-/// Points a search may have without `--allow-large`. Finalising holds every point's results in
-/// memory: measured peak 37 MB for 10 000 points (≈ 4 kB per point with one output file's text),
-/// so ≈ 4 GB here.
+/// Points a search may have without `--allow-large`. Finalising streams the chunks and keeps
+/// 2 bytes per point (the theory verdicts), on 2-D searches ≈ 0.5 kB per point (three plotted
+/// values and one heatmap SVG at a time; `tests/assembly.rs` measures both): ≈ 2 MB, or
+/// ≈ 0.5 GB for a 2-D search, here.
 pub const MAX_POINTS: usize = 1_000_000;
 
-/// Points a search may never exceed, even with `--allow-large` (≈ 16 GB in memory).
+/// Points a search may never exceed, even with `--allow-large` (a 2-D search's heatmaps then
+/// need ≈ 2 GB).
 pub const MAX_POINTS_OVERRIDE: usize = 4_000_000;
 
 /// Estimated core time (s) a search may take without `--allow-large`: 2 core-hours.
@@ -107,7 +109,8 @@ pub fn check(w: &WorkEstimate, allow_large: bool) -> Result<(), SearchError> {
     if w.points > MAX_POINTS_OVERRIDE as u128 {
         return Err(SearchError::TooLarge(format!(
             "{what}: more than {MAX_POINTS_OVERRIDE} points cannot be searched in one directory \
-             (results are assembled in memory); split the axes into several searches"
+             (the heatmaps of a 2-D search are drawn in memory, ≈ 0.5 kB per point); \
+             split the axes into several searches"
         )));
     }
     if !allow_large && (w.points > MAX_POINTS as u128 || w.core_seconds > MAX_CORE_SECONDS) {

@@ -102,10 +102,31 @@ pub struct PointResult {
     pub theory_seconds: f64,
 }
 
-impl PointResult {
+/// The two theory verdicts of a point (2 bytes): what boundaries and heatmap marks need.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct PointVerdicts {
+    /// W ≻ 0 on the Galerkin space.
+    pub w_positive_definite: Option<bool>,
+    /// (29)–(32) satisfiable.
+    pub feasible_32: Option<bool>,
+}
+
+impl PointVerdicts {
     /// Both hypotheses of Theorem 2: W ≻ 0 and (32) feasible.
     pub fn theorem_feasible(&self) -> Option<bool> {
         Some(self.w_positive_definite? && self.feasible_32?)
+    }
+}
+
+impl PointResult {
+    /// Both hypotheses of Theorem 2: W ≻ 0 and (32) feasible.
+    pub fn theorem_feasible(&self) -> Option<bool> {
+        self.verdicts().theorem_feasible()
+    }
+
+    /// The two theory verdicts.
+    pub fn verdicts(&self) -> PointVerdicts {
+        PointVerdicts { w_positive_definite: self.w_positive_definite, feasible_32: self.feasible_32 }
     }
 
     /// A metric by name.

@@ -7,7 +7,7 @@ use rayon::prelude::*;
 use wingcheck_model::apply_overrides;
 
 use crate::axis::Grid;
-use crate::point::PointResult;
+use crate::point::PointVerdicts;
 use crate::theory::TheoryCache;
 use crate::Search;
 
@@ -37,7 +37,7 @@ pub struct BoundaryRow {
     pub note: String,
 }
 
-fn verdict(p: &PointResult, kind: usize) -> Option<bool> {
+fn verdict(p: &PointVerdicts, kind: usize) -> Option<bool> {
     if kind == 0 {
         p.w_positive_definite
     } else {
@@ -46,9 +46,14 @@ fn verdict(p: &PointResult, kind: usize) -> Option<bool> {
 }
 
 /// Brackets (and, with `tol`, refined brackets) of every verdict change between grid
-/// neighbours, ordered by (lower point index, axis, kind). Deterministic: each bracket is
+/// neighbours (`points`: the verdicts of every point, in index order), ordered by (lower point index, axis, kind). Deterministic: each bracket is
 /// bisected independently, results collected in order.
-pub fn boundaries(search: &Search, points: &[PointResult], cache: &TheoryCache, tol: Option<f64>) -> Vec<BoundaryRow> {
+pub fn boundaries(
+    search: &Search,
+    points: &[PointVerdicts],
+    cache: &TheoryCache,
+    tol: Option<f64>,
+) -> Vec<BoundaryRow> {
     let grid = &search.grid;
     let mut jobs = Vec::new();
     for p in 0..points.len() {

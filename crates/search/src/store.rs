@@ -131,30 +131,29 @@ fn opt_bool(b: Option<bool>) -> String {
     b.map(|b| b.to_string()).unwrap_or_default()
 }
 
-/// `results.csv`: header `index,<axis keys>,status,w_positive_definite,feasible_32,
-/// theorem_feasible,<METRICS>,message`; one row per point in index order; f64 in Rust's
-/// shortest round-trip form; missing values empty.
-pub fn results_csv(keys: &[String], points: &[PointResult]) -> String {
+/// Header line of `results.csv`: `index,<axis keys>,status,w_positive_definite,feasible_32,
+/// theorem_feasible,<METRICS>,message`.
+pub fn results_csv_header(keys: &[String]) -> String {
     let mut head = vec!["index".to_string()];
     head.extend(keys.iter().map(|k| csv_field(k)));
     head.extend(["status", "w_positive_definite", "feasible_32", "theorem_feasible"].map(String::from));
     head.extend(METRICS.iter().map(|m| m.to_string()));
     head.push("message".into());
-    let mut out = head.join(",");
-    out.push('\n');
-    for p in points {
-        let mut row = vec![p.index.to_string()];
-        row.extend(p.values.iter().map(|v| csv_field(v)));
-        row.push(p.status.name().into());
-        row.push(opt_bool(p.w_positive_definite));
-        row.push(opt_bool(p.feasible_32));
-        row.push(opt_bool(p.theorem_feasible()));
-        row.extend(p.metrics.iter().map(|m| m.map(|x| format!("{x}")).unwrap_or_default()));
-        row.push(csv_field(&p.message));
-        out.push_str(&row.join(","));
-        out.push('\n');
-    }
-    out
+    head.join(",") + "\n"
+}
+
+/// One row of `results.csv` (points in index order; f64 in Rust's shortest round-trip form;
+/// missing values empty).
+pub fn results_csv_row(p: &PointResult) -> String {
+    let mut row = vec![p.index.to_string()];
+    row.extend(p.values.iter().map(|v| csv_field(v)));
+    row.push(p.status.name().into());
+    row.push(opt_bool(p.w_positive_definite));
+    row.push(opt_bool(p.feasible_32));
+    row.push(opt_bool(p.theorem_feasible()));
+    row.extend(p.metrics.iter().map(|m| m.map(|x| format!("{x}")).unwrap_or_default()));
+    row.push(csv_field(&p.message));
+    row.join(",") + "\n"
 }
 
 /// A swept value as JSON: the number or literal it parses as, else a string.
@@ -184,94 +183,156 @@ pub fn point_json(keys: &[String], p: &PointResult) -> Value {
     })
 }
 
-/// The points of `results.json`, serialised one at a time (the JSON tree of one point exists
-/// only while it is written, so memory does not hold a tree of every point).
-struct PointsSeq<'a> {
+/// The points of `results.json`, pulled one at a time from a stream while serde_json writes
+/// them: only the point being written exists in memory (and its JSON tree). The first error of
+/// the stream stops the document and is kept in `error`.
+struct LazyPoints<'a, I> {
     keys: &'a [String],
-    points: &'a [PointResult],
+    points: std::cell::RefCell<I>,
+    error: std::cell::RefCell<Option<SearchError>>,
 }
 
-impl Serialize for PointsSeq<'_> {
+impl<I: Iterator<Item = Result<PointResult, SearchError>>> Serialize for LazyPoints<'_, I> {
     fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        s.collect_seq(self.points.iter().map(|p| point_json(self.keys, p)))
+        use serde::ser::{Error, SerializeSeq};
+        let mut seq = s.serialize_seq(None)?;
+        for p in &mut *self.points.borrow_mut() {
+            match p {
+                Ok(p) => seq.serialize_element(&point_json(self.keys, &p))?,
+                Err(e) => {
+                    let text = e.to_string();
+                    *self.error.borrow_mut() = Some(e);
+                    return Err(S::Error::custom(text));
+                }
+            }
+        }
+        seq.end()
     }
 }
 
-/// `results.json`: `{"axes": [keys], "metrics": [names], "points": [point_json …]}` (keys in
-/// that order, as serde_json's map of a `json!` document sorts them).
-pub fn results_json(keys: &[String], points: &[PointResult]) -> String {
+/// Write `results.json` to `out`, consuming `points` (index order) lazily:
+/// `{"axes": [keys], "metrics": [names], "points": [point_json …]}`, pretty-printed by
+/// serde_json with a trailing newline — the same bytes as `serde_json::to_string_pretty` of
+/// the whole document (keys in the order a `json!` map sorts them).
+pub fn write_results_json<I>(out: &mut impl std::io::Write, keys: &[String], points: I) -> Result<(), SearchError>
+where
+    I: Iterator<Item = Result<PointResult, SearchError>>,
+{
     #[derive(Serialize)]
-    struct Doc<'a> {
+    #[serde(bound = "")]
+    struct Doc<'a, I: Iterator<Item = Result<PointResult, SearchError>>> {
         axes: &'a [String],
         metrics: &'a [&'a str],
-        points: PointsSeq<'a>,
+        points: &'a LazyPoints<'a, I>,
     }
-    let doc = Doc { axes: keys, metrics: &METRICS, points: PointsSeq { keys, points } };
-    serde_json::to_string_pretty(&doc).expect("results serialise") + "\n"
+    let lazy = LazyPoints { keys, points: std::cell::RefCell::new(points), error: std::cell::RefCell::new(None) };
+    let doc = Doc { axes: keys, metrics: &METRICS, points: &lazy };
+    let io = |e: String| SearchError::Io { path: "results.json".into(), detail: e };
+    let written = serde_json::to_writer_pretty(&mut *out, &doc);
+    if let Some(e) = lazy.error.borrow_mut().take() {
+        return Err(e);
+    }
+    written.map_err(|e| io(e.to_string()))?;
+    out.write_all(b"\n").map_err(|e| io(e.to_string()))
 }
 
-/// `best.json`: the `count` best `ok` points by `metric` (a name of [`METRICS`], minimised;
-/// prefix `-` to maximise), overall and among the theorem-feasible ones; ties by index.
-pub fn best_json(keys: &[String], points: &[PointResult], metric: &str, count: usize) -> Result<String, SearchError> {
-    let (name, maximise) = match metric.strip_prefix('-') {
-        Some(n) => (n, true),
-        None => (metric, false),
-    };
-    if crate::point::metric_index(name).is_none() {
-        return Err(SearchError::Options(format!("unknown metric `{name}`: use one of {}", METRICS.join(", "))));
+/// The `count` best `ok` points by a metric (a name of [`METRICS`], minimised; prefix `-` to
+/// maximise), overall and among the theorem-feasible ones; ties by index. Fed the points in
+/// index order, it keeps at most `2 × count` of them.
+#[derive(Debug)]
+pub struct BestPoints {
+    name: &'static str,
+    column: usize,
+    maximise: bool,
+    count: usize,
+    overall: Vec<(f64, PointResult)>,
+    feasible: Vec<(f64, PointResult)>,
+}
+
+impl BestPoints {
+    /// Ranking by `metric`; an unknown metric is an error naming the allowed ones.
+    pub fn new(metric: &str, count: usize) -> Result<BestPoints, SearchError> {
+        let (name, maximise) = match metric.strip_prefix('-') {
+            Some(n) => (n, true),
+            None => (metric, false),
+        };
+        let column = crate::point::metric_index(name).ok_or_else(|| {
+            SearchError::Options(format!("unknown metric `{name}`: use one of {}", METRICS.join(", ")))
+        })?;
+        Ok(BestPoints { name: METRICS[column], column, maximise, count, overall: vec![], feasible: vec![] })
     }
-    let rank = |feasible_only: bool| -> Vec<Value> {
-        let mut c: Vec<(&PointResult, f64)> = points
-            .iter()
-            .filter(|p| p.status == Status::Ok && (!feasible_only || p.theorem_feasible() == Some(true)))
-            .filter_map(|p| p.metric(name).filter(|x| x.is_finite()).map(|x| (p, x)))
-            .collect();
-        c.sort_by(|a, b| {
-            let o = if maximise { b.1.total_cmp(&a.1) } else { a.1.total_cmp(&b.1) };
-            o.then(a.0.index.cmp(&b.0.index))
+
+    fn insert(list: &mut Vec<(f64, PointResult)>, x: f64, p: &PointResult, maximise: bool, count: usize) {
+        // points arrive in index order, so an equal value goes after those already kept
+        let pos =
+            list.partition_point(|(y, _)| if maximise { y.total_cmp(&x).is_ge() } else { y.total_cmp(&x).is_le() });
+        if pos < count {
+            list.insert(pos, (x, p.clone()));
+            list.truncate(count);
+        }
+    }
+
+    /// Consider the next point (points must come in increasing index order).
+    pub fn add(&mut self, p: &PointResult) {
+        if p.status != Status::Ok {
+            return;
+        }
+        let Some(x) = p.metrics[self.column].filter(|x| x.is_finite()) else { return };
+        Self::insert(&mut self.overall, x, p, self.maximise, self.count);
+        if p.theorem_feasible() == Some(true) {
+            Self::insert(&mut self.feasible, x, p, self.maximise, self.count);
+        }
+    }
+
+    /// `best.json`: `{"best": […], "best_theorem_feasible": […], "metric", "order"}`.
+    pub fn json(&self, keys: &[String]) -> String {
+        let list = |l: &[(f64, PointResult)]| l.iter().map(|(_, p)| point_json(keys, p)).collect::<Vec<Value>>();
+        let doc = json!({
+            "metric": self.name,
+            "order": if self.maximise { "descending" } else { "ascending" },
+            "best": list(&self.overall),
+            "best_theorem_feasible": list(&self.feasible),
         });
-        c.into_iter().take(count).map(|(p, _)| point_json(keys, p)).collect()
-    };
-    let doc = json!({
-        "metric": name,
-        "order": if maximise { "descending" } else { "ascending" },
-        "best": rank(false),
-        "best_theorem_feasible": rank(true),
-    });
-    Ok(serde_json::to_string_pretty(&doc).expect("best serialises") + "\n")
-}
-
-/// `timings.csv`: index, simulation and theory wall time (s). Not deterministic.
-pub fn timings_csv(points: &[PointResult]) -> String {
-    let mut out = String::from("index,sim_seconds,theory_seconds\n");
-    for p in points {
-        out.push_str(&format!("{},{},{}\n", p.index, p.sim_seconds, p.theory_seconds));
+        serde_json::to_string_pretty(&doc).expect("best serialises") + "\n"
     }
-    out
 }
 
-/// `failures.csv`: every point whose status is not `ok`, in index order: `index,<axis keys>,
-/// status,message` (header only when every point succeeded).
-pub fn failures_csv(keys: &[String], points: &[PointResult]) -> String {
+/// Header of `timings.csv` (index, simulation and theory wall time in s; not deterministic).
+pub const TIMINGS_HEADER: &str = "index,sim_seconds,theory_seconds\n";
+
+/// One row of `timings.csv`.
+pub fn timings_row(p: &PointResult) -> String {
+    format!("{},{},{}\n", p.index, p.sim_seconds, p.theory_seconds)
+}
+
+/// Header of `failures.csv`: `index,<axis keys>,status,message` (the whole file when every
+/// point succeeded).
+pub fn failures_header(keys: &[String]) -> String {
     let mut out = String::from("index,");
     for k in keys {
         out.push_str(&csv_field(k));
         out.push(',');
     }
     out.push_str("status,message\n");
-    for p in points.iter().filter(|p| p.status != Status::Ok) {
-        out.push_str(&p.index.to_string());
-        out.push(',');
-        for v in &p.values {
-            out.push_str(&csv_field(v));
-            out.push(',');
-        }
-        out.push_str(p.status.name());
-        out.push(',');
-        out.push_str(&csv_field(&p.message));
-        out.push('\n');
-    }
     out
+}
+
+/// The row of `failures.csv` of a point whose status is not `ok` (None for an `ok` point).
+pub fn failures_row(p: &PointResult) -> Option<String> {
+    if p.status == Status::Ok {
+        return None;
+    }
+    let mut out = p.index.to_string();
+    out.push(',');
+    for v in &p.values {
+        out.push_str(&csv_field(v));
+        out.push(',');
+    }
+    out.push_str(p.status.name());
+    out.push(',');
+    out.push_str(&csv_field(&p.message));
+    out.push('\n');
+    Some(out)
 }
 
 /// Writes a set of files into a directory all or nothing: [`FileSet::stage`] writes each file
@@ -307,6 +368,16 @@ impl FileSet {
         write().map_err(|e| SearchError::Io { path: self.dir.join(name).display().to_string(), detail: e.to_string() })
     }
 
+    /// Open the temp file of `name` for writing piece by piece; [`Staged::finish`] it before
+    /// the commit.
+    pub fn open(&mut self, name: &str) -> Result<Staged, SearchError> {
+        self.staged.push(name.to_string());
+        let path = self.dir.join(name).display().to_string();
+        let file = std::fs::File::create(self.tmp(name))
+            .map_err(|e| SearchError::Io { path: path.clone(), detail: e.to_string() })?;
+        Ok(Staged { out: std::io::BufWriter::new(file), path })
+    }
+
     /// Rename every staged file into place; returns their names.
     pub fn commit(mut self) -> Result<Vec<String>, SearchError> {
         for name in &self.staged {
@@ -327,5 +398,37 @@ impl Drop for FileSet {
                 let _ = std::fs::remove_file(self.tmp(name));
             }
         }
+    }
+}
+
+/// A file of a [`FileSet`] being written piece by piece (buffered).
+pub struct Staged {
+    out: std::io::BufWriter<std::fs::File>,
+    path: String,
+}
+
+impl Staged {
+    /// Append `text`.
+    pub fn write(&mut self, text: &str) -> Result<(), SearchError> {
+        use std::io::Write;
+        self.out.write_all(text.as_bytes()).map_err(|e| self.error(e))
+    }
+
+    /// The underlying writer (errors name the file via [`Staged::error`]).
+    pub fn writer(&mut self) -> &mut std::io::BufWriter<std::fs::File> {
+        &mut self.out
+    }
+
+    /// An I/O error of this file.
+    pub fn error(&self, e: impl std::fmt::Display) -> SearchError {
+        SearchError::Io { path: self.path.clone(), detail: e.to_string() }
+    }
+
+    /// Flush and sync.
+    pub fn finish(self) -> Result<(), SearchError> {
+        let path = self.path;
+        let err = |e: String| SearchError::Io { path: path.clone(), detail: e };
+        let file = self.out.into_inner().map_err(|e| err(e.error().to_string()))?;
+        file.sync_all().map_err(|e| err(e.to_string()))
     }
 }
