@@ -188,6 +188,30 @@ fn texts_follow_the_facts_of_the_run() {
 }
 
 #[test]
+fn lemma_texts_follow_the_span_and_the_exponent() {
+    use wingcheck_claims::lemmas;
+    // Span f = 2 (the paper's): the counterexample is ω = z^k with the least k such that
+    // 2k + 1 > f² = 4, i.e. k = 2: ω(2)² = 2⁴ = 16 > 2∫_0^2 z⁴ dz = 2·32/5 = 64/5 (by hand);
+    // the degree-1 ratio is 3/f² = 0.75 (∫_0^1 x² = 1/3).
+    let two = lemmas::check(&short(&[])).unwrap().summary;
+    assert!(two.contains("on [0, 2]") && two.contains("ω = z^2:"), "{two}");
+    assert!(two.contains("ω(f)² = 16 > f∫ω² = 64/5"), "{two}");
+    assert!(two.contains("0.750 at degree 1"), "{two}");
+    assert!(two.contains("p = a1/a2 = 0.538462"), "{two}"); // 7/13
+                                                            // Span f = 6 with a1/a2 = 3/5: least k with 2k + 1 > 36 is k = 18; degree-1 ratio 3/36.
+    let six = lemmas::check(&short(&["wing.span=6", "observer.a1=3", "observer.a2=5"])).unwrap();
+    let s6 = &six.summary;
+    assert!(s6.contains("on [0, 6]") && s6.contains("ω = z^18:"), "{s6}");
+    assert!(s6.contains("0.083 at degree 1") && s6.contains("p = a1/a2 = 0.600000"), "{s6}");
+    assert!(!s6.contains("64/5") && !s6.contains("on [0, 2]"));
+    // the evidence carries the same facts, exactly
+    let cex = &six.evidence["lemma2_counterexample"];
+    assert_eq!(cex["omega"], "z^18");
+    assert_eq!(cex["f"], 6.0);
+    assert_eq!(cex["printed_violated"], true);
+}
+
+#[test]
 fn each_distinct_simulation_runs_once() {
     let study = Study::new();
     let cfg = short(&[]);

@@ -78,11 +78,9 @@ fn default_work_is_far_inside_the_limits() {
             "discretisation.elements=64",
         ]),
     ] {
-        for est in [
-            WorkEstimate::simulation(&cfg, true, Some(true)),
-            WorkEstimate::check(&cfg),
-            WorkEstimate::report(&cfg),
-        ] {
+        for est in
+            [WorkEstimate::simulation(&cfg, true, Some(true)), WorkEstimate::check(&cfg), WorkEstimate::report(&cfg)]
+        {
             assert!(est.within(&DEFAULT_LIMITS).is_ok(), "{est:?}");
         }
     }
