@@ -79,8 +79,61 @@ proptest! {
     }
 }
 
+/// The typed evidence of the row, deserialised from its JSON, decides the row's verdict and
+/// basis through the module's own `verdict` function (None for a row whose computation failed).
+fn verdict_from_own_evidence(r: &wingcheck_claims::ClaimRow) -> Option<(Verdict, wingcheck_claims::Basis)> {
+    use wingcheck_claims::{comparison, finite_time, lemmas, uub, wbounds};
+    if r.evidence.is_empty() {
+        return None;
+    }
+    let v = serde_json::to_value(&r.evidence).unwrap();
+    fn typed<T: serde::de::DeserializeOwned>(id: ClaimId, v: Value) -> T {
+        serde_json::from_value(v).unwrap_or_else(|e| panic!("{id}: evidence does not deserialise into its struct: {e}"))
+    }
+    Some(match r.id {
+        ClaimId::WBounds => wbounds::verdict(&typed(r.id, v)),
+        ClaimId::MuConditions => mu::verdict(&typed(r.id, v)),
+        ClaimId::Uub => uub::verdict(&typed(r.id, v)),
+        ClaimId::FiniteTime1 | ClaimId::FiniteTime2 => {
+            finite_time::verdict(&typed(r.id, v))
+        }
+        ClaimId::Lemmas => lemmas::verdict(&typed(r.id, v)),
+        ClaimId::FtdoVsDobc => comparison::verdict(&typed(r.id, v)),
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 5, ..ProptestConfig::default() })]
+
+    /// The WHOLE check over random valid configurations (ranges as above; every κ drawn
+    /// independently, so κ2 < ζ1 or κ5 < ζ2 occurs), horizon 2 s: it completes, the JSON holds
+    /// no NaN/inf/null, and every row's verdict is the one its own (deserialised) evidence gives.
+    #[test]
+    fn whole_check_is_finite_and_consistent(
+        la in -6.0f64..3.0, lr in 0.0f64..8.0, k1 in prop_oneof![Just(0.0), 0.01f64..10.0],
+        k2 in prop_oneof![Just(0.0), 0.01f64..10.0], xi in prop_oneof![Just(0.0), 0.0f64..2.0],
+        kap in proptest::array::uniform6(0.1f64..10.0),
+    ) {
+        let a = 10f64.powf(la);
+        let b = a * 10f64.powf(lr);
+        let mut sets: Vec<String> = vec!["horizon.t_end=2".into(), format!("control.a={a}"), format!("control.b={b}"),
+            format!("control.k1={k1}"), format!("control.k2={k2}"), format!("wing.xi={xi}")];
+        sets.extend(kap.iter().enumerate().map(|(i, k)| format!("observer.kappa{}={k}", i + 1)));
+        let cfg = cfg_with(&sets);
+        let l = check_all(&cfg).unwrap();
+        prop_assert_eq!(l.rows.len(), ClaimId::ALL.len());
+        prop_assert!(l.non_finite().is_empty(), "{:?}", l.non_finite());
+        let v = serde_json::to_value(&l).unwrap();
+        prop_assert!(no_non_finite(&v));
+        verdict_matches_evidence(&l);
+    }
+}
+
 fn verdict_matches_evidence(l: &Ledger) {
     for r in &l.rows {
+        if let Some((verdict, basis)) = verdict_from_own_evidence(r) {
+            assert_eq!((r.verdict, r.basis), (verdict, basis), "{}: verdict vs its own evidence", r.id);
+        }
         match r.id {
             ClaimId::WBounds => {
                 let d: Decision = serde_json::from_value(r.evidence["w_positive_definite"].clone()).unwrap();
