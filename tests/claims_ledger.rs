@@ -94,9 +94,7 @@ fn verdict_from_own_evidence(r: &wingcheck_claims::ClaimRow) -> Option<(Verdict,
         ClaimId::WBounds => wbounds::verdict(&typed(r.id, v)),
         ClaimId::MuConditions => mu::verdict(&typed(r.id, v)),
         ClaimId::Uub => uub::verdict(&typed(r.id, v)),
-        ClaimId::FiniteTime1 | ClaimId::FiniteTime2 => {
-            finite_time::verdict(&typed(r.id, v))
-        }
+        ClaimId::FiniteTime1 | ClaimId::FiniteTime2 => finite_time::verdict(&typed(r.id, v)),
         ClaimId::Lemmas => lemmas::verdict(&typed(r.id, v)),
         ClaimId::FtdoVsDobc => comparison::verdict(&typed(r.id, v)),
     })
@@ -125,6 +123,9 @@ proptest! {
         prop_assert!(l.non_finite().is_empty(), "{:?}", l.non_finite());
         let v = serde_json::to_value(&l).unwrap();
         prop_assert!(no_non_finite(&v));
+        for r in &l.rows {
+            prop_assert!(!r.summary.contains("internal error"), "{}: {}", r.id, r.summary);
+        }
         verdict_matches_evidence(&l);
     }
 }
