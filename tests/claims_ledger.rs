@@ -79,8 +79,62 @@ proptest! {
     }
 }
 
+/// The typed evidence of the row, deserialised from its JSON, decides the row's verdict and
+/// basis through the module's own `verdict` function (None for a row whose computation failed).
+fn verdict_from_own_evidence(r: &wingcheck_claims::ClaimRow) -> Option<(Verdict, wingcheck_claims::Basis)> {
+    use wingcheck_claims::{comparison, finite_time, lemmas, uub, wbounds};
+    if r.evidence.is_empty() {
+        return None;
+    }
+    let v = serde_json::to_value(&r.evidence).unwrap();
+    fn typed<T: serde::de::DeserializeOwned>(id: ClaimId, v: Value) -> T {
+        serde_json::from_value(v).unwrap_or_else(|e| panic!("{id}: evidence does not deserialise into its struct: {e}"))
+    }
+    Some(match r.id {
+        ClaimId::WBounds => wbounds::verdict(&typed(r.id, v)),
+        ClaimId::MuConditions => mu::verdict(&typed(r.id, v)),
+        ClaimId::Uub => uub::verdict(&typed(r.id, v)),
+        ClaimId::FiniteTime1 | ClaimId::FiniteTime2 => finite_time::verdict(&typed(r.id, v)),
+        ClaimId::Lemmas => lemmas::verdict(&typed(r.id, v)),
+        ClaimId::FtdoVsDobc => comparison::verdict(&typed(r.id, v)),
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 5, ..ProptestConfig::default() })]
+
+    /// The WHOLE check over random valid configurations (ranges as above; every κ drawn
+    /// independently, so κ2 < ζ1 or κ5 < ζ2 occurs), horizon 2 s: it completes, the JSON holds
+    /// no NaN/inf/null, and every row's verdict is the one its own (deserialised) evidence gives.
+    #[test]
+    fn whole_check_is_finite_and_consistent(
+        la in -6.0f64..3.0, lr in 0.0f64..8.0, k1 in prop_oneof![Just(0.0), 0.01f64..10.0],
+        k2 in prop_oneof![Just(0.0), 0.01f64..10.0], xi in prop_oneof![Just(0.0), 0.0f64..2.0],
+        kap in proptest::array::uniform6(0.1f64..10.0),
+    ) {
+        let a = 10f64.powf(la);
+        let b = a * 10f64.powf(lr);
+        let mut sets: Vec<String> = vec!["horizon.t_end=2".into(), format!("control.a={a}"), format!("control.b={b}"),
+            format!("control.k1={k1}"), format!("control.k2={k2}"), format!("wing.xi={xi}")];
+        sets.extend(kap.iter().enumerate().map(|(i, k)| format!("observer.kappa{}={k}", i + 1)));
+        let cfg = cfg_with(&sets);
+        let l = check_all(&cfg).unwrap();
+        prop_assert_eq!(l.rows.len(), ClaimId::ALL.len());
+        prop_assert!(l.non_finite().is_empty(), "{:?}", l.non_finite());
+        let v = serde_json::to_value(&l).unwrap();
+        prop_assert!(no_non_finite(&v));
+        for r in &l.rows {
+            prop_assert!(!r.summary.contains("internal error"), "{}: {}", r.id, r.summary);
+        }
+        verdict_matches_evidence(&l);
+    }
+}
+
 fn verdict_matches_evidence(l: &Ledger) {
     for r in &l.rows {
+        if let Some((verdict, basis)) = verdict_from_own_evidence(r) {
+            assert_eq!((r.verdict, r.basis), (verdict, basis), "{}: verdict vs its own evidence", r.id);
+        }
         match r.id {
             ClaimId::WBounds => {
                 let d: Decision = serde_json::from_value(r.evidence["w_positive_definite"].clone()).unwrap();
@@ -185,6 +239,30 @@ fn texts_follow_the_facts_of_the_run() {
     use wingcheck_claims::comparison::check as cmp;
     assert!(cmp(&hi, &study).unwrap().summary.contains("0.080 N"));
     assert!(cmp(&short(&["disturbance.tip_bending.amp=0.48"]), &study).unwrap().summary.contains("0.500 N"));
+}
+
+#[test]
+fn lemma_texts_follow_the_span_and_the_exponent() {
+    use wingcheck_claims::lemmas;
+    // Span f = 2 (the paper's): the counterexample is ω = z^k with the least k such that
+    // 2k + 1 > f² = 4, i.e. k = 2: ω(2)² = 2⁴ = 16 > 2∫_0^2 z⁴ dz = 2·32/5 = 64/5 (by hand);
+    // the degree-1 ratio is 3/f² = 0.75 (∫_0^1 x² = 1/3).
+    let two = lemmas::check(&short(&[])).unwrap().summary;
+    assert!(two.contains("on [0, 2]") && two.contains("ω = z^2:"), "{two}");
+    assert!(two.contains("ω(f)² = 16 > f∫ω² = 64/5"), "{two}");
+    assert!(two.contains("0.750 at degree 1"), "{two}");
+    assert!(two.contains("p = a1/a2 = 0.538462"), "{two}"); // 7/13
+                                                            // Span f = 6 with a1/a2 = 3/5: least k with 2k + 1 > 36 is k = 18; degree-1 ratio 3/36.
+    let six = lemmas::check(&short(&["wing.span=6", "observer.a1=3", "observer.a2=5"])).unwrap();
+    let s6 = &six.summary;
+    assert!(s6.contains("on [0, 6]") && s6.contains("ω = z^18:"), "{s6}");
+    assert!(s6.contains("0.083 at degree 1") && s6.contains("p = a1/a2 = 0.600000"), "{s6}");
+    assert!(!s6.contains("64/5") && !s6.contains("on [0, 2]"));
+    // the evidence carries the same facts, exactly
+    let cex = &six.evidence["lemma2_counterexample"];
+    assert_eq!(cex["omega"], "z^18");
+    assert_eq!(cex["f"], 6.0);
+    assert_eq!(cex["printed_violated"], true);
 }
 
 #[test]

@@ -131,3 +131,26 @@ fn uub_bound_is_valid_but_vacuous() {
     let w0 = &row.evidence["w0_by_elements"];
     assert!(w0[2][1].as_f64().unwrap() > 2.0 * w0[0][1].as_f64().unwrap());
 }
+
+#[test]
+fn w_bounds_threshold_is_the_converged_fundamental_frequency() {
+    // Reference: ω₁ of the simulator's converged FE modes (Romberg over uniform meshes 16, 32, …,
+    // crates/sim/src/modes/converged.rs), independent of the exact-rational Lyapunov assembly.
+    let cfg = paper_with(&[]);
+    let omega = modes::fundamental_frequency(&cfg).unwrap();
+    let row = wbounds::check(&cfg).unwrap().row;
+    let (r, err) = (row.number("a_over_b_max").unwrap(), row.number("a_over_b_max_error").unwrap());
+    assert_eq!(r, omega.value);
+    assert!(err <= 1e-9 * r, "error {err}");
+    // Rayleigh–Ritz: the 16-element Galerkin value is an upper bound, close (O(h²) ≈ 2e-5 relative)
+    let g16 = row.number("a_over_b_max_galerkin16").unwrap();
+    assert!(g16 >= r - err && g16 - r < 1e-4 * r, "{g16} vs {r}");
+    // Decided within 1e-7 of the threshold (the old |ω₁(16) − ω₁(8)| ≈ 1e-4 error could not) ...
+    let at = |x: f64| wbounds::check(&paper_with(&[&format!("control.a={x}"), "control.b=1"])).unwrap().row;
+    assert_eq!(at(r * (1.0 - 1e-7)).verdict, Verdict::HoldsAfterCorrection);
+    assert_eq!(at(r * (1.0 + 1e-7)).verdict, Verdict::Fails);
+    // ... and a/b equal to ω₁ (within its error) is at the threshold: not assigned a side.
+    let on = at(r);
+    assert_eq!(on.verdict, Verdict::Inconclusive);
+    assert!(on.summary.contains("at the threshold"), "{}", on.summary);
+}

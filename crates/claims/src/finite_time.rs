@@ -16,21 +16,23 @@
 //! `{rule}_sigma_after_max_T{T}`, `{rule}_gtilde_max_T{T}`, `{rule}_tau_jump_max_T{T}`,
 //! `{rule}_ghat_jump_max_T{T}`; `implicit_stays_in_band` (|σ_k| ≤ T ζ after reaching for every T),
 //! `implicit_reach_excess_max_s` (max over T of implicit reach − Filippov time), `run_t_end_s`.
+//! Typed as [`FiniteTimeEvidence`] (evidence → [`verdict`] → [`summary`]); a value that exists
+//! only after reaching is the text `not reached within the run` when it does not.
 
 pub mod reach;
 
 use std::collections::BTreeMap;
 use std::time::Instant;
 
-use serde_json::{json, Value};
+use serde::{Deserialize, Serialize};
 use wingcheck_control::ObserverGain;
 use wingcheck_model::{Config, ObserverRule, TipDisturbance};
 
-use crate::{Basis, ClaimRow, ClaimsError, Line, PlotData, Verdict};
+use crate::{evidence_map, Basis, ClaimRow, ClaimsError, Line, PlotData, Reached, Verdict, NOT_REACHED};
 use reach::{bound_38, bound_38_literal, digital_run, filippov_reach, zeta, DigitalRun};
 
 /// Which observer channel.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub enum Channel {
     /// σ1, g̃1, bound (38), Theorem 3.
     Bending,
@@ -69,22 +71,139 @@ fn tkey(t: f64) -> String {
     format!("{t:e}")
 }
 
-fn reach_value(t: Option<f64>) -> Value {
-    match t {
-        Some(t) => json!(t),
-        None => json!("not reached within the run"),
+/// One digital run's facts for one channel (keys `{rule}_{field}_T{T}` in the ledger).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DigitalEvidence {
+    /// Sampling rule.
+    pub rule: ObserverRule,
+    /// Hold period T (s).
+    pub period: f64,
+    /// Reaching time (s) (see [`reach::DigitalChannel::reach_s`]).
+    pub reach_s: Reached,
+    /// max |σ_k| after reaching (units of g).
+    pub sigma_after_max: Reached,
+    /// max |g − ĝ| over the chatter window (units of g).
+    pub gtilde_max: f64,
+    /// max sample-to-sample jump of ĝ over the chatter window (units of g).
+    pub ghat_jump_max: f64,
+    /// max sample-to-sample jump of τ over the chatter window (N or N m).
+    pub tau_jump_max: f64,
+}
+
+/// The digital runs, serialised flat as `{rule}_reach_s_T{T}`, `{rule}_sigma_after_max_T{T}`,
+/// `{rule}_gtilde_max_T{T}`, `{rule}_ghat_jump_max_T{T}`, `{rule}_tau_jump_max_T{T}`.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct DigitalRuns(pub Vec<DigitalEvidence>);
+
+impl DigitalRuns {
+    /// The run with this rule and period.
+    pub fn get(&self, rule: ObserverRule, period: f64) -> Option<&DigitalEvidence> {
+        self.0.iter().find(|d| d.rule == rule && d.period == period)
     }
 }
 
-/// Check the finite-time claim of one channel ((38) with Theorem 3, or (39) with Theorem 4).
-pub fn check(cfg: &Config, channel: Channel) -> Result<ClaimRow, ClaimsError> {
-    let clock = Instant::now();
-    let ix = match channel {
-        Channel::Bending => 0,
-        Channel::Torsion => 1,
-    };
-    let (n, eq, kap) =
-        if ix == 0 { ("1", "(38), Theorem 3", "κ2 ≥ ζ1") } else { ("2", "(39), Theorem 4", "κ5 ≥ ζ2") };
+impl Serialize for DigitalRuns {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut m = s.serialize_map(Some(5 * self.0.len()))?;
+        for d in &self.0 {
+            let (r, k) = (d.rule.name(), tkey(d.period));
+            m.serialize_entry(&format!("{r}_reach_s_T{k}"), &d.reach_s)?;
+            m.serialize_entry(&format!("{r}_sigma_after_max_T{k}"), &d.sigma_after_max)?;
+            m.serialize_entry(&format!("{r}_gtilde_max_T{k}"), &d.gtilde_max)?;
+            m.serialize_entry(&format!("{r}_ghat_jump_max_T{k}"), &d.ghat_jump_max)?;
+            m.serialize_entry(&format!("{r}_tau_jump_max_T{k}"), &d.tau_jump_max)?;
+        }
+        m.end()
+    }
+}
+
+impl<'de> Deserialize<'de> for DigitalRuns {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let map = BTreeMap::<String, serde_json::Value>::deserialize(d)?;
+        let field = |r: &str, f: &str, k: &str| map.get(&format!("{r}_{f}_T{k}")).cloned();
+        let mut out = Vec::new();
+        for rule in [ObserverRule::Implicit, ObserverRule::Explicit] {
+            for &period in &PERIODS {
+                let (r, k) = (rule.name(), tkey(period));
+                let Some(reach) = field(r, "reach_s", &k) else { continue };
+                let get = |f: &str| -> Result<serde_json::Value, D::Error> {
+                    field(r, f, &k).ok_or_else(|| serde::de::Error::custom(format!("missing {r}_{f}_T{k}")))
+                };
+                fn conv<T: serde::de::DeserializeOwned, E: serde::de::Error>(v: serde_json::Value) -> Result<T, E> {
+                    serde_json::from_value(v).map_err(E::custom)
+                }
+                out.push(DigitalEvidence {
+                    rule,
+                    period,
+                    reach_s: conv(reach)?,
+                    sigma_after_max: conv(get("sigma_after_max")?)?,
+                    gtilde_max: conv(get("gtilde_max")?)?,
+                    ghat_jump_max: conv(get("ghat_jump_max")?)?,
+                    tau_jump_max: conv(get("tau_jump_max")?)?,
+                });
+            }
+        }
+        Ok(DigitalRuns(out))
+    }
+}
+
+/// The evidence of the `finite-time-1` / `finite-time-2` rows (keys as in the module docs).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FiniteTimeEvidence {
+    /// σ(0) of the channel (units of g: N or N m).
+    pub sigma0: f64,
+    /// Q0 = σ(0)²/2.
+    pub q0: f64,
+    /// ζ = sup_t |g| (tight), units of g.
+    pub zeta: f64,
+    /// κ_sw (κ2 or κ5), units of g.
+    pub kappa_switching: f64,
+    /// The theorem's hypothesis κ_sw ≥ ζ.
+    pub hypothesis_holds: bool,
+    /// The bound (38)/(39) as read (s).
+    pub bound_s: f64,
+    /// The bound with the exponents read literally (s).
+    pub bound_literal_s: f64,
+    /// Filippov reaching time (s).
+    pub measured_s: Reached,
+    /// Its error estimate (s).
+    pub measured_error_s: f64,
+    /// `sigma-domain` or `time-domain`.
+    pub filippov_method: String,
+    /// σ reaches 0 and stays there (reached and κ_sw ≥ ζ).
+    pub stays_at_zero_filippov: bool,
+    /// sup |ġ| (units of g per s).
+    pub gdot_sup: f64,
+    /// Horizon of the digital runs (s).
+    pub run_t_end_s: f64,
+    /// Filippov time / bound for g ≡ κ_sw sign σ0 (1: sharp; f64::MAX if not reached).
+    pub sharp_ratio: f64,
+    /// max over the σ0 sweep of Filippov time / bound (f64::MAX if some σ0 is not reached).
+    pub sweep_max_ratio: f64,
+    /// Digital runs (flattened keys).
+    #[serde(flatten)]
+    pub digital: DigitalRuns,
+    /// The implicit observer stays in |σ_k| ≤ Tζ after reaching, for every T.
+    pub implicit_stays_in_band: bool,
+    /// max over T of (implicit reach − Filippov time) (s).
+    pub implicit_reach_excess_max_s: f64,
+    /// Which channel (context, not serialised).
+    #[serde(skip)]
+    pub channel: Option<Channel>,
+}
+
+/// Raw data behind the row's figures (not part of the evidence).
+pub struct Traces {
+    fil: reach::Filippov,
+    runs: Vec<DigitalRun>,
+    sweep: (Vec<f64>, Vec<f64>),
+    g: TipDisturbance,
+}
+
+/// Compute the evidence of one channel's finite-time claim, and the data behind its plots.
+pub fn evidence(cfg: &Config, channel: Channel) -> Result<(FiniteTimeEvidence, Traces), ClaimsError> {
+    let ix = channel_index(channel);
     let (gain, a1, a2, g) = channel_data(cfg, channel);
     let sigma0 =
         wingcheck_sim::Stepper::new(&reach::digital_config(cfg, cfg.observer.rule, cfg.observer.sample_period, 1.0))?
@@ -99,7 +218,7 @@ pub fn check(cfg: &Config, channel: Channel) -> Result<ClaimRow, ClaimsError> {
     let fil = filippov_reach(&gain, &gfun, sigma0, 60.0, FILIPPOV_STEPS)?;
     // Both channels run together; horizon long enough for both bounds, plus the chatter window.
     let other = channel_data(cfg, if ix == 0 { Channel::Torsion } else { Channel::Bending });
-    let other_s0 = if ix == 0 { sigma0_other(cfg, 1)? } else { sigma0_other(cfg, 0)? };
+    let other_s0 = sigma0_other(cfg, 1 - ix)?;
     let other_bound = bound_38(other.0.linear, other.0.fractional, other.1, other.2, other_s0)?;
     let t_end = (((bound.max(other_bound).max(fil.reach_s.unwrap_or(0.0)) * 1.25 + 2.0 * WINDOW_S) / 0.01).ceil()
         * 0.01)
@@ -111,22 +230,6 @@ pub fn check(cfg: &Config, channel: Channel) -> Result<ClaimRow, ClaimsError> {
             runs.push(digital_run(cfg, rule, t, t_end, WINDOW_S, trace)?);
         }
     }
-    let mut ev: BTreeMap<String, Value> = BTreeMap::new();
-    ev.insert("sigma0".into(), json!(sigma0));
-    ev.insert("q0".into(), json!(0.5 * sigma0 * sigma0));
-    ev.insert("zeta".into(), json!(z));
-    ev.insert("kappa_switching".into(), json!(gain.switching));
-    ev.insert("hypothesis_holds".into(), json!(hypothesis));
-    ev.insert("bound_s".into(), json!(bound));
-    ev.insert("bound_literal_s".into(), json!(literal));
-    ev.insert("measured_s".into(), reach_value(fil.reach_s));
-    ev.insert("measured_error_s".into(), json!(fil.error_s));
-    ev.insert("filippov_method".into(), json!(fil.method));
-    let stays = fil.reach_s.is_some() && hypothesis;
-    ev.insert("stays_at_zero_filippov".into(), json!(stays));
-    let gdot = (g.amp * g.freq).abs();
-    ev.insert("gdot_sup".into(), json!(gdot));
-    ev.insert("run_t_end_s".into(), json!(t_end));
     // Sharpness: constant g = κ_sw sign σ0 (the hypothesis at equality) attains the bound.
     let s_ref = if sigma0 != 0.0 { sigma0 } else { 1.0 };
     let gsharp = gain.switching * s_ref.signum();
@@ -134,7 +237,6 @@ pub fn check(cfg: &Config, channel: Channel) -> Result<ClaimRow, ClaimsError> {
     let sharp = filippov_reach(&gain, &|_| gsharp, s_ref, 60.0, FILIPPOV_STEPS)?
         .reach_s
         .map_or(f64::MAX, |r| (r / sharp_bound).min(f64::MAX));
-    ev.insert("sharp_ratio".into(), json!(sharp));
     // σ0 sweep with the configured g.
     let mut sweep = (Vec::new(), Vec::new());
     for e in 0..=10 {
@@ -150,94 +252,180 @@ pub fn check(cfg: &Config, channel: Channel) -> Result<ClaimRow, ClaimsError> {
         sweep.1.push(worst);
     }
     let sweep_max = sweep.1.iter().cloned().fold(0.0, f64::max);
-    ev.insert("sweep_max_ratio".into(), json!(sweep_max));
     let mut stays_band = true;
     let mut excess: f64 = 0.0;
-    let r_t_end = t_end;
+    let mut digital = Vec::new();
     for r in &runs {
         let c = &r.channels[ix];
-        let name = r.rule.name();
-        let k = tkey(r.period);
-        ev.insert(format!("{name}_reach_s_T{k}"), reach_value(c.reach_s));
-        ev.insert(
-            format!("{name}_sigma_after_max_T{k}"),
-            if c.reach_s.is_some() { json!(c.sigma_after_max) } else { json!("not reached within the run") },
-        );
-        ev.insert(format!("{name}_gtilde_max_T{k}"), json!(c.gtilde_max));
-        ev.insert(format!("{name}_ghat_jump_max_T{k}"), json!(c.ghat_jump_max));
-        ev.insert(format!("{name}_tau_jump_max_T{k}"), json!(c.tau_jump_max));
+        digital.push(DigitalEvidence {
+            rule: r.rule,
+            period: r.period,
+            reach_s: Reached(c.reach_s),
+            sigma_after_max: Reached(c.reach_s.map(|_| c.sigma_after_max)),
+            gtilde_max: c.gtilde_max,
+            ghat_jump_max: c.ghat_jump_max,
+            tau_jump_max: c.tau_jump_max,
+        });
         if r.rule == ObserverRule::Implicit {
             stays_band &= c.reach_s.is_some() && c.sigma_after_max <= r.period * z * (1.0 + 1e-9) + 1e-15;
-            excess = excess.max(c.reach_s.unwrap_or(r_t_end) - fil.reach_s.unwrap_or(0.0));
+            excess = excess.max(c.reach_s.unwrap_or(t_end) - fil.reach_s.unwrap_or(0.0));
         }
     }
-    ev.insert("implicit_stays_in_band".into(), json!(stays_band));
-    ev.insert("implicit_reach_excess_max_s".into(), json!(excess));
-    let get =
-        |rule: ObserverRule, t: f64| runs.iter().find(|r| r.rule == rule && r.period == t).map(|r| &r.channels[ix]);
-    let (imp3, exp3) = match (get(ObserverRule::Implicit, 1e-3), get(ObserverRule::Explicit, 1e-3)) {
-        (Some(a), Some(b)) => (a.clone(), b.clone()),
-        _ => return Err(reach::num_err("finite_time", "missing T = 1e-3 runs".into())),
+    let digital = DigitalRuns(digital);
+    if digital.get(ObserverRule::Implicit, 1e-3).is_none() || digital.get(ObserverRule::Explicit, 1e-3).is_none() {
+        return Err(reach::num_err("finite_time", "missing T = 1e-3 runs".into()));
+    }
+    let e = FiniteTimeEvidence {
+        sigma0,
+        q0: 0.5 * sigma0 * sigma0,
+        zeta: z,
+        kappa_switching: gain.switching,
+        hypothesis_holds: hypothesis,
+        bound_s: bound,
+        bound_literal_s: literal,
+        measured_s: Reached(fil.reach_s),
+        measured_error_s: fil.error_s,
+        filippov_method: fil.method.into(),
+        stays_at_zero_filippov: fil.reach_s.is_some() && hypothesis,
+        gdot_sup: (g.amp * g.freq).abs(),
+        run_t_end_s: t_end,
+        sharp_ratio: sharp,
+        sweep_max_ratio: sweep_max,
+        digital,
+        implicit_stays_in_band: stays_band,
+        implicit_reach_excess_max_s: excess,
+        channel: Some(channel),
     };
-    let measured = fil.reach_s.unwrap_or(f64::MAX);
-    let ok = fil.reach_s.is_some() && measured <= bound + fil.error_s + 1e-12 * bound.max(1.0);
-    // the σ0 sweep is the non-trivial test when σ(0) = 0
-    let sweep_ok = sweep_max <= 1.0 + 1e-6;
-    let verdict = if !hypothesis {
+    Ok((e, Traces { fil, runs, sweep, g }))
+}
+
+fn channel_index(channel: Channel) -> usize {
+    match channel {
+        Channel::Bending => 0,
+        Channel::Torsion => 1,
+    }
+}
+
+/// The Filippov time is within the bound (plus its error estimate).
+fn within_bound(e: &FiniteTimeEvidence) -> bool {
+    e.measured_s.0.is_some_and(|m| m <= e.bound_s + e.measured_error_s + 1e-12 * e.bound_s.max(1.0))
+}
+
+/// Verdict from the evidence: hypothesis κ_sw ≥ ζ fails → inconclusive (the theorem does not
+/// apply); the Filippov time exceeds the bound, or some σ0 of the sweep does → fails;
+/// σ(0) = 0 → trivially true; else holds. Basis: simulation.
+pub fn verdict(e: &FiniteTimeEvidence) -> (Verdict, Basis) {
+    let v = if !e.hypothesis_holds {
         Verdict::Inconclusive
-    } else if !ok || !sweep_ok {
+    } else if !within_bound(e) || e.sweep_max_ratio > 1.0 + 1e-6 {
         Verdict::Fails
-    } else if sigma0 == 0.0 {
+    } else if e.sigma0 == 0.0 {
         Verdict::TriviallyTrue
     } else {
         Verdict::Holds
     };
-    let trivial = if sigma0 == 0.0 && hypothesis {
+    (v, Basis::Simulation)
+}
+
+/// The summary, from the evidence.
+pub fn summary(e: &FiniteTimeEvidence) -> String {
+    let ix = e.channel.map_or(0, channel_index);
+    let n = ix + 1;
+    let (imp3, exp3) = match (e.digital.get(ObserverRule::Implicit, 1e-3), e.digital.get(ObserverRule::Explicit, 1e-3))
+    {
+        (Some(a), Some(b)) => (a, b),
+        _ => return "the digital runs at T = 1e-3 are missing from the evidence".into(),
+    };
+    let trivial = if e.sigma0 == 0.0 && e.hypothesis_holds {
         "σ(0) = 0, so the bound is 0 and σ never leaves 0 (trivially true); the σ0 sweep below is the non-trivial test. "
     } else {
         ""
     };
-    let summary = format!(
+    let bound = e.bound_s;
+    format!(
         "{trivial}σ{n}(0) = {sigma0:.4e}, ζ{n} = sup|g{n}| = {z} {cmp} κ = {ks} ({hyp}). Bound ({b38}) as read: t_f ≤ {bound:.4e} s; \
-         Filippov reaching time of σ̇ = g − φ(σ): {measured_text} (±{err:.0e}), ratio {ratio}{stays_text}. The bound is sharp: for g ≡ κ_sw·sign σ0 the time equals the bound (ratio {sharp:.9}); \
-         over σ0 ∈ [1e-3, 1e2] with the paper's g the worst ratio is {sweep_text}. Digital: implicit observer \
-         enters the band |σ| ≤ Tκ_sw at most {excess:.1e} s after the Filippov time and stays (|σ_k| ≤ Tζ: {stays_band}); \
+         Filippov reaching time of σ̇ = g − φ(σ): {measured_text} (±{err:.0e}), ratio {ratio}{stays_text}. {sharp_text}; \
+         over σ0 ∈ [1e-3, 1e2] with the configured g the worst ratio is {sweep_text}. Digital: implicit observer \
+         enters the band |σ| ≤ Tκ_sw at most {excess:.1e} s after the Filippov time and {stays_band}; \
          afterwards g̃ at the samples is O(T·ġ) (T = 1e-3: max|g̃| = {gi:.2e}, sup|ġ| = {gdot:.2e}). The explicit observer \
          chatters: max|g̃| = {ge:.2}, max jump of τ = {te:.2} at T = 1e-3, not vanishing as T → 0 (only σ's band \
-         shrinks, max|σ| = {se:.1e}). The theorem promises g̃ = σ̇ = 0 after t_f in continuous time (Filippov, \
+         shrinks, max|σ| after the first crossing = {se}). The theorem promises g̃ = σ̇ = 0 after t_f in continuous time (Filippov, \
          ĝ equal to the equivalent value g); a digital implementation gets O(T) only with the implicit rule. The \
          literal reading Q0^(a2 − a1/a2) would give {literal:.3e} s.",
-        measured_text = match fil.reach_s {
+        sigma0 = e.sigma0,
+        z = e.zeta,
+        measured_text = match e.measured_s.0 {
             Some(t) => format!("{t:.4e} s"),
             None => "not reached within 60 s".into(),
         },
-        ks = gain.switching,
-        cmp = if hypothesis { "≤" } else { ">" },
-        stays_text = if stays { "; σ stays at 0 after (|g| ≤ ζ ≤ κ_sw)" } else { "" },
-        hyp = if hypothesis { "hypothesis holds" } else { "hypothesis FAILS: theorem not applicable" },
+        ks = e.kappa_switching,
+        cmp = if e.hypothesis_holds { "≤" } else { ">" },
+        stays_text = if e.stays_at_zero_filippov { "; σ stays at 0 after (|g| ≤ ζ ≤ κ_sw)" } else { "" },
+        hyp = if e.hypothesis_holds { "hypothesis holds" } else { "hypothesis FAILS: theorem not applicable" },
         b38 = if ix == 0 { "38" } else { "39" },
-        err = fil.error_s,
-        ratio = match fil.reach_s {
+        err = e.measured_error_s,
+        ratio = match e.measured_s.0 {
             None => "n/a (not reached)".to_string(),
-            Some(_) if bound > 0.0 => format!("{:.3}", measured / bound),
+            Some(m) if bound > 0.0 => format!("{:.3}", m / bound),
             Some(_) => "n/a (both 0)".into(),
         },
-        sweep_text = if sweep_max >= f64::MAX { "unbounded (some σ0 not reached within 60 s)".to_string() } else { format!("{sweep_max:.3}") },
+        sharp_text = if (e.sharp_ratio - 1.0).abs() <= 1e-6 {
+            format!("The bound is sharp: for g ≡ κ_sw·sign σ0 the time equals the bound (ratio {:.9})", e.sharp_ratio)
+        } else if e.sharp_ratio >= f64::MAX {
+            "For g ≡ κ_sw·sign σ0 σ is not reached within 60 s".to_string()
+        } else {
+            format!("For g ≡ κ_sw·sign σ0 the time / bound ratio is {:.9} (not sharp)", e.sharp_ratio)
+        },
+        sweep_text = if e.sweep_max_ratio >= f64::MAX {
+            "unbounded (some σ0 not reached within 60 s)".to_string()
+        } else {
+            format!("{:.3}", e.sweep_max_ratio)
+        },
+        excess = e.implicit_reach_excess_max_s,
+        stays_band = if e.implicit_stays_in_band {
+            "stays there (|σ_k| ≤ Tζ for every T)"
+        } else {
+            "does NOT stay within |σ_k| ≤ Tζ for every T"
+        },
         gi = imp3.gtilde_max,
+        gdot = e.gdot_sup,
         ge = exp3.gtilde_max,
         te = exp3.tau_jump_max,
-        se = exp3.sigma_after_max,
-    );
-    let plots = plots(ix, bound, &fil, &imp3, &exp3, &runs, &sweep, &g);
+        se = match exp3.sigma_after_max.0 {
+            Some(s) => format!("{s:.1e}"),
+            None => NOT_REACHED.into(),
+        },
+        literal = e.bound_literal_s,
+    )
+}
+
+/// Check the finite-time claim of one channel ((38) with Theorem 3, or (39) with Theorem 4):
+/// evidence → verdict → text.
+pub fn check(cfg: &Config, channel: Channel) -> Result<ClaimRow, ClaimsError> {
+    let clock = Instant::now();
+    let ix = channel_index(channel);
+    let (n, eq, kap) =
+        if ix == 0 { ("1", "(38), Theorem 3", "κ2 ≥ ζ1") } else { ("2", "(39), Theorem 4", "κ5 ≥ ζ2") };
+    let (e, tr) = evidence(cfg, channel)?;
+    let (verdict, basis) = verdict(&e);
+    let summary = summary(&e);
+    let get = |rule: ObserverRule| tr.runs.iter().find(|r| r.rule == rule && r.period == 1e-3).map(|r| &r.channels[ix]);
+    let (imp3, exp3) = match (get(ObserverRule::Implicit), get(ObserverRule::Explicit)) {
+        (Some(a), Some(b)) => (a, b),
+        _ => return Err(reach::num_err("finite_time", "missing T = 1e-3 runs".into())),
+    };
+    let plots = plots(ix, e.bound_s, &tr.fil, imp3, exp3, &tr.runs, &tr.sweep, &tr.g);
+    let z = e.zeta;
+    let t_end = e.run_t_end_s;
     Ok(ClaimRow {
         id: if n == "1" { crate::ClaimId::FiniteTime1 } else { crate::ClaimId::FiniteTime2 },
         equation: eq.into(),
         claim: format!("g̃{n} reaches 0 no later than t_f{n}, if {kap}"),
         verdict,
-        basis: Basis::Simulation,
+        basis,
         summary,
         correction: None,
-        evidence: ev,
+        evidence: evidence_map(&e),
         highlights: Vec::new(),
         assumptions: vec![
             format!("ζ{n} = sup_t≥0 |g{n}| = |mean| + |amp| = {z} (tight: the sine reaches ±1)"),

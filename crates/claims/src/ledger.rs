@@ -3,8 +3,65 @@
 
 use std::collections::BTreeMap;
 
-use serde::{Deserialize, Serialize};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use serde_json::Value;
+
+/// How a value that exists only once σ has reached zero (or its band) is written when it has
+/// not: evidence and texts.
+pub const NOT_REACHED: &str = "not reached within the run";
+/// How a settling time that is not reached before the horizon is written in evidence and texts.
+pub const NEVER_SETTLED: &str = "never within the horizon";
+
+/// A number, or `None` written as a fixed text (never null).
+macro_rules! number_or_text {
+    ($(#[$doc:meta])* $name:ident, $text:expr) => {
+        $(#[$doc])*
+        #[derive(Debug, Clone, Copy, PartialEq, Default)]
+        pub struct $name(pub Option<f64>);
+
+        impl Serialize for $name {
+            fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+                match self.0 {
+                    Some(x) => s.serialize_f64(x),
+                    None => s.serialize_str($text),
+                }
+            }
+        }
+
+        impl<'de> Deserialize<'de> for $name {
+            fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+                match Value::deserialize(d)? {
+                    Value::Number(n) => Ok($name(n.as_f64())),
+                    Value::String(t) if t == $text => Ok($name(None)),
+                    v => Err(serde::de::Error::custom(format!("expected a number or \"{}\", got {v}", $text))),
+                }
+            }
+        }
+
+        impl std::fmt::Display for $name {
+            /// `x.xxxxe±y <unit-less>` or the text.
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                match self.0 {
+                    Some(x) => write!(f, "{x:.4e}"),
+                    None => f.write_str($text),
+                }
+            }
+        }
+    };
+}
+
+number_or_text!(
+    /// A value that exists only once σ reached zero or its band (a reaching time in s, or σ's
+    /// magnitude after reaching); otherwise serialised as [`NOT_REACHED`].
+    Reached,
+    NOT_REACHED
+);
+number_or_text!(
+    /// A settling time (s), or [`NEVER_SETTLED`] when the signal is still outside its threshold
+    /// at the end of the horizon.
+    SettleTime,
+    NEVER_SETTLED
+);
 
 /// What the check concluded. Never overclaims: see [`Basis`] for what it rests on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]

@@ -22,7 +22,10 @@ pub mod theory;
 pub mod uub;
 pub mod wbounds;
 
-pub use ledger::{evidence_map, Basis, ClaimId, ClaimRow, Ledger, Line, PlotData, Verdict};
+pub use ledger::{
+    evidence_map, Basis, ClaimId, ClaimRow, Ledger, Line, PlotData, Reached, SettleTime, Verdict, NEVER_SETTLED,
+    NOT_REACHED,
+};
 pub use study::Study;
 
 use sha2::{Digest, Sha256};

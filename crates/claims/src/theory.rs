@@ -68,9 +68,28 @@ pub fn positive(e: Estimate) -> Decision {
     }
 }
 
+/// The threshold of Theorem 1 corrected, ω₁ (rad/s): the fundamental natural frequency of the
+/// configured undamped wing, converged by Romberg extrapolation over uniform FE meshes with its
+/// error estimate ([`wingcheck_sim::modes::fundamental_frequency`], ~1e-9 relative). Depends on
+/// the wing only; cached per wing for the life of the process (a pure function of its key).
+pub fn w_threshold(cfg: &Config) -> Result<Estimate, wingcheck_sim::SimError> {
+    use std::collections::HashMap;
+    use std::sync::{Mutex, OnceLock};
+    static CACHE: OnceLock<Mutex<HashMap<String, Estimate>>> = OnceLock::new();
+    let key = serde_json::to_string(&cfg.wing).expect("wing serialises");
+    let cache = CACHE.get_or_init(|| Mutex::new(HashMap::new()));
+    if let Some(e) = cache.lock().expect("ω₁ cache lock").get(&key) {
+        return Ok(*e);
+    }
+    let w = wingcheck_sim::modes::fundamental_frequency(cfg)?;
+    let e = Estimate { value: w.value, error: w.error };
+    cache.lock().expect("ω₁ cache lock").insert(key, e);
+    Ok(e)
+}
+
 /// Theorem 1 corrected: W ≻ 0 iff a/b < ω₁ (rad/s), decided against ω₁'s error estimate.
-/// `omega1` is the fundamental natural frequency of the undamped wing (any source with an error
-/// estimate can be plugged in). b = 0 gives W = a·W_a, indefinite for a > 0.
+/// `omega1` is the fundamental natural frequency of the undamped wing with its error estimate
+/// ([`w_threshold`]); a/b within that error of ω₁ is [`Decision::Undecided`] (at the threshold). b = 0 gives W = a·W_a, indefinite for a > 0.
 pub fn w_positive_definite(a: f64, b: f64, omega1: Estimate) -> Decision {
     if b <= 0.0 {
         return if a > 0.0 { Decision::No } else { Decision::Undecided };

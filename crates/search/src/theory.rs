@@ -1,5 +1,6 @@
-//! The theory side of a point: Theorem 1's W ≻ 0 (tight λ2, λ1 on the Galerkin space of
-//! `wingcheck_claims::lyapunov`), the μ-conditions (32) (λ3*, λ, ε) and Theorem 2's
+//! The theory side of a point: Theorem 1's W ≻ 0 (decided as a/b < ω₁ against the converged
+//! fundamental frequency and its error, [`wingcheck_claims::theory::w_threshold`], as in the
+//! ledger's W-bounds row; tight λ2, λ1 on the Galerkin space of `wingcheck_claims::lyapunov`), the μ-conditions (32) (λ3*, λ, ε) and Theorem 2's
 //! ultimate bound — all computed by `wingcheck_claims::theory` (one definition, shared with the
 //! ledger); this module only caches.
 //!
@@ -14,7 +15,7 @@ use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
 use serde::{Deserialize, Serialize};
-use wingcheck_claims::theory::{self, DisturbanceBounds, MuData, WPencil};
+use wingcheck_claims::theory::{self, Decision, DisturbanceBounds, MuData, WPencil};
 use wingcheck_model::Config;
 
 use crate::SearchError;
@@ -22,7 +23,7 @@ use crate::SearchError;
 /// Verdicts and constants that depend only on the wing and (a, b).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Verdicts {
-    /// Tight λ2 = min W/κ on V_N (W ≻ 0 iff > 0).
+    /// Tight λ2 = min W/κ on V_N (> 0 up to a/b = ω₁(V_N), slightly above the converged ω₁).
     pub lambda2: f64,
     /// Tight λ1 = max W/κ on V_N.
     pub lambda1: f64,
@@ -30,12 +31,15 @@ pub struct Verdicts {
     pub lambda3_max: Option<f64>,
     /// (32) satisfiable: closed-form criterion in exact arithmetic (gains k1, k2 included).
     pub satisfiable: bool,
+    /// W ≻ 0: a/b < ω₁ decided against ω₁'s error ([`theory::w_positive_definite`]).
+    pub w_pd: Decision,
 }
 
 impl Verdicts {
-    /// W positive definite on V_N.
+    /// W decided positive definite (a/b below the converged ω₁ by more than its error); false
+    /// also at the threshold (a/b within ω₁'s error, ~1e-12 relative: see [`Verdicts::w_pd`]).
     pub fn w_positive_definite(&self) -> bool {
-        self.lambda2 > 0.0
+        self.w_pd == Decision::Yes
     }
     /// (29)–(32) satisfiable ([`wingcheck_claims::theory::MuData::obstruction_exact`]).
     pub fn feasible_32(&self) -> Option<bool> {
@@ -116,7 +120,10 @@ impl TheoryCache {
         }
         let (lambda2, lambda1) = self.pencil(cfg)?.constants(c.a, c.b).map_err(num("eigenvalues"))?;
         let d = MuData::new(cfg, c.a, c.b);
+        let omega1 = theory::w_threshold(cfg)
+            .map_err(|e| SearchError::Theory { what: "ω₁".into(), detail: e.to_string() })?;
         let v = Verdicts {
+            w_pd: theory::w_positive_definite(c.a, c.b, omega1),
             lambda2,
             lambda1,
             lambda3_max: (c.a > 0.0 && c.b > 0.0).then(|| d.lambda3_sup()),
@@ -145,7 +152,7 @@ impl TheoryCache {
         let mut t = Theory {
             lambda2: Some(v.lambda2),
             lambda1: Some(v.lambda1),
-            w_pd: Some(v.w_positive_definite()),
+            w_pd: v.w_pd.as_bool(),
             lambda3_max: v.lambda3_max,
             feasible_32: v.feasible_32(),
             ..Default::default()

@@ -1,5 +1,6 @@
 //! The boundaries found by a search agree with the claim checker's independent answers:
-//! W ≻ 0 ⟺ a/b < `a_over_b_max` (pencil eigenvalue), (32) feasible ⟺ a/b < `closed_form_ratio`.
+//! W ≻ 0 ⟺ a/b < ω₁ (the converged fundamental frequency of the simulator's FE modes, the
+//! threshold of the ledger's W-bounds row), (32) feasible ⟺ a/b < `closed_form_ratio`.
 
 use wingcheck_claims::lyapunov::{assemble, tight_constants, Coupling, LyapunovParams};
 use wingcheck_claims::mu::{best_point, MuData};
@@ -42,17 +43,20 @@ fn boundaries_along_a_match_the_claim_checker() {
     let summary = run(&search, dir.path(), RunControl::default()).expect("runs");
     assert!(summary.complete);
 
-    // Reference 1: largest a/b with W ≻ 0 on the same Galerkin space (N = 8), from the
-    // pencil (W(1,0), W(0,1)) — wingcheck_claims::wbounds::a_over_b_max; ≈ 0.1209 = ω₁ for
-    // the paper config (crates/claims W-bounds row). b = 1, so a* = (a/b)*.
-    let w_ref = a_over_b_max(&base, Coupling::Corrected, 8).expect("pencil");
+    // Reference 1: largest a/b with W ≻ 0 = ω₁, here the simulator's converged FE ω₁
+    // (wingcheck_sim::modes::fundamental_frequency, Romberg over uniform meshes, error ~1e-12
+    // relative); cross-checked against the pencil (W(1,0), W(0,1)) on V_8
+    // (wingcheck_claims::wbounds::a_over_b_max), an upper bound by Rayleigh–Ritz within 1e-3.
+    // b = 1, so a* = (a/b)*.
+    let w_ref = wingcheck_sim::modes::fundamental_frequency(&base).expect("ω₁").value;
+    let pencil = a_over_b_max(&base, Coupling::Corrected, 8).expect("pencil");
+    assert!(pencil >= w_ref && pencil - w_ref < 1e-3 * w_ref, "pencil {pencil} vs ω₁ {w_ref}");
     assert!((w_ref - 0.1209).abs() < 1e-3, "reference ω₁ ≈ 0.1209, got {w_ref}");
     let w = boundary_estimates(dir.path(), "w_positive_definite");
     assert_eq!(w.len(), 1, "one W ≻ 0 boundary crossing along a: {w:?}");
     let (lo, hi, est) = w[0];
     assert!(hi / lo - 1.0 <= tol, "bracket refined to the tolerance: [{lo}, {hi}]");
-    // The bracket must contain the reference up to the eigen solver's rounding (λ2 is a
-    // smooth function of a crossing 0 transversally; 1e-9 relative is far above rounding).
+    // The bracket must contain the reference up to ω₁'s error estimate (≤ 1e-9 relative).
     assert!(lo <= w_ref * (1.0 + 1e-9) && w_ref <= hi * (1.0 + 1e-9), "[{lo}, {hi}] ∌ {w_ref}");
     assert!((est / w_ref - 1.0).abs() <= tol, "estimate {est} vs {w_ref}");
 
@@ -77,7 +81,8 @@ fn coarse_verdicts_follow_the_ratio() {
     let search = Search::new(base.clone(), &["control.a=1e-5..1:log:6".into()], SearchOptions::default()).unwrap();
     let cache = TheoryCache::new(8);
     let runs = wingcheck_search::modal::RunCache::new();
-    let w_ref = a_over_b_max(&base, Coupling::Corrected, 8).unwrap();
+    // converged ω₁ (wingcheck_sim::modes::fundamental_frequency), the threshold the search uses
+    let w_ref = wingcheck_sim::modes::fundamental_frequency(&base).unwrap().value;
     let mu_ref = MuData::closed_form_ratio(&base);
     for p in 0..search.points() {
         let r = search.evaluate(p, &cache, &runs);
@@ -143,11 +148,10 @@ fn refined_boundaries_meet_the_closed_forms_to_1e_6() {
             .collect()
     };
     // Closed form 1 (crates/claims wbounds, item 3): W ≻ 0 iff a/b < ω₁, the fundamental
-    // frequency of the undamped wing on the Galerkin space — here from the simulator's own FE
-    // modes (uniform 8-element mesh, the space of the Lyapunov forms), independent code.
-    let uniform = apply_overrides(&base, &["discretisation.grading=0".into()]).unwrap();
-    let disc = wingcheck_sim::Discretisation::with(&uniform, wingcheck_model::Method::Fe, 8);
-    let omega1 = wingcheck_sim::modes::natural_frequencies(&disc, 1).unwrap()[0];
+    // frequency of the undamped wing — the simulator's converged FE ω₁
+    // (wingcheck_sim::modes::fundamental_frequency, Romberg over uniform meshes 16, 32, …),
+    // the threshold of the ledger's W-bounds row and of the search.
+    let omega1 = wingcheck_sim::modes::fundamental_frequency(&base).unwrap().value;
     // Closed form 2 (crates/claims mu, module docs): (32) feasible iff a/b < r*.
     let r_star = MuData::closed_form_ratio(&base);
     for (kind, reference) in [("w_positive_definite", omega1), ("feasible_32", r_star)] {
