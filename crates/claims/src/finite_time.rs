@@ -541,7 +541,7 @@ fn plots(
             exp.ghat_jump_max, imp.ghat_jump_max
         ),
         x_label: "t (s)".into(),
-        y_label: if ix == 0 { "N".into() } else { "N m".into() },
+        y_label: format!("ĝ{n}, τ{n} ({})", if ix == 0 { "N" } else { "N m" }),
         log_x: false,
         log_y: false,
         lines: vec![
@@ -558,8 +558,8 @@ fn plots(
             "Filippov reaching time / bound vs |σ{n}(0)| (worst sign): max {:.3}",
             sweep.1.iter().cloned().fold(0.0, f64::max)
         ),
-        x_label: format!("|σ{n}(0)|"),
-        y_label: "t_reach / t_f".into(),
+        x_label: format!("|σ{n}(0)| ({})", if ix == 0 { "N" } else { "N m" }),
+        y_label: "t_reach / t_f (1)".into(),
         log_x: true,
         log_y: false,
         lines: vec![line("paper's g", sweep.0.clone(), sweep.1.clone(), true)],

@@ -404,8 +404,8 @@ fn plots(e: &LemmasEvidence) -> Vec<PlotData> {
                 e.lemma2_printed_ratio_by_degree.last().copied().unwrap_or(0.0),
                 e.lemma2_corrected_max_ratio
             ),
-            x_label: "degree K".into(),
-            y_label: "max ω(f)² / (f ∫ …)".into(),
+            x_label: "degree K (1)".into(),
+            y_label: "max ω(f)² / (f ∫ …) (1)".into(),
             log_x: false,
             log_y: true,
             lines: vec![

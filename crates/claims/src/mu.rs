@@ -276,9 +276,14 @@ pub fn check(cfg: &Config, study: &Study) -> Result<MuResult, ClaimsError> {
     let r_star = e.a_over_b_boundary;
     let mut lines = Vec::new();
     if r_star > 0.0 && b > 0.0 {
-        let pts: Vec<GridPoint> = (0..24)
+        let ratio = e.a / b;
+        // a/b from 1.5 decades either side of r*, widened to include the configured a/b.
+        let lo = (r_star * 10f64.powf(-1.5)).min(ratio / 3.0).log10();
+        let hi = (r_star * 10f64.powf(1.5)).max(ratio * 3.0).log10();
+        const SAMPLES: usize = 32;
+        let pts: Vec<GridPoint> = (0..SAMPLES)
             .map(|i| {
-                let r = r_star * 10f64.powf(-1.5 + 3.0 * i as f64 / 23.0);
+                let r = 10f64.powf(lo + (hi - lo) * i as f64 / (SAMPLES - 1) as f64);
                 let d = MuData::new(cfg, r * b, b);
                 let cc = check_lambda3(&d);
                 GridPoint {
@@ -300,6 +305,14 @@ pub fn check(cfg: &Config, study: &Study) -> Result<MuResult, ClaimsError> {
             x: acc.iter().map(|p| p.ratio).collect(),
             y: acc.iter().filter_map(|p| p.solver_over_b).collect(),
             points: true,
+        });
+        let ys = pts.iter().map(|p| p.lambda3_sup_over_b);
+        let (ymin, ymax) = ys.fold((f64::MAX, f64::MIN), |(l, h), y| (l.min(y), h.max(y)));
+        lines.push(Line {
+            label: "r* (closed form)".into(),
+            x: vec![r_star, r_star],
+            y: vec![ymin, ymax],
+            points: false,
         });
     }
     let certificates = if e.obstruction == Some(Obstruction::Mu3Constant) {
@@ -335,9 +348,12 @@ pub fn check(cfg: &Config, study: &Study) -> Result<MuResult, ClaimsError> {
         certificates,
         plots: vec![PlotData {
             name: "mu-lambda3-vs-ratio".into(),
-            title: format!("sup λ3 / b over the η's vs a/b (b = {b}); closed-form boundary r* = {r_star:.3e}"),
-            x_label: "a/b".into(),
-            y_label: "λ3*/b".into(),
+            title: format!(
+                "sup λ3 / b over the η's vs a/b (b = {b}, configured a/b = {}); closed-form boundary r* = {r_star:.3e}",
+                if b > 0.0 { format!("{:.3e}", e.a / b) } else { "undefined".into() }
+            ),
+            x_label: "a/b (1/s)".into(),
+            y_label: "λ3*/b (units of λ3/b)".into(),
             log_x: true,
             log_y: false,
             lines,

@@ -384,8 +384,8 @@ pub fn check(cfg: &Config) -> Result<WBounds, ClaimsError> {
             "Tight bounds of W/κ vs elements (a = {}, b = {}); extrapolated λ2* = {:.4e}, λ1* = {:.4e}",
             e.a, e.b, e.lambda2_tight, e.lambda1_tight
         ),
-        x_label: "elements N".into(),
-        y_label: "W/κ extremes".into(),
+        x_label: "elements N (1)".into(),
+        y_label: "W/κ extremes (units of W/κ, mixed by a, b)".into(),
         log_x: true,
         log_y: false,
         lines: vec![

@@ -298,16 +298,12 @@ fn ledger_digest_charts_sizes_links_and_provenance() {
         assert!(numbers >= 2, "{:?}: {numbers} decisive numbers", tr.attribute("id"));
     }
 
-    // Every chart the report draws from its own runs (paper figures, difference maps, accuracy,
-    // region map) has x and y axis labels with units. (The claims' own plots carry the labels
-    // the claim checker gives them.)
+    // Every chart — the report's own (paper figures, difference maps, accuracy, region map) and
+    // the claims' evidence plots — has x and y axis labels with units.
     let mut total_svg = 0usize;
     for f in summary.files.iter().filter(|f| f.ends_with(".svg")) {
         let svg = read(&out.join(f));
         total_svg += svg.len();
-        if f.starts_with("claim-") {
-            continue;
-        }
         let labels: Vec<String> = svg_texts(&svg).into_iter().filter(|t| has_unit(t)).collect();
         assert!(labels.len() >= 2, "{f}: axis labels with units, found {labels:?}");
     }
