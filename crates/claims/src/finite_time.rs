@@ -471,16 +471,25 @@ fn plots(
 ) -> Vec<PlotData> {
     let n = ix + 1;
     let line = |label: &str, x: Vec<f64>, y: Vec<f64>, points: bool| Line { label: label.into(), x, y, points };
-    let abs = |v: &[f64]| v.iter().map(|x| x.abs()).collect::<Vec<_>>();
-    let (fx, fy) = thin(&fil.t, &abs(&fil.sigma), 800, false);
-    let (ix_, iy) = thin(&imp.t, &abs(&imp.sigma), 1500, false);
-    let (ex, ey) = thin(&exp.t, &abs(&exp.sigma), 1500, false);
+    // Window: 3 × the latest of the bound and the reaching times, at least 20 hold periods
+    // (T = 1 ms), so the approach to 0 is not squeezed into the left edge of the plot.
+    let latest = [Some(bound), fil.reach_s, imp.reach_s, exp.reach_s].into_iter().flatten().fold(0.0, f64::max);
+    let t_window = (3.0 * latest).max(0.02);
+    let cut = |t: &[f64], v: &[f64]| -> (Vec<f64>, Vec<f64>) {
+        t.iter().zip(v).filter(|(t, _)| **t <= t_window).map(|(a, b)| (*a, b.abs())).unzip()
+    };
+    let (ft, fs) = cut(&fil.t, &fil.sigma);
+    let (it, is) = cut(&imp.t, &imp.sigma);
+    let (et, es) = cut(&exp.t, &exp.sigma);
+    let (fx, fy) = thin(&ft, &fs, 800, false);
+    let (ix_, iy) = thin(&it, &is, 1500, false);
+    let (ex, ey) = thin(&et, &es, 1500, false);
     let ymax = fy.iter().chain(&iy).chain(&ey).cloned().fold(1e-12, f64::max);
     let ymin = fy.iter().chain(&iy).chain(&ey).cloned().filter(|v| *v > 0.0).fold(ymax, f64::min);
     let sigma_plot = PlotData {
         name: format!("finite-time-sigma{n}"),
         title: format!(
-            "|σ{n}(t)|: Filippov limit reaches 0 {}, bound ({}) = {bound:.4} s; digital T = 1 ms",
+            "|σ{n}(t)| on [0, {t_window:.3} s]: Filippov limit reaches 0 {}, bound ({}) = {bound:.4} s; digital T = 1 ms",
             fil.reach_s.map_or("not within 60 s".to_string(), |t| format!("at {t:.4} s")),
             if ix == 0 { 38 } else { 39 }
         ),

@@ -301,6 +301,8 @@ fn ledger_digest_charts_sizes_links_and_provenance() {
     // Every chart — the report's own (paper figures, difference maps, accuracy, region map) and
     // the claims' evidence plots — has x and y axis labels with units.
     let mut total_svg = 0usize;
+    let claim_charts = summary.files.iter().filter(|f| f.starts_with("claim-") && f.ends_with(".svg")).count();
+    assert!(claim_charts > 0, "the claims' evidence plots are among the charts checked");
     for f in summary.files.iter().filter(|f| f.ends_with(".svg")) {
         let svg = read(&out.join(f));
         total_svg += svg.len();
