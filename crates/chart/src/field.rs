@@ -7,7 +7,6 @@
 //! [`Heatmap::scale_from`]: the large initial condition would otherwise wash out the residual
 //! motion; earlier values saturate, and a dashed line marks where the scale starts.
 
-use base64::Engine;
 use plotters::prelude::*;
 
 use plotters::coord::types::RangedCoordf64;
@@ -218,20 +217,11 @@ pub fn heatmap_svg(h: &Heatmap) -> Result<String, ChartError> {
     }
     // The raster, one pixel per displayed pixel, placed under the axes (right after the
     // background rectangle, so the axis lines are drawn over its border).
-    let (xr, yr) = plot_px;
+    let (xr, yr) = &plot_px;
     let (w, hgt) =
         (((xr.end - xr.start) as u32 / SCALE).max(2) as usize, ((yr.end - yr.start) as u32 / SCALE).max(2) as usize);
     let png = raster_png(h, w, hgt, vmax).map_err(err)?;
-    let image = format!(
-        "<image x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" preserveAspectRatio=\"none\" href=\"data:image/png;base64,{}\"/>\n",
-        xr.start,
-        yr.start,
-        xr.end - xr.start,
-        yr.end - yr.start,
-        base64::engine::general_purpose::STANDARD.encode(png)
-    );
-    let at = svg.find("/>\n").map(|i| i + 3).ok_or_else(|| err("unexpected SVG layout".into()))?;
-    svg.insert_str(at, &image);
+    crate::embed_raster(&mut svg, &plot_px, &png).map_err(err)?;
     Ok(scaled_svg_header(svg))
 }
 

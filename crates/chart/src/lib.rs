@@ -19,7 +19,7 @@ mod line;
 mod ticks;
 
 pub use field::{heatmap_svg, Heatmap};
-pub use grid::{grid_heatmap_svg, GridAxis, GridHeatmap, Mark, MarkShape};
+pub use grid::{grid_heatmap_svg, viridis, GridAxis, GridHeatmap, Mark, MarkShape};
 pub use line::{line_svg, LineChart, LineStyle};
 pub use plotters::style::RGBColor;
 pub use ticks::{linear_ticks, log_ticks, Ticked};
@@ -54,6 +54,28 @@ pub fn scaled_svg_header(svg: String) -> String {
     let from = format!("<svg width=\"{}\" height=\"{}\"", CANVAS.0, CANVAS.1);
     let to = format!("<svg width=\"{}\" height=\"{}\"", SIZE.0, SIZE.1);
     svg.replacen(&from, &to, 1)
+}
+
+/// Insert a PNG raster as an `<image>` covering the plotting area `plot_px` (canvas pixels),
+/// right after the SVG's background rectangle, so that the axes drawn afterwards lie over it.
+pub fn embed_raster(
+    svg: &mut String,
+    plot_px: &(std::ops::Range<i32>, std::ops::Range<i32>),
+    png: &[u8],
+) -> Result<(), String> {
+    use base64::Engine;
+    let (xr, yr) = plot_px;
+    let image = format!(
+        "<image x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" preserveAspectRatio=\"none\" href=\"data:image/png;base64,{}\"/>\n",
+        xr.start,
+        yr.start,
+        xr.end - xr.start,
+        yr.end - yr.start,
+        base64::engine::general_purpose::STANDARD.encode(png)
+    );
+    let at = svg.find("/>\n").map(|i| i + 3).ok_or_else(|| "unexpected SVG layout".to_string())?;
+    svg.insert_str(at, &image);
+    Ok(())
 }
 
 /// Line colours (the "tab10" palette).

@@ -250,7 +250,6 @@ impl MuData {
     /// configuration's decimals (`None`: satisfiable). This is the closed-form criterion,
     /// decided exactly.
     pub fn obstruction_exact(&self, k1: f64, k2: f64) -> Option<Obstruction> {
-        let q = |v: f64| exact(v);
         if k1 <= 0.0 {
             return Some(Obstruction::K1Zero);
         }
@@ -263,17 +262,7 @@ impl MuData {
         if self.b <= 0.0 {
             return Some(Obstruction::BZero);
         }
-        let (a, b, rho, rxc, ei, gj, ip, xi, s) = (
-            q(self.a),
-            q(self.b),
-            q(self.rho),
-            q(self.rho_xc),
-            q(self.ei),
-            q(self.gj),
-            q(self.ip),
-            q(self.xi),
-            q(self.s),
-        );
+        let ExactData { a, b, rho, rxc, ei, gj, ip, xi, s, .. } = self.exact_data();
         let two = BigRational::from_integer(2.into());
         let s2 = &s * &s;
         let a3 = &b * &xi * &ei / (&two * &s2 * &s2) - &a * &rho;
@@ -360,19 +349,7 @@ impl MuData {
         if eta.iter().any(|v| !v.is_positive()) {
             return false;
         }
-        let q = exact;
-        let (a, b, rho, rxc, ei, gj, ip, x, xi, s) = (
-            q(self.a),
-            q(self.b),
-            q(self.rho),
-            q(self.rho_xc),
-            q(self.ei),
-            q(self.gj),
-            q(self.ip),
-            q(self.x),
-            q(self.xi),
-            q(self.s),
-        );
+        let ExactData { a, b, rho, rxc, ei, gj, ip, x, xi, s } = self.exact_data();
         let two = BigRational::from_integer(2.into());
         let s2 = &s * &s;
         let s4 = &s2 * &s2;
@@ -384,6 +361,38 @@ impl MuData {
         let cap = &b / (&two * &a);
         let silent = eta[2] <= cap && eta[3] <= cap;
         silent && [m3, m4, m5, m6].iter().all(|m| m.is_positive() && !m.is_zero())
+    }
+}
+
+/// The data of (29)–(32) as exact rationals (the configuration's decimals).
+struct ExactData {
+    a: BigRational,
+    b: BigRational,
+    rho: BigRational,
+    rxc: BigRational,
+    ei: BigRational,
+    gj: BigRational,
+    ip: BigRational,
+    x: BigRational,
+    xi: BigRational,
+    s: BigRational,
+}
+
+impl MuData {
+    /// [`ExactData`] of this point.
+    fn exact_data(&self) -> ExactData {
+        ExactData {
+            a: exact(self.a),
+            b: exact(self.b),
+            rho: exact(self.rho),
+            rxc: exact(self.rho_xc),
+            ei: exact(self.ei),
+            gj: exact(self.gj),
+            ip: exact(self.ip),
+            x: exact(self.x),
+            xi: exact(self.xi),
+            s: exact(self.s),
+        }
     }
 }
 

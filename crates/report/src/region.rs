@@ -15,13 +15,12 @@
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use base64::Engine;
 use plotters::prelude::*;
 use rayon::prelude::*;
 use wingcheck_model::Config;
 use wingcheck_search::{modal::RunCache, PointResult, Search, SearchOptions, Status, TheoryCache};
 
-use crate::chart::{decade_label, px, scaled_svg_header, tick, Ticked, CANVAS, SCALE};
+use crate::chart::{decade_label, px, scaled_svg_header, tick, viridis, Ticked, CANVAS, SCALE};
 use crate::figure::{Caption, Chart, Figure};
 use crate::{Progress, ReportError};
 
@@ -116,17 +115,6 @@ pub fn region_map(
         .and_then(|v| v.as_str().map(str::to_uppercase))
         .unwrap_or_else(|| "configured".into());
     Ok(RegionMap { a, b, points, omega1, r_star, operating: (cfg.control.a, cfg.control.b), window, controller })
-}
-
-/// Sequential colour map (viridis, 5 stops, linear in between); u ∈ [0, 1].
-fn viridis(u: f64) -> RGBColor {
-    const STOPS: [[f64; 3]; 5] =
-        [[68.0, 1.0, 84.0], [59.0, 82.0, 139.0], [33.0, 145.0, 140.0], [94.0, 201.0, 98.0], [253.0, 231.0, 37.0]];
-    let x = if u.is_finite() { u.clamp(0.0, 1.0) } else { 0.0 } * 4.0;
-    let i = (x.floor() as usize).min(3);
-    let w = x - i as f64;
-    let c = |k: usize| (STOPS[i][k] + w * (STOPS[i + 1][k] - STOPS[i][k])).round() as u8;
-    RGBColor(c(0), c(1), c(2))
 }
 
 /// Grey for cells without a metric (failed or diverged runs).
@@ -458,7 +446,7 @@ impl RegionMap {
             root.present().map_err(|e| err(e.to_string()))?;
         }
         // Cells: one raster pixel per displayed pixel, nearest cell.
-        let (xr, yr) = plot_px;
+        let (xr, yr) = &plot_px;
         let (w, h) = (
             ((xr.end - xr.start) as u32 / SCALE).max(2) as usize,
             ((yr.end - yr.start) as u32 / SCALE).max(2) as usize,
@@ -483,16 +471,7 @@ impl RegionMap {
             let mut wr = enc.write_header().map_err(|e| err(e.to_string()))?;
             wr.write_image_data(&data).map_err(|e| err(e.to_string()))?;
         }
-        let image = format!(
-            "<image x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" preserveAspectRatio=\"none\" href=\"data:image/png;base64,{}\"/>\n",
-            xr.start,
-            yr.start,
-            xr.end - xr.start,
-            yr.end - yr.start,
-            base64::engine::general_purpose::STANDARD.encode(png)
-        );
-        let at = svg.find("/>\n").map(|i| i + 3).ok_or_else(|| err("unexpected SVG layout".into()))?;
-        svg.insert_str(at, &image);
+        crate::chart::embed_raster(&mut svg, &plot_px, &png).map_err(err)?;
         // The canvas is taller than the line charts'.
         let svg = svg.replacen(
             &format!("<svg width=\"{}\" height=\"{}\"", CANVAS.0, CANVAS.1 + px(160)),
