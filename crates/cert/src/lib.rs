@@ -8,24 +8,19 @@
 //! * [`matrix`] – dense rational matrices.
 //! * [`psd`] – positive (semi)definiteness via fraction-free LDLᵀ / witnesses.
 //! * [`lp`] – Farkas infeasibility and feasible-point checks.
-//! * [`certificate`], [`recipe`], [`verify`] – the JSON envelope, matrix
-//!   recipes and file/directory verification.
+//!
+//! The certificate files, their manifest and the verifier that re-derives each fact from its
+//! parameters live in `wingcheck-claims` (`certify`), built on these checks.
 
 #![warn(missing_docs)]
 
-pub mod certificate;
 pub mod exact;
 pub mod fe;
 pub mod lp;
 pub mod matrix;
 pub mod poly;
 pub mod psd;
-pub mod recipe;
-pub mod verify;
 
-pub use certificate::{write_certificate, CertError, CertKind, Certificate, Payload};
 pub use matrix::RationalMatrix;
 pub use num_bigint::BigInt;
 pub use num_rational::BigRational;
-pub use recipe::{explicit_recipe, FnRecipe, MatrixRecipe, RecipeRef, RecipeRegistry};
-pub use verify::{verify_certificate, verify_dir, verify_dir_with, verify_file, verify_file_with, Verified};
