@@ -78,7 +78,7 @@ fn json_output_holds_series_and_fields() {
     // the field at the tip is the tip series (same state, interpolation exact at nodes)
     let q_last = v["fields"]["q"][200].as_array().unwrap().last().unwrap().as_f64().unwrap();
     let tip_last = v["series"]["q_tip"][200].as_f64().unwrap();
-    assert!((q_last - tip_last).abs() < 1e-15);
+    assert!((q_last - tip_last).abs() < 1e-15, "{q_last} vs {tip_last}: {:e}", q_last - tip_last);
     assert_eq!(v["config"]["control"]["kind"], "dobc");
 }
 

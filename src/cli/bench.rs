@@ -38,6 +38,11 @@ pub fn run(a: BenchArgs) -> anyhow::Result<()> {
         if cfg.discretisation.stepper == wingcheck_model::TimeScheme::Trapezoid { "trbdf2" } else { "trapezoid" };
     let other_cfg = apply_overrides(&cfg, &[format!("discretisation.stepper={other}")])?;
     let other_timing = time_config(&other_cfg, usize::from(a.repeats))?;
+    // the other basis, measured in the same run for the cost ratio
+    let other_basis = if base.basis == "modal" { "nodal" } else { "modal" };
+    let other_basis_timing = apply_overrides(&cfg, &[format!("discretisation.basis={other_basis}")])
+        .map_err(anyhow::Error::from)
+        .and_then(|c| time_config(&c, usize::from(a.repeats)).map_err(anyhow::Error::from));
     let estimate_seconds = time_error_estimate(&cfg, usize::from(a.repeats).min(3))?;
     let modes = time_modes(&cfg, 5, usize::from(a.repeats))?;
     let mut grid: Vec<Timing> = Vec::new();
@@ -65,6 +70,7 @@ pub fn run(a: BenchArgs) -> anyhow::Result<()> {
             serde_json::to_string_pretty(&json!({
                 "default": base,
                 "other_stepper": { "stepper": other, "timing": other_timing },
+                "other_basis": other_basis_timing.as_ref().ok().map(|t| json!({ "basis": other_basis, "timing": t })),
                 "error_estimate_seconds": estimate_seconds,
                 "modes": modes,
                 "grid_scaling": grid,
@@ -76,12 +82,13 @@ pub fn run(a: BenchArgs) -> anyhow::Result<()> {
         return Ok(());
     }
     println!(
-        "default run ({} controller, {} with {} elements, dt = {} s, {}, T = {} s): {:.2} ms ({} steps, {} unknowns)",
+        "default run ({} controller, {} with {} elements, dt = {} s, {}, {} basis, T = {} s): {:.2} ms ({} steps, {} unknowns)",
         cfg.control.kind.name(),
         cfg.discretisation.method.name(),
         cfg.discretisation.grid_size(),
         cfg.discretisation.dt,
         cfg.discretisation.stepper.name(),
+        base.basis,
         cfg.horizon.t_end,
         base.run_seconds * 1e3,
         base.steps,
@@ -101,6 +108,17 @@ pub fn run(a: BenchArgs) -> anyhow::Result<()> {
         other,
         base.run_seconds / other_timing.run_seconds
     );
+    match &other_basis_timing {
+        Ok(t) => println!(
+            "  {} basis: {:.2} ms; ratio {} / {} = {:.2} (same run)",
+            other_basis,
+            t.run_seconds * 1e3,
+            base.basis,
+            other_basis,
+            base.run_seconds / t.run_seconds
+        ),
+        Err(e) => println!("  {other_basis} basis: not available here ({e})"),
+    }
     println!(
         "  with error estimates (refined in h and dt): {:.2} ms = {:.2} × the run",
         estimate_seconds * 1e3,

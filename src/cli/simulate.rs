@@ -150,7 +150,7 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
         println!("{}", serde_json::to_string_pretty(&summary)?);
     } else {
         println!(
-            "{} controller, {} observer, {} with {} {}, dt = {} s ({}): {} steps in {:.3} s",
+            "{} controller, {} observer, {} with {} {}, dt = {} s ({}, {} basis): {} steps in {:.3} s",
             cfg.control.kind.name(),
             cfg.observer.rule.name(),
             cfg.discretisation.method.name(),
@@ -158,6 +158,7 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
             if cfg.discretisation.method == Method::Fe { "elements" } else { "intervals" },
             cfg.discretisation.dt,
             cfg.discretisation.stepper.name(),
+            out.stats.basis,
             out.stats.steps,
             wall
         );

@@ -19,9 +19,8 @@ pub const MAX_POINTS_OVERRIDE: usize = 4_000_000;
 /// Estimated core time (s) a search may take without `--allow-large`: 2 core-hours.
 pub const MAX_CORE_SECONDS: f64 = 7200.0;
 
-/// Largest number of unknowns solved in the modal basis (dense eigenproblem, O(n³) once per
-/// wing); beyond it a point runs the simulator itself.
-pub const MODAL_MAX_UNKNOWNS: usize = 600;
+/// Largest number of unknowns solved in the modal basis (the simulator's own limit).
+pub use wingcheck_model::MODAL_MAX_UNKNOWNS;
 
 /// Cost per unknown and integrator step (s), modal runner: measured ≈ 2.4e-9 s with
 /// `wingcheck bench --what search` (48 unknowns, one core); rounded up.

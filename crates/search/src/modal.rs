@@ -1,114 +1,25 @@
-//! The closed loop of one search point, run in the modal basis of the wing: one simulation
-//! per point, O(n) work per step, and everything that does not change across points computed
-//! once per search.
+//! The closed loop of one search point, run in the modal basis of the wing
+//! ([`wingcheck_sim::modal`]: the simulator's scheme in another basis, O(n) work per step),
+//! with everything that does not change across points computed once per search: the modal
+//! basis per wing, and the observer signal per observer/disturbance ([`InputSignal`]: σ obeys
+//! σ_{n+1} − σ_n = h(ḡ − ĝ_k) whatever the plant, so ĝ_k and the tip input of every step are
+//! the same at every point of a sweep over plant, control-law or scheme keys).
 //!
-//! It is the simulator's scheme ([`wingcheck_sim::Stepper`] on M ẍ + C ẋ + K_c x = f̄ with
-//! C = ξK + b·T, K_c = K + a·T, T = diag(k1, k2) at the tip unknowns, whichever
-//! `discretisation.stepper` selects: TR-BDF2, two solves per step, or the trapezoidal rule,
-//! one; every solve has the step matrix S = M/α + C + αK_c, α = γh/2 = (1 − 1/√2)h resp. h/2),
-//! written in another basis:
-//!
-//! - **Modal basis** (per wing, shared): K Φ = M Φ Ω², ΦᵀMΦ = I (Cholesky of M, symmetric
-//!   eigenproblem of L⁻¹KL⁻ᵀ). With x = Φη, v = Φζ the step matrix becomes
-//!   D + β UTUᵀ with D = diag(1/α + (ξ + α)ω_i²), β = b + αa and U = the tip rows of Φ
-//!   (n×2): diagonal plus rank 2, solved by the Woodbury identity in O(n) — no sparse
-//!   factorisation per point at all. TR-BDF2's stages (trapezoid to t + γh, then BDF2 with
-//!   A = 1/(γ(2 − γ)), B = A − 1) and the tip boundary states q'''(s), θ'(s) are advanced with
-//!   the simulator's formulas and constants (`wingcheck_sim::trbdf2`); see [`scheme`].
-//! - **Observer signal** (per observer/disturbance, shared): the observer's σ obeys
-//!   σ_{n+1} − σ_n = h(ḡ − ĝ_k) whatever the plant and for either scheme (the tip boundary
-//!   condition cancels τ and w in the scheme's own quadrature, see
-//!   `wingcheck_control::ChannelObserver`), so ĝ_k, and with it the tip input ḡ − ĝ of every
-//!   step, is the same at every point of a sweep over plant, control-law or scheme keys. It is
-//!   computed once, together with the step averages φ̄ of the distributed load.
-//!
-//! Same equations, so the results agree with `wingcheck_sim::simulate` to round-off
-//! (tests/modal.rs: ≤ 4e-9 relative on FE wings, whose modal basis carries the round-off of a
-//! dense eigenproblem with ω² spanning many decades; ≤ 3e-11 on FD wings of 24–48 intervals),
-//! not bit for bit.
-//! Only the tip quantities the metrics need are recorded.
+//! Same equations, so the results agree with `wingcheck_sim::simulate` in the nodal basis to
+//! round-off (tests/modal.rs). Only the tip quantities the metrics need are recorded.
 
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
-use faer::{Mat, Side};
 use serde::Serialize;
-use wingcheck_control::{ChannelObserver, TipChannel};
-use wingcheck_model::{Config, ControllerKind, InitialShape, TimeScheme};
-use wingcheck_sim::{check_sample, Discretisation, Sample, SimError};
+use wingcheck_model::Config;
+use wingcheck_sim::modal::{ModalLoop, ModalState, ObserverSignal, StepInput};
+use wingcheck_sim::{check_sample, Sample, SimError};
 
-mod scheme;
-
-use scheme::{dot, ModalLoop, ModalState, StepInput, StepSolve};
+pub use wingcheck_sim::modal::ModalBasis;
 
 /// Entries kept per cache before it is cleared (bounds memory on sweeps over wing keys).
 const CACHE_ENTRIES: usize = 16;
-
-/// The wing in its modal basis (units: ω² in 1/s², modal coordinates in √kg·m).
-#[derive(Debug)]
-pub struct ModalBasis {
-    /// ω_i² (1/s²), ascending.
-    omega2: Vec<f64>,
-    /// Rows of Φ at the tip unknowns q(s) and θ(s).
-    tip: [Vec<f64>; 2],
-    /// Φᵀ f_h: the distributed load's shape in modal coordinates.
-    load: Vec<f64>,
-    /// η(0) = ΦᵀM x(0).
-    eta0: Vec<f64>,
-}
-
-impl ModalBasis {
-    /// Modal basis of the configuration's discretised wing.
-    pub fn new(cfg: &Config) -> Result<ModalBasis, SimError> {
-        let disc = Discretisation::new(cfg);
-        let n = disc.dim();
-        if n > crate::limits::MODAL_MAX_UNKNOWNS {
-            return Err(SimError::Numerical(format!(
-                "{n} unknowns: above the modal runner's {} (dense eigenproblem)",
-                crate::limits::MODAL_MAX_UNKNOWNS
-            )));
-        }
-        let dense = |v: Vec<f64>| Mat::from_fn(n, n, |i, j| v[i * n + j]);
-        let (m, k) = (dense(disc.mass.to_dense()), dense(disc.stiffness.to_dense()));
-        let llt = m
-            .llt(Side::Lower)
-            .map_err(|e| SimError::Numerical(format!("mass matrix is not positive definite: {e:?}")))?;
-        let l = llt.L();
-        // C = L⁻¹ K L⁻ᵀ (symmetrised)
-        let mut y = k.clone();
-        faer::linalg::triangular_solve::solve_lower_triangular_in_place(l, y.as_mut(), faer::Par::Seq);
-        let mut c = y.transpose().to_owned();
-        faer::linalg::triangular_solve::solve_lower_triangular_in_place(l, c.as_mut(), faer::Par::Seq);
-        let c = Mat::from_fn(n, n, |i, j| 0.5 * (c[(i, j)] + c[(j, i)]));
-        let evd = c
-            .self_adjoint_eigen(Side::Lower)
-            .map_err(|e| SimError::Numerical(format!("modal eigenproblem failed: {e:?}")))?;
-        let v = evd.U();
-        let omega2: Vec<f64> = (0..n).map(|i| evd.S()[i]).collect();
-        if omega2.iter().any(|w| !w.is_finite() || *w < 0.0) {
-            return Err(SimError::Numerical("stiffness matrix is not positive semidefinite".into()));
-        }
-        // Φ = L⁻ᵀ V
-        let mut phi = v.to_owned();
-        faer::linalg::triangular_solve::solve_upper_triangular_in_place(l.transpose(), phi.as_mut(), faer::Par::Seq);
-        let tip = [disc.tip_q, disc.tip_theta].map(|d| (0..n).map(|i| phi[(d, i)]).collect::<Vec<f64>>());
-        let load = (0..n).map(|i| (0..n).map(|r| phi[(r, i)] * disc.load[r]).sum()).collect();
-        let mut mx0 = vec![0.0; n];
-        disc.mass.mul_into(&disc.x0, &mut mx0);
-        let eta0 = (0..n).map(|i| (0..n).map(|r| phi[(r, i)] * mx0[r]).sum()).collect();
-        Ok(ModalBasis { omega2, tip, load, eta0 })
-    }
-
-    /// Number of modes (= unknowns).
-    pub fn len(&self) -> usize {
-        self.omega2.len()
-    }
-
-    /// True if there are no modes (never for a valid wing).
-    pub fn is_empty(&self) -> bool {
-        self.omega2.is_empty()
-    }
-}
 
 /// The plant-independent inputs of a run: per integrator step the load factor φ̄ and the
 /// tip inputs ḡ − ĝ; per observer sample ĝ_k and g(t_k).
@@ -125,52 +36,29 @@ pub struct InputSignal {
 }
 
 impl InputSignal {
-    /// The signal of `cfg` (its observer, disturbances, initial tip states, horizon).
+    /// The signal of `cfg` (its observer, disturbances, initial tip states, horizon), collected
+    /// from [`ObserverSignal`].
     pub fn new(cfg: &Config) -> InputSignal {
-        let h = cfg.discretisation.dt;
-        let period = cfg.observer.sample_period;
         let (m, total) = (cfg.steps_per_sample(), cfg.total_samples());
-        let s = cfg.wing.span;
-        // initial tip states q'''(s,0), θ'(s,0), as the stepper sets them
-        let w0 = [
-            match cfg.initial.shape {
-                InitialShape::Linear => 0.0,
-                InitialShape::Cantilever => -3.0 * cfg.initial.q_tip / s.powi(3),
-            },
-            cfg.initial.theta_tip / s,
-        ];
-        let tips = [&cfg.disturbance.tip_bending, &cfg.disturbance.tip_torsion];
-        let dist = &cfg.disturbance.distributed;
         let mut phi_mean = Vec::with_capacity(total * m);
-        for k in 0..total {
-            let t0 = k as f64 * period;
-            for j in 0..m {
-                let t = t0 + j as f64 * h;
-                phi_mean.push(dist.phi_integral(t, t + h) / h);
-            }
-        }
         let mut tip_input = [Vec::with_capacity(total * m), Vec::with_capacity(total * m)];
         let mut g_hat = [Vec::with_capacity(total + 1), Vec::with_capacity(total + 1)];
         let mut g = [Vec::with_capacity(total + 1), Vec::with_capacity(total + 1)];
-        for (c, ch) in [TipChannel::Bending, TipChannel::Torsion].into_iter().enumerate() {
-            let obs = ChannelObserver::new(cfg, ch);
-            let estimate = |sigma: f64| if obs.active { obs.gain.sample(obs.rule, sigma, obs.period) } else { 0.0 };
-            let mut sigma = obs.sigma(w0[c]);
-            for k in 0..=total {
-                let t0 = k as f64 * period;
-                let gh = estimate(sigma);
-                g_hat[c].push(gh);
-                g[c].push(tips[c].at(t0));
-                if k == total {
-                    break;
-                }
-                for j in 0..m {
-                    let t = t0 + j as f64 * h;
-                    let gm = tips[c].mean_over(t, t + h);
-                    tip_input[c].push(gm - gh);
-                    sigma += h * (gm - gh);
-                }
+        let mut signal = ObserverSignal::new(cfg);
+        for k in 0..=total {
+            let now = signal.current();
+            for c in 0..2 {
+                g_hat[c].push(now.g_hat[c]);
+                g[c].push(now.g[c]);
             }
+            if k == total {
+                break;
+            }
+            signal.advance(|_, input| {
+                phi_mean.push(input.phi);
+                tip_input[0].push(input.tip_input[0]);
+                tip_input[1].push(input.tip_input[1]);
+            });
         }
         InputSignal { phi_mean, tip_input, g_hat, g }
     }
@@ -234,48 +122,9 @@ impl TipTrace {
 /// `cfg.discretisation.stepper` selects.
 pub fn run(cfg: &Config, basis: &ModalBasis, signal: &InputSignal) -> Result<TipTrace, SimError> {
     cfg.validate().map_err(SimError::Config)?;
-    let n = basis.len();
-    let h = cfg.discretisation.dt;
-    let (a, b, xi) = (cfg.control.a, cfg.control.b, cfg.wing.xi);
-    let gain = match cfg.control.kind {
-        ControllerKind::None => [0.0, 0.0],
-        _ => [cfg.control.k1, cfg.control.k2],
-    };
-    let scheme = cfg.discretisation.stepper;
-    let alpha = match scheme {
-        TimeScheme::Trapezoid => 0.5 * h,
-        TimeScheme::Trbdf2 => wingcheck_sim::trbdf2::ALPHA * h,
-    };
-    let lp = ModalLoop {
-        u: &basis.tip,
-        solve: StepSolve::new(basis, alpha, xi, b + alpha * a, gain)?,
-        h,
-        alpha,
-        a,
-        b,
-        xi,
-        gain,
-        stiff: [cfg.wing.ei, cfg.wing.gj],
-        sign: [TipChannel::Bending.bc_sign(), TipChannel::Torsion.bc_sign()],
-    };
-    let s = cfg.wing.span;
-    let mut st = ModalState {
-        x_tip: [dot(&basis.tip[0], &basis.eta0), dot(&basis.tip[1], &basis.eta0)],
-        eta: basis.eta0.clone(),
-        zeta: vec![0.0; n],
-        y: vec![0.0; n],
-        v_tip: [0.0, 0.0],
-        w: [
-            match cfg.initial.shape {
-                InitialShape::Linear => 0.0,
-                InitialShape::Cantilever => -3.0 * cfg.initial.q_tip / s.powi(3),
-            },
-            cfg.initial.theta_tip / s,
-        ],
-    };
-    let om = &basis.omega2;
-    let energy =
-        |st: &ModalState| 0.5 * st.zeta.iter().zip(&st.eta).zip(om).map(|((z, e), w)| z * z + w * e * e).sum::<f64>();
+    let lp = ModalLoop::new(cfg, basis)?;
+    let mut st = lp.initial_state(cfg, basis);
+    let energy = |st: &ModalState| basis.energy(&st.eta, &st.zeta);
     let (m, total, every) = (cfg.steps_per_sample(), cfg.total_samples(), cfg.samples_per_output());
     let period = cfg.observer.sample_period;
     let mut trace = TipTrace::default();
@@ -327,12 +176,10 @@ pub fn run(cfg: &Config, basis: &ModalBasis, signal: &InputSignal) -> Result<Tip
                 g_hat,
             };
             step += 1;
-            match scheme {
-                TimeScheme::Trapezoid => lp.trapezoid_step(&mut st, &input),
-                TimeScheme::Trbdf2 => lp.trbdf2_step(&mut st, &input),
-            }
+            lp.step(&mut st, &input);
         }
         if k % every == 0 || k == total {
+            st.sync_tip(basis);
             record(k, &st, &mut trace)?;
         }
     }

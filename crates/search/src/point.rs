@@ -261,7 +261,7 @@ pub fn evaluate(
                 let partial = Theory {
                     lambda2: Some(v.lambda2),
                     lambda1: Some(v.lambda1),
-                    w_pd: Some(v.w_positive_definite()),
+                    w_pd: v.w_pd.as_bool(),
                     lambda3_max: v.lambda3_max,
                     feasible_32: v.feasible_32(),
                     ..Default::default()

@@ -29,8 +29,12 @@ fn rel(x: &[f64], y: &[f64]) -> f64 {
     x.iter().zip(y).fold(0.0f64, |m, (a, b)| m.max((a - b).abs())) / scale
 }
 
+/// The simulator in the nodal basis (banded Cholesky of the step matrix): the independent
+/// implementation of the same scheme.
 fn reference(c: &Config) -> TipTrace {
-    TipTrace::from_series(&simulate(c, RunOptions::default()).unwrap().series)
+    let mut nodal = c.clone();
+    nodal.discretisation.basis = wingcheck_model::StepBasis::Nodal;
+    TipTrace::from_series(&simulate(&nodal, RunOptions::default()).unwrap().series)
 }
 
 /// Largest relative difference over q(s,t), θ(s,t), τ1, τ2 and E(T), and largest absolute

@@ -17,6 +17,8 @@ pub struct Timing {
     pub elements: usize,
     /// Unknowns.
     pub unknowns: usize,
+    /// Basis the run was stepped in (`modal` or `nodal`).
+    pub basis: String,
     /// Horizon (s).
     pub t_end: f64,
     /// Integrator steps.
@@ -40,17 +42,20 @@ pub fn time_config(cfg: &Config, repeats: usize) -> Result<Timing, SimError> {
     let mut runs = Vec::with_capacity(repeats);
     let mut steps = 0;
     let mut unknowns = 0;
+    let mut basis = String::new();
     for _ in 0..repeats.max(1) {
         let t = Instant::now();
         let out = simulate(cfg, RunOptions::default())?;
         runs.push(t.elapsed().as_secs_f64());
         steps = out.stats.steps;
         unknowns = out.stats.unknowns;
+        basis = out.stats.basis;
     }
     let run_seconds = median(runs);
     Ok(Timing {
         elements: cfg.discretisation.grid_size(),
         unknowns,
+        basis,
         t_end: cfg.horizon.t_end,
         steps,
         run_seconds,

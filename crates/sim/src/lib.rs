@@ -17,6 +17,7 @@ pub mod error_estimate;
 pub mod estimate;
 pub mod fd;
 pub mod fe;
+pub mod modal;
 pub mod modes;
 pub mod output;
 mod run;
@@ -27,8 +28,8 @@ pub mod strain;
 pub use disc::{mass_determinant, Discretisation, Interpolation, Parts};
 pub use error_estimate::{simulate_with_error, EstimatedRun, PeakEstimate, PeakEstimates, TIP_TOLERANCE};
 pub use estimate::Estimate;
-pub use run::{check_sample, simulate, Fields, RunOptions, RunStats, Series, SimOutput};
-pub use stepper::{trbdf2, Channel, EnergyLedger, Peak, Peaks, Sample, Stepper};
+pub use run::{check_sample, resolved_basis, simulate, Fields, RunOptions, RunStats, Series, SimOutput};
+pub use stepper::{initial_tip_states, trbdf2, Channel, EnergyLedger, Peak, Peaks, Sample, Stepper};
 
 use thiserror::Error;
 

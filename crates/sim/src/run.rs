@@ -5,8 +5,9 @@
 use std::time::Instant;
 
 use serde::Serialize;
-use wingcheck_model::Config;
+use wingcheck_model::{Config, StepBasis, MODAL_AUTO_UNKNOWNS};
 
+use crate::modal::ModalBasis;
 use crate::stepper::{Peaks, Sample, Stepper};
 use crate::{Discretisation, Interpolation, SimError};
 
@@ -100,7 +101,7 @@ impl Series {
         self.t.is_empty()
     }
 
-    fn push(&mut self, s: &Sample) {
+    pub(crate) fn push(&mut self, s: &Sample) {
         self.t.push(s.t);
         self.q_tip.push(s.q_tip);
         self.theta_tip.push(s.theta_tip);
@@ -162,8 +163,11 @@ pub struct RunOptions<'a> {
 pub struct RunStats {
     /// Unknowns of the semi-discrete system.
     pub unknowns: usize,
-    /// Stored entries of the step matrix's banded Cholesky factor.
+    /// Stored entries of the step matrix's banded Cholesky factor (0 in the modal basis,
+    /// which factorises nothing: its step matrix is diagonal plus rank 2).
     pub factor_nnz: usize,
+    /// Basis the loop was stepped in: `modal` or `nodal` (`discretisation.basis`).
+    pub basis: String,
     /// Integrator steps taken.
     pub steps: usize,
     /// Wall time for assembly and factorisation (s).
@@ -189,10 +193,46 @@ pub struct SimOutput {
 /// Energy above which a run is declared diverged (relative to 1 + E(0)).
 const DIVERGENCE_FACTOR: f64 = 1e12;
 
-/// Run the closed loop of `cfg` over [0, T].
-pub fn simulate(cfg: &Config, mut opts: RunOptions<'_>) -> Result<SimOutput, SimError> {
+/// The basis `cfg` is stepped in, and the modal basis if that is the modal one:
+/// `discretisation.basis`, with `auto` resolved to `modal` when `disc` has at most
+/// [`MODAL_AUTO_UNKNOWNS`] unknowns and its modal basis passes its orthonormality check
+/// ([`crate::modal::MASS_TOLERANCE`], [`crate::modal::STIFFNESS_TOLERANCE`]), `nodal`
+/// otherwise. An explicit `modal` whose basis
+/// cannot be built or fails the check is an error naming the reason.
+pub fn resolved_basis(cfg: &Config, disc: &Discretisation) -> Result<(StepBasis, Option<ModalBasis>), SimError> {
+    match cfg.discretisation.basis {
+        StepBasis::Nodal => Ok((StepBasis::Nodal, None)),
+        StepBasis::Modal => Ok((StepBasis::Modal, Some(ModalBasis::of(disc)?))),
+        StepBasis::Auto if disc.dim() > MODAL_AUTO_UNKNOWNS => Ok((StepBasis::Nodal, None)),
+        StepBasis::Auto => match ModalBasis::of(disc) {
+            Ok(basis) => Ok((StepBasis::Modal, Some(basis))),
+            Err(SimError::Numerical(_)) => Ok((StepBasis::Nodal, None)),
+            Err(e) => Err(e),
+        },
+    }
+}
+
+/// Run the closed loop of `cfg` over [0, T], in the basis [`resolved_basis`] selects (the
+/// same discrete equations either way: the results agree to round-off; `stats.basis` says
+/// which).
+pub fn simulate(cfg: &Config, opts: RunOptions<'_>) -> Result<SimOutput, SimError> {
+    cfg.validate().map_err(SimError::Config)?;
     let start = Instant::now();
-    let mut stepper = Stepper::new(cfg)?;
+    let disc = Discretisation::new(cfg);
+    match resolved_basis(cfg, &disc)? {
+        (_, Some(basis)) => crate::modal::simulate_modal(cfg, &basis, start, opts),
+        _ => simulate_nodal(cfg, disc, start, opts),
+    }
+}
+
+/// [`simulate`] in the nodal basis (banded Cholesky of the step matrix).
+fn simulate_nodal(
+    cfg: &Config,
+    disc: Discretisation,
+    start: Instant,
+    mut opts: RunOptions<'_>,
+) -> Result<SimOutput, SimError> {
+    let mut stepper = Stepper::with_discretisation(cfg, disc)?;
     let setup_seconds = start.elapsed().as_secs_f64();
     let start = Instant::now();
     let total = cfg.total_samples();
@@ -230,6 +270,7 @@ pub fn simulate(cfg: &Config, mut opts: RunOptions<'_>) -> Result<SimOutput, Sim
         stats: RunStats {
             unknowns,
             factor_nnz,
+            basis: "nodal".into(),
             steps: total * cfg.steps_per_sample(),
             setup_seconds,
             stepping_seconds: start.elapsed().as_secs_f64(),

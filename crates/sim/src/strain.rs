@@ -43,6 +43,20 @@ impl StrainForm {
         self.rows.iter().map(|r| r.weight * r.entries.iter().map(|&(j, g)| g * x[j]).sum::<f64>().powi(2)).sum()
     }
 
+    /// x = G⁻¹ z: the unknowns whose strains (g·x per row, in row order) are `z`; one
+    /// forward substitution, round-off relative to the result.
+    pub fn integrate(&self, z: &[f64], x: &mut [f64]) {
+        for (r, row) in self.rows.iter().enumerate() {
+            let mut acc = z[r];
+            for &(j, g) in &row.entries {
+                if j != row.pivot {
+                    acc -= g * x[j];
+                }
+            }
+            x[row.pivot] = acc / row.pivot_coef();
+        }
+    }
+
     /// Overwrite `b` with K⁻¹ b; `work` is resized to the number of rows.
     pub fn solve_in_place(&self, b: &mut [f64], work: &mut Vec<f64>) {
         let nr = self.rows.len();
@@ -58,14 +72,6 @@ impl StrainForm {
             work[r] = y / row.weight;
         }
         // x = G⁻¹ z, z = D⁻¹ y.
-        for (r, row) in self.rows.iter().enumerate() {
-            let mut acc = work[r];
-            for &(j, g) in &row.entries {
-                if j != row.pivot {
-                    acc -= g * b[j];
-                }
-            }
-            b[row.pivot] = acc / row.pivot_coef();
-        }
+        self.integrate(work, b);
     }
 }

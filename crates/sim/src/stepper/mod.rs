@@ -33,6 +33,17 @@ use crate::banded::{BandedCholesky, BandedPair};
 use crate::sparse::{SymBuilder, SymMatrix};
 use crate::{Discretisation, SimError};
 
+/// The tip boundary states at t = 0 from the initial shape: q'''(s,0) (1/m²) = −3 q_tip/s³ for
+/// the cantilever shape and 0 for the linear one; θ'(s,0) = θ_tip/s (1/m).
+pub fn initial_tip_states(cfg: &Config) -> [f64; 2] {
+    let s = cfg.wing.span;
+    let shear = match cfg.initial.shape {
+        wingcheck_model::InitialShape::Linear => 0.0,
+        wingcheck_model::InitialShape::Cantilever => -3.0 * cfg.initial.q_tip / s.powi(3),
+    };
+    [shear, cfg.initial.theta_tip / s]
+}
+
 /// State of one tip channel (bending or torsion).
 #[derive(Debug, Clone)]
 pub struct Channel {
@@ -157,13 +168,7 @@ impl Stepper {
         let m_over_alpha = SymMatrix::combine(&[(1.0 / alpha, &disc.mass)]);
         let rhs_operator = BandedPair::new(&m_over_alpha, &stiffness_closed);
         let x = disc.x0.clone();
-        let s = cfg.wing.span;
-        // Initial tip states from the initial shape: q'''(s,0) and θ'(s,0).
-        let w1 = match cfg.initial.shape {
-            wingcheck_model::InitialShape::Linear => 0.0,
-            wingcheck_model::InitialShape::Cantilever => -3.0 * cfg.initial.q_tip / s.powi(3),
-        };
-        let w2 = cfg.initial.theta_tip / s;
+        let [w1, w2] = initial_tip_states(cfg);
         let mk = |ch: TipChannel, w: f64, k: f64, dof: usize| {
             let observer = ChannelObserver::new(cfg, ch);
             Channel { observer, w, g_hat: 0.0, sigma: 0.0, k, dof }

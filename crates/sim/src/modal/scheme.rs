@@ -1,8 +1,11 @@
-//! The two schemes of [`wingcheck_sim::Stepper`] in the modal basis: one step of the
+//! The two schemes of [`crate::Stepper`] in the modal basis: one step of the
 //! trapezoidal rule or of TR-BDF2, each solve with the step matrix as diagonal plus rank 2
 //! (Woodbury), O(n) per step.
 
-use wingcheck_sim::SimError;
+use wingcheck_control::TipChannel;
+use wingcheck_model::{Config, ControllerKind, TimeScheme};
+
+use crate::SimError;
 
 use super::ModalBasis;
 
@@ -10,7 +13,7 @@ use super::ModalBasis;
 /// D = diag(1/α + (ξ + α)ω_i²) (1/s), β = b + αa, T = diag(k1, k2) and U the tip rows of Φ;
 /// solved by the Woodbury identity with a 2×2 capacitance matrix, O(n) per solve.
 #[derive(Debug)]
-pub(super) struct StepSolve {
+pub(crate) struct StepSolve {
     /// D⁻¹/α: the factor of ζ in D⁻¹ r.
     coef_zeta: Vec<f64>,
     /// D⁻¹Ω²: the factor of η in D⁻¹ r.
@@ -25,12 +28,13 @@ pub(super) struct StepSolve {
     hm: [[f64; 2]; 2],
 }
 
-pub(super) fn dot(x: &[f64], y: &[f64]) -> f64 {
+/// Σ x_i y_i.
+pub fn dot(x: &[f64], y: &[f64]) -> f64 {
     x.iter().zip(y).map(|(p, q)| p * q).sum()
 }
 
 impl StepSolve {
-    pub(super) fn new(
+    pub(crate) fn new(
         basis: &ModalBasis,
         alpha: f64,
         xi: f64,
@@ -87,44 +91,112 @@ impl StepSolve {
 /// The modal state of the closed loop: x = Φη, v = Φζ, with the tip values and tip boundary
 /// states carried alongside.
 #[derive(Debug)]
-pub(super) struct ModalState {
-    pub(super) eta: Vec<f64>,
-    pub(super) zeta: Vec<f64>,
+pub struct ModalState {
+    /// Modal displacements η (x = Φη).
+    pub eta: Vec<f64>,
+    /// Modal velocities ζ (v = Φζ).
+    pub zeta: Vec<f64>,
     /// Work buffer: D⁻¹ r of the current solve.
-    pub(super) y: Vec<f64>,
+    pub y: Vec<f64>,
     /// q(s), θ(s) (m, rad) = Uᵀη.
-    pub(super) x_tip: [f64; 2],
+    pub x_tip: [f64; 2],
     /// q̇(s), θ̇(s) (m/s, rad/s) = Uᵀζ.
-    pub(super) v_tip: [f64; 2],
+    pub v_tip: [f64; 2],
     /// Tip boundary states q'''(s) (1/m²), θ'(s) (1/m).
-    pub(super) w: [f64; 2],
+    pub w: [f64; 2],
+}
+
+impl ModalState {
+    /// Recompute the tip values from the modal state (x_tip = Uᵀη, v_tip = Uᵀζ): the steps
+    /// carry them alongside η, ζ and the two drift apart by round-off; the runs call this at
+    /// every output sample, so the recorded tip equals the field at the tip and no drift
+    /// accumulates.
+    pub fn sync_tip(&mut self, basis: &ModalBasis) {
+        self.x_tip = [dot(&basis.tip[0], &self.eta), dot(&basis.tip[1], &self.eta)];
+        self.v_tip = [dot(&basis.tip[0], &self.zeta), dot(&basis.tip[1], &self.zeta)];
+    }
 }
 
 /// The inputs of one integrator step: φ̄, ḡ − ĝ and ĝ per channel.
 #[derive(Debug, Clone, Copy)]
-pub(super) struct StepInput {
-    pub(super) phi: f64,
-    pub(super) tip_input: [f64; 2],
-    pub(super) g_hat: [f64; 2],
+pub struct StepInput {
+    /// φ̄: the step mean of the distributed load's time factor.
+    pub phi: f64,
+    /// ḡ − ĝ over the step: N (bending), N m (torsion).
+    pub tip_input: [f64; 2],
+    /// The held estimate ĝ: N, N m.
+    pub g_hat: [f64; 2],
 }
 
 /// Everything a step reads that is fixed over a run.
 #[derive(Debug)]
-pub(super) struct ModalLoop<'a> {
-    pub(super) u: &'a [Vec<f64>; 2],
-    pub(super) solve: StepSolve,
-    pub(super) h: f64,
-    pub(super) alpha: f64,
-    pub(super) a: f64,
-    pub(super) b: f64,
-    pub(super) xi: f64,
-    pub(super) gain: [f64; 2],
+pub struct ModalLoop<'a> {
+    u: &'a [Vec<f64>; 2],
+    solve: StepSolve,
+    /// The scheme.
+    scheme: TimeScheme,
+    h: f64,
+    alpha: f64,
+    a: f64,
+    b: f64,
+    xi: f64,
+    gain: [f64; 2],
     /// EI (N m²), GJ (N m²).
-    pub(super) stiff: [f64; 2],
-    pub(super) sign: [f64; 2],
+    stiff: [f64; 2],
+    sign: [f64; 2],
 }
 
-impl ModalLoop<'_> {
+impl<'a> ModalLoop<'a> {
+    /// The loop of `cfg` on `basis` (built from the same wing and grid), with the scheme
+    /// `cfg.discretisation.stepper` selects.
+    pub fn new(cfg: &Config, basis: &'a ModalBasis) -> Result<ModalLoop<'a>, SimError> {
+        let h = cfg.discretisation.dt;
+        let (a, b, xi) = (cfg.control.a, cfg.control.b, cfg.wing.xi);
+        let gain = match cfg.control.kind {
+            ControllerKind::None => [0.0, 0.0],
+            _ => [cfg.control.k1, cfg.control.k2],
+        };
+        let alpha = match cfg.discretisation.stepper {
+            TimeScheme::Trapezoid => 0.5 * h,
+            TimeScheme::Trbdf2 => crate::trbdf2::ALPHA * h,
+        };
+        Ok(ModalLoop {
+            u: &basis.tip,
+            solve: StepSolve::new(basis, alpha, xi, b + alpha * a, gain)?,
+            scheme: cfg.discretisation.stepper,
+            h,
+            alpha,
+            a,
+            b,
+            xi,
+            gain,
+            stiff: [cfg.wing.ei, cfg.wing.gj],
+            sign: [TipChannel::Bending.bc_sign(), TipChannel::Torsion.bc_sign()],
+        })
+    }
+
+    /// The initial state: η(0), ζ = 0, and the tip boundary states of the initial shape as the
+    /// nodal stepper sets them (q'''(s,0) = −3 q_tip/s³ for the cantilever shape, 0 for the
+    /// linear one; θ'(s,0) = θ_tip/s).
+    pub fn initial_state(&self, cfg: &Config, basis: &ModalBasis) -> ModalState {
+        ModalState {
+            x_tip: [dot(&basis.tip[0], &basis.eta0), dot(&basis.tip[1], &basis.eta0)],
+            eta: basis.eta0.clone(),
+            zeta: vec![0.0; basis.len()],
+            y: vec![0.0; basis.len()],
+            v_tip: [0.0, 0.0],
+            w: crate::stepper::initial_tip_states(cfg),
+        }
+    }
+
+    /// One integrator step of the configured scheme.
+    pub fn step(&self, st: &mut ModalState, input: &StepInput) {
+        match self.scheme {
+            TimeScheme::Trapezoid => self.trapezoid_step(st, input),
+            TimeScheme::Trbdf2 => self.trbdf2_step(st, input),
+        }
+    }
+
     /// Tip forces of the right-hand side: ḡ − ĝ − k a x_tip (the displacement part of the
     /// control law is in K_c).
     fn tip_forces(&self, input: &StepInput, x_tip: [f64; 2]) -> [f64; 2] {
@@ -132,13 +204,13 @@ impl ModalLoop<'_> {
     }
 
     /// τ = −k(a x + b v) − ĝ at the tip values (x, v) of channel c.
-    pub(super) fn tau(&self, c: usize, x: f64, v: f64, g_hat: f64) -> f64 {
+    pub fn tau(&self, c: usize, x: f64, v: f64, g_hat: f64) -> f64 {
         -self.gain[c] * (self.a * x + self.b * v) - g_hat
     }
 
     /// One trapezoidal step (α = h/2): S v̄ = (2/h)ζ − Ω²η + f̄, η += h v̄, ζ = 2v̄ − ζ; the
-    /// tip states as `wingcheck_sim::Stepper`'s trapezoidal step.
-    pub(super) fn trapezoid_step(&self, st: &mut ModalState, input: &StepInput) {
+    /// tip states as `crate::Stepper`'s trapezoidal step.
+    pub fn trapezoid_step(&self, st: &mut ModalState, input: &StepInput) {
         let h = self.h;
         let f = self.tip_forces(input, st.x_tip);
         let t = self.solve.rhs(self.u, &st.zeta, &st.eta, input.phi, f, &mut st.y);
@@ -166,13 +238,13 @@ impl ModalLoop<'_> {
         }
     }
 
-    /// One TR-BDF2 step (α = γh/2), as `wingcheck_sim::Stepper`'s. Stage 1 (trapezoid to
+    /// One TR-BDF2 step (α = γh/2), as `crate::Stepper`'s. Stage 1 (trapezoid to
     /// t + γh): S u = ζ/α − Ω²η + f̄, (η_γ, ζ_γ) = (η + 2αu, 2u − ζ). Stage 2 (BDF2 to t + h):
     /// (η̂, ζ̂) = A(η_γ, ζ_γ) − B(η, ζ), S ζ₁ = ζ̂/α − Ω²η̂ + f̄, η₁ = η̂ + αζ₁. The stage-2
     /// right-hand side is formed in the pass that finishes stage 1 (its tip forces need only
     /// the tip values of stage 1); the tip states by the same stages.
-    pub(super) fn trbdf2_step(&self, st: &mut ModalState, input: &StepInput) {
-        use wingcheck_sim::trbdf2::{A, B};
+    pub fn trbdf2_step(&self, st: &mut ModalState, input: &StepInput) {
+        use crate::trbdf2::{A, B};
         let alpha = self.alpha;
         let (xn, vn) = (st.x_tip, st.v_tip);
         // Stage 1.
