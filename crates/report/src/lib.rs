@@ -359,14 +359,33 @@ fn claim_figures(r: &wingcheck_claims::ClaimRow) -> Vec<Figure> {
     r.plots
         .iter()
         .enumerate()
-        .map(|(i, pd)| Figure {
-            file: format!("{}-{}", claim_anchor(&r.id.to_string()), safe_name(&pd.name)),
-            label: format!("{} plot {}", r.id, i + 1),
-            title: pd.title.clone(),
-            caption: Caption::default().t(pd.title.clone()).0,
-            chart: Chart::Line(held_as_steps(pd.clone())),
+        .map(|(i, pd)| {
+            let chart = with_symlog(held_as_steps(pd.clone()));
+            let mut caption = Caption::default().t(pd.title.clone());
+            if let Some(s) = chart.symlog_y {
+                caption = caption
+                    .t(". The y axis is symmetric-logarithmic (values span decades on both sides of 0): linear for |y| ≤ ")
+                    .n(format!("{}.symlog_threshold", safe_name(&pd.name)), s.threshold)
+                    .t(", one decade per division beyond.");
+            }
+            Figure {
+                file: format!("{}-{}", claim_anchor(&r.id.to_string()), safe_name(&pd.name)),
+                label: format!("{} plot {}", r.id, i + 1),
+                title: pd.title.clone(),
+                caption: caption.0,
+                chart: Chart::Line(chart),
+            }
         })
         .collect()
+}
+
+/// A symmetric-log y axis where a linear one would show some of the values as 0
+/// ([`chart::SymLog::for_values`] decides from the plotted values).
+fn with_symlog(mut c: chart::LineChart) -> chart::LineChart {
+    if !c.data.log_y {
+        c.symlog_y = chart::SymLog::for_values(c.data.lines.iter().flat_map(|l| l.y.iter().copied()));
+    }
+    c
 }
 
 /// The digital observer's outputs ĝ and the commands τ are held over a sample period (zero-order

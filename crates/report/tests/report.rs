@@ -309,6 +309,14 @@ fn ledger_digest_charts_sizes_links_and_provenance() {
         let labels: Vec<String> = svg_texts(&svg).into_iter().filter(|t| has_unit(t)).collect();
         assert!(labels.len() >= 2, "{f}: axis labels with units, found {labels:?}");
     }
+    // The mu-conditions plot (sup λ3/b ≈ 1e-5 below r*, down to ≈ −40 above) has a symmetric-log
+    // y axis: 0 and signed decades as tick labels, and the linear threshold stated.
+    let mu =
+        summary.files.iter().find(|f| f.contains("mu-lambda3") && f.ends_with(".svg")).expect("the mu-conditions plot");
+    let texts = svg_texts(&read(&out.join(mu)));
+    assert!(texts.iter().any(|t| t.starts_with("linear for |y| ≤ 10")), "{mu}: threshold stated: {texts:?}");
+    assert!(texts.iter().any(|t| t == "0") && texts.iter().any(|t| t.starts_with("−10")), "{mu}: {texts:?}");
+    assert!(html.contains("symmetric-logarithmic"), "the caption says the axis is symmetric-log");
     // Total SVG within the page budget (1.5 MB; heatmaps are PNG rasters inside the SVGs).
     assert!(total_svg <= 1_500_000, "total SVG {total_svg} bytes");
 
