@@ -34,41 +34,51 @@ pub struct Heatmap {
 impl Heatmap {
     /// The data as CSV: one row per sample time, one column per grid point.
     pub fn to_csv(&self) -> String {
-        let mut out = String::from("t_s");
-        for z in &self.z {
-            out.push_str(&format!(",z={z}"));
-        }
-        out.push('\n');
-        for (t, row) in self.t.iter().zip(&self.values) {
-            out.push_str(&t.to_string());
-            for v in row {
-                out.push_str(&format!(",{v}"));
-            }
-            out.push('\n');
-        }
-        out
+        field_csv(&self.t, &self.z, &self.values)
     }
 
     /// Half-width of the colour scale: max |v| over t ≥ `scale_from` (1 if that is 0).
     pub fn scale(&self) -> f64 {
-        let m = self
-            .t
-            .iter()
-            .zip(&self.values)
-            .filter(|(t, _)| **t >= self.scale_from)
-            .flat_map(|(_, row)| row.iter())
-            .filter(|v| v.is_finite())
-            .fold(0.0_f64, |m, v| m.max(v.abs()));
-        if m > 0.0 {
-            m
-        } else {
-            1.0
-        }
+        field_scale(&self.t, &self.values, self.scale_from)
     }
 }
 
+/// Half-width of a field's colour scale: max |v| over the samples with t ≥ `from` (1 if that
+/// is 0), so the large initial condition does not wash out the residual motion.
+pub(crate) fn field_scale(t: &[f64], values: &[Vec<f64>], from: f64) -> f64 {
+    let m = t
+        .iter()
+        .zip(values)
+        .filter(|(t, _)| **t >= from)
+        .flat_map(|(_, row)| row.iter())
+        .filter(|v| v.is_finite())
+        .fold(0.0_f64, |m, v| m.max(v.abs()));
+    if m > 0.0 {
+        m
+    } else {
+        1.0
+    }
+}
+
+/// A field v(z_j, t_k) = values[k][j] as CSV: one row per sample time, one column per grid point.
+pub(crate) fn field_csv(t: &[f64], z: &[f64], values: &[Vec<f64>]) -> String {
+    let mut out = String::from("t_s");
+    for z in z {
+        out.push_str(&format!(",z={z}"));
+    }
+    out.push('\n');
+    for (t, row) in t.iter().zip(values) {
+        out.push_str(&t.to_string());
+        for v in row {
+            out.push_str(&format!(",{v}"));
+        }
+        out.push('\n');
+    }
+    out
+}
+
 /// Diverging colour map ("coolwarm"): u ∈ [0,1], 0.5 ↦ near white.
-fn coolwarm(u: f64) -> RGBColor {
+pub(crate) fn coolwarm(u: f64) -> RGBColor {
     const STOPS: [(f64, [f64; 3]); 5] = [
         (0.0, [59.0, 76.0, 192.0]),
         (0.25, [141.0, 176.0, 254.0]),
