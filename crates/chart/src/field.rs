@@ -14,7 +14,8 @@ use plotters::coord::types::RangedCoordf64;
 use crate::ChartError;
 use crate::{linear_ticks, px, scaled_svg_header, tick, tick_linear, Ticked, CANVAS, SCALE};
 
-/// A field sampled on a (t, z) grid.
+/// A field sampled on a (t, z) grid, drawn as a map ([`heatmap_svg`]) or a 3-D surface
+/// ([`crate::surface_svg`]).
 #[derive(Debug, Clone)]
 pub struct Heatmap {
     /// File stem.
@@ -34,47 +35,37 @@ pub struct Heatmap {
 impl Heatmap {
     /// The data as CSV: one row per sample time, one column per grid point.
     pub fn to_csv(&self) -> String {
-        field_csv(&self.t, &self.z, &self.values)
+        let mut out = String::from("t_s");
+        for z in &self.z {
+            out.push_str(&format!(",z={z}"));
+        }
+        out.push('\n');
+        for (t, row) in self.t.iter().zip(&self.values) {
+            out.push_str(&t.to_string());
+            for v in row {
+                out.push_str(&format!(",{v}"));
+            }
+            out.push('\n');
+        }
+        out
     }
 
     /// Half-width of the colour scale: max |v| over t ≥ `scale_from` (1 if that is 0).
     pub fn scale(&self) -> f64 {
-        field_scale(&self.t, &self.values, self.scale_from)
-    }
-}
-
-/// Half-width of a field's colour scale: max |v| over the samples with t ≥ `from` (1 if that
-/// is 0), so the large initial condition does not wash out the residual motion.
-pub(crate) fn field_scale(t: &[f64], values: &[Vec<f64>], from: f64) -> f64 {
-    let m = t
-        .iter()
-        .zip(values)
-        .filter(|(t, _)| **t >= from)
-        .flat_map(|(_, row)| row.iter())
-        .filter(|v| v.is_finite())
-        .fold(0.0_f64, |m, v| m.max(v.abs()));
-    if m > 0.0 {
-        m
-    } else {
-        1.0
-    }
-}
-
-/// A field v(z_j, t_k) = values[k][j] as CSV: one row per sample time, one column per grid point.
-pub(crate) fn field_csv(t: &[f64], z: &[f64], values: &[Vec<f64>]) -> String {
-    let mut out = String::from("t_s");
-    for z in z {
-        out.push_str(&format!(",z={z}"));
-    }
-    out.push('\n');
-    for (t, row) in t.iter().zip(values) {
-        out.push_str(&t.to_string());
-        for v in row {
-            out.push_str(&format!(",{v}"));
+        let m = self
+            .t
+            .iter()
+            .zip(&self.values)
+            .filter(|(t, _)| **t >= self.scale_from)
+            .flat_map(|(_, row)| row.iter())
+            .filter(|v| v.is_finite())
+            .fold(0.0_f64, |m, v| m.max(v.abs()));
+        if m > 0.0 {
+            m
+        } else {
+            1.0
         }
-        out.push('\n');
     }
-    out
 }
 
 /// Diverging colour map ("coolwarm"): u ∈ [0,1], 0.5 ↦ near white.
@@ -96,7 +87,7 @@ pub(crate) fn coolwarm(u: f64) -> RGBColor {
 }
 
 /// Index k and weight w with x = (1−w)·c[k] + w·c[k+1] (clamped to the ends).
-fn locate(c: &[f64], x: f64) -> (usize, f64) {
+pub(crate) fn locate(c: &[f64], x: f64) -> (usize, f64) {
     let n = c.len();
     let k = c.partition_point(|v| *v <= x).saturating_sub(1).min(n - 2);
     let w = ((x - c[k]) / (c[k + 1] - c[k])).clamp(0.0, 1.0);

@@ -24,7 +24,7 @@ pub use field::{heatmap_svg, Heatmap};
 pub use grid::{grid_heatmap_svg, viridis, GridAxis, GridHeatmap, Mark, MarkShape};
 pub use line::{line_svg, LineChart, LineStyle};
 pub use plotters::style::RGBColor;
-pub use surface::{surface_svg, Surface};
+pub use surface::surface_svg;
 pub use symlog::{SymLog, SymLogCoord};
 pub use ticks::{linear_ticks, log_ticks, Ticked};
 

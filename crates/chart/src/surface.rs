@@ -6,48 +6,22 @@
 //! The surface, the floor and the back walls are one indexed PNG raster (one pixel per
 //! displayed pixel); axes, ticks, labels and the colour bar are vector. Heights are to scale
 //! over the whole run; the colour is the companion heatmap's (±max |v| over t ≥
-//! [`Surface::scale_from`], earlier values saturate), so the residual motion that is flat at
+//! [`Heatmap::scale_from`], earlier values saturate), so the residual motion that is flat at
 //! this height scale still shows.
 
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use crate::field::coolwarm;
+use crate::field::{coolwarm, locate};
+use crate::Heatmap;
 use crate::{linear_ticks, px, scaled_svg_header, tick, tick_linear, ChartError, CANVAS, SCALE};
-
-/// A field sampled on a (t, z) grid, for a surface view.
-#[derive(Debug, Clone)]
-pub struct Surface {
-    /// File stem.
-    pub name: String,
-    /// Sample times t_k (s), increasing.
-    pub t: Vec<f64>,
-    /// Grid points z_j (m), increasing.
-    pub z: Vec<f64>,
-    /// values[k][j] = v(z_j, t_k).
-    pub values: Vec<Vec<f64>>,
-    /// The value axis and colour bar label (quantity and unit), e.g. `q (m)`.
-    pub value_label: String,
-    /// The colour scale is ±max |v| over the samples with t ≥ this (s).
-    pub scale_from: f64,
-}
-
-impl Surface {
-    /// The data as CSV: one row per sample time, one column per grid point.
-    pub fn to_csv(&self) -> String {
-        crate::field::field_csv(&self.t, &self.z, &self.values)
-    }
-
-    /// Half-width of the colour scale: max |v| over t ≥ `scale_from` (the heatmap's scale).
-    pub fn colour_scale(&self) -> f64 {
-        crate::field::field_scale(&self.t, &self.values, self.scale_from)
-    }
-}
 
 /// At most this many time strips are drawn (samples are taken evenly; the CSV has them all).
 const MAX_STRIPS: usize = 160;
 /// A mesh line across the span every this many strips.
 const MESH_EVERY: usize = 16;
+/// At least this many span rows are drawn (interpolated between the grid's points).
+const MIN_ROWS: usize = 64;
 /// About this many mesh lines along t (at evenly spaced span positions).
 const MESH_Z: usize = 10;
 /// Colour levels × shade levels of the palette (≤ 256 with the reserved entries).
@@ -154,7 +128,7 @@ fn palette() -> Vec<u8> {
 }
 
 /// The height range (0 included) of the field.
-fn height_range(s: &Surface) -> (f64, f64) {
+fn height_range(s: &Heatmap) -> (f64, f64) {
     let finite = s.values.iter().flatten().filter(|v| v.is_finite());
     let (vmin, vmax) = finite.fold((0.0_f64, 0.0_f64), |(a, b), v| (a.min(*v), b.max(*v)));
     if vmax - vmin > 0.0 {
@@ -175,9 +149,9 @@ fn frac(v: f64, a: f64, b: f64) -> f64 {
 
 /// The raster: floor, back walls with the height ticks `vt`, and the surface in painter's
 /// order (`s` checked by the caller: ≥ 2 × 2 samples, one value per (t, z)).
-fn draw_surface(s: &Surface, view: View, (vmin, vmax): (f64, f64), vt: &[f64]) -> Raster {
+fn draw_surface(s: &Heatmap, view: View, (vmin, vmax): (f64, f64), vt: &[f64]) -> Raster {
     let (nt, nz) = (s.t.len(), s.z.len());
-    let cmax = s.colour_scale();
+    let cmax = s.scale();
     let (t0, t1, z0, z1) = (s.t[0], s.t[nt - 1], s.z[0], s.z[nz - 1]);
     let (bx0, by0, bx1, by1) = view.bounds();
     let mut r = Raster {
@@ -202,13 +176,24 @@ fn draw_surface(s: &Surface, view: View, (vmin, vmax): (f64, f64), vt: &[f64]) -
     // Time samples drawn: evenly spaced indices, first and last kept.
     let strips = (nt - 1).min(MAX_STRIPS);
     let ks: Vec<usize> = (0..=strips).map(|i| (i * (nt - 1) + strips / 2) / strips).collect();
-    let point = |k: usize, j: usize| {
-        let v = s.values[k][j];
+    // Span rows drawn: evenly spaced (the grid may be graded, with long elements whose flat
+    // quads would show as steps), values linear in z between grid points.
+    let rows: Vec<(f64, usize, f64)> = (0..nz.max(MIN_ROWS))
+        .map(|i| {
+            let z = z0 + (z1 - z0) * i as f64 / (nz.max(MIN_ROWS) - 1) as f64;
+            let (j, w) = locate(&s.z, z);
+            (z, j, w)
+        })
+        .collect();
+    let nz = rows.len();
+    let point = |k: usize, i: usize| {
+        let (z, j, w) = rows[i];
+        let v = (1.0 - w) * s.values[k][j] + w * s.values[k][j + 1];
         let v = if v.is_finite() { v } else { 0.0 };
-        (frac(s.t[k], t0, t1), frac(s.z[j], z0, z1), frac(v, vmin, vmax), v)
+        (frac(s.t[k], t0, t1), frac(z, z0, z1), frac(v, vmin, vmax), v)
     };
-    // Mesh lines along t at about MESH_Z evenly spaced span positions (the grid may be graded).
-    let band = |j: usize| (frac(s.z[j], z0, z1) * MESH_Z as f64).floor() as i64;
+    // Mesh lines along t at about MESH_Z evenly spaced span positions.
+    let band = |j: usize| (frac(rows[j].0, z0, z1) * MESH_Z as f64).floor() as i64;
     let mesh_z: Vec<bool> = (0..nz).map(|j| j == 0 || band(j) != band(j - 1)).collect();
     // Quads, back to front: the floor's screen y grows towards the viewer.
     let mut quads: Vec<(f64, usize, usize)> = Vec::with_capacity(strips * (nz - 1));
@@ -262,14 +247,14 @@ fn draw_surface(s: &Surface, view: View, (vmin, vmax): (f64, f64), vt: &[f64]) -
 }
 
 /// Render the surface as an SVG document (raster surface, vector axes).
-pub fn surface_svg(s: &Surface) -> Result<String, ChartError> {
+pub fn surface_svg(s: &Heatmap) -> Result<String, ChartError> {
     let err = |e: String| ChartError { name: s.name.clone(), detail: e };
     let (nt, nz) = (s.t.len(), s.z.len());
     if nt < 2 || nz < 2 || s.values.len() != nt || s.values.iter().any(|r| r.len() != nz) {
         return Err(err("need at least 2 times and 2 grid points, and one value per (t, z)".into()));
     }
     let (vmin, vmax) = height_range(s);
-    let cmax = s.colour_scale();
+    let cmax = s.scale();
     let (t0, t1, z0, z1) = (s.t[0], s.t[nt - 1], s.z[0], s.z[nz - 1]);
     let view = VIEW;
     let vt = linear_ticks(vmin, vmax, 5);
@@ -385,7 +370,7 @@ mod tests {
         // mean of its corners, ½: level 0.75 · LEVELS), not the floor's (v = 0: the middle level).
         let (nt, nz) = (11, 5);
         let values: Vec<Vec<f64>> = (0..nt).map(|k| vec![if k == nt - 1 { 1.0 } else { 0.0 }; nz]).collect();
-        let s = Surface {
+        let s = Heatmap {
             name: "ridge".into(),
             t: (0..nt).map(|k| k as f64).collect(),
             z: (0..nz).map(|j| j as f64 * 0.5).collect(),

@@ -4,7 +4,7 @@
 use serde::Serialize;
 use wingcheck_claims::{Line, PlotData};
 
-use crate::chart::{heatmap_svg, line_svg, surface_svg, Heatmap, LineChart, Surface};
+use crate::chart::{heatmap_svg, line_svg, surface_svg, Heatmap, LineChart};
 use crate::stats::fmt_num;
 use crate::ReportError;
 
@@ -46,8 +46,8 @@ pub enum Chart {
     Line(LineChart),
     /// A field over (t, z).
     Heat(Heatmap),
-    /// The same field as a 3-D surface.
-    Surface(Surface),
+    /// A field over (t, z) as a 3-D surface.
+    Surface(Heatmap),
     /// The (a, b) region map.
     Region(Box<crate::region::RegionMap>),
 }

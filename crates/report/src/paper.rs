@@ -6,7 +6,7 @@ use wingcheck_claims::comparison::{settle_time, GTILDE_THRESHOLD};
 use wingcheck_model::Config;
 use wingcheck_sim::SimOutput;
 
-use crate::chart::{Heatmap, LineChart, Surface};
+use crate::chart::{Heatmap, LineChart};
 use crate::figure::{line_plot, Caption, Chart, Figure};
 use crate::runs::Runs;
 use crate::stats::{diff, fmt_num, max_abs, rms};
@@ -83,9 +83,26 @@ fn scale_caption(cap: Caption, key: String, h: &Heatmap, unit: &str) -> Caption 
     ))
 }
 
-fn heat(n: u32, run: &str, desc: &str, f: Field, out: &SimOutput, c: &Ctx) -> Figure {
+/// The field of paper Figure `n` on its (t, z) grid, colour scale from t ≥ [`field_scale_from`].
+fn field_map(n: u32, f: Field, out: &SimOutput, c: &Ctx) -> Heatmap {
     let (t, z, values) = field_values(out, f);
-    let values = values.clone();
+    Heatmap {
+        name: format!("fig{n}"),
+        t: t.to_vec(),
+        z: z.to_vec(),
+        values: values.clone(),
+        value_label: format!("{} ({})", f.sym(), f.unit()),
+        scale_from: field_scale_from(c.t_end),
+    }
+}
+
+/// File stem of paper Figure `n`'s field map (`fig05-q-ftdo`).
+fn field_file(n: u32, f: Field, run: &str) -> String {
+    format!("fig{n:02}-{}-{run}", if matches!(f, Field::Q) { "q" } else { "theta" })
+}
+
+fn heat(n: u32, run: &str, desc: &str, f: Field, out: &SimOutput, c: &Ctx) -> Figure {
+    let (t, _, values) = field_values(out, f);
     let row_max = |k: usize| values[k].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
     let per_t: Vec<f64> = (0..t.len()).map(row_max).collect();
     let late = max_abs(t, &per_t, c.t_half, c.t_end);
@@ -102,18 +119,11 @@ fn heat(n: u32, run: &str, desc: &str, f: Field, out: &SimOutput, c: &Ctx) -> Fi
         .t(format!(" {u}; at t = {} s: ", c.t_end))
         .n(format!("fig{n}.max_abs_end"), end)
         .t(format!(" {u}."));
-    let h = Heatmap {
-        name: format!("fig{n}"),
-        t: t.to_vec(),
-        z: z.to_vec(),
-        values,
-        value_label: format!("{s} ({u})"),
-        scale_from: field_scale_from(c.t_end),
-    };
+    let h = field_map(n, f, out, c);
     let caption = scale_caption(caption, format!("fig{n}.scale"), &h, u)
         .t(" The map is the quantitative view (read values off the colour bar); the 3-D view below shows the shape of the motion, as the paper draws it.");
     Figure {
-        file: format!("fig{n:02}-{}-{run}", if matches!(f, Field::Q) { "q" } else { "theta" }),
+        file: field_file(n, f, run),
         label: format!("Figure {n}"),
         title: format!("{} {s}(z,t) {desc}", f.what()),
         caption: caption.0,
@@ -124,28 +134,20 @@ fn heat(n: u32, run: &str, desc: &str, f: Field, out: &SimOutput, c: &Ctx) -> Fi
 /// The field of paper Figure `n` as a 3-D surface, beside its map: the view of the paper's
 /// figure (the shape of the motion); the map is the quantitative view.
 fn surface(n: u32, run: &str, desc: &str, f: Field, out: &SimOutput, c: &Ctx) -> Figure {
-    let (t, z, values) = field_values(out, f);
     let (s, u) = (f.sym(), f.unit());
-    let sf = Surface {
-        name: format!("fig{n}-surface"),
-        t: t.to_vec(),
-        z: z.to_vec(),
-        values: values.clone(),
-        value_label: format!("{s} ({u})"),
-        scale_from: field_scale_from(c.t_end),
-    };
+    let sf = Heatmap { name: format!("fig{n}-surface"), ..field_map(n, f, out, c) };
     let caption = Caption::default()
         .t(format!(
             "{} {s}(z,t) {desc} as a 3-D surface, the view of the paper's Figure {n}: height to scale over the whole run, so it shows the shape of the motion (the initial shape and how it decays); colour as in the map above (±",
             f.what()
         ))
-        .n(format!("fig{n}.surface_scale"), sf.colour_scale())
+        .n(format!("fig{n}.surface_scale"), sf.scale())
         .t(format!(
             " {u}, set by t ≥ {} s; larger values saturate), so the residual motion that is flat at this height still shows. Read values off the map.",
             crate::chart::tick(sf.scale_from)
         ));
     Figure {
-        file: format!("fig{n:02}-{}-{run}-surface", if matches!(f, Field::Q) { "q" } else { "theta" }),
+        file: format!("{}-surface", field_file(n, f, run)),
         label: format!("Figure {n}, 3-D view"),
         title: format!("{} {s}(z,t) {desc}, 3-D view", f.what()),
         caption: caption.0,
