@@ -396,7 +396,7 @@ fn clip_segment(p: (f64, f64), q: (f64, f64), bounds: ((f64, f64), (f64, f64))) 
             t1 = t1.min(qk / pk);
         }
     }
-    (t0 <= t1).then(|| ((p.0 + t0 * d0, p.1 + t0 * d1), (p.0 + t1 * d0, p.1 + t1 * d1)))
+    (t0 <= t1).then_some(((p.0 + t0 * d0, p.1 + t0 * d1), (p.0 + t1 * d0, p.1 + t1 * d1)))
 }
 
 /// Spacing (displayed px) of hatch lines.
@@ -431,7 +431,7 @@ fn hatch(corners: &[(f64, f64)], step: f64, x_clip: (i32, i32)) -> Vec<[(i32, i3
             let (a, b) = (corners[i], corners[(i + 1) % n]);
             // inside: sign · cross(b − a, p − a) ≥ 0, linear in t: α t + β ≥ 0
             let (ex, ey) = (b.0 - a.0, b.1 - a.1);
-            let alpha = sign * (ex * -1.0 - ey);
+            let alpha = sign * (-ex - ey);
             let beta = sign * (ex * (c - a.1) - ey * (-a.0));
             if alpha.abs() < 1e-12 {
                 if beta < 0.0 {

@@ -364,9 +364,9 @@ fn claim_figures(r: &wingcheck_claims::ClaimRow) -> Vec<Figure> {
             let mut caption = Caption::default().t(pd.title.clone());
             if let Some(s) = chart.symlog_y {
                 caption = caption
-                    .t(". The y axis is symmetric-logarithmic (values span decades on both sides of 0): linear for |y| ≤ ")
+                    .t(". The y axis is symmetric-logarithmic (on a linear one the small values would read as 0): linear for |y| ≤ ")
                     .n(format!("{}.symlog_threshold", safe_name(&pd.name)), s.threshold)
-                    .t(", one decade per division beyond.");
+                    .t(", logarithmic beyond (ticks at 0 and ±c·10ᵏ).");
             }
             Figure {
                 file: format!("{}-{}", claim_anchor(&r.id.to_string()), safe_name(&pd.name)),
