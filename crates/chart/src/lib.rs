@@ -13,6 +13,7 @@
 //! ([`scaled_svg_header`]): curves are placed to 1/[`SCALE`] px. Fields are embedded as PNG
 //! rasters with vector axes ([`heatmap_svg`]).
 
+mod clip;
 mod field;
 mod grid;
 mod line;
