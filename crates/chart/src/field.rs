@@ -14,7 +14,8 @@ use plotters::coord::types::RangedCoordf64;
 use crate::ChartError;
 use crate::{linear_ticks, px, scaled_svg_header, tick, tick_linear, Ticked, CANVAS, SCALE};
 
-/// A field sampled on a (t, z) grid.
+/// A field sampled on a (t, z) grid, drawn as a map ([`heatmap_svg`]) or a 3-D surface
+/// ([`crate::surface_svg`]).
 #[derive(Debug, Clone)]
 pub struct Heatmap {
     /// File stem.
@@ -68,7 +69,7 @@ impl Heatmap {
 }
 
 /// Diverging colour map ("coolwarm"): u ∈ [0,1], 0.5 ↦ near white.
-fn coolwarm(u: f64) -> RGBColor {
+pub(crate) fn coolwarm(u: f64) -> RGBColor {
     const STOPS: [(f64, [f64; 3]); 5] = [
         (0.0, [59.0, 76.0, 192.0]),
         (0.25, [141.0, 176.0, 254.0]),
@@ -86,7 +87,7 @@ fn coolwarm(u: f64) -> RGBColor {
 }
 
 /// Index k and weight w with x = (1−w)·c[k] + w·c[k+1] (clamped to the ends).
-fn locate(c: &[f64], x: f64) -> (usize, f64) {
+pub(crate) fn locate(c: &[f64], x: f64) -> (usize, f64) {
     let n = c.len();
     let k = c.partition_point(|v| *v <= x).saturating_sub(1).min(n - 2);
     let w = ((x - c[k]) / (c[k + 1] - c[k])).clamp(0.0, 1.0);

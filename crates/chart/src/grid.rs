@@ -1,16 +1,28 @@
-//! Heatmaps of a value over a 2-D grid of parameters (the searches): sequential colour map
-//! with a labelled colour bar, cells without a value in grey with a legend entry, and marks
-//! (boundary segments, dots, circles) listed in a legend.
+//! Heatmaps of a value over a 2-D grid of parameters (the searches, the report's (a, b) region
+//! map): sequential colour map with a labelled colour bar, cells without a value in grey with
+//! a legend entry, and marks over the cells (boundary segments and lines, dots, circles, a
+//! cross at an operating point, shaded regions) listed in a legend below the plot.
+//!
+//! The cells and the colour bar are one PNG raster each (one pixel per displayed pixel, so an
+//! SVG holds two images rather than a rectangle per cell); axes, ticks, labels and marks are
+//! vector, drawn on a [`SCALE`]-times canvas like the line charts.
 
+use plotters::coord::types::RangedCoordf64;
+use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use crate::{tick, ChartError};
-
-/// Width and height (px) of a grid heatmap.
-pub const GRID_SIZE: (u32, u32) = (940, 720);
+use crate::clip::{clip_segment, hatch, HATCH_STEP};
+use crate::{decade_label, linear_ticks, log_labels, log_ticks, px, tick, ChartError, Ticked, CANVAS, SCALE, SIZE};
 
 /// Colour of cells without a value.
 pub const MISSING: RGBColor = RGBColor(190, 190, 190);
+
+/// Displayed height (px) of the plot part of a grid heatmap (the legend rows come below).
+const PLOT_H: u32 = 560;
+/// Displayed height of one legend row.
+const ROW_H: u32 = 26;
+/// Displayed width of the colour-bar panel.
+const BAR_W: u32 = 150;
 
 /// One axis of the grid.
 #[derive(Debug, Clone)]
@@ -49,36 +61,30 @@ impl GridAxis {
         e
     }
 
-    fn label_at(&self, v: f64) -> String {
-        match &self.words {
-            Some(words) => {
-                let i = v.round();
-                if (v - i).abs() < 1e-6 && i >= 0.0 && (i as usize) < words.len() {
-                    words[i as usize].clone()
-                } else {
-                    String::new()
-                }
-            }
-            None if self.log => decade_tick(v, self.decades()),
-            None => tick(v),
+    /// Tick positions (plot coordinates) and their labels, in one format per axis: the words
+    /// of a list axis; on a log axis the decades (10ᵏ, or [`tick`]'s format when all lie in
+    /// [0.01, 1000]) or 1-2-5 within a short range; on a linear axis 1-2-5 steps.
+    fn ticks(&self) -> (Vec<f64>, Vec<String>) {
+        let e = self.edges();
+        let (lo, hi) = (e[0], e[e.len() - 1]);
+        if let Some(words) = &self.words {
+            return ((0..words.len()).map(|i| i as f64).collect(), words.clone());
+        }
+        if self.log {
+            let values = log_ticks(10f64.powf(lo), 10f64.powf(hi), &[]);
+            let decades = log_labels(&values);
+            let labels = values.iter().map(|v| if decades { decade_label(*v) } else { tick(*v) }).collect();
+            (values.iter().map(|v| v.log10()).collect(), labels)
+        } else {
+            let values = linear_ticks(lo, hi, 6);
+            let labels = values.iter().map(|v| crate::tick_linear(*v, hi - lo)).collect();
+            (values, labels)
         }
     }
 
-    /// Decades spanned (log axes).
-    fn decades(&self) -> f64 {
-        let e = self.edges();
-        e[e.len() - 1] - e[0]
-    }
-}
-
-/// Label of log10 coordinate `v` on a log axis spanning `decades`: only whole decades are
-/// labelled when the axis spans at least one (so every label has the same form), in [`tick`]'s
-/// format.
-fn decade_tick(v: f64, decades: f64) -> String {
-    if decades >= 1.0 && (v - v.round()).abs() > 1e-9 {
-        String::new()
-    } else {
-        tick(10f64.powf(if decades >= 1.0 { v.round() } else { v }))
+    /// Index of the cell containing plot coordinate `x`.
+    fn cell_at(edges: &[f64], x: f64) -> usize {
+        edges.partition_point(|e| *e <= x).clamp(1, edges.len() - 1) - 1
     }
 }
 
@@ -91,6 +97,15 @@ pub enum MarkShape {
     Dots,
     /// Open circles.
     Circles,
+    /// One solid polyline through the points (e.g. a closed-form boundary).
+    Line,
+    /// One dashed polyline through the points.
+    DashedLine,
+    /// A cross at each point (e.g. the configured operating point).
+    Cross,
+    /// A hatched region: the convex polygon through the points, hatched with thin diagonal lines
+    /// (the cell colours stay readable), drawn under the other marks.
+    Hatch,
 }
 
 /// A set of marks drawn over the cells, with a legend entry.
@@ -111,7 +126,8 @@ pub struct Mark {
 pub struct GridHeatmap {
     /// File stem.
     pub name: String,
-    /// Title (readable: quantity, window, what the marks are).
+    /// Title (readable: quantity, window, what the marks are); empty: none (e.g. a report
+    /// figure whose title is in the page).
     pub title: String,
     /// First axis (x).
     pub x: GridAxis,
@@ -140,6 +156,42 @@ pub fn viridis(u: f64) -> RGBColor {
     RGBColor(c(0), c(1), c(2))
 }
 
+/// A contrasting outline for a mark of colour `c` (dark for light colours, light for dark), so
+/// marks read on every cell colour and on the white legend.
+fn halo(c: RGBColor) -> RGBAColor {
+    let luminance = 0.299 * c.0 as f64 + 0.587 * c.1 as f64 + 0.114 * c.2 as f64;
+    if luminance > 140.0 {
+        BLACK.mix(0.75)
+    } else {
+        WHITE.mix(0.9)
+    }
+}
+
+/// An RGB PNG of `w × h` pixels, colour of pixel (column, row) from `colour`.
+fn rgb_png(w: usize, h: usize, colour: impl Fn(usize, usize) -> RGBColor) -> Result<Vec<u8>, String> {
+    let mut data = Vec::with_capacity(w * h * 3);
+    for r in 0..h {
+        for c in 0..w {
+            let col = colour(c, r);
+            data.extend_from_slice(&[col.0, col.1, col.2]);
+        }
+    }
+    let mut png = Vec::new();
+    {
+        let mut enc = png::Encoder::new(&mut png, w as u32, h as u32);
+        enc.set_color(png::ColorType::Rgb);
+        enc.set_depth(png::BitDepth::Eight);
+        let mut wr = enc.write_header().map_err(|e| e.to_string())?;
+        wr.write_image_data(&data).map_err(|e| e.to_string())?;
+    }
+    Ok(png)
+}
+
+/// Displayed size of a grid heatmap with `rows` legend rows.
+fn size(rows: usize) -> (u32, u32) {
+    (SIZE.0, PLOT_H + 16 + ROW_H * rows as u32)
+}
+
 /// Render a grid heatmap as an SVG document.
 pub fn grid_heatmap_svg(h: &GridHeatmap) -> Result<String, ChartError> {
     let err = |e: String| ChartError { name: h.name.clone(), detail: e };
@@ -160,107 +212,270 @@ pub fn grid_heatmap_svg(h: &GridHeatmap) -> Result<String, ChartError> {
     if vmax - vmin <= 1e-12 * vmax.abs().max(1.0) {
         (vmin, vmax) = (vmin - 0.5, vmax + 0.5);
     }
-    let (xe, ye) = (h.x.edges(), h.y.edges());
-    let (xr, yr) = (xe[0]..xe[nx], ye[0]..ye[ny]);
     let missing = vals.iter().filter(|v| v.is_none()).count();
+    let mut entries: Vec<(String, RGBColor, Option<MarkShape>)> =
+        h.marks.iter().filter(|m| !m.label.is_empty()).map(|m| (m.label.clone(), m.colour, Some(m.shape))).collect();
+    if missing > 0 {
+        entries.push((format!("{} ({missing} cells)", h.missing_label), MISSING, None));
+    }
+    let (width, height) = size(entries.len().div_ceil(2));
+    let canvas = (width * SCALE, height * SCALE);
+    let (xe, ye) = (h.x.edges(), h.y.edges());
     let mut svg = String::new();
+    let (plot_px, bar_px);
     {
-        let root = SVGBackend::with_string(&mut svg, GRID_SIZE).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, canvas).into_drawing_area();
         root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
-        let (top, legend_area) = root.split_vertically(GRID_SIZE.1 - 90);
-        let (main, bar) = top.split_horizontally(GRID_SIZE.0 - 150);
-        let mut chart = ChartBuilder::on(&main)
-            .margin(14)
-            .caption(h.title.as_str(), ("sans-serif", 15))
-            .x_label_area_size(48)
-            .y_label_area_size(72)
-            .build_cartesian_2d(xr, yr)
-            .map_err(|e| err(e.to_string()))?;
-        let mut cells = Vec::with_capacity(nx * ny);
-        for i in 0..nx {
-            for j in 0..ny {
-                let colour = vals[i * ny + j].map_or(MISSING, |v| viridis((v - vmin) / (vmax - vmin)));
-                cells.push(Rectangle::new([(xe[i], ye[j]), (xe[i + 1], ye[j + 1])], colour.filled()));
-            }
-        }
-        chart.draw_series(cells).map_err(|e| err(e.to_string()))?;
-        let at = |(x, y): (f64, f64)| (h.x.coord(x), h.y.coord(y));
-        for m in &h.marks {
-            let style = m.colour.stroke_width(3);
-            match m.shape {
-                MarkShape::Segments => chart
-                    .draw_series(m.points.chunks_exact(2).map(|p| PathElement::new(vec![at(p[0]), at(p[1])], style)))
-                    .map(|_| ()),
-                MarkShape::Dots => {
-                    chart.draw_series(m.points.iter().map(|&p| Circle::new(at(p), 2, m.colour.filled()))).map(|_| ())
-                }
-                MarkShape::Circles => chart
-                    .draw_series(m.points.iter().map(|&p| Circle::new(at(p), 4, m.colour.stroke_width(2))))
-                    .map(|_| ()),
-            }
-            .map_err(|e| err(e.to_string()))?;
-        }
-        chart
-            .configure_mesh()
-            .disable_mesh()
-            .x_desc(h.x.label.as_str())
-            .y_desc(h.y.label.as_str())
-            .x_label_formatter(&|v| h.x.label_at(*v))
-            .y_label_formatter(&|v| h.y.label_at(*v))
-            .label_style(("sans-serif", 13))
-            .axis_desc_style(("sans-serif", 14))
-            .draw()
-            .map_err(|e| err(e.to_string()))?;
-
-        // colour bar, labelled with values (not their logarithms) and the quantity
-        let mut cb = ChartBuilder::on(&bar)
-            .margin_top(40)
-            .margin_bottom(60)
-            .margin_left(8)
-            .margin_right(4)
-            .right_y_label_area_size(64)
-            .caption(h.value_label.as_str(), ("sans-serif", 13))
-            .build_cartesian_2d(0.0..1.0, vmin..vmax)
-            .map_err(|e| err(e.to_string()))?;
-        let steps = 64;
-        cb.draw_series((0..steps).map(|k| {
-            let a = vmin + (vmax - vmin) * k as f64 / steps as f64;
-            let b = vmin + (vmax - vmin) * (k + 1) as f64 / steps as f64;
-            Rectangle::new([(0.0, a), (1.0, b)], viridis((k as f64 + 0.5) / steps as f64).filled())
-        }))
-        .map_err(|e| err(e.to_string()))?;
-        let (log, span) = (h.log_values, vmax - vmin);
-        cb.configure_mesh()
-            .disable_mesh()
-            .disable_x_axis()
-            .y_labels(if log && span >= 1.0 { (span.ceil() as usize + 1).min(12) } else { 7 })
-            .y_label_formatter(&|v| if log { decade_tick(*v, span) } else { tick(*v) })
-            .label_style(("sans-serif", 12))
-            .draw()
-            .map_err(|e| err(e.to_string()))?;
-
-        // legend: the marks, and the grey cells
-        let font = ("sans-serif", 13).into_font();
-        let mut entries: Vec<(String, RGBColor, MarkShape)> =
-            h.marks.iter().map(|m| (m.label.clone(), m.colour, m.shape)).collect();
-        entries.push((format!("{} ({missing} cells)", h.missing_label), MISSING, MarkShape::Dots));
-        for (k, (label, colour, shape)) in entries.iter().enumerate() {
-            let (col, row) = ((k % 2) as i32, (k / 2) as i32);
-            let (x0, y0) = (20 + col * 460, 10 + row * 24);
-            let e = match (shape, k + 1 == entries.len()) {
-                (_, true) => legend_area.draw(&Rectangle::new([(x0, y0), (x0 + 18, y0 + 14)], colour.filled())),
-                (MarkShape::Segments, _) => {
-                    legend_area.draw(&PathElement::new(vec![(x0, y0 + 7), (x0 + 18, y0 + 7)], colour.stroke_width(3)))
-                }
-                (MarkShape::Dots, _) => legend_area.draw(&Circle::new((x0 + 9, y0 + 7), 3, colour.filled())),
-                (MarkShape::Circles, _) => legend_area.draw(&Circle::new((x0 + 9, y0 + 7), 5, colour.stroke_width(2))),
-            };
-            e.map_err(|e| err(e.to_string()))?;
-            legend_area.draw(&Text::new(label.clone(), (x0 + 26, y0), font.clone())).map_err(|e| err(e.to_string()))?;
-        }
+        let (top, legend_area) = root.split_vertically(px(PLOT_H));
+        let (main, bar) = top.split_horizontally(CANVAS.0 - px(BAR_W));
+        plot_px = draw_cells_frame(&main, h, &xe, &ye).map_err(err)?;
+        bar_px = draw_colour_bar(&bar, h, vmin, vmax).map_err(err)?;
+        draw_legend(&legend_area, &entries).map_err(err)?;
         root.present().map_err(|e| err(e.to_string()))?;
     }
+    // The cells, nearest cell per displayed pixel; the colour bar, one row per pixel.
+    let (cx, cy) = (&xe, &ye);
+    let raster = |r: &(std::ops::Range<i32>, std::ops::Range<i32>)| {
+        (((r.0.end - r.0.start) as u32 / SCALE).max(2) as usize, ((r.1.end - r.1.start) as u32 / SCALE).max(2) as usize)
+    };
+    let (w, hgt) = raster(&plot_px);
+    let (x0, x1, y0, y1) = (cx[0], cx[nx], cy[0], cy[ny]);
+    let cells = rgb_png(w, hgt, |c, r| {
+        let x = x0 + (x1 - x0) * (c as f64 + 0.5) / w as f64;
+        let y = y1 - (y1 - y0) * (r as f64 + 0.5) / hgt as f64;
+        let (i, j) = (GridAxis::cell_at(cx, x), GridAxis::cell_at(cy, y));
+        vals[i * ny + j].map_or(MISSING, |v| viridis((v - vmin) / (vmax - vmin)))
+    })
+    .map_err(err)?;
+    let (bw, bh) = raster(&bar_px);
+    let bar = rgb_png(bw, bh, |_, r| viridis(1.0 - (r as f64 + 0.5) / bh as f64)).map_err(err)?;
+    crate::embed_raster(&mut svg, &bar_px, &bar).map_err(err)?;
+    crate::embed_raster(&mut svg, &plot_px, &cells).map_err(err)?;
+    let svg = svg.replacen(
+        &format!("<svg width=\"{}\" height=\"{}\"", canvas.0, canvas.1),
+        &format!("<svg width=\"{width}\" height=\"{height}\""),
+        1,
+    );
     Ok(svg)
+}
+
+type Area<'a> = DrawingArea<SVGBackend<'a>, Shift>;
+type PixelRange = (std::ops::Range<i32>, std::ops::Range<i32>);
+
+/// Axes, ticks and marks of the cell plot; returns the plotting area (canvas pixels).
+fn draw_cells_frame(main: &Area, h: &GridHeatmap, xe: &[f64], ye: &[f64]) -> Result<PixelRange, String> {
+    let e = |e: DrawingAreaErrorKind<std::io::Error>| e.to_string();
+    let (xt, xl) = h.x.ticks();
+    let (yt, yl) = h.y.ticks();
+    let label_of = |ticks: &[f64], labels: &[String], v: f64| {
+        ticks.iter().position(|t| (t - v).abs() < 1e-9).map_or(String::new(), |i| labels[i].clone())
+    };
+    let mut builder = ChartBuilder::on(main);
+    builder.margin(px(14)).x_label_area_size(px(48)).y_label_area_size(px(76));
+    if !h.title.is_empty() {
+        builder.caption(h.title.as_str(), ("sans-serif", px(17)));
+    }
+    let mut chart = builder
+        .build_cartesian_2d(
+            Ticked::<RangedCoordf64>::new(xe[0]..xe[xe.len() - 1], xt.clone()),
+            Ticked::<RangedCoordf64>::new(ye[0]..ye[ye.len() - 1], yt.clone()),
+        )
+        .map_err(|e| e.to_string())?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc(h.x.label.as_str())
+        .y_desc(h.y.label.as_str())
+        .x_label_formatter(&|v| label_of(&xt, &xl, *v))
+        .y_label_formatter(&|v| label_of(&yt, &yl, *v))
+        .label_style(("sans-serif", px(17)))
+        .axis_desc_style(("sans-serif", px(17)))
+        .axis_style(BLACK.stroke_width(px(1)))
+        .set_all_tick_mark_size(px(5))
+        .draw()
+        .map_err(|e| e.to_string())?;
+    let at = |(x, y): (f64, f64)| (h.x.coord(x), h.y.coord(y));
+    // Hatched regions first, so the other marks lie over them.
+    let mut marks: Vec<&Mark> = h.marks.iter().collect();
+    marks.sort_by_key(|m| m.shape != MarkShape::Hatch);
+    // plotters pins coordinates outside the plot to its frame, which would bend a line that
+    // leaves the plot: lines are clipped here, markers outside the plot dropped.
+    let bounds = ((xe[0], xe[xe.len() - 1]), (ye[0], ye[ye.len() - 1]));
+    let inside =
+        |p: &(f64, f64)| (bounds.0 .0..=bounds.0 .1).contains(&p.0) && (bounds.1 .0..=bounds.1 .1).contains(&p.1);
+    for m in marks {
+        let mut pts: Vec<(f64, f64)> = m.points.iter().map(|&p| at(p)).collect();
+        match m.shape {
+            MarkShape::Segments => {
+                pts = pts
+                    .chunks_exact(2)
+                    .filter_map(|s| clip_segment(s[0], s[1], bounds))
+                    .flat_map(|(a, b)| [a, b])
+                    .collect();
+            }
+            MarkShape::Line | MarkShape::DashedLine => {
+                // Only straight lines through two points are clipped exactly; longer polylines
+                // keep their vertices inside the plot.
+                pts = match pts[..] {
+                    [a, b] => clip_segment(a, b, bounds).map_or(Vec::new(), |(a, b)| vec![a, b]),
+                    _ => pts.into_iter().filter(inside).collect(),
+                };
+            }
+            MarkShape::Dots | MarkShape::Circles | MarkShape::Cross => pts.retain(inside),
+            MarkShape::Hatch => {}
+        }
+        if pts.is_empty() {
+            continue;
+        }
+        let (c, o) = (m.colour, halo(m.colour));
+        let series = |chart: &mut ChartContext<SVGBackend, _>, w: u32, style: ShapeStyle, dashed: bool| {
+            if dashed {
+                chart.draw_series(DashedLineSeries::new(pts.clone(), px(10), px(6), style)).map(|_| ())
+            } else {
+                chart.draw_series(std::iter::once(PathElement::new(pts.clone(), style.stroke_width(w)))).map(|_| ())
+            }
+        };
+        match m.shape {
+            MarkShape::Hatch => {
+                let corners: Vec<(f64, f64)> =
+                    pts.iter().map(|p| chart.backend_coord(p)).map(|(x, y)| (f64::from(x), f64::from(y))).collect();
+                let (area, frame) = (chart.plotting_area().get_pixel_range(), f64::from(px(HATCH_STEP)));
+                for s in hatch(&corners, frame, (area.0.start, area.0.end)) {
+                    main.draw(&PathElement::new(s.to_vec(), c.mix(0.55).stroke_width(px(1)))).map_err(e)?;
+                }
+            }
+            MarkShape::Segments => {
+                for (style, w) in [(o.stroke_width(px(5)), px(5)), (c.stroke_width(px(3)), px(3))] {
+                    chart
+                        .draw_series(pts.chunks_exact(2).map(|p| PathElement::new(p.to_vec(), style.stroke_width(w))))
+                        .map_err(e)?;
+                }
+            }
+            MarkShape::Line | MarkShape::DashedLine => {
+                let dashed = m.shape == MarkShape::DashedLine;
+                series(&mut chart, px(5), o.stroke_width(px(5)), dashed).map_err(e)?;
+                series(&mut chart, px(3), c.stroke_width(px(3)), dashed).map_err(e)?;
+            }
+            MarkShape::Dots => {
+                chart.draw_series(pts.iter().map(|&p| Circle::new(p, px(4), o.filled()))).map_err(e)?;
+                chart.draw_series(pts.iter().map(|&p| Circle::new(p, px(3), c.filled()))).map_err(e)?;
+            }
+            MarkShape::Circles => {
+                chart.draw_series(pts.iter().map(|&p| Circle::new(p, px(7), o.stroke_width(px(4))))).map_err(e)?;
+                chart.draw_series(pts.iter().map(|&p| Circle::new(p, px(7), c.stroke_width(px(2))))).map_err(e)?;
+            }
+            MarkShape::Cross => {
+                for &p in &pts {
+                    let (x, y) = chart.backend_coord(&p);
+                    let d = px(9) as i32;
+                    for (style, w) in [(o, px(6)), (c.to_rgba(), px(3))] {
+                        for seg in [[(x - d, y - d), (x + d, y + d)], [(x - d, y + d), (x + d, y - d)]] {
+                            main.draw(&PathElement::new(seg.to_vec(), style.stroke_width(w))).map_err(e)?;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    Ok(chart.plotting_area().get_pixel_range())
+}
+
+/// The colour bar's frame and value ticks (the gradient is a raster placed in the returned
+/// area), labelled with values (not their logarithms) and the quantity.
+fn draw_colour_bar(bar: &Area, h: &GridHeatmap, vmin: f64, vmax: f64) -> Result<PixelRange, String> {
+    let e = |e: DrawingAreaErrorKind<std::io::Error>| e.to_string();
+    let (ticks, labels): (Vec<f64>, Vec<String>) = if h.log_values {
+        let t = log_ticks(10f64.powf(vmin), 10f64.powf(vmax), &[]);
+        let decades = log_labels(&t);
+        (
+            t.iter().map(|v| v.log10()).collect(),
+            t.iter().map(|v| if decades { decade_label(*v) } else { tick(*v) }).collect(),
+        )
+    } else {
+        let t = linear_ticks(vmin, vmax, 6);
+        (t.clone(), t.iter().map(|v| crate::tick_linear(*v, vmax - vmin)).collect())
+    };
+    let mut cb = ChartBuilder::on(bar)
+        .margin_top(px(44))
+        .margin_bottom(px(62))
+        .margin_left(px(10))
+        .margin_right(px(4))
+        .right_y_label_area_size(px(76))
+        .build_cartesian_2d(0.0..1.0, Ticked::<RangedCoordf64>::new(vmin..vmax, ticks.clone()))
+        .map_err(|e| e.to_string())?;
+    cb.configure_mesh()
+        .disable_mesh()
+        .disable_x_axis()
+        .y_label_formatter(&|v| {
+            ticks.iter().position(|t| (t - v).abs() < 1e-9).map_or(String::new(), |i| labels[i].clone())
+        })
+        .label_style(("sans-serif", px(16)))
+        .axis_style(BLACK.stroke_width(px(1)))
+        .set_all_tick_mark_size(px(4))
+        .draw()
+        .map_err(|e| e.to_string())?;
+    bar.draw(&Text::new(
+        h.value_label.clone(),
+        (px(4) as i32, px(14) as i32),
+        ("sans-serif", px(16)).into_font().color(&BLACK),
+    ))
+    .map_err(e)?;
+    Ok(cb.plotting_area().get_pixel_range())
+}
+
+/// The legend below the plot, two entries per row: each mark as drawn, then the grey cells.
+fn draw_legend(area: &Area, entries: &[(String, RGBColor, Option<MarkShape>)]) -> Result<(), String> {
+    let e = |e: DrawingAreaErrorKind<std::io::Error>| e.to_string();
+    let font = ("sans-serif", px(16)).into_font().color(&BLACK);
+    for (k, (label, c, shape)) in entries.iter().enumerate() {
+        let (col, row) = ((k % 2) as i32, (k / 2) as i32);
+        let (x0, y) = (px(24) as i32 + col * px(480) as i32, px(12) as i32 + row * px(ROW_H) as i32);
+        let (c, o) = (*c, halo(*c));
+        let (xa, xb, xm) = (x0, x0 + px(26) as i32, x0 + px(13) as i32);
+        let seg = |style: ShapeStyle| PathElement::new(vec![(xa, y), (xb, y)], style);
+        match shape {
+            None => {
+                area.draw(&Rectangle::new([(xa, y - px(8) as i32), (xb, y + px(8) as i32)], c.filled())).map_err(e)?
+            }
+            Some(MarkShape::Hatch) => {
+                let (ya, yb) = (f64::from(y - px(9) as i32), f64::from(y + px(9) as i32));
+                let corners = [(f64::from(xa), ya), (f64::from(xb), ya), (f64::from(xb), yb), (f64::from(xa), yb)];
+                for s in hatch(&corners, f64::from(px(HATCH_STEP) / 2), (xa, xb)) {
+                    area.draw(&PathElement::new(s.to_vec(), c.mix(0.8).stroke_width(px(1)))).map_err(e)?;
+                }
+                area.draw(&Rectangle::new([(xa, ya as i32), (xb, yb as i32)], c.mix(0.8).stroke_width(px(1))))
+                    .map_err(e)?;
+            }
+            Some(MarkShape::Segments | MarkShape::Line) => {
+                area.draw(&seg(o.stroke_width(px(5)))).map_err(e)?;
+                area.draw(&seg(c.stroke_width(px(3)))).map_err(e)?;
+            }
+            Some(MarkShape::DashedLine) => {
+                for (a, b) in [(xa, xa + px(10) as i32), (xa + px(16) as i32, xb)] {
+                    area.draw(&PathElement::new(vec![(a, y), (b, y)], o.stroke_width(px(5)))).map_err(e)?;
+                    area.draw(&PathElement::new(vec![(a, y), (b, y)], c.stroke_width(px(3)))).map_err(e)?;
+                }
+            }
+            Some(MarkShape::Dots) => {
+                area.draw(&Circle::new((xm, y), px(4), o.filled())).map_err(e)?;
+                area.draw(&Circle::new((xm, y), px(3), c.filled())).map_err(e)?;
+            }
+            Some(MarkShape::Circles) => {
+                area.draw(&Circle::new((xm, y), px(7), o.stroke_width(px(4)))).map_err(e)?;
+                area.draw(&Circle::new((xm, y), px(7), c.stroke_width(px(2)))).map_err(e)?;
+            }
+            Some(MarkShape::Cross) => {
+                let d = px(8) as i32;
+                for (style, w) in [(o, px(6)), (c.to_rgba(), px(3))] {
+                    for s in [[(xm - d, y - d), (xm + d, y + d)], [(xm - d, y + d), (xm + d, y - d)]] {
+                        area.draw(&PathElement::new(s.to_vec(), style.stroke_width(w))).map_err(e)?;
+                    }
+                }
+            }
+        }
+        area.draw(&Text::new(label.clone(), (x0 + px(36) as i32, y - px(9) as i32), font.clone())).map_err(e)?;
+    }
+    Ok(())
 }
 
 #[cfg(test)]
@@ -279,6 +494,10 @@ mod tests {
         // centres 1, 10, 100 → log10 coordinates 0, 1, 2; edges −0.5, 0.5, 1.5, 2.5
         let a = GridAxis { label: "a".into(), centres: vec![1.0, 10.0, 100.0], log: true, words: None };
         assert_eq!(a.edges(), vec![-0.5, 0.5, 1.5, 2.5]);
-        assert_eq!(a.label_at(1.0), "10");
+        // ticks at the decades 1, 10, 100 (inside [10^-0.5, 10^2.5]), in one format
+        assert_eq!(a.ticks(), (vec![0.0, 1.0, 2.0], vec!["1".to_string(), "10".into(), "100".into()]));
+        // the cell containing a coordinate, the ends clamped
+        let e = a.edges();
+        assert_eq!([-1.0, 0.2, 0.5, 2.4, 9.0].map(|x| GridAxis::cell_at(&e, x)), [0, 0, 1, 2, 2]);
     }
 }

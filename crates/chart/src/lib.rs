@@ -1,6 +1,6 @@
 //! Charts as standalone SVG files, drawn with plotters' SVG backend, shared by the report
-//! (line charts, field heatmaps) and the searches (grid heatmaps): one tick format, one set of
-//! colour maps.
+//! (line charts with linear, log or symmetric-log axes, field heatmaps) and the searches (grid
+//! heatmaps): one tick format, one set of colour maps.
 //!
 //! Text: with plotters' default features off no font crate is compiled in; the SVG backend
 //! writes labels as SVG `<text>` elements (font chosen by the viewer) and plotters only
@@ -13,15 +13,20 @@
 //! ([`scaled_svg_header`]): curves are placed to 1/[`SCALE`] px. Fields are embedded as PNG
 //! rasters with vector axes ([`heatmap_svg`]).
 
+mod clip;
 mod field;
 mod grid;
 mod line;
+mod surface;
+mod symlog;
 mod ticks;
 
 pub use field::{heatmap_svg, Heatmap};
 pub use grid::{grid_heatmap_svg, viridis, GridAxis, GridHeatmap, Mark, MarkShape};
 pub use line::{line_svg, LineChart, LineStyle};
 pub use plotters::style::RGBColor;
+pub use surface::surface_svg;
+pub use symlog::{SymLog, SymLogCoord};
 pub use ticks::{linear_ticks, log_ticks, Ticked};
 
 /// A chart could not be drawn.

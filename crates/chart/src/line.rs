@@ -10,6 +10,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use wingcheck_claims::PlotData;
 
+use crate::symlog::{SymLog, SymLogCoord};
 use crate::ChartError;
 use crate::{
     decade_label, linear_ticks, log_labels, log_ticks, padded_range, px, scaled_svg_header, tick, tick_linear, Ticked,
@@ -41,17 +42,47 @@ pub struct LineChart {
     pub vlines: Vec<(f64, String)>,
     /// Horizontal levels at y with a label (e.g. the |g̃| threshold).
     pub hlines: Vec<(f64, String)>,
+    /// A symmetric-log y axis with this transform (ignored when `data.log_y`); the legend panel
+    /// states its linear threshold.
+    pub symlog_y: Option<SymLog>,
 }
 
 impl From<PlotData> for LineChart {
     fn from(data: PlotData) -> Self {
-        LineChart { data, styles: Vec::new(), x_range: None, vlines: Vec::new(), hlines: Vec::new() }
+        LineChart { data, styles: Vec::new(), x_range: None, vlines: Vec::new(), hlines: Vec::new(), symlog_y: None }
     }
 }
 
 impl LineChart {
     fn style(&self, i: usize) -> LineStyle {
         self.styles.get(i).copied().unwrap_or_default()
+    }
+
+    /// The symmetric-log transform of the y axis, if it has one.
+    fn symlog(&self) -> Option<SymLog> {
+        self.symlog_y.filter(|_| !self.data.log_y)
+    }
+}
+
+/// How the tick labels of an axis are written.
+#[derive(Clone, Copy)]
+enum Labels {
+    /// Linear axis spanning this much (round-off snapping to 0).
+    Linear(f64),
+    /// Log axis; 10ᵏ labels when true.
+    Log(bool),
+    /// Symmetric-log axis.
+    SymLog(SymLog),
+}
+
+impl Labels {
+    fn label(self, v: f64) -> String {
+        match self {
+            Labels::Linear(span) => tick_linear(v, span),
+            Labels::Log(true) => decade_label(v),
+            Labels::Log(false) => tick(v),
+            Labels::SymLog(s) => s.label(v),
+        }
     }
 }
 
@@ -66,7 +97,10 @@ pub fn line_svg(c: &LineChart) -> Result<String, ChartError> {
     {
         let root = SVGBackend::with_string(&mut svg, CANVAS).into_drawing_area();
         root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
-        let labelled = pd.lines.iter().any(|l| !l.label.is_empty()) || !c.vlines.is_empty() || !c.hlines.is_empty();
+        let labelled = pd.lines.iter().any(|l| !l.label.is_empty())
+            || !c.vlines.is_empty()
+            || !c.hlines.is_empty()
+            || c.symlog().is_some();
         let (plot, legend) = if labelled {
             let (a, b) = root.split_horizontally(CANVAS.0 - px(LEGEND_W));
             (a, Some(b))
@@ -78,29 +112,39 @@ pub fn line_svg(c: &LineChart) -> Result<String, ChartError> {
             Some((a, b)) if b > a => (a, b),
             _ => padded_range(pd.lines.iter().flat_map(|l| l.x.iter().copied()), pd.log_x),
         };
-        let ys = padded_range(
-            pd.lines
-                .iter()
-                .flat_map(|l| {
-                    l.x.iter().zip(&l.y).filter(|(x, _)| (!pd.log_x || **x > 0.0) && in_x(**x)).map(|(_, y)| *y)
-                })
-                .chain(c.hlines.iter().map(|h| h.0)),
-            pd.log_y,
-        );
+        let y_values = pd
+            .lines
+            .iter()
+            .flat_map(|l| l.x.iter().zip(&l.y).filter(|(x, _)| (!pd.log_x || **x > 0.0) && in_x(**x)).map(|(_, y)| *y))
+            .chain(c.hlines.iter().map(|h| h.0));
+        let ys = match c.symlog() {
+            Some(s) => s.padded_range(y_values),
+            None => padded_range(y_values, pd.log_y),
+        };
         let data_x: Vec<f64> = pd.lines.iter().flat_map(|l| l.x.iter().copied()).collect();
         let xt = if pd.log_x { log_ticks(xs.0, xs.1, &data_x) } else { linear_ticks(xs.0, xs.1, 8) };
-        let yt = if pd.log_y { log_ticks(ys.0, ys.1, &[]) } else { linear_ticks(ys.0, ys.1, 6) };
-        // Tick label style per axis: a linear span (round-off snapping), or log (10ᵏ or plain).
-        let spans = (
-            if pd.log_x { -(log_labels(&xt) as u8 as f64) } else { xs.1 - xs.0 },
-            if pd.log_y { -(log_labels(&yt) as u8 as f64) } else { ys.1 - ys.0 },
+        let yt = match c.symlog() {
+            Some(s) => s.ticks(ys.0, ys.1),
+            None if pd.log_y => log_ticks(ys.0, ys.1, &[]),
+            None => linear_ticks(ys.0, ys.1, 6),
+        };
+        // Tick label style per axis: a linear span (round-off snapping), log (10ᵏ or plain), symlog.
+        let labels = (
+            if pd.log_x { Labels::Log(log_labels(&xt)) } else { Labels::Linear(xs.1 - xs.0) },
+            match c.symlog() {
+                Some(s) => Labels::SymLog(s),
+                None if pd.log_y => Labels::Log(log_labels(&yt)),
+                None => Labels::Linear(ys.1 - ys.0),
+            },
         );
         let (xr, yr) = (xs.0..xs.1, ys.0..ys.1);
-        let r = match (pd.log_x, pd.log_y) {
-            (false, false) => draw(&plot, c, lin(xr, xt), lin(yr, yt), spans),
-            (true, false) => draw(&plot, c, log(xr, xt), lin(yr, yt), spans),
-            (false, true) => draw(&plot, c, lin(xr, xt), log(yr, yt), spans),
-            (true, true) => draw(&plot, c, log(xr, xt), log(yr, yt), spans),
+        let r = match (pd.log_x, c.symlog(), pd.log_y) {
+            (false, Some(s), _) => draw(&plot, c, lin(xr, xt), symlog(ys, s, yt), labels),
+            (true, Some(s), _) => draw(&plot, c, log(xr, xt), symlog(ys, s, yt), labels),
+            (false, None, false) => draw(&plot, c, lin(xr, xt), lin(yr, yt), labels),
+            (true, None, false) => draw(&plot, c, log(xr, xt), lin(yr, yt), labels),
+            (false, None, true) => draw(&plot, c, lin(xr, xt), log(yr, yt), labels),
+            (true, None, true) => draw(&plot, c, log(xr, xt), log(yr, yt), labels),
         };
         r.map_err(err)?;
         if let Some(area) = legend {
@@ -111,21 +155,16 @@ pub fn line_svg(c: &LineChart) -> Result<String, ChartError> {
     Ok(scaled_svg_header(svg))
 }
 
-/// A tick label: `span` is the linear axis span, or on a log axis −1 for 10ᵏ labels.
-fn label(v: f64, log: bool, span: f64) -> String {
-    match (log, span < 0.0) {
-        (true, true) => decade_label(v),
-        (true, false) => tick(v),
-        (false, _) => tick_linear(v, span),
-    }
-}
-
 fn lin(r: std::ops::Range<f64>, ticks: Vec<f64>) -> Ticked<RangedCoordf64> {
     Ticked::new(r, ticks)
 }
 
 fn log(r: std::ops::Range<f64>, ticks: Vec<f64>) -> Ticked<LogCoord<f64>> {
     Ticked::new(r.log_scale(), ticks)
+}
+
+fn symlog(r: (f64, f64), s: SymLog, ticks: Vec<f64>) -> Ticked<SymLogCoord> {
+    Ticked::new(SymLogCoord::new(r.0, r.1, s), ticks)
 }
 
 /// Colour index of each line: a labelled line takes the next colour; an unlabelled one
@@ -146,7 +185,13 @@ fn colours(pd: &PlotData) -> Vec<RGBColor> {
 /// Colour of markers and levels.
 const MARK: RGBColor = RGBColor(90, 90, 90);
 
-fn draw<X, Y>(root: &DrawingArea<SVGBackend, Shift>, c: &LineChart, x: X, y: Y, spans: (f64, f64)) -> Result<(), String>
+fn draw<X, Y>(
+    root: &DrawingArea<SVGBackend, Shift>,
+    c: &LineChart,
+    x: X,
+    y: Y,
+    labels: (Labels, Labels),
+) -> Result<(), String>
 where
     X: AsRangedCoord<Value = f64>,
     Y: AsRangedCoord<Value = f64>,
@@ -165,8 +210,8 @@ where
         .configure_mesh()
         .x_desc(pd.x_label.as_str())
         .y_desc(pd.y_label.as_str())
-        .x_label_formatter(&|v| label(*v, log_x, spans.0))
-        .y_label_formatter(&|v| label(*v, log_y, spans.1))
+        .x_label_formatter(&|v| labels.0.label(*v))
+        .y_label_formatter(&|v| labels.1.label(*v))
         .label_style(("sans-serif", px(18)))
         .axis_desc_style(("sans-serif", px(19)))
         .bold_line_style(BLACK.mix(0.1).stroke_width(px(1)))
@@ -284,6 +329,13 @@ fn draw_legend(area: &DrawingArea<SVGBackend, Shift>, c: &LineChart) -> Result<(
             .map_err(e)?;
         area.draw(&Text::new(label.clone(), (x0 + px(36) as i32, y - px(9) as i32), font.clone())).map_err(e)?;
         y += step;
+    }
+    if let Some(s) = c.symlog() {
+        y += step / 2;
+        for line in s.note() {
+            area.draw(&Text::new(line, (x0, y - px(9) as i32), font.clone())).map_err(e)?;
+            y += step;
+        }
     }
     Ok(())
 }

@@ -4,7 +4,7 @@
 use serde::Serialize;
 use wingcheck_claims::{Line, PlotData};
 
-use crate::chart::{heatmap_svg, line_svg, Heatmap, LineChart};
+use crate::chart::{heatmap_svg, line_svg, surface_svg, Heatmap, LineChart};
 use crate::stats::fmt_num;
 use crate::ReportError;
 
@@ -46,6 +46,8 @@ pub enum Chart {
     Line(LineChart),
     /// A field over (t, z).
     Heat(Heatmap),
+    /// A field over (t, z) as a 3-D surface.
+    Surface(Heatmap),
     /// The (a, b) region map.
     Region(Box<crate::region::RegionMap>),
 }
@@ -79,6 +81,7 @@ impl Figure {
         Ok(match &self.chart {
             Chart::Line(c) => Rendered { svg: line_svg(c)?, csv: c.data.to_csv() },
             Chart::Heat(h) => Rendered { svg: heatmap_svg(h)?, csv: h.to_csv() },
+            Chart::Surface(s) => Rendered { svg: surface_svg(s)?, csv: s.to_csv() },
             Chart::Region(r) => Rendered { svg: r.svg()?, csv: r.to_csv() },
         })
     }

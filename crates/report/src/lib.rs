@@ -359,14 +359,42 @@ fn claim_figures(r: &wingcheck_claims::ClaimRow) -> Vec<Figure> {
     r.plots
         .iter()
         .enumerate()
-        .map(|(i, pd)| Figure {
-            file: format!("{}-{}", claim_anchor(&r.id.to_string()), safe_name(&pd.name)),
-            label: format!("{} plot {}", r.id, i + 1),
-            title: pd.title.clone(),
-            caption: Caption::default().t(pd.title.clone()).0,
-            chart: Chart::Line(held_as_steps(pd.clone())),
+        .map(|(i, pd)| {
+            let (chart, rescaled) = readable_y_axis(held_as_steps(pd.clone()));
+            let mut caption = Caption::default().t(pd.title.clone());
+            if let Some(s) = chart.symlog_y {
+                caption = caption
+                    .t(". The y axis is symmetric-logarithmic (on a linear one the small values would read as 0): linear for |y| ≤ ")
+                    .n(format!("{}.symlog_threshold", safe_name(&pd.name)), s.threshold)
+                    .t(", logarithmic beyond (ticks at 0 and ±c·10ᵏ).");
+            } else if rescaled {
+                caption = caption.t(". The y axis is logarithmic (on a linear one the small values would read as 0).");
+            }
+            Figure {
+                file: format!("{}-{}", claim_anchor(&r.id.to_string()), safe_name(&pd.name)),
+                label: format!("{} plot {}", r.id, i + 1),
+                title: pd.title.clone(),
+                caption: caption.0,
+                chart: Chart::Line(chart),
+            }
         })
         .collect()
+}
+
+/// Where a linear y axis would show some of the values as 0 ([`chart::SymLog::for_values`]
+/// decides from the plotted values): a logarithmic axis when every value is positive, else a
+/// symmetric-log one. Returns the chart and whether its axis was changed.
+fn readable_y_axis(mut c: chart::LineChart) -> (chart::LineChart, bool) {
+    if c.data.log_y {
+        return (c, false);
+    }
+    let ys = || c.data.lines.iter().flat_map(|l| l.y.iter().copied()).filter(|y| y.is_finite());
+    match chart::SymLog::for_values(ys()) {
+        Some(_) if ys().all(|y| y > 0.0) => c.data.log_y = true,
+        Some(s) => c.symlog_y = Some(s),
+        None => return (c, false),
+    }
+    (c, true)
 }
 
 /// The digital observer's outputs ĝ and the commands τ are held over a sample period (zero-order
@@ -390,4 +418,35 @@ fn render_html(page: &Page) -> Result<String, ReportError> {
     env.set_auto_escape_callback(|_| minijinja::AutoEscape::Html);
     env.add_template("index.html", TEMPLATE)?;
     Ok(env.get_template("index.html")?.render(page)?)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn chart_of(ys: Vec<f64>) -> chart::LineChart {
+        let x = (0..ys.len()).map(|i| i as f64).collect();
+        chart::LineChart::from(wingcheck_claims::PlotData {
+            name: "p".into(),
+            title: "p".into(),
+            x_label: "x (1)".into(),
+            y_label: "y (1)".into(),
+            log_x: false,
+            log_y: false,
+            lines: vec![wingcheck_claims::Line { label: "y".into(), x, y: ys, points: false }],
+        })
+    }
+
+    #[test]
+    fn small_values_get_a_log_or_symmetric_log_axis() {
+        // Positive, 2e-6 … 40: log axis.
+        let (c, changed) = readable_y_axis(chart_of(vec![2e-6, 5e-5, 1e-2, 40.0]));
+        assert!(changed && c.data.log_y && c.symlog_y.is_none());
+        // Both signs, 2e-6 … 6e-5 and −7e-4 … −42 (the mu plot's shape): symmetric log.
+        let (c, changed) = readable_y_axis(chart_of(vec![2e-6, 6e-5, -7e-4, -0.1, -42.0]));
+        assert!(changed && !c.data.log_y && c.symlog_y.is_some());
+        // A sine: unchanged, linear.
+        let (c, changed) = readable_y_axis(chart_of((0..100).map(|k| (0.0628 * k as f64).sin()).collect()));
+        assert!(!changed && !c.data.log_y && c.symlog_y.is_none());
+    }
 }

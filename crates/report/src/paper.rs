@@ -1,4 +1,5 @@
-//! The paper's Figures 3–20 reproduced from the runs, and the DOBC − FTDO difference maps.
+//! The paper's Figures 3–20 reproduced from the runs (each field as a map and as a 3-D surface),
+//! and the DOBC − FTDO difference maps.
 //! Every number in a caption is computed here from the series it describes.
 
 use wingcheck_claims::comparison::{settle_time, GTILDE_THRESHOLD};
@@ -82,9 +83,26 @@ fn scale_caption(cap: Caption, key: String, h: &Heatmap, unit: &str) -> Caption 
     ))
 }
 
-fn heat(n: u32, run: &str, desc: &str, f: Field, out: &SimOutput, c: &Ctx) -> Figure {
+/// The field of paper Figure `n` on its (t, z) grid, colour scale from t ≥ [`field_scale_from`].
+fn field_map(n: u32, f: Field, out: &SimOutput, c: &Ctx) -> Heatmap {
     let (t, z, values) = field_values(out, f);
-    let values = values.clone();
+    Heatmap {
+        name: format!("fig{n}"),
+        t: t.to_vec(),
+        z: z.to_vec(),
+        values: values.clone(),
+        value_label: format!("{} ({})", f.sym(), f.unit()),
+        scale_from: field_scale_from(c.t_end),
+    }
+}
+
+/// File stem of paper Figure `n`'s field map (`fig05-q-ftdo`).
+fn field_file(n: u32, f: Field, run: &str) -> String {
+    format!("fig{n:02}-{}-{run}", if matches!(f, Field::Q) { "q" } else { "theta" })
+}
+
+fn heat(n: u32, run: &str, desc: &str, f: Field, out: &SimOutput, c: &Ctx) -> Figure {
+    let (t, _, values) = field_values(out, f);
     let row_max = |k: usize| values[k].iter().fold(0.0_f64, |m, v| m.max(v.abs()));
     let per_t: Vec<f64> = (0..t.len()).map(row_max).collect();
     let late = max_abs(t, &per_t, c.t_half, c.t_end);
@@ -101,21 +119,39 @@ fn heat(n: u32, run: &str, desc: &str, f: Field, out: &SimOutput, c: &Ctx) -> Fi
         .t(format!(" {u}; at t = {} s: ", c.t_end))
         .n(format!("fig{n}.max_abs_end"), end)
         .t(format!(" {u}."));
-    let h = Heatmap {
-        name: format!("fig{n}"),
-        t: t.to_vec(),
-        z: z.to_vec(),
-        values,
-        value_label: format!("{s} ({u})"),
-        scale_from: field_scale_from(c.t_end),
-    };
-    let caption = scale_caption(caption, format!("fig{n}.scale"), &h, u);
+    let h = field_map(n, f, out, c);
+    let caption = scale_caption(caption, format!("fig{n}.scale"), &h, u)
+        .t(" The map is the quantitative view (read values off the colour bar); the 3-D view below shows the shape of the motion, as the paper draws it.");
     Figure {
-        file: format!("fig{n:02}-{}-{run}", if matches!(f, Field::Q) { "q" } else { "theta" }),
+        file: field_file(n, f, run),
         label: format!("Figure {n}"),
         title: format!("{} {s}(z,t) {desc}", f.what()),
         caption: caption.0,
         chart: Chart::Heat(h),
+    }
+}
+
+/// The field of paper Figure `n` as a 3-D surface, beside its map: the view of the paper's
+/// figure (the shape of the motion); the map is the quantitative view.
+fn surface(n: u32, run: &str, desc: &str, f: Field, out: &SimOutput, c: &Ctx) -> Figure {
+    let (s, u) = (f.sym(), f.unit());
+    let sf = Heatmap { name: format!("fig{n}-surface"), ..field_map(n, f, out, c) };
+    let caption = Caption::default()
+        .t(format!(
+            "{} {s}(z,t) {desc} as a 3-D surface, the view of the paper's Figure {n}: height to scale over the whole run, so it shows the shape of the motion (the initial shape and how it decays); colour as in the map above (±",
+            f.what()
+        ))
+        .n(format!("fig{n}.surface_scale"), sf.scale())
+        .t(format!(
+            " {u}, set by t ≥ {} s; larger values saturate), so the residual motion that is flat at this height still shows. Read values off the map.",
+            crate::chart::tick(sf.scale_from)
+        ));
+    Figure {
+        file: format!("{}-surface", field_file(n, f, run)),
+        label: format!("Figure {n}, 3-D view"),
+        title: format!("{} {s}(z,t) {desc}, 3-D view", f.what()),
+        caption: caption.0,
+        chart: Chart::Surface(sf),
     }
 }
 
@@ -261,7 +297,12 @@ pub fn paper_figures(cfg: &Config, runs: &Runs) -> Vec<Group> {
             id: "paper-none",
             title: "Without control (paper Figures 3–4)".into(),
             intro: format!("τ1 = τ2 = 0; the disturbances (56) act. {}", period_note(cfg)),
-            figures: vec![heat(3, "none", wo, Field::Q, none, &c), heat(4, "none", wo, Field::Theta, none, &c)],
+            figures: vec![
+                heat(3, "none", wo, Field::Q, none, &c),
+                surface(3, "none", wo, Field::Q, none, &c),
+                heat(4, "none", wo, Field::Theta, none, &c),
+                surface(4, "none", wo, Field::Theta, none, &c),
+            ],
         },
         Group {
             id: "paper-ftdo",
@@ -269,7 +310,9 @@ pub fn paper_figures(cfg: &Config, runs: &Runs) -> Vec<Group> {
             intro: "Gains of Section 4; the values the paper leaves out are listed under Assumptions.".into(),
             figures: vec![
                 heat(5, "ftdo", pf, Field::Q, ftdo, &c),
+                surface(5, "ftdo", pf, Field::Q, ftdo, &c),
                 heat(6, "ftdo", pf, Field::Theta, ftdo, &c),
+                surface(6, "ftdo", pf, Field::Theta, ftdo, &c),
                 tau(7, "ftdo", pf, 1, ftdo, &c),
                 tau(8, "ftdo", pf, 2, ftdo, &c),
                 tip(9, "ftdo", pf, Field::Q, ftdo, &c),
@@ -284,7 +327,9 @@ pub fn paper_figures(cfg: &Config, runs: &Runs) -> Vec<Group> {
             intro: "Same law (15) and gains, with the linear disturbance observer of (57).".into(),
             figures: vec![
                 heat(13, "dobc", db, Field::Q, dobc, &c),
+                surface(13, "dobc", db, Field::Q, dobc, &c),
                 heat(14, "dobc", db, Field::Theta, dobc, &c),
+                surface(14, "dobc", db, Field::Theta, dobc, &c),
                 tau(15, "dobc", db, 1, dobc, &c),
                 tau(16, "dobc", db, 2, dobc, &c),
                 tip(17, "dobc", db, Field::Q, dobc, &c),

@@ -3,10 +3,11 @@
 //! A small 2-D search over the weights a, b of the control law (15), computed by the search
 //! crate's own code ([`wingcheck_search::Search::evaluate`]: the closed loop of the configured
 //! controller in the modal basis, the tight λ2 of W/κ and the best λ3 of (29)–(32) per point).
-//! Drawn: the RMS tip deflection over the search's metric window (colour, log scale), the
-//! cells where the search finds W ≻ 0 and (32) feasible (markers), the closed-form boundaries
-//! a/b = ω1 (W ≻ 0 below it) and a/b = r* ((32) feasible below it) as lines, and the
-//! configured operating point.
+//! Drawn as the chart crate's grid heatmap ([`GridHeatmap`], the search's own heatmap): the RMS
+//! tip deflection over the search's metric window (colour, log scale), the cells where the
+//! search finds W ≻ 0 and (32) feasible (markers), the closed-form boundaries a/b = ω1 (W ≻ 0
+//! below it) and a/b = r* ((32) feasible below it) as lines, the region where both hold
+//! hatched, and the configured operating point.
 //!
 //! The grid is laid on half-decades through the configured (a, b), so that point is a node;
 //! it spans a/b from a decade below min(r*, ω1, a/b) to a decade above max(…) and b over
@@ -15,12 +16,11 @@
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use plotters::prelude::*;
 use rayon::prelude::*;
 use wingcheck_model::Config;
 use wingcheck_search::{modal::RunCache, PointResult, Search, SearchOptions, Status, TheoryCache};
 
-use crate::chart::{decade_label, px, scaled_svg_header, tick, viridis, Ticked, CANVAS, SCALE};
+use crate::chart::{grid_heatmap_svg, tick, GridAxis, GridHeatmap, Mark, MarkShape, RGBColor};
 use crate::figure::{Caption, Chart, Figure};
 use crate::{Progress, ReportError};
 
@@ -117,8 +117,9 @@ pub fn region_map(
     Ok(RegionMap { a, b, points, omega1, r_star, operating: (cfg.control.a, cfg.control.b), window, controller })
 }
 
-/// Grey for cells without a metric (failed or diverged runs).
-const NO_DATA: RGBColor = RGBColor(170, 170, 170);
+const BLACK: RGBColor = RGBColor(0, 0, 0);
+/// Hatching of the region where both hypotheses hold.
+const SHADE: RGBColor = RGBColor(0, 0, 0);
 const W_LINE: RGBColor = RGBColor(255, 255, 255);
 const MU_LINE: RGBColor = RGBColor(230, 30, 40);
 
@@ -239,7 +240,7 @@ impl RegionMap {
             .n("region.omega1", self.omega1)
             .t(" rad/s (white line), (32) feasible iff a/b < r* = ")
             .n("region.r_star", self.r_star)
-            .t(" (red dashed line); the search's verdicts agree with them in ")
+            .t(" (red dashed line); hatched: a/b < min(ω1, r*), where both hold and Theorem 2 applies. The search's verdicts agree with the closed forms in ")
             .count("region.w_agree", s.w_agree)
             .t(" and ")
             .count("region.mu_agree", s.mu_agree)
@@ -283,201 +284,100 @@ impl RegionMap {
         }
     }
 
-    /// Render as an SVG (cells as an embedded PNG raster, everything else vector).
-    pub fn svg(&self) -> Result<String, ReportError> {
-        let err = |e: String| ReportError::Chart { name: "region-map".into(), detail: e };
-        let (na, nb) = (self.a.len(), self.b.len());
-        if na < 2 || nb < 2 {
-            return Err(err("the map needs at least 2 values of a and of b".into()));
-        }
-        let la: Vec<f64> = self.a.iter().map(|v| v.log10()).collect();
-        let lb: Vec<f64> = self.b.iter().map(|v| v.log10()).collect();
-        let half = STEP_DECADES / 2.0;
-        let (x0, x1) = (la[0] - half, la[na - 1] + half);
-        let (y0, y1) = (lb[0] - half, lb[nb - 1] + half);
-        let vals: Vec<f64> =
-            self.points.iter().filter_map(|p| p.metric(METRIC)).filter(|v| v.is_finite() && *v > 0.0).collect();
-        let (vlo, vhi) = (
-            vals.iter().copied().fold(f64::INFINITY, f64::min).log10(),
-            vals.iter().copied().fold(0.0, f64::max).log10(),
-        );
-        let (vlo, vhi) = if vals.is_empty() {
-            (-3.0, 0.0)
-        } else if vhi - vlo < 1e-6 {
-            (vlo - 0.5, vhi + 0.5)
-        } else {
-            (vlo, vhi)
+    /// The map as a chart-crate grid heatmap: the metric per cell (log colour scale), the
+    /// search's verdicts per cell, the closed-form boundaries as lines across the plot, the
+    /// region where both closed forms hold shaded, and the configured point.
+    pub fn heatmap(&self) -> GridHeatmap {
+        let axis = |label: &str, centres: &[f64]| GridAxis {
+            label: label.into(),
+            centres: centres.to_vec(),
+            log: true,
+            words: None,
         };
-        let colour = |v: Option<f64>| match v.filter(|v| v.is_finite() && *v > 0.0) {
-            Some(v) => viridis((v.log10() - vlo) / (vhi - vlo)),
-            None => NO_DATA,
-        };
-        let int_ticks =
-            |lo: f64, hi: f64| ((lo.ceil() as i32)..=(hi.floor() as i32)).map(f64::from).collect::<Vec<_>>();
-        let mut svg = String::new();
-        let plot_px;
-        {
-            let root = SVGBackend::with_string(&mut svg, (CANVAS.0, CANVAS.1 + px(160))).into_drawing_area();
-            root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
-            let (main, side) = root.split_horizontally(CANVAS.0 - px(250));
-            let mut chart = ChartBuilder::on(&main)
-                .margin(px(14))
-                .x_label_area_size(px(48))
-                .y_label_area_size(px(70))
-                .build_cartesian_2d(
-                    Ticked::<plotters::coord::types::RangedCoordf64>::new(x0..x1, int_ticks(x0, x1)),
-                    Ticked::<plotters::coord::types::RangedCoordf64>::new(y0..y1, int_ticks(y0, y1)),
-                )
-                .map_err(|e| err(e.to_string()))?;
-            chart
-                .configure_mesh()
-                .disable_mesh()
-                .x_desc("a, weight of the tip deflection in (15) (dimensionless, log scale)")
-                .y_desc("b, weight of the tip rate (s, log scale)")
-                .x_label_formatter(&|v| decade_label(10f64.powf(*v)))
-                .y_label_formatter(&|v| decade_label(10f64.powf(*v)))
-                .label_style(("sans-serif", px(18)))
-                .axis_desc_style(("sans-serif", px(18)))
-                .axis_style(BLACK.stroke_width(px(1)))
-                .set_all_tick_mark_size(px(5))
-                .draw()
-                .map_err(|e| err(e.to_string()))?;
-            plot_px = chart.plotting_area().get_pixel_range();
-            let e = |e: DrawingAreaErrorKind<std::io::Error>| err(e.to_string());
-            // Verdict markers per cell.
-            for (i, &x) in la.iter().enumerate() {
-                for (j, &y) in lb.iter().enumerate() {
-                    let p = self.cell(i, j);
-                    if p.w_positive_definite == Some(true) {
-                        chart
-                            .draw_series(std::iter::once(Circle::new((x, y), px(7), W_LINE.stroke_width(px(2)))))
-                            .map_err(e)?;
-                    }
-                    if p.feasible_32 == Some(true) {
-                        chart.draw_series(std::iter::once(Circle::new((x, y), px(3), MU_LINE.filled()))).map_err(e)?;
+        let values =
+            self.points.iter().map(|p| p.metric(METRIC).filter(|v| v.is_finite() && p.status == Status::Ok)).collect();
+        let cells = |f: &dyn Fn(&PointResult) -> bool| -> Vec<(f64, f64)> {
+            let mut v = Vec::new();
+            for (i, &a) in self.a.iter().enumerate() {
+                for (j, &b) in self.b.iter().enumerate() {
+                    if f(self.cell(i, j)) {
+                        v.push((a, b));
                     }
                 }
             }
-            // Closed-form boundaries: log a = log b + log r.
-            let line = |r: f64| vec![(y0 + r.log10(), y0), (y1 + r.log10(), y1)];
-            chart
-                .draw_series(std::iter::once(PathElement::new(line(self.omega1), W_LINE.stroke_width(px(3)))))
-                .map_err(e)?;
-            chart
-                .draw_series(DashedLineSeries::new(line(self.r_star), px(10), px(6), MU_LINE.stroke_width(px(3))))
-                .map_err(e)?;
-            // The configured point.
-            let (xa, yb) = (self.operating.0.log10(), self.operating.1.log10());
-            let d = 0.12;
-            for seg in [[(xa - d, yb - d), (xa + d, yb + d)], [(xa - d, yb + d), (xa + d, yb - d)]] {
-                chart
-                    .draw_series(std::iter::once(PathElement::new(seg.to_vec(), BLACK.stroke_width(px(5)))))
-                    .map_err(e)?;
-                chart
-                    .draw_series(std::iter::once(PathElement::new(seg.to_vec(), WHITE.stroke_width(px(2)))))
-                    .map_err(e)?;
-            }
+            v
+        };
+        // The b range of the plot (cell edges: half a step beyond the end centres); a boundary
+        // a/b = r is the line a = r·b across it (the chart clips it to the plot).
+        let half = 10f64.powf(STEP_DECADES / 2.0);
+        let (b_lo, b_hi) = (self.b[0] / half, self.b[self.b.len() - 1] * half);
+        let a_lo = self.a[0] / half;
+        let line = |r: f64| vec![(r * b_lo, b_lo), (r * b_hi, b_hi)];
+        // Both hypotheses (closed form): a/b < min(ω1, r*), the part of the plot left of that line.
+        let r_both = self.omega1.min(self.r_star);
+        // (A decade left of both the plot and the line, so the polygon covers the plot's left
+        // part whatever edge the line leaves by; the chart clips it to the plot.)
+        let far = a_lo.min(r_both * b_lo) / 10.0;
+        let shade = vec![(far, b_lo), (r_both * b_lo, b_lo), (r_both * b_hi, b_hi), (far, b_hi)];
+        let marks = vec![
+            Mark {
+                label: "W ≻ 0 and (32) both hold (closed forms): Theorem 2 applies".into(),
+                colour: SHADE,
+                shape: MarkShape::Hatch,
+                points: shade,
+            },
+            Mark {
+                label: "W ≻ 0 (search verdict)".into(),
+                colour: W_LINE,
+                shape: MarkShape::Circles,
+                points: cells(&|p| p.w_positive_definite == Some(true)),
+            },
+            Mark {
+                label: "(32) feasible (search verdict)".into(),
+                colour: MU_LINE,
+                shape: MarkShape::Dots,
+                points: cells(&|p| p.feasible_32 == Some(true)),
+            },
+            Mark {
+                label: "a/b = ω1 (W ≻ 0 left of it, closed form)".into(),
+                colour: W_LINE,
+                shape: MarkShape::Line,
+                points: line(self.omega1),
+            },
+            Mark {
+                label: "a/b = r* ((32) feasible left of it, closed form)".into(),
+                colour: MU_LINE,
+                shape: MarkShape::DashedLine,
+                points: line(self.r_star),
+            },
+            Mark {
+                label: "configured (a, b)".into(),
+                colour: BLACK,
+                shape: MarkShape::Cross,
+                points: vec![self.operating],
+            },
+        ];
+        GridHeatmap {
+            name: "region-map-ab".into(),
+            title: String::new(),
+            x: axis("a, weight of the tip deflection in (15) (dimensionless, log scale)", &self.a),
+            y: axis("b, weight of the tip rate (s, log scale)", &self.b),
+            values,
+            log_values: true,
+            value_label: "RMS |q(s,t)| (m)".into(),
+            missing_label: "run failed or diverged".into(),
+            marks,
+        }
+    }
 
-            // Side panel: colour bar and legend.
-            let font = ("sans-serif", px(16)).into_font().color(&BLACK);
-            side.draw(&Text::new("RMS |q(s,t)| (m)", (px(8) as i32, px(14) as i32), font.clone())).map_err(e)?;
-            let (bx, by, bw, bh) = (px(12) as i32, px(44) as i32, px(28) as i32, px(250) as i32);
-            let steps = 64;
-            for k in 0..steps {
-                let u0 = k as f64 / steps as f64;
-                let ya = by + bh - ((k + 1) as f64 / steps as f64 * bh as f64) as i32;
-                let yb2 = by + bh - (u0 * bh as f64) as i32;
-                side.draw(&Rectangle::new([(bx, ya), (bx + bw, yb2)], viridis(u0 + 0.5 / steps as f64).filled()))
-                    .map_err(e)?;
-            }
-            side.draw(&Rectangle::new([(bx, by), (bx + bw, by + bh)], BLACK.stroke_width(px(1)))).map_err(e)?;
-            let mut bar_ticks = crate::chart::log_ticks(10f64.powf(vlo), 10f64.powf(vhi), &[]);
-            if bar_ticks.len() < 2 {
-                // A narrow range (less than a 1-2-5 step): label its ends.
-                bar_ticks = vec![10f64.powf(vlo), 10f64.powf(vhi)];
-            }
-            for t in bar_ticks {
-                let u = (t.log10() - vlo) / (vhi - vlo);
-                let yy = by + bh - (u * bh as f64) as i32;
-                side.draw(&PathElement::new(
-                    vec![(bx + bw, yy), (bx + bw + px(5) as i32, yy)],
-                    BLACK.stroke_width(px(1)),
-                ))
-                .map_err(e)?;
-                side.draw(&Text::new(tick(t), (bx + bw + px(8) as i32, yy - px(8) as i32), font.clone())).map_err(e)?;
-            }
-            let mut y = by + bh + px(40) as i32;
-            let x = px(12) as i32;
-            let step = px(30) as i32;
-            side.draw(&Circle::new((x + px(10) as i32, y), px(7), RGBColor(80, 80, 80).stroke_width(px(2))))
-                .map_err(e)?;
-            side.draw(&Text::new("W ≻ 0 (search)", (x + px(28) as i32, y - px(8) as i32), font.clone())).map_err(e)?;
-            y += step;
-            side.draw(&Circle::new((x + px(10) as i32, y), px(3), MU_LINE.filled())).map_err(e)?;
-            side.draw(&Text::new("(32) feasible (search)", (x + px(28) as i32, y - px(8) as i32), font.clone()))
-                .map_err(e)?;
-            y += step;
-            side.draw(&PathElement::new(
-                vec![(x, y), (x + px(22) as i32, y)],
-                RGBColor(80, 80, 80).stroke_width(px(3)),
-            ))
-            .map_err(e)?;
-            side.draw(&Text::new("a/b = ω1 (closed form)", (x + px(28) as i32, y - px(8) as i32), font.clone()))
-                .map_err(e)?;
-            y += step;
-            side.draw(&PathElement::new(vec![(x, y), (x + px(8) as i32, y)], MU_LINE.stroke_width(px(3))))
-                .map_err(e)?;
-            side.draw(&PathElement::new(
-                vec![(x + px(13) as i32, y), (x + px(22) as i32, y)],
-                MU_LINE.stroke_width(px(3)),
-            ))
-            .map_err(e)?;
-            side.draw(&Text::new("a/b = r* (closed form)", (x + px(28) as i32, y - px(8) as i32), font.clone()))
-                .map_err(e)?;
-            y += step;
-            side.draw(&Text::new("× configured (a, b)", (x, y - px(8) as i32), font.clone())).map_err(e)?;
-            y += step;
-            side.draw(&Rectangle::new(
-                [(x, y - px(8) as i32), (x + px(20) as i32, y + px(8) as i32)],
-                NO_DATA.filled(),
-            ))
-            .map_err(e)?;
-            side.draw(&Text::new("run failed / diverged", (x + px(28) as i32, y - px(8) as i32), font)).map_err(e)?;
-            root.present().map_err(|e| err(e.to_string()))?;
+    /// Render as an SVG (the chart crate's grid heatmap).
+    pub fn svg(&self) -> Result<String, ReportError> {
+        if self.a.len() < 2 || self.b.len() < 2 {
+            return Err(ReportError::Chart {
+                name: "region-map".into(),
+                detail: "the map needs at least 2 values of a and of b".into(),
+            });
         }
-        // Cells: one raster pixel per displayed pixel, nearest cell.
-        let (xr, yr) = &plot_px;
-        let (w, h) = (
-            ((xr.end - xr.start) as u32 / SCALE).max(2) as usize,
-            ((yr.end - yr.start) as u32 / SCALE).max(2) as usize,
-        );
-        let mut data = Vec::with_capacity(w * h * 3);
-        for r in 0..h {
-            let y = y1 - (y1 - y0) * (r as f64 + 0.5) / h as f64;
-            let j = (((y - y0) / STEP_DECADES).floor() as usize).min(nb - 1);
-            for c in 0..w {
-                let x = x0 + (x1 - x0) * (c as f64 + 0.5) / w as f64;
-                let i = (((x - x0) / STEP_DECADES).floor() as usize).min(na - 1);
-                let p = self.cell(i, j);
-                let col = colour(p.metric(METRIC).filter(|_| p.status == Status::Ok));
-                data.extend_from_slice(&[col.0, col.1, col.2]);
-            }
-        }
-        let mut png = Vec::new();
-        {
-            let mut enc = png::Encoder::new(&mut png, w as u32, h as u32);
-            enc.set_color(png::ColorType::Rgb);
-            enc.set_depth(png::BitDepth::Eight);
-            let mut wr = enc.write_header().map_err(|e| err(e.to_string()))?;
-            wr.write_image_data(&data).map_err(|e| err(e.to_string()))?;
-        }
-        crate::chart::embed_raster(&mut svg, &plot_px, &png).map_err(err)?;
-        // The canvas is taller than the line charts'.
-        let svg = svg.replacen(
-            &format!("<svg width=\"{}\" height=\"{}\"", CANVAS.0, CANVAS.1 + px(160)),
-            &format!("<svg width=\"{}\" height=\"{}\"", CANVAS.0 / SCALE, (CANVAS.1 + px(160)) / SCALE),
-            1,
-        );
-        Ok(scaled_svg_header(svg))
+        Ok(grid_heatmap_svg(&self.heatmap())?)
     }
 }

@@ -80,9 +80,18 @@ fn report_is_well_formed_complete_and_matches_the_ledger() {
 
     // Every image is a non-empty, well-formed SVG; every figure links its CSV.
     let figures: Vec<_> = doc.descendants().filter(|n| n.has_tag_name("figure")).collect();
-    // 18 paper figures (3–20) + 2 DOBC − FTDO difference maps + 1 accuracy figure + the region map + the ledger's own plots.
+    // 18 paper figures (3–20) + a 3-D view of each of the 6 field figures (3–6, 13–14) + 2 DOBC − FTDO
+    // difference maps + 1 accuracy figure + the region map + the ledger's own plots.
     let ledger_plots: usize = summary.ledger.rows.iter().map(|r| r.plots.len()).sum();
-    assert_eq!(figures.len(), 18 + 2 + 1 + 1 + ledger_plots);
+    assert_eq!(figures.len(), 18 + 6 + 2 + 1 + 1 + ledger_plots);
+    // The FTDO and DOBC q and θ fields have a 3-D view, with its axes labelled with units.
+    for f in ["fig05-q-ftdo", "fig06-theta-ftdo", "fig13-q-dobc", "fig14-theta-dobc"] {
+        let texts = svg_texts(&read(&out.join(format!("{f}-surface.svg"))));
+        let unit = if f.contains("theta") { "θ (rad)" } else { "q (m)" };
+        for label in ["t (s)", "z (m)", unit] {
+            assert!(texts.iter().any(|t| t == label), "{f}-surface: axis label {label}: {texts:?}");
+        }
+    }
     for f in &figures {
         let img = f.descendants().find(|n| n.has_tag_name("img")).expect("figure has an image");
         let src = img.attribute("src").unwrap();
@@ -309,6 +318,14 @@ fn ledger_digest_charts_sizes_links_and_provenance() {
         let labels: Vec<String> = svg_texts(&svg).into_iter().filter(|t| has_unit(t)).collect();
         assert!(labels.len() >= 2, "{f}: axis labels with units, found {labels:?}");
     }
+    // The mu-conditions plot (sup λ3/b ≈ 1e-5 below r*, down to ≈ −40 above) has a symmetric-log
+    // y axis: 0 and signed decades as tick labels, and the linear threshold stated.
+    let mu =
+        summary.files.iter().find(|f| f.contains("mu-lambda3") && f.ends_with(".svg")).expect("the mu-conditions plot");
+    let texts = svg_texts(&read(&out.join(mu)));
+    assert!(texts.iter().any(|t| t.starts_with("linear for |y| ≤ 10")), "{mu}: threshold stated: {texts:?}");
+    assert!(texts.iter().any(|t| t == "0") && texts.iter().any(|t| t.starts_with("−10")), "{mu}: {texts:?}");
+    assert!(html.contains("symmetric-logarithmic"), "the caption says the axis is symmetric-log");
     // Total SVG within the page budget (1.5 MB; heatmaps are PNG rasters inside the SVGs).
     assert!(total_svg <= 1_500_000, "total SVG {total_svg} bytes");
 
