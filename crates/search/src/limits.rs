@@ -19,8 +19,8 @@ pub const MAX_POINTS_OVERRIDE: usize = 4_000_000;
 /// Estimated core time (s) a search may take without `--allow-large`: 2 core-hours.
 pub const MAX_CORE_SECONDS: f64 = 7200.0;
 
-/// Largest number of unknowns solved in the modal basis (the simulator's own limit).
-pub use wingcheck_model::MODAL_MAX_UNKNOWNS;
+/// Largest number of unknowns a point runs in the modal basis (the simulator's `auto` rule).
+pub use wingcheck_model::MODAL_AUTO_UNKNOWNS;
 
 /// Cost per unknown and integrator step (s), modal runner: measured ≈ 2.4e-9 s with
 /// `wingcheck bench --what search` (48 unknowns, one core); rounded up.
@@ -82,7 +82,7 @@ pub fn estimate(base: &Config, axes: &[Axis]) -> WorkEstimate {
         steps *= most_steps as f64 / steps0.max(1) as f64;
         n *= most_n as f64 / n0.max(1) as f64;
     }
-    let per = if n <= MODAL_MAX_UNKNOWNS as f64 { SECONDS_PER_MODE_STEP } else { SECONDS_PER_UNKNOWN_STEP };
+    let per = if n <= MODAL_AUTO_UNKNOWNS as f64 { SECONDS_PER_MODE_STEP } else { SECONDS_PER_UNKNOWN_STEP };
     WorkEstimate {
         points,
         steps_per_point: steps.min(u64::MAX as f64) as u64,

@@ -217,6 +217,7 @@ impl RunCache {
         let key = serde_json::to_string(&(
             &cfg.wing,
             &cfg.discretisation.method,
+            &cfg.discretisation.basis,
             cfg.discretisation.elements,
             cfg.discretisation.fd_points,
             cfg.discretisation.grading,
@@ -225,7 +226,16 @@ impl RunCache {
             cfg.horizon.field_points,
         ))
         .expect("serialises");
-        cache_get(&self.bases, key, || ModalBasis::new(cfg).map_err(|e| e.to_string()))
+        cache_get(&self.bases, key, || {
+            // the simulator's own choice of basis (`discretisation.basis`), so a point is run
+            // in the modal basis exactly when `simulate` would be
+            let disc = wingcheck_sim::Discretisation::new(cfg);
+            match wingcheck_sim::resolved_basis(cfg, &disc) {
+                Ok((_, Some(basis))) => Ok(basis),
+                Ok((basis, None)) => Err(format!("the {} basis is selected", basis.name())),
+                Err(e) => Err(e.to_string()),
+            }
+        })
     }
 
     /// Input signal of `cfg` (its control kind); keyed by everything [`InputSignal::new`] reads.

@@ -148,10 +148,16 @@ fn one_cache_serves_wings_of_different_grids() {
 
 #[test]
 fn large_wings_run_the_simulator_itself() {
-    // FE with 240 elements = 720 unknowns > MODAL_MAX_UNKNOWNS: the fallback path is the
-    // simulator, so the trace equals simulate's exactly.
-    let c = cfg(&["horizon.t_end=0.02", "discretisation.elements=240"]);
-    assert!(wingcheck_search::modal::ModalBasis::new(&c).is_err());
-    let fast = closed_loop(&c, &RunCache::new()).unwrap();
-    assert_eq!(fast, reference(&c));
+    // FE with 240 elements = 720 unknowns > MODAL_MAX_UNKNOWNS, and 128 elements = 384 >
+    // MODAL_AUTO_UNKNOWNS: the fallback path is the simulator's nodal stepper, so the trace
+    // equals the nodal run exactly.
+    for elements in ["discretisation.elements=240", "discretisation.elements=128"] {
+        let c = cfg(&["horizon.t_end=0.02", elements]);
+        assert!(RunCache::new().basis(&c).is_err(), "{elements}");
+        let fast = closed_loop(&c, &RunCache::new()).unwrap();
+        assert_eq!(fast, reference(&c), "{elements}");
+    }
+    // an explicit `nodal` is kept by the search too
+    let c = cfg(&["horizon.t_end=0.02", "discretisation.basis=nodal"]);
+    assert!(RunCache::new().basis(&c).is_err());
 }
