@@ -30,7 +30,8 @@ fn forms(cfg: &Config, n: usize) -> (lyapunov::ExactForms, PencilSdpRow) {
     let mesh = ClampedMesh::new(wingcheck_cert::exact::parse_rational(&format!("{}", cfg.wing.span)).unwrap(), n);
     let c1 = lyapunov::to_dense(&mesh.mass(Space::DgCubic, Space::Hermite));
     let c2 = lyapunov::to_dense(&mesh.mass(Space::DgCubic, Space::Linear));
-    let row = sdp::pencil_cross_check(&lyapunov::to_dense(&f.w), &lyapunov::to_dense(&f.kappa), &c1, &c2, n, cfg.wing.span);
+    let row =
+        sdp::pencil_cross_check(&lyapunov::to_dense(&f.w), &lyapunov::to_dense(&f.kappa), &c1, &c2, n, cfg.wing.span);
     (f, row)
 }
 
@@ -141,8 +142,10 @@ fn hierarchical_basis_orthogonalises_the_stiffness() {
             let mut off = 0.0f64;
             for i in 0..d {
                 for j in 0..d {
-                    let v: f64 =
-                        (0..d).flat_map(|p| (0..d).map(move |q| (p, q))).map(|(p, q)| t[(p, i)] * k[(p, q)] * t[(q, j)]).sum();
+                    let v: f64 = (0..d)
+                        .flat_map(|p| (0..d).map(move |q| (p, q)))
+                        .map(|(p, q)| t[(p, i)] * k[(p, q)] * t[(q, j)])
+                        .sum();
                     max = max.max(v.abs());
                     if i / block != j / block {
                         off = off.max(v.abs());
@@ -153,4 +156,28 @@ fn hierarchical_basis_orthogonalises_the_stiffness() {
         }
     }
     assert!(sdp::hierarchical_basis(6, 0.1).is_err());
+}
+
+/// docs/ledger.md documents one entry of the table: its keys (and its sides' keys) must be
+/// exactly those the ledger produces, and the W-bounds keys it names must exist.
+#[test]
+fn documented_sdp_table_shape_is_the_produced_one() {
+    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/ledger.md")).unwrap();
+    let section = &doc[doc.find("## W-bounds: the SDP cross-check table").expect("the section")..];
+    let start = section.find("```json").expect("a json example") + 7;
+    let end = start + section[start..].find("```").unwrap();
+    let example: serde_json::Value = serde_json::from_str(&section[start..end]).expect("the example parses");
+    let row = wbounds::check(&paper_with(&[])).unwrap().row;
+    let produced = &row.evidence["sdp_cross_check"][0];
+    let keys = |v: &serde_json::Value| v.as_object().unwrap().keys().cloned().collect::<Vec<_>>();
+    assert_eq!(keys(&example), keys(produced));
+    for side in ["lambda1", "lambda2"] {
+        assert_eq!(keys(&example[side]), keys(&produced[side]));
+    }
+    for key in ["sdp_cross_check", "sdp_tolerance", "sdp_seconds"] {
+        assert!(row.evidence.contains_key(key) && section.contains(&format!("`{key}`")), "{key}");
+    }
+    // the documented example is the produced N = 2 entry, up to the solver's last digits
+    let l2 = produced["lambda2"]["lambda_sdp"].as_f64().unwrap();
+    assert!((example["lambda2"]["lambda_sdp"].as_f64().unwrap() - l2).abs() < 1e-7 * 9.9);
 }

@@ -29,9 +29,9 @@ use wingcheck_model::Config;
 use crate::ledger::{evidence_map, ClaimId};
 use crate::lyapunov::{self, Coupling, LyapunovParams};
 use crate::sdp::{cross_check_summary, PencilSdpRow, SDP_GRIDS, SDP_TOLERANCE};
-use wingcheck_cert::fe::{ClampedMesh, Space};
 use crate::theory::{self, Decision, Estimate};
 use crate::{Basis, ClaimRow, ClaimsError, Line, PlotData, Verdict};
+use wingcheck_cert::fe::{ClampedMesh, Space};
 
 /// Element counts of the refinement study.
 pub const GRIDS: [usize; 4] = [2, 4, 8, 16];
