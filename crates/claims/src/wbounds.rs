@@ -434,7 +434,7 @@ pub fn check(cfg: &Config) -> Result<WBounds, ClaimsError> {
         assumptions: vec![
             format!("a = {}, b = {} (the paper does not give them)", e.a, e.b),
             "W_o's last term read as −b ρx_c ∫q̇θ̇ (the paper prints b x_c; the bound (27) uses bρx_c); the printed variant is reported too".into(),
-            format!("state space discretised by cubic Hermite q, linear θ, discontinuous cubic velocities on N ∈ {GRIDS:?} uniform elements; infimum over velocities exact"),
+            format!("state space discretised by cubic Hermite q, linear θ, discontinuous cubic velocities on N ∈ {GRIDS:?} uniform elements (the SDP cross-check on N ∈ {SDP_GRIDS:?}); infimum over velocities exact"),
             "the threshold ω₁ is the converged fundamental frequency (Romberg over uniform FE meshes 16, 32, …, error estimate ~1e-9 relative); the 16-element Galerkin value, an upper bound (Rayleigh–Ritz), is reported as a cross-check".into(),
         ],
         certificates: ["w-bounds-indefinite.json", "w-bounds-lower.json", "w-bounds-upper.json", "w-bounds-ratio-above.json", "w-bounds-ratio-below.json"]
