@@ -65,10 +65,22 @@ fn w_bounds_fails_at_the_paper_gains_with_an_exact_witness() {
     assert!((l1 - 9.9014).abs() < 2e-3, "λ1* = {l1}");
     // The printed bounds are valid but loose: λ2_printed ≤ λ2*, λ1* ≤ λ1_printed.
     assert!(row.number("lambda2_printed").unwrap() <= l2 && l1 <= row.number("lambda1_printed").unwrap());
-    // SDP (clarabel) and generalised eigenvalues (faer) agree at N = 2.
-    let (s2, e2) = (row.number("sdp_lambda2_n2").unwrap(), row.number("eig_lambda2_n2").unwrap());
-    let (s1, e1) = (row.number("sdp_lambda1_n2").unwrap(), row.number("eig_lambda1_n2").unwrap());
-    assert!((s2 - e2).abs() < 1e-6 * e2.abs() && (s1 - e1).abs() < 1e-6 * e1.abs(), "{s2} {e2} {s1} {e1}");
+    // SDP (clarabel) and generalised eigenvalues (faer) agree at every N of the table; the
+    // table's eigenvalue column is the Galerkin sequence of the refinement study (same N).
+    let table: Vec<wingcheck_claims::sdp::PencilSdpRow> =
+        serde_json::from_value(row.evidence["sdp_cross_check"].clone()).unwrap();
+    let study: Vec<(usize, f64, f64)> = serde_json::from_value(row.evidence["lambda2_by_elements"].clone()).unwrap();
+    assert_eq!(table.iter().map(|r| r.elements).collect::<Vec<_>>(), vec![2, 4, 8, 16, 32]);
+    for r in &table {
+        assert!(r.accepted, "{r:?}");
+        for s in [&r.lambda2, &r.lambda1] {
+            assert!(s.difference.unwrap() <= 1e-7 * r.scale, "{r:?}");
+        }
+        if let Some(&(_, l2, l1)) = study.iter().find(|t| t.0 == r.elements) {
+            assert!((r.lambda2.lambda_eig.unwrap() - l2).abs() < 1e-12 * r.scale);
+            assert!((r.lambda1.lambda_eig.unwrap() - l1).abs() < 1e-12 * r.scale);
+        }
+    }
 }
 
 #[test]

@@ -209,7 +209,7 @@ fn bench_check(cfg: &wingcheck_model::Config, repeats: usize, as_json: bool) -> 
     for (id, s) in &breakdown {
         println!("  {id:<14} {s:>7.3} s");
     }
-    println!("  (of W-bounds: clarabel SDPs {:.4} s)", median(sdp));
+    println!("  (SDP cross-check at N = 2…32, on a thread of its own beside W-bounds: {:.4} s)", median(sdp));
     println!("  distinct closed-loop simulations (each run once): {sims}");
     println!(
         "certify: {} certificates in {certify_s:.3} s; exact re-verification ({ok} ok) in {verify_s:.3} s",

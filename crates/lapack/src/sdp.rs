@@ -360,6 +360,29 @@ pub fn quiet_settings() -> DefaultSettings<f64> {
     DefaultSettingsBuilder::default().verbose(false).build().expect("default clarabel settings are valid")
 }
 
+/// Settings for SDPs whose PSD blocks are sparse (chordal) and whose data the caller has
+/// already scaled to O(1): quiet; gap and feasibility tolerances `tol`; no equilibration (on
+/// such data clarabel's own scaling turned Solved into AlmostSolved on nearly repeated
+/// eigenvalues); chordal decomposition with parent–child merging in the non-compact form;
+/// faer's supernodal LDLᵀ on one thread; no iterative refinement. Measured on the W-bounds
+/// pencil at N = 32 (96 × 96 block, cliques of ≤ 21): ~2× fewer iterations than the compact
+/// form and ~3× faster per iteration than qdldl, answers unchanged to 1e-9.
+pub fn prescaled_chordal_settings(tol: f64) -> DefaultSettings<f64> {
+    DefaultSettingsBuilder::default()
+        .verbose(false)
+        .tol_gap_abs(tol)
+        .tol_gap_rel(tol)
+        .tol_feas(tol)
+        .direct_solve_method("faer".to_string())
+        .max_threads(1)
+        .chordal_decomposition_merge_method("parent_child".to_string())
+        .chordal_decomposition_compact(false)
+        .iterative_refinement_enable(false)
+        .equilibrate_enable(false)
+        .build()
+        .expect("valid clarabel settings")
+}
+
 /// Result of [`max_generalized_lambda`].
 #[derive(Debug, Clone)]
 pub struct SdpOutcome {
