@@ -166,6 +166,7 @@ pub fn run(cfg: &Config, basis: &ModalBasis, signal: &InputSignal) -> Result<Tip
         Ok::<(), SimError>(())
     };
     record(0, &st, &mut trace)?;
+    wingcheck_sim::cpu::clear_upper_vector_state();
     let mut step = 0;
     for k in 1..=total {
         let g_hat = [signal.g_hat[0][k - 1], signal.g_hat[1][k - 1]];

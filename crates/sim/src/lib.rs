@@ -12,6 +12,7 @@
 
 pub mod banded;
 pub mod bench;
+pub mod cpu;
 mod disc;
 pub mod error_estimate;
 pub mod estimate;

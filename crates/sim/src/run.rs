@@ -253,6 +253,7 @@ fn simulate_nodal(
         Ok(())
     };
     record(&stepper, &mut series, &mut fields)?;
+    crate::cpu::clear_upper_vector_state();
     for k in 1..=total {
         stepper.advance_sample();
         if k % every == 0 || k == total {

@@ -80,6 +80,7 @@ pub fn simulate_modal(
     };
     record(&st, &first, 0.0, &mut series, &mut fields)?;
     peaks.update(0.0, &peak_values(&lp, &st, first.g_hat, first.g));
+    crate::cpu::clear_upper_vector_state();
     for k in 1..=total {
         signal.advance(|t, input| {
             lp.step(&mut st, input);
