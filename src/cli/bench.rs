@@ -132,18 +132,22 @@ pub fn run(a: BenchArgs) -> anyhow::Result<()> {
         modes.worst_relative_error
     );
     println!("grid scaling (T = {} s):", cfg.horizon.t_end);
-    println!("{:>9} {:>9} {:>12} {:>12} {:>10}", "elements", "unknowns", "µs/step", "µs/solve", "step/solve");
+    println!(
+        "{:>9} {:>9} {:>6} {:>12} {:>12} {:>10}",
+        "elements", "unknowns", "basis", "µs/step", "µs/solve", "step/solve"
+    );
     for t in &grid {
         println!(
-            "{:>9} {:>9} {:>12.3} {:>12.3} {:>10.2}",
+            "{:>9} {:>9} {:>6} {:>12.3} {:>12.3} {:>10.2}",
             t.elements,
             t.unknowns,
+            t.basis,
             t.seconds_per_step * 1e6,
             t.solve_seconds * 1e6,
             t.seconds_per_step / t.solve_seconds
         );
     }
-    println!("  fitted exponent of time per step vs unknowns: {grid_slope:.2} (1 = linear)");
+    println!("  fitted exponent of time per step vs unknowns: {grid_slope:.2} (1 = linear; the basis column says where `auto` switches)");
     println!("horizon scaling:");
     println!("{:>9} {:>9} {:>12}", "T (s)", "steps", "run (ms)");
     for t in &horizon {
