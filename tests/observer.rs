@@ -114,18 +114,24 @@ fn rms_from(t: &[f64], v: &[f64], t0: f64) -> f64 {
     (xs.iter().sum::<f64>() / xs.len() as f64).sqrt()
 }
 
-/// τ statistics must not depend on the integrator step at a fixed observer period T: the
-/// plant is driven by a piecewise-constant (zero-order-hold) estimate, whose exact response
-/// the run with dt = T/10 resolves. Reference: the dt = T/10 run of the same scheme (its own
-/// dt → 0 limit to ≤ 0.01 %: dt = T/10 and T/20 agree to 1e-4 relative). On the default grid
-/// (24 elements graded 0.7) TR-BDF2 at dt = T agrees to 0.40 % (τ1) and 0.90 % (τ2) for the
-/// explicit observer — the 0.5 % aim is met only on coarser tip elements (16 graded 0.3:
-/// 0.39 % / 0.47 %) — and to 1e-7 for the implicit one; at dt = T/2 to 0.5 %. The trapezoidal
-/// rule, whose stiff modes ring under the jumps, is 22 % off (RMS τ1) — the test would catch a
-/// regression.
+/// τ statistics against the integrator step at a fixed observer period T: the plant is driven
+/// by a piecewise-constant (zero-order-hold) estimate, whose exact response the run with
+/// dt = T/10 resolves (reference: the dt = T/10 run of the same scheme; its full-rate RMS
+/// differs from dt = T/2 by 0.2–0.5 %, and the error falls ~4× per halving, so T/10 is within
+/// ~0.1 %). RMS τ is the full-rate time-RMS (`windowed_rms` of `tau*_rms`); the RMS of the
+/// 10-ms output samples alone is phase-locked for the explicit observer, which chatters at the
+/// sample rate (every output instant sees the same phase): at dt = T/10 it is 2.3 % (τ1) and
+/// 7.4 % (τ2) above the time-RMS, and it is checked here that the two differ, so the metric
+/// cannot silently fall back to samples.
+///
+/// Measured on the default grid (24 elements graded 0.7), TR-BDF2: implicit observer (default)
+/// dt = T within 2e-8 / 5e-8; explicit observer dt = T 0.96 % (τ1) and 2.2 % (τ2) above the
+/// limit, dt = T/2 0.20 % / 0.46 %: one step per sample cannot resolve the tip's response to
+/// the Nyquist-rate chatter, so explicit-observer τ statistics need dt ≤ T/2 for 0.5 %. Peaks:
+/// ≤ 5e-4 at dt = T. The trapezoidal rule, whose stiff modes ring, is 4.3 % off (RMS τ1).
 #[test]
 fn tau_statistics_do_not_depend_on_dt_at_fixed_sample_period() {
-    use wingcheck_sim::{simulate, RunOptions};
+    use wingcheck_sim::{simulate, windowed_rms, RunOptions};
     let stats = |scheme: &str, rule: &str, dt: f64| {
         let cfg = paper_with(&[
             &format!("discretisation.stepper={scheme}"),
@@ -134,22 +140,45 @@ fn tau_statistics_do_not_depend_on_dt_at_fixed_sample_period() {
         ]);
         let o = simulate(&cfg, RunOptions::default()).unwrap();
         let s = &o.series;
-        [rms_from(&s.t, &s.tau1, 5.0), rms_from(&s.t, &s.tau2, 5.0), o.peaks.tau1.abs_max, o.peaks.tau2.abs_max]
+        let t_end = cfg.horizon.t_end;
+        [
+            windowed_rms(&s.t, &s.tau1_rms, 5.0, t_end).unwrap(),
+            windowed_rms(&s.t, &s.tau2_rms, 5.0, t_end).unwrap(),
+            o.peaks.tau1.abs_max,
+            o.peaks.tau2.abs_max,
+            rms_from(&s.t, &s.tau1, 5.0),
+            rms_from(&s.t, &s.tau2, 5.0),
+        ]
     };
     let period = paper_with(&[]).observer.sample_period;
     for rule in ["explicit", "implicit"] {
         let coarse = stats("trbdf2", rule, period);
         let half = stats("trbdf2", rule, period / 2.0);
         let fine = stats("trbdf2", rule, period / 10.0);
-        for (k, name) in ["rms τ1", "rms τ2", "peak τ1", "peak τ2"].iter().enumerate() {
+        let names = ["rms τ1", "rms τ2", "peak τ1", "peak τ2", "sampled rms τ1", "sampled rms τ2"];
+        for (k, name) in names.iter().enumerate() {
             let rel = (coarse[k] - fine[k]).abs() / fine[k];
             let rel_half = (half[k] - fine[k]).abs() / fine[k];
             println!(
                 "trbdf2/{rule} {name}: dt = T {:.5}, T/2 {:.5}, T/10 {:.5}: rel {rel:.2e} (T/2: {rel_half:.2e})",
                 coarse[k], half[k], fine[k]
             );
-            assert!(rel < 1e-2, "trbdf2/{rule} {name}: {rel}");
-            assert!(rel_half < 5e-3, "trbdf2/{rule} {name} at dt = T/2: {rel_half}");
+            let (at_t, at_half) = match (rule, k) {
+                ("implicit", 0..=3) => (1e-6, 1e-6),
+                ("explicit", 0..=1) => (3e-2, 6e-3),
+                ("explicit", 2..=3) => (1e-3, 1e-4),
+                _ => continue,
+            };
+            assert!(rel < at_t, "trbdf2/{rule} {name} at dt = T: {rel}");
+            assert!(rel_half < at_half, "trbdf2/{rule} {name} at dt = T/2: {rel_half}");
+        }
+        // the sampled RMS is phase-locked for the chattering explicit observer only
+        let bias = [4, 5].map(|k| (fine[k] - fine[k - 4]).abs() / fine[k - 4]);
+        println!("{rule}: sampled vs full-rate RMS at dt = T/10: {:.2e}, {:.2e}", bias[0], bias[1]);
+        if rule == "explicit" {
+            assert!(bias[0] > 1e-2 && bias[1] > 1e-2, "sampled RMS no longer biased? {bias:?}");
+        } else {
+            assert!(bias[0] < 1e-3 && bias[1] < 1e-3, "implicit: {bias:?}");
         }
     }
     let coarse = stats("trapezoid", "explicit", period);

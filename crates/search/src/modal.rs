@@ -14,7 +14,7 @@ use std::sync::{Arc, Mutex};
 use serde::Serialize;
 use wingcheck_model::Config;
 use wingcheck_sim::modal::{ModalLoop, ModalState, ObserverSignal, StepInput};
-use wingcheck_sim::{check_sample, Sample, SimError};
+use wingcheck_sim::{check_sample, Sample, SimError, SquareIntegral};
 
 pub use wingcheck_sim::modal::ModalBasis;
 
@@ -92,6 +92,10 @@ pub struct TipTrace {
     pub tau1: Vec<f64>,
     /// τ2 (N m).
     pub tau2: Vec<f64>,
+    /// Full-rate RMS of τ1 over each output interval (N), as `wingcheck_sim::Series::tau1_rms`.
+    pub tau1_rms: Vec<f64>,
+    /// The same for τ2 (N m).
+    pub tau2_rms: Vec<f64>,
     /// g1 − ĝ1 (N).
     pub g1_tilde: Vec<f64>,
     /// g2 − ĝ2 (N m).
@@ -110,6 +114,8 @@ impl TipTrace {
             theta_tip: s.theta_tip.clone(),
             tau1: s.tau1.clone(),
             tau2: s.tau2.clone(),
+            tau1_rms: s.tau1_rms.clone(),
+            tau2_rms: s.tau2_rms.clone(),
             g1_tilde: tilde(&s.g1, &s.g1_hat),
             g2_tilde: tilde(&s.g2, &s.g2_hat),
             energy_end: s.energy.last().copied().unwrap_or(0.0),
@@ -129,7 +135,9 @@ pub fn run(cfg: &Config, basis: &ModalBasis, signal: &InputSignal) -> Result<Tip
     let period = cfg.observer.sample_period;
     let mut trace = TipTrace::default();
     let mut e0 = 0.0;
-    let mut record = |k: usize, st: &ModalState, tr: &mut TipTrace| {
+    let h = cfg.discretisation.dt;
+    let mut squares = SquareIntegral::default();
+    let mut record = |k: usize, st: &ModalState, rms: [f64; 2], tr: &mut TipTrace| {
         let gh = [signal.g_hat[0][k], signal.g_hat[1][k]];
         let tau = [0, 1].map(|c| lp.tau(c, st.x_tip[c], st.v_tip[c], gh[c]));
         let e = energy(st);
@@ -160,17 +168,23 @@ pub fn run(cfg: &Config, basis: &ModalBasis, signal: &InputSignal) -> Result<Tip
         tr.theta_tip.push(sample.theta_tip);
         tr.tau1.push(tau[0]);
         tr.tau2.push(tau[1]);
+        tr.tau1_rms.push(rms[0]);
+        tr.tau2_rms.push(rms[1]);
         tr.g1_tilde.push(sample.g1 - gh[0]);
         tr.g2_tilde.push(sample.g2 - gh[1]);
         tr.energy_end = e;
         Ok::<(), SimError>(())
     };
-    record(0, &st, &mut trace)?;
+    // full-rate ∫τ² dt: after every step with the held estimate, and after each sample's jump
+    let taus = |st: &ModalState, gh: [f64; 2]| [0, 1].map(|c| lp.tau(c, st.x_tip[c], st.v_tip[c], gh[c]));
+    squares.update(0.0, taus(&st, [signal.g_hat[0][0], signal.g_hat[1][0]]));
+    record(0, &st, squares.take_rms(), &mut trace)?;
     wingcheck_sim::cpu::clear_upper_vector_state();
     let mut step = 0;
     for k in 1..=total {
         let g_hat = [signal.g_hat[0][k - 1], signal.g_hat[1][k - 1]];
-        for _ in 0..m {
+        let t0 = (k - 1) as f64 * period;
+        for j in 0..m {
             let input = StepInput {
                 phi: signal.phi_mean[step],
                 tip_input: [signal.tip_input[0][step], signal.tip_input[1][step]],
@@ -178,10 +192,12 @@ pub fn run(cfg: &Config, basis: &ModalBasis, signal: &InputSignal) -> Result<Tip
             };
             step += 1;
             lp.step(&mut st, &input);
+            squares.update(t0 + (j + 1) as f64 * h, taus(&st, g_hat));
         }
+        squares.update(k as f64 * period, taus(&st, [signal.g_hat[0][k], signal.g_hat[1][k]]));
         if k % every == 0 || k == total {
             st.sync_tip(basis);
-            record(k, &st, &mut trace)?;
+            record(k, &st, squares.take_rms(), &mut trace)?;
         }
     }
     Ok(trace)

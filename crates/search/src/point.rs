@@ -172,6 +172,12 @@ pub fn settling_time(s: &TipTrace) -> Option<f64> {
     }
 }
 
+/// RMS of τ(t) over the whole run at full rate ([`wingcheck_sim::windowed_rms`]).
+fn full_rate_rms(s: &TipTrace, interval_rms: &[f64]) -> Option<f64> {
+    let t_end = s.t.last().copied().unwrap_or(0.0);
+    wingcheck_sim::windowed_rms(&s.t, interval_rms, 0.0, t_end).or_else(|| interval_rms.first().copied())
+}
+
 /// The simulation metrics (positions 9.. of [`METRICS`]).
 fn sim_metrics(s: &TipTrace, win: (f64, f64)) -> [Option<f64>; 12] {
     let tol = 1e-9 * (1.0 + win.1.abs());
@@ -185,9 +191,9 @@ fn sim_metrics(s: &TipTrace, win: (f64, f64)) -> [Option<f64>; 12] {
         max_abs(th.iter().copied()),
         settling_time(s),
         max_abs(s.tau1.iter().copied()),
-        rms(s.tau1.iter().copied()),
+        full_rate_rms(s, &s.tau1_rms),
         max_abs(s.tau2.iter().copied()),
-        rms(s.tau2.iter().copied()),
+        full_rate_rms(s, &s.tau2_rms),
         rms(w(&s.g1_tilde).into_iter()),
         rms(w(&s.g2_tilde).into_iter()),
         (!s.t.is_empty()).then_some(s.energy_end),

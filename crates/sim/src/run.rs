@@ -46,11 +46,16 @@ pub struct Series {
     pub q_tip_shear: Vec<f64>,
     /// θ'(s,t) (1/m), from the boundary condition.
     pub theta_tip_slope: Vec<f64>,
+    /// RMS of τ1(t) (N) over the output interval ending at t_k, at full rate (every
+    /// integrator step, both sides of every jump; [`crate::SquareIntegral`]); |τ1(0)| at t = 0.
+    pub tau1_rms: Vec<f64>,
+    /// The same for τ2 (N m).
+    pub tau2_rms: Vec<f64>,
 }
 
 impl Series {
     /// Column names in output order.
-    pub const COLUMNS: [&'static str; 16] = [
+    pub const COLUMNS: [&'static str; 18] = [
         "t",
         "q_tip",
         "theta_tip",
@@ -67,10 +72,12 @@ impl Series {
         "energy",
         "q_tip_shear",
         "theta_tip_slope",
+        "tau1_rms",
+        "tau2_rms",
     ];
 
     /// Columns in the order of [`Series::COLUMNS`].
-    pub fn columns(&self) -> [&Vec<f64>; 16] {
+    pub fn columns(&self) -> [&Vec<f64>; 18] {
         [
             &self.t,
             &self.q_tip,
@@ -88,6 +95,8 @@ impl Series {
             &self.energy,
             &self.q_tip_shear,
             &self.theta_tip_slope,
+            &self.tau1_rms,
+            &self.tau2_rms,
         ]
     }
 
@@ -101,7 +110,9 @@ impl Series {
         self.t.is_empty()
     }
 
-    pub(crate) fn push(&mut self, s: &Sample) {
+    pub(crate) fn push(&mut self, s: &Sample, tau_rms: [f64; 2]) {
+        self.tau1_rms.push(tau_rms[0]);
+        self.tau2_rms.push(tau_rms[1]);
         self.t.push(s.t);
         self.q_tip.push(s.q_tip);
         self.theta_tip.push(s.theta_tip);
@@ -136,6 +147,23 @@ impl Series {
         let u = (t - self.t[i]) / (self.t[i + 1] - self.t[i]);
         column[i] + u * (column[i + 1] - column[i])
     }
+}
+
+/// RMS over the window [t0, t1] (s) of a signal given as its full-rate RMS per output interval,
+/// `interval_rms[k]` over (t_{k−1}, t_k] (as [`Series::tau1_rms`]): √(Σ rms_k² Δt_k / Σ Δt_k)
+/// over the intervals inside the window (ends within 1e-9 s·(1 + |t1|)); None if none is.
+/// The one definition of a time-RMS of τ: every crate's RMS τ is this.
+pub fn windowed_rms(t: &[f64], interval_rms: &[f64], t0: f64, t1: f64) -> Option<f64> {
+    let tol = 1e-9 * (1.0 + t1.abs());
+    let (mut sum, mut span) = (0.0, 0.0);
+    for k in 1..t.len().min(interval_rms.len()) {
+        if t[k - 1] >= t0 - tol && t[k] <= t1 + tol {
+            let dt = t[k] - t[k - 1];
+            sum += interval_rms[k] * interval_rms[k] * dt;
+            span += dt;
+        }
+    }
+    (span > 0.0).then(|| (sum / span).sqrt())
 }
 
 /// q(z,t) and θ(z,t) on the coarse output grid at the sample times.
@@ -240,10 +268,10 @@ fn simulate_nodal(
     let mut series = Series::default();
     let mut fields = opts.fields.then(|| Fields { z: stepper.discretisation().interp.z.clone(), ..Default::default() });
     let e0 = stepper.sample().energy;
-    let record = |st: &Stepper, series: &mut Series, fields: &mut Option<Fields>| -> Result<(), SimError> {
+    let record = |st: &mut Stepper, series: &mut Series, fields: &mut Option<Fields>| -> Result<(), SimError> {
         let s = st.sample();
         check_sample(&s, e0)?;
-        series.push(&s);
+        series.push(&s, st.take_tau_rms());
         if let Some(f) = fields {
             let (x, _) = st.state();
             let d: &Discretisation = st.discretisation();
@@ -252,12 +280,12 @@ fn simulate_nodal(
         }
         Ok(())
     };
-    record(&stepper, &mut series, &mut fields)?;
+    record(&mut stepper, &mut series, &mut fields)?;
     crate::cpu::clear_upper_vector_state();
     for k in 1..=total {
         stepper.advance_sample();
         if k % every == 0 || k == total {
-            record(&stepper, &mut series, &mut fields)?;
+            record(&mut stepper, &mut series, &mut fields)?;
             if let Some(p) = opts.progress.as_mut() {
                 p(k as f64 / total as f64);
             }

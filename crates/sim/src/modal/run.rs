@@ -7,7 +7,7 @@ use wingcheck_model::Config;
 
 use super::{dot, ModalBasis, ModalLoop, ModalState, ObserverSignal, SampleInput};
 use crate::run::{check_sample, Fields, RunOptions, RunStats, Series, SimOutput};
-use crate::stepper::{Peaks, Sample};
+use crate::stepper::{Peaks, Sample, SquareIntegral};
 use crate::SimError;
 
 fn sample(lp: &ModalLoop<'_>, basis: &ModalBasis, st: &ModalState, t: f64, obs: &SampleInput) -> Sample {
@@ -66,33 +66,45 @@ pub fn simulate_modal(
     let mut series = Series::default();
     let mut fields = opts.fields.then(|| Fields { z: basis.field_z.clone(), ..Default::default() });
     let mut peaks = Peaks::default();
+    let mut squares = SquareIntegral::default();
     let first = signal.current();
     let e0 = basis.energy(&st.eta, &st.zeta);
-    let record = |st: &ModalState, obs: &SampleInput, t: f64, series: &mut Series, fields: &mut Option<Fields>| {
+    let record = |st: &ModalState,
+                  obs: &SampleInput,
+                  t: f64,
+                  rms: [f64; 2],
+                  series: &mut Series,
+                  fields: &mut Option<Fields>| {
         let s = sample(&lp, basis, st, t, obs);
         check_sample(&s, e0)?;
-        series.push(&s);
+        series.push(&s, rms);
         if let Some(f) = fields {
             f.q.push(basis.field_q.iter().map(|row| dot(row, &st.eta)).collect());
             f.theta.push(basis.field_theta.iter().map(|row| dot(row, &st.eta)).collect());
         }
         Ok::<(), SimError>(())
     };
-    record(&st, &first, 0.0, &mut series, &mut fields)?;
-    peaks.update(0.0, &peak_values(&lp, &st, first.g_hat, first.g));
+    let values = peak_values(&lp, &st, first.g_hat, first.g);
+    peaks.update(0.0, &values);
+    squares.update(0.0, [values[4], values[5]]);
+    record(&st, &first, 0.0, squares.take_rms(), &mut series, &mut fields)?;
     crate::cpu::clear_upper_vector_state();
     for k in 1..=total {
         signal.advance(|t, input| {
             lp.step(&mut st, input);
             let t1 = t + h;
-            peaks.update(t1, &peak_values(&lp, &st, input.g_hat, signal_g(cfg, t1)));
+            let values = peak_values(&lp, &st, input.g_hat, signal_g(cfg, t1));
+            peaks.update(t1, &values);
+            squares.update(t1, [values[4], values[5]]);
         });
         let now = signal.current();
         let t = k as f64 * period;
-        peaks.update(t, &peak_values(&lp, &st, now.g_hat, now.g));
+        let values = peak_values(&lp, &st, now.g_hat, now.g);
+        peaks.update(t, &values);
+        squares.update(t, [values[4], values[5]]);
         if k % every == 0 || k == total {
             st.sync_tip(basis);
-            record(&st, &now, t, &mut series, &mut fields)?;
+            record(&st, &now, t, squares.take_rms(), &mut series, &mut fields)?;
             if let Some(p) = opts.progress.as_mut() {
                 p(k as f64 / total as f64);
             }

@@ -24,7 +24,7 @@
 mod peaks;
 pub mod trbdf2;
 
-pub use peaks::{Peak, Peaks};
+pub use peaks::{Peak, Peaks, SquareIntegral};
 
 use wingcheck_control::{ChannelObserver, TipChannel};
 use wingcheck_model::{Config, ControllerKind, TimeScheme};
@@ -124,6 +124,8 @@ pub struct Stepper {
     v_stage: Vec<f64>,
     /// Full-rate extremes.
     peaks: Peaks,
+    /// Full-rate ∫τ² dt over the current output interval.
+    tau_squares: SquareIntegral,
     steps_per_sample: usize,
     /// Number of the current sample k (t = k T).
     k: usize,
@@ -185,6 +187,7 @@ impl Stepper {
             x_stage: vec![0.0; n],
             v_stage: vec![0.0; n],
             peaks: Peaks::default(),
+            tau_squares: SquareIntegral::default(),
             steps_per_sample: cfg.steps_per_sample(),
             k: 0,
             v: vec![0.0; n],
@@ -310,6 +313,13 @@ impl Stepper {
             g[1] - tr.g_hat,
         ];
         self.peaks.update(t, &values);
+        self.tau_squares.update(t, [values[4], values[5]]);
+    }
+
+    /// Full-rate RMS of τ1 (N) and τ2 (N m) since the previous call (see [`SquareIntegral`]);
+    /// `simulate` calls it at every output sample.
+    pub fn take_tau_rms(&mut self) -> [f64; 2] {
+        self.tau_squares.take_rms()
     }
 
     /// One trapezoidal step of length h starting at time t.
