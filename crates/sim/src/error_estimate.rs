@@ -20,7 +20,7 @@ pub const TIP_TOLERANCE: f64 = 2e-4;
 /// and h/2 into an estimate of the error at h, times Roache's grid-convergence-index safety
 /// factor 1.25 (for an order verified by refinement: 1.98 in h for FE, 1.86 for FD, 2.02 in dt,
 /// tests/trajectories.rs): 5/3.
-const RICHARDSON_2: f64 = 1.25 * 4.0 / 3.0;
+pub const RICHARDSON_2: f64 = 1.25 * 4.0 / 3.0;
 
 /// A full-rate peak with its estimated error.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
