@@ -151,6 +151,9 @@ pub struct RowCtx {
     pub evidence: Vec<Kv>,
     /// Evidence with label prefixes, pivoted.
     pub pivot: Option<Pivot>,
+    /// Evidence values that are lists of records (e.g. the SDP cross-check per N, the (a, b)
+    /// sweep), each as its own table.
+    pub tables: Vec<EvidenceTable>,
     /// The decisive figure (the row's first plot).
     pub lead_figure: Option<FigCtx>,
     /// Assumptions.
@@ -159,6 +162,63 @@ pub struct RowCtx {
     pub certificates: Vec<String>,
     /// The row's other plots.
     pub figures: Vec<FigCtx>,
+}
+
+/// A list-of-records evidence value as a table: one row per record, one column per field.
+#[derive(Serialize)]
+pub struct EvidenceTable {
+    /// Evidence key (underscores as spaces).
+    pub key: String,
+    /// Field names, each with its unit in parentheses where the naming convention gives one.
+    pub columns: Vec<String>,
+    /// Formatted values, row by row.
+    pub rows: Vec<Vec<String>>,
+}
+
+/// `v` as a table if it is an object (one row) or a non-empty array of objects (a row each):
+/// one column per field (the union of the records' keys in first-seen order), a nested
+/// object's fields flattened one level into `parent: field` columns.
+fn evidence_table(key: &str, v: &Value) -> Option<EvidenceTable> {
+    let records: Vec<&serde_json::Map<String, Value>> = match v {
+        Value::Object(one) => vec![one],
+        _ => v.as_array()?.iter().map(Value::as_object).collect::<Option<_>>()?,
+    };
+    if records.is_empty() {
+        return None;
+    }
+    let flat: Vec<Vec<(String, &Value)>> = records
+        .iter()
+        .map(|r| {
+            r.iter()
+                .flat_map(|(k, v)| match v.as_object() {
+                    Some(inner) => inner.iter().map(|(ik, iv)| (format!("{k}: {ik}"), iv)).collect::<Vec<_>>(),
+                    None => vec![(k.clone(), v)],
+                })
+                .collect()
+        })
+        .collect();
+    let mut fields: Vec<String> = Vec::new();
+    for r in &flat {
+        for (k, _) in r {
+            if !fields.contains(k) {
+                fields.push(k.clone());
+            }
+        }
+    }
+    let columns = fields
+        .iter()
+        .map(|f| match unit_of(f) {
+            "" => f.replace('_', " "),
+            u => format!("{} ({u})", f.replace('_', " ")),
+        })
+        .collect();
+    let rows = flat
+        .iter()
+        .map(|r| {
+            fields.iter().map(|f| r.iter().find(|(k, _)| k == f).map_or("—".into(), |(_, v)| value_text(v))).collect()
+        })
+        .collect();
+    Some(EvidenceTable { key: key.replace('_', " "), columns, rows })
 }
 
 /// A value the paper leaves out.
@@ -274,10 +334,10 @@ fn pivot(r: &ClaimRow) -> Option<Pivot> {
 /// `digest` its ledger digest.
 pub fn row_ctx(r: &ClaimRow, figures: &[Figure], digest: crate::digest::Digest) -> RowCtx {
     let id = r.id.to_string();
-    let evidence: Vec<Kv> = r
-        .evidence
-        .iter()
-        .filter(|(k, _)| !k.contains('.'))
+    let plain = r.evidence.iter().filter(|(k, _)| !k.contains('.'));
+    let tables: Vec<EvidenceTable> = plain.clone().filter_map(|(k, v)| evidence_table(k, v)).collect();
+    let evidence: Vec<Kv> = plain
+        .filter(|(k, v)| evidence_table(k, v).is_none())
         .map(|(k, v)| Kv { key: k.replace('_', " "), value: value_text(v), unit: unit_of(k).into() })
         .collect();
     let mut figs = figures.iter().map(FigCtx::from);
@@ -294,6 +354,7 @@ pub fn row_ctx(r: &ClaimRow, figures: &[Figure], digest: crate::digest::Digest) 
         digest,
         evidence,
         pivot: pivot(r),
+        tables,
         lead_figure,
         assumptions: r.assumptions.clone(),
         certificates: r.certificates.clone(),

@@ -140,6 +140,25 @@ fn report_is_well_formed_complete_and_matches_the_ledger() {
         .collect();
     assert_eq!(rows, want);
 
+    // List-of-record evidence (the SDP cross-check per N, the (a, b) sweep) is a table with one
+    // row per record, never a compact "{…}" dump in an evidence cell.
+    let captions: Vec<String> =
+        doc.descendants().filter(|n| n.has_tag_name("caption")).map(|n| text(n).trim().to_string()).collect();
+    for key in ["sdp cross check", "ab sweep"] {
+        assert!(captions.iter().any(|c| c == key), "no table for {key}: {captions:?}");
+    }
+    let sdp_rows = expected.rows.iter().find(|r| r.id.to_string() == "W-bounds").unwrap().evidence["sdp_cross_check"]
+        .as_array()
+        .unwrap()
+        .len();
+    let caption =
+        doc.descendants().find(|n| n.has_tag_name("caption") && text(*n).trim() == "sdp cross check").unwrap();
+    let table_rows = caption.parent().unwrap().descendants().filter(|n| n.has_tag_name("tr")).count();
+    assert_eq!(table_rows, sdp_rows + 1, "header + one row per N");
+    for td in doc.descendants().filter(|n| n.has_tag_name("td") && has_class(n, "num")) {
+        assert!(!text(td).trim_start().starts_with('{'), "compact object in an evidence cell: {}", text(td));
+    }
+
     // Provenance: the SHA-256 shown is the config's, and config.json hashes to it.
     assert!(html.contains(&wingcheck_claims::config_sha256(&cfg)));
     assert_eq!(read(&out.join("config.json")), serde_json::to_string(&cfg).unwrap());
