@@ -58,6 +58,16 @@ fn rejected(dir: &Path) -> String {
     }
 }
 
+/// Remove every index entry naming certificate `id`: its listing and the claims' needs.
+fn drop_from_index(dir: &Path, id: &str) {
+    edit_index(dir, |v| {
+        v["certificates"].as_array_mut().unwrap().retain(|e| e["id"] != id);
+        for c in v["claims"].as_array_mut().unwrap() {
+            c["needs"].as_array_mut().unwrap().retain(|n| n != id);
+        }
+    });
+}
+
 fn assert_rejected(dir: &Path, must_mention: &[&str]) {
     let e = rejected(dir);
     for m in must_mention {
@@ -235,23 +245,13 @@ fn the_set_must_be_complete_and_only_itself() {
     std::fs::remove_file(p.join("w-bounds-upper.json")).unwrap();
     assert_rejected(&p, &["w-bounds-upper.json"]);
     // Delete it and its manifest entries: the verifier's own table requires it.
-    edit_index(&p, |v| {
-        v["certificates"].as_array_mut().unwrap().retain(|e| e["id"] != "w-bounds-upper");
-        for c in v["claims"].as_array_mut().unwrap() {
-            c["needs"].as_array_mut().unwrap().retain(|n| n != "w-bounds-upper");
-        }
-    });
+    drop_from_index(&p, "w-bounds-upper");
     assert_rejected(&p, &["does not list w-bounds-upper, which the verifier requires"]);
     // Drop the indefinite certificate while the lower bound is negative: W-bounds is incomplete.
     let dir = fresh_set();
     let p = dir.path().join("p");
     std::fs::remove_file(p.join("w-bounds-indefinite.json")).unwrap();
-    edit_index(&p, |v| {
-        v["certificates"].as_array_mut().unwrap().retain(|e| e["id"] != "w-bounds-indefinite");
-        for c in v["claims"].as_array_mut().unwrap() {
-            c["needs"].as_array_mut().unwrap().retain(|n| n != "w-bounds-indefinite");
-        }
-    });
+    drop_from_index(&p, "w-bounds-indefinite");
     assert_rejected(&p, &["w-bounds-indefinite"]);
     // Drop the mu certificate: the verifier computes C3 < 0 itself and requires it.
     let dir = fresh_set();

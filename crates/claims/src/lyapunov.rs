@@ -181,11 +181,7 @@ pub fn generalized_eigen(a: &faer::Mat<f64>, b: &faer::Mat<f64>) -> Result<(Vec<
     let n = a.nrows();
     let llt = b.llt(Side::Lower).map_err(|e| format!("κ is not positive definite: {e:?}"))?;
     let l = llt.L();
-    let mut y = a.clone();
-    faer::linalg::triangular_solve::solve_lower_triangular_in_place(l, y.as_mut(), faer::Par::Seq);
-    let mut c = y.transpose().to_owned();
-    faer::linalg::triangular_solve::solve_lower_triangular_in_place(l, c.as_mut(), faer::Par::Seq);
-    let c = faer::Mat::<f64>::from_fn(n, n, |i, j| 0.5 * (c[(i, j)] + c[(j, i)]));
+    let c = wingcheck_sim::dense::congruence(l, a);
     let eig = c.self_adjoint_eigen(Side::Lower).map_err(|e| format!("eigen solver failed: {e:?}"))?;
     let vals: Vec<f64> = (0..n).map(|i| eig.S()[i]).collect();
     // back-transform: x = L⁻ᵀ y

@@ -51,16 +51,7 @@ pub fn max_lambda(a: &Mat<f64>, b: &Mat<f64>) -> Result<SdpCheck, String> {
     if a.ncols() != n || b.nrows() != n || b.ncols() != n {
         return Err(format!("A is {}x{}, B is {}x{}", a.nrows(), a.ncols(), b.nrows(), b.ncols()));
     }
-    let (a, b) = (symmetrise(a), symmetrise(b));
-    let llt = b.llt(Side::Lower).map_err(|e| format!("B is not positive definite: {e:?}"))?;
-    let l = llt.L();
-    let mut y = a.clone();
-    faer::linalg::triangular_solve::solve_lower_triangular_in_place(l, y.as_mut(), faer::Par::Seq);
-    let mut c = y.transpose().to_owned();
-    faer::linalg::triangular_solve::solve_lower_triangular_in_place(l, c.as_mut(), faer::Par::Seq);
-    let c = symmetrise(&c);
-    let mut eig = c.self_adjoint_eigenvalues(Side::Lower).map_err(|e| format!("eigenvalues: {e:?}"))?;
-    eig.sort_by(f64::total_cmp);
+    let (c, eig) = congruent_to_identity(a, b)?;
     let rows: Vec<Vec<f64>> = (0..n).map(|i| (0..n).map(|j| c[(i, j)]).collect()).collect();
     let id: Vec<Vec<f64>> = (0..n).map(|i| (0..n).map(|j| if i == j { 1.0 } else { 0.0 }).collect()).collect();
     let out = wingcheck_lapack::sdp::max_generalized_lambda(&rows, &id).map_err(|e| e.to_string())?;
@@ -519,13 +510,8 @@ pub fn pencil_cross_check(
 /// C = L⁻¹AL⁻ᵀ (B = LLᵀ, both symmetrised) and its eigenvalues ascending.
 fn congruent_to_identity(a: &Mat<f64>, b: &Mat<f64>) -> Result<(Mat<f64>, Vec<f64>), String> {
     let (a, b) = (symmetrise(a), symmetrise(b));
-    let llt = b.llt(Side::Lower).map_err(|e| format!("κ is not positive definite: {e:?}"))?;
-    let l = llt.L();
-    let mut y = a;
-    faer::linalg::triangular_solve::solve_lower_triangular_in_place(l, y.as_mut(), faer::Par::Seq);
-    let mut c = y.transpose().to_owned();
-    faer::linalg::triangular_solve::solve_lower_triangular_in_place(l, c.as_mut(), faer::Par::Seq);
-    let c = symmetrise(&c);
+    let llt = b.llt(Side::Lower).map_err(|e| format!("κ (B) is not positive definite: {e:?}"))?;
+    let c = wingcheck_sim::dense::congruence(llt.L(), &a);
     let mut eig = c.self_adjoint_eigenvalues(Side::Lower).map_err(|e| format!("eigenvalues: {e:?}"))?;
     eig.sort_by(f64::total_cmp);
     Ok((c, eig))

@@ -508,15 +508,6 @@ pub struct WPencil {
     cb: faer::Mat<f64>,
 }
 
-fn congruence(l: faer::MatRef<'_, f64>, w: &faer::Mat<f64>) -> faer::Mat<f64> {
-    let mut y = w.clone();
-    faer::linalg::triangular_solve::solve_lower_triangular_in_place(l, y.as_mut(), faer::Par::Seq);
-    let mut c = y.transpose().to_owned();
-    faer::linalg::triangular_solve::solve_lower_triangular_in_place(l, c.as_mut(), faer::Par::Seq);
-    let n = c.nrows();
-    faer::Mat::from_fn(n, n, |i, j| 0.5 * (c[(i, j)] + c[(j, i)]))
-}
-
 impl WPencil {
     /// The pencil of the configuration's wing on `elements` uniform elements (corrected cross term).
     pub fn new(cfg: &Config, elements: usize) -> Result<Self, String> {
@@ -527,6 +518,7 @@ impl WPencil {
         let kappa = to_dense(&fa.kappa);
         let llt = kappa.llt(faer::Side::Lower).map_err(|e| format!("κ is not positive definite: {e:?}"))?;
         let l = llt.L();
+        use wingcheck_sim::dense::congruence;
         Ok(WPencil { ca: congruence(l, &to_dense(&fa.w)), cb: congruence(l, &to_dense(&fb.w)) })
     }
 

@@ -334,12 +334,13 @@ fn pivot(r: &ClaimRow) -> Option<Pivot> {
 /// `digest` its ledger digest.
 pub fn row_ctx(r: &ClaimRow, figures: &[Figure], digest: crate::digest::Digest) -> RowCtx {
     let id = r.id.to_string();
-    let plain = r.evidence.iter().filter(|(k, _)| !k.contains('.'));
-    let tables: Vec<EvidenceTable> = plain.clone().filter_map(|(k, v)| evidence_table(k, v)).collect();
-    let evidence: Vec<Kv> = plain
-        .filter(|(k, v)| evidence_table(k, v).is_none())
-        .map(|(k, v)| Kv { key: k.replace('_', " "), value: value_text(v), unit: unit_of(k).into() })
-        .collect();
+    let (mut tables, mut evidence) = (Vec::new(), Vec::new());
+    for (k, v) in r.evidence.iter().filter(|(k, _)| !k.contains('.')) {
+        match evidence_table(k, v) {
+            Some(table) => tables.push(table),
+            None => evidence.push(Kv { key: k.replace('_', " "), value: value_text(v), unit: unit_of(k).into() }),
+        }
+    }
     let mut figs = figures.iter().map(FigCtx::from);
     let lead_figure = figs.next();
     RowCtx {

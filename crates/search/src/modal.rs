@@ -13,8 +13,8 @@ use std::sync::{Arc, Mutex};
 
 use serde::Serialize;
 use wingcheck_model::Config;
-use wingcheck_sim::modal::{ModalLoop, ModalState, ObserverSignal, StepInput};
-use wingcheck_sim::{check_sample, Sample, SimError, SquareIntegral};
+use wingcheck_sim::modal::{ModalLoop, ModalState, ObserverSignal, SampleInput, StepInput};
+use wingcheck_sim::{check_sample, SimError, SquareIntegral};
 
 pub use wingcheck_sim::modal::ModalBasis;
 
@@ -130,7 +130,6 @@ pub fn run(cfg: &Config, basis: &ModalBasis, signal: &InputSignal) -> Result<Tip
     cfg.validate().map_err(SimError::Config)?;
     let lp = ModalLoop::new(cfg, basis)?;
     let mut st = lp.initial_state(cfg, basis);
-    let energy = |st: &ModalState| basis.energy(&st.eta, &st.zeta);
     let (m, total, every) = (cfg.steps_per_sample(), cfg.total_samples(), cfg.samples_per_output());
     let period = cfg.observer.sample_period;
     let mut trace = TipTrace::default();
@@ -139,26 +138,10 @@ pub fn run(cfg: &Config, basis: &ModalBasis, signal: &InputSignal) -> Result<Tip
     let mut squares = SquareIntegral::default();
     let mut record = |k: usize, st: &ModalState, rms: [f64; 2], tr: &mut TipTrace| {
         let gh = [signal.g_hat[0][k], signal.g_hat[1][k]];
-        let tau = [0, 1].map(|c| lp.tau(c, st.x_tip[c], st.v_tip[c], gh[c]));
-        let e = energy(st);
-        let sample = Sample {
-            t: k as f64 * period,
-            q_tip: st.x_tip[0],
-            theta_tip: st.x_tip[1],
-            q_tip_rate: st.v_tip[0],
-            theta_tip_rate: st.v_tip[1],
-            tau1: tau[0],
-            tau2: tau[1],
-            g1: signal.g[0][k],
-            g2: signal.g[1][k],
-            g1_hat: gh[0],
-            g2_hat: gh[1],
-            sigma1: 0.0,
-            sigma2: 0.0,
-            energy: e,
-            q_tip_shear: st.w[0],
-            theta_tip_slope: st.w[1],
-        };
+        // σ is not recorded by the search (0 in the sample)
+        let obs = SampleInput { g_hat: gh, sigma: [0.0; 2], g: [signal.g[0][k], signal.g[1][k]] };
+        let sample = lp.sample(basis, st, k as f64 * period, &obs);
+        let e = sample.energy;
         if k == 0 {
             e0 = e;
         }
@@ -166,8 +149,8 @@ pub fn run(cfg: &Config, basis: &ModalBasis, signal: &InputSignal) -> Result<Tip
         tr.t.push(sample.t);
         tr.q_tip.push(sample.q_tip);
         tr.theta_tip.push(sample.theta_tip);
-        tr.tau1.push(tau[0]);
-        tr.tau2.push(tau[1]);
+        tr.tau1.push(sample.tau1);
+        tr.tau2.push(sample.tau2);
         tr.tau1_rms.push(rms[0]);
         tr.tau2_rms.push(rms[1]);
         tr.g1_tilde.push(sample.g1 - gh[0]);

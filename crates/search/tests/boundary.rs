@@ -29,8 +29,9 @@ fn boundary_estimates(dir: &std::path::Path, kind: &str) -> Vec<(f64, f64, f64)>
         .collect()
 }
 
-#[test]
-fn boundaries_along_a_match_the_claim_checker() {
+/// The short paper config, the refinement tolerance 1e-6, and a complete refined search along
+/// a ∈ [1e-5, 1] (11 log points) written to a temporary directory.
+fn refined_search_along_a() -> (Config, f64, tempfile::TempDir) {
     let base = short();
     let tol = 1e-6;
     let search = Search::new(
@@ -42,6 +43,12 @@ fn boundaries_along_a_match_the_claim_checker() {
     let dir = tempfile::tempdir().unwrap();
     let summary = run(&search, dir.path(), RunControl::default()).expect("runs");
     assert!(summary.complete);
+    (base, tol, dir)
+}
+
+#[test]
+fn boundaries_along_a_match_the_claim_checker() {
+    let (base, tol, dir) = refined_search_along_a();
 
     // Reference 1: largest a/b with W ≻ 0 = ω₁, here the simulator's converged FE ω₁
     // (wingcheck_sim::modes::fundamental_frequency, Romberg over uniform meshes, error ~1e-12
@@ -122,19 +129,10 @@ fn fast_theory_matches_the_claims_functions() {
 
 #[test]
 fn refined_boundaries_meet_the_closed_forms_to_1e_6() {
-    let base = short();
-    let tol = 1e-6;
     // grid step along a: a factor √10 (1e-5..1, 11 log points), so every crossing starts in a
     // bracket of log-width ln √10 and bisection (geometric midpoints) needs
     // ⌈log2(ln √10 / ln(1 + tol))⌉ = 21 theory evaluations to reach hi/lo − 1 ≤ tol.
-    let search = Search::new(
-        base.clone(),
-        &["control.a=1e-5..1:log:11".into()],
-        SearchOptions { refine: Some(tol), chunk_size: 4, ..Default::default() },
-    )
-    .expect("valid search");
-    let dir = tempfile::tempdir().unwrap();
-    run(&search, dir.path(), RunControl::default()).expect("runs");
+    let (base, tol, dir) = refined_search_along_a();
     let evaluations = (0.5 * 10f64.ln() / tol.ln_1p()).log2().ceil() as usize;
     assert_eq!(evaluations, 21);
     let rows = |kind: &str| -> Vec<(f64, f64, f64, usize)> {

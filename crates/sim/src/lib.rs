@@ -13,6 +13,7 @@
 pub mod banded;
 pub mod bench;
 pub mod cpu;
+pub mod dense;
 mod disc;
 pub mod error_estimate;
 pub mod estimate;

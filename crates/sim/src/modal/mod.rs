@@ -233,13 +233,7 @@ fn stiffness_modes(disc: &Discretisation) -> Result<(Vec<f64>, Mat<f64>), SimErr
     let llt =
         m.llt(Side::Lower).map_err(|e| SimError::Numerical(format!("mass matrix is not positive definite: {e:?}")))?;
     let l = llt.L();
-    // C = L⁻¹ K L⁻ᵀ (symmetrised)
-    let mut y = k.clone();
-    faer::linalg::triangular_solve::solve_lower_triangular_in_place(l, y.as_mut(), faer::Par::Seq);
-    let mut c = y.transpose().to_owned();
-    faer::linalg::triangular_solve::solve_lower_triangular_in_place(l, c.as_mut(), faer::Par::Seq);
-    let c = Mat::from_fn(n, n, |i, j| 0.5 * (c[(i, j)] + c[(j, i)]));
-    let evd = c
+    let evd = crate::dense::congruence(l, &k)
         .self_adjoint_eigen(Side::Lower)
         .map_err(|e| SimError::Numerical(format!("modal eigenproblem failed: {e:?}")))?;
     let omega2: Vec<f64> = (0..n).map(|i| evd.S()[i]).collect();

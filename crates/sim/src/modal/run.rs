@@ -7,29 +7,8 @@ use wingcheck_model::Config;
 
 use super::{dot, ModalBasis, ModalLoop, ModalState, ObserverSignal, SampleInput};
 use crate::run::{check_sample, Fields, RunOptions, RunStats, Series, SimOutput};
-use crate::stepper::{Peaks, Sample, SquareIntegral};
+use crate::stepper::FullRate;
 use crate::SimError;
-
-fn sample(lp: &ModalLoop<'_>, basis: &ModalBasis, st: &ModalState, t: f64, obs: &SampleInput) -> Sample {
-    Sample {
-        t,
-        q_tip: st.x_tip[0],
-        theta_tip: st.x_tip[1],
-        q_tip_rate: st.v_tip[0],
-        theta_tip_rate: st.v_tip[1],
-        tau1: lp.tau(0, st.x_tip[0], st.v_tip[0], obs.g_hat[0]),
-        tau2: lp.tau(1, st.x_tip[1], st.v_tip[1], obs.g_hat[1]),
-        g1: obs.g[0],
-        g2: obs.g[1],
-        g1_hat: obs.g_hat[0],
-        g2_hat: obs.g_hat[1],
-        sigma1: obs.sigma[0],
-        sigma2: obs.sigma[1],
-        energy: basis.energy(&st.eta, &st.zeta),
-        q_tip_shear: st.w[0],
-        theta_tip_slope: st.w[1],
-    }
-}
 
 /// The full-rate peak values [q, θ, q̇, θ̇, τ1, τ2, g̃1, g̃2] of the state with the estimate ĝ
 /// and the disturbance g at that instant.
@@ -65,8 +44,7 @@ pub fn simulate_modal(
     let h = cfg.discretisation.dt;
     let mut series = Series::default();
     let mut fields = opts.fields.then(|| Fields { z: basis.field_z.clone(), ..Default::default() });
-    let mut peaks = Peaks::default();
-    let mut squares = SquareIntegral::default();
+    let mut full_rate = FullRate::default();
     let first = signal.current();
     let e0 = basis.energy(&st.eta, &st.zeta);
     let record = |st: &ModalState,
@@ -75,7 +53,7 @@ pub fn simulate_modal(
                   rms: [f64; 2],
                   series: &mut Series,
                   fields: &mut Option<Fields>| {
-        let s = sample(&lp, basis, st, t, obs);
+        let s = lp.sample(basis, st, t, obs);
         check_sample(&s, e0)?;
         series.push(&s, rms);
         if let Some(f) = fields {
@@ -84,27 +62,21 @@ pub fn simulate_modal(
         }
         Ok::<(), SimError>(())
     };
-    let values = peak_values(&lp, &st, first.g_hat, first.g);
-    peaks.update(0.0, &values);
-    squares.update(0.0, [values[4], values[5]]);
-    record(&st, &first, 0.0, squares.take_rms(), &mut series, &mut fields)?;
+    full_rate.update(0.0, &peak_values(&lp, &st, first.g_hat, first.g));
+    record(&st, &first, 0.0, full_rate.take_tau_rms(), &mut series, &mut fields)?;
     crate::cpu::clear_upper_vector_state();
     for k in 1..=total {
         signal.advance(|t, input| {
             lp.step(&mut st, input);
             let t1 = t + h;
-            let values = peak_values(&lp, &st, input.g_hat, signal_g(cfg, t1));
-            peaks.update(t1, &values);
-            squares.update(t1, [values[4], values[5]]);
+            full_rate.update(t1, &peak_values(&lp, &st, input.g_hat, signal_g(cfg, t1)));
         });
         let now = signal.current();
         let t = k as f64 * period;
-        let values = peak_values(&lp, &st, now.g_hat, now.g);
-        peaks.update(t, &values);
-        squares.update(t, [values[4], values[5]]);
+        full_rate.update(t, &peak_values(&lp, &st, now.g_hat, now.g));
         if k % every == 0 || k == total {
             st.sync_tip(basis);
-            record(&st, &now, t, squares.take_rms(), &mut series, &mut fields)?;
+            record(&st, &now, t, full_rate.take_tau_rms(), &mut series, &mut fields)?;
             if let Some(p) = opts.progress.as_mut() {
                 p(k as f64 / total as f64);
             }
@@ -113,7 +85,7 @@ pub fn simulate_modal(
     Ok(SimOutput {
         series,
         fields,
-        peaks,
+        peaks: full_rate.peaks,
         stats: RunStats {
             unknowns: basis.len(),
             factor_nnz: 0,

@@ -5,9 +5,9 @@
 use wingcheck_control::TipChannel;
 use wingcheck_model::{Config, ControllerKind, TimeScheme};
 
-use crate::SimError;
+use crate::{Sample, SimError};
 
-use super::ModalBasis;
+use super::{ModalBasis, SampleInput};
 
 /// The step matrix S = M/α + C + αK_c of the scheme in the modal basis: D + β U T Uᵀ with
 /// D = diag(1/α + (ξ + α)ω_i²) (1/s), β = b + αa, T = diag(k1, k2) and U the tip rows of Φ;
@@ -186,6 +186,29 @@ impl<'a> ModalLoop<'a> {
             y: vec![0.0; basis.len()],
             v_tip: [0.0, 0.0],
             w: crate::stepper::initial_tip_states(cfg),
+        }
+    }
+
+    /// The state as a [`Sample`] at time t with the observer's output `obs` (energy from the
+    /// modal state, τ with the held estimate).
+    pub fn sample(&self, basis: &ModalBasis, st: &ModalState, t: f64, obs: &SampleInput) -> Sample {
+        Sample {
+            t,
+            q_tip: st.x_tip[0],
+            theta_tip: st.x_tip[1],
+            q_tip_rate: st.v_tip[0],
+            theta_tip_rate: st.v_tip[1],
+            tau1: self.tau(0, st.x_tip[0], st.v_tip[0], obs.g_hat[0]),
+            tau2: self.tau(1, st.x_tip[1], st.v_tip[1], obs.g_hat[1]),
+            g1: obs.g[0],
+            g2: obs.g[1],
+            g1_hat: obs.g_hat[0],
+            g2_hat: obs.g_hat[1],
+            sigma1: obs.sigma[0],
+            sigma2: obs.sigma[1],
+            energy: basis.energy(&st.eta, &st.zeta),
+            q_tip_shear: st.w[0],
+            theta_tip_slope: st.w[1],
         }
     }
 

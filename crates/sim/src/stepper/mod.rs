@@ -24,6 +24,7 @@
 mod peaks;
 pub mod trbdf2;
 
+pub(crate) use peaks::FullRate;
 pub use peaks::{Peak, Peaks, SquareIntegral};
 
 use wingcheck_control::{ChannelObserver, TipChannel};
@@ -123,9 +124,8 @@ pub struct Stepper {
     x_stage: Vec<f64>,
     v_stage: Vec<f64>,
     /// Full-rate extremes.
-    peaks: Peaks,
-    /// Full-rate ∫τ² dt over the current output interval.
-    tau_squares: SquareIntegral,
+    /// Full-rate extremes and ∫τ² dt over the current output interval.
+    full_rate: FullRate,
     steps_per_sample: usize,
     /// Number of the current sample k (t = k T).
     k: usize,
@@ -186,8 +186,7 @@ impl Stepper {
             alpha,
             x_stage: vec![0.0; n],
             v_stage: vec![0.0; n],
-            peaks: Peaks::default(),
-            tau_squares: SquareIntegral::default(),
+            full_rate: FullRate::default(),
             steps_per_sample: cfg.steps_per_sample(),
             k: 0,
             v: vec![0.0; n],
@@ -210,7 +209,7 @@ impl Stepper {
     /// Extremes of the tip values, rates, controls and observer errors over every integrator
     /// step so far (full rate, both sides of each sample's jump), not only at output samples.
     pub fn peaks(&self) -> &Peaks {
-        &self.peaks
+        &self.full_rate.peaks
     }
 
     /// The energy ledger so far.
@@ -312,14 +311,13 @@ impl Stepper {
             g[0] - b.g_hat,
             g[1] - tr.g_hat,
         ];
-        self.peaks.update(t, &values);
-        self.tau_squares.update(t, [values[4], values[5]]);
+        self.full_rate.update(t, &values);
     }
 
     /// Full-rate RMS of τ1 (N) and τ2 (N m) since the previous call (see [`SquareIntegral`]);
     /// `simulate` calls it at every output sample.
     pub fn take_tau_rms(&mut self) -> [f64; 2] {
-        self.tau_squares.take_rms()
+        self.full_rate.take_tau_rms()
     }
 
     /// One trapezoidal step of length h starting at time t.

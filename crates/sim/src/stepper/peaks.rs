@@ -98,6 +98,29 @@ impl SquareIntegral {
     }
 }
 
+/// What is tracked at every recorded instant of a run (every integrator step's end and both
+/// sides of every jump): the extremes and the τ square integrals, fed the same values
+/// [q, θ, q̇, θ̇, τ1, τ2, g̃1, g̃2].
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct FullRate {
+    /// The extremes.
+    pub(crate) peaks: Peaks,
+    squares: SquareIntegral,
+}
+
+impl FullRate {
+    /// Fold in the values at time t.
+    pub(crate) fn update(&mut self, t: f64, v: &[f64; 8]) {
+        self.peaks.update(t, v);
+        self.squares.update(t, [v[4], v[5]]);
+    }
+
+    /// Full-rate RMS of τ1, τ2 since the previous call ([`SquareIntegral::take_rms`]).
+    pub(crate) fn take_tau_rms(&mut self) -> [f64; 2] {
+        self.squares.take_rms()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::SquareIntegral;
