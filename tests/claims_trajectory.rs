@@ -177,8 +177,9 @@ fn ftdo_vs_dobc_is_only_partly_reproduced() {
     assert_eq!(row.plots.len(), 6);
 
     // The explicit FTDO's full-rate RMS τ1 carries a dt error that bounds its actual error.
-    // Reference: the same run at dt = T/10 (its full-rate RMS is within ~0.1 % of the dt → 0
-    // limit: tests/observer.rs measures dt = T/2 → T/10 changes of 0.2 %, falling ~4× per halving).
+    // Reference: the same run (the `auto` scheme: exponential for the explicit FTDO) at
+    // dt = T/10, the dt-refinement the estimate is about; that this scheme converges to the right
+    // limit is checked against extrapolated TR-BDF2 in tests/exponential.rs (within 1e-7).
     let value = row.number("ftdo-explicit.rms_tau1").unwrap();
     let error = row.number("explicit_rms_tau1_dt_error").unwrap();
     let mut c = Config::paper();

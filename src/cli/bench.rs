@@ -34,8 +34,7 @@ pub fn run(a: BenchArgs) -> anyhow::Result<()> {
     }
     let base = time_config(&cfg, usize::from(a.repeats))?;
     // the other time scheme, measured in the same run for the cost ratio
-    let other =
-        if cfg.discretisation.stepper == wingcheck_model::TimeScheme::Trapezoid { "trbdf2" } else { "trapezoid" };
+    let other = if base.stepper == "trapezoid" { "trbdf2" } else { "trapezoid" };
     let other_cfg = apply_overrides(&cfg, &[format!("discretisation.stepper={other}")])?;
     let other_timing = time_config(&other_cfg, usize::from(a.repeats))?;
     // the other basis, measured in the same run for the cost ratio
@@ -43,6 +42,16 @@ pub fn run(a: BenchArgs) -> anyhow::Result<()> {
     let other_basis_timing = apply_overrides(&cfg, &[format!("discretisation.basis={other_basis}")])
         .map_err(anyhow::Error::from)
         .and_then(|c| time_config(&c, usize::from(a.repeats)).map_err(anyhow::Error::from));
+    // the explicit FTDO, whose `auto` scheme is the exponential one, against TR-BDF2
+    let explicit_timing = |scheme: &str| {
+        apply_overrides(
+            &cfg,
+            &["control.kind=ftdo".into(), "observer.rule=explicit".into(), format!("discretisation.stepper={scheme}")],
+        )
+        .map_err(anyhow::Error::from)
+        .and_then(|c| time_config(&c, usize::from(a.repeats)).map_err(anyhow::Error::from))
+    };
+    let explicit = explicit_timing("exponential").and_then(|e| Ok((e, explicit_timing("trbdf2")?)));
     let estimate_seconds = time_error_estimate(&cfg, usize::from(a.repeats).min(3))?;
     let modes = time_modes(&cfg, 5, usize::from(a.repeats))?;
     let mut grid: Vec<Timing> = Vec::new();
@@ -71,6 +80,7 @@ pub fn run(a: BenchArgs) -> anyhow::Result<()> {
                 "default": base,
                 "other_stepper": { "stepper": other, "timing": other_timing },
                 "other_basis": other_basis_timing.as_ref().ok().map(|t| json!({ "basis": other_basis, "timing": t })),
+                "explicit_ftdo": explicit.as_ref().ok().map(|(e, t)| json!({ "exponential": e, "trbdf2": t })),
                 "error_estimate_seconds": estimate_seconds,
                 "modes": modes,
                 "grid_scaling": grid,
@@ -87,7 +97,7 @@ pub fn run(a: BenchArgs) -> anyhow::Result<()> {
         cfg.discretisation.method.name(),
         cfg.discretisation.grid_size(),
         cfg.discretisation.dt,
-        cfg.discretisation.stepper.name(),
+        base.stepper,
         base.basis,
         cfg.horizon.t_end,
         base.run_seconds * 1e3,
@@ -104,7 +114,7 @@ pub fn run(a: BenchArgs) -> anyhow::Result<()> {
         "  {} stepper: {:.2} ms; ratio {} / {} = {:.2} (same run)",
         other,
         other_timing.run_seconds * 1e3,
-        cfg.discretisation.stepper.name(),
+        base.stepper,
         other,
         base.run_seconds / other_timing.run_seconds
     );
@@ -118,6 +128,15 @@ pub fn run(a: BenchArgs) -> anyhow::Result<()> {
             base.run_seconds / t.run_seconds
         ),
         Err(e) => println!("  {other_basis} basis: not available here ({e})"),
+    }
+    match &explicit {
+        Ok((e, t)) => println!(
+            "  explicit FTDO: exponential scheme {:.2} ms, trbdf2 {:.2} ms; ratio exponential / trbdf2 = {:.1} (same run)",
+            e.run_seconds * 1e3,
+            t.run_seconds * 1e3,
+            e.run_seconds / t.run_seconds
+        ),
+        Err(e) => println!("  explicit FTDO, exponential scheme: not available here ({e})"),
     }
     println!(
         "  with error estimates (refined in h and dt): {:.2} ms = {:.2} × the run",

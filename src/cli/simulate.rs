@@ -111,7 +111,7 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
                 "elements": cfg.discretisation.grid_size(),
                 "grading": cfg.discretisation.grading,
                 "dt": cfg.discretisation.dt,
-                "stepper": cfg.discretisation.stepper.name(),
+                "stepper": out.stats.stepper,
                 "sample_period": cfg.observer.sample_period,
                 "t_end": cfg.horizon.t_end,
                 "a": cfg.control.a,
@@ -157,7 +157,7 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
             cfg.discretisation.grid_size(),
             if cfg.discretisation.method == Method::Fe { "elements" } else { "intervals" },
             cfg.discretisation.dt,
-            cfg.discretisation.stepper.name(),
+            out.stats.stepper,
             out.stats.basis,
             out.stats.steps,
             wall

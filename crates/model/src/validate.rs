@@ -165,6 +165,14 @@ impl Config {
             });
         }
 
+        if disc.stepper == crate::TimeScheme::Exponential && disc.basis == crate::StepBasis::Nodal {
+            return Err(ConfigError::Inconsistent {
+                fields: "discretisation.stepper, discretisation.basis".into(),
+                reason: "discretisation.stepper = exponential steps the closed loop in its modal basis: \
+                         set discretisation.basis to modal or auto"
+                    .into(),
+            });
+        }
         if !whole_multiple(o.sample_period / disc.dt) {
             return Err(ConfigError::Inconsistent {
                 fields: "observer.sample_period, discretisation.dt".into(),

@@ -11,6 +11,16 @@ use crate::{format_number, Config, Method};
 /// Seconds per integrator step per unknown, measured on one core (a 20-s default run: 20 000
 /// steps of 96 unknowns in ≈ 20 ms ≈ 1e-8 s per unknown-step), doubled for slower machines.
 pub const SECONDS_PER_UNKNOWN_STEP: f64 = 2e-8;
+/// Seconds per integrator step per entry of the exponential scheme's (2n)² step operator,
+/// measured ≈ 1.5e-10 s on one core (144 states, 3.1 µs per step), doubled.
+pub const SECONDS_PER_EXPONENTIAL_ENTRY_STEP: f64 = 3e-10;
+/// Seconds of the exponential scheme's setup per (2n)³ (≈ 20 doublings of five dense products),
+/// measured ≈ 4e-9 s (13 ms at 144 states), rounded up for the stiffer, longer chains of finer
+/// grids.
+pub const SECONDS_PER_EXPONENTIAL_SETUP_CUBE: f64 = 1e-8;
+/// Explicit-FTDO simulations `check` runs with the exponential scheme, in units of one run at
+/// the configured dt: one at dt and one at dt/2 (ftdo-vs-dobc's RMS τ error).
+pub const CHECK_EXPLICIT_RUNS: f64 = 3.0;
 /// Bytes per stored output sample of the time series (16 `f64` columns).
 pub const SERIES_BYTES_PER_SAMPLE: f64 = 16.0 * 8.0;
 /// Bytes per number in pretty JSON output (digits, punctuation and indentation), measured on
@@ -107,7 +117,7 @@ impl WorkEstimate {
     pub fn simulation(cfg: &Config, fields: bool, json_output: Option<bool>) -> WorkEstimate {
         let steps = (cfg.horizon.t_end / cfg.discretisation.dt).ceil();
         let samples = (cfg.horizon.t_end / cfg.horizon.sample_every).floor() + 1.0;
-        let n = unknowns(cfg.discretisation.method, cfg.discretisation.elements);
+        let n = unknowns(cfg.discretisation.method, cfg.discretisation.grid_size());
         let field_values = if fields { 2.0 * cfg.horizon.field_points as f64 } else { 0.0 };
         let memory = samples * (SERIES_BYTES_PER_SAMPLE + 8.0 * field_values) + 200.0 * n * 8.0;
         let output = match json_output {
@@ -115,10 +125,17 @@ impl WorkEstimate {
             Some(true) => samples * (16.0 + field_values) * JSON_BYTES_PER_NUMBER,
             Some(false) => samples * 16.0 * 25.0,
         };
+        // the exponential scheme (the modal basis, n = displacements + velocities states): one
+        // dense product per step after an O(n³) setup
+        let exponential = if cfg.time_scheme(true) == crate::TimeScheme::Exponential {
+            steps * n * n * SECONDS_PER_EXPONENTIAL_ENTRY_STEP + n.powi(3) * SECONDS_PER_EXPONENTIAL_SETUP_CUBE
+        } else {
+            0.0
+        };
         WorkEstimate {
             what: "simulate".into(),
             steps,
-            seconds: steps * n * SECONDS_PER_UNKNOWN_STEP,
+            seconds: steps * n * SECONDS_PER_UNKNOWN_STEP + exponential,
             memory_bytes: memory,
             output_bytes: output,
         }
@@ -127,10 +144,14 @@ impl WorkEstimate {
     /// `wingcheck check`: [`CHECK_RUNS`] simulations at the configured grid.
     pub fn check(cfg: &Config) -> WorkEstimate {
         let one = Self::simulation(cfg, false, None);
+        let mut explicit = cfg.clone();
+        explicit.control.kind = crate::ControllerKind::Ftdo;
+        explicit.observer.rule = crate::ObserverRule::Explicit;
+        let explicit = Self::simulation(&explicit, false, None);
         WorkEstimate {
             what: "check".into(),
             steps: one.steps * CHECK_RUNS,
-            seconds: one.seconds * CHECK_RUNS,
+            seconds: one.seconds * CHECK_RUNS + explicit.seconds * CHECK_EXPLICIT_RUNS,
             // UUB keeps one run with fields.
             memory_bytes: one.memory_bytes * 4.0 + Self::simulation(cfg, true, None).memory_bytes,
             output_bytes: 0.0,
@@ -150,6 +171,7 @@ impl WorkEstimate {
                 let mut c = cfg.clone();
                 c.discretisation.method = m;
                 c.discretisation.elements = e;
+                c.discretisation.fd_points = e;
                 let r = Self::simulation(&c, false, None);
                 steps += r.steps;
                 seconds += r.seconds;
@@ -198,5 +220,30 @@ impl WorkEstimate {
                 human_bytes(limits.output_bytes)
             ),
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::WorkEstimate;
+    use crate::{apply_overrides, Config};
+
+    fn seconds(sets: &[&str]) -> f64 {
+        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        WorkEstimate::simulation(&apply_overrides(&Config::paper(), &sets).unwrap(), false, None).seconds
+    }
+
+    #[test]
+    fn estimates_follow_the_grid_actually_used_and_the_scheme() {
+        // FD's grid is `fd_points`, not `elements` (4× the intervals: ≥ 3× the estimate)
+        let fd = ["discretisation.method=fd", "discretisation.grading=0"];
+        let coarse = seconds(&[fd[0], fd[1], "discretisation.fd_points=24"]);
+        let fine = seconds(&[fd[0], fd[1], "discretisation.fd_points=96"]);
+        assert!(fine > 3.0 * coarse, "{fine} vs {coarse}");
+        // the exponential scheme's dense step (the `auto` choice for the explicit FTDO) costs
+        // more than TR-BDF2's O(n) one: (2n)² per step against 2n (144 states here)
+        let trbdf2 = seconds(&["observer.rule=explicit", "discretisation.stepper=trbdf2"]);
+        let exponential = seconds(&["observer.rule=explicit"]);
+        assert!(exponential > 2.0 * trbdf2, "{exponential} vs {trbdf2}");
     }
 }

@@ -401,11 +401,18 @@ pub fn assumptions(cfg: &Config) -> Vec<Assumption> {
         a(
             "spatial grid and time step (the paper: \"finite differences\", no grid given)",
             format!(
-                "{} with {} elements, grading {}, dt = {} s",
+                "{} with {} {}, grading {}, dt = {} s, time scheme {}",
                 d.method.name().to_uppercase(),
-                d.elements,
+                d.grid_size(),
+                if d.method == wingcheck_model::Method::Fe { "elements" } else { "intervals" },
                 d.grading,
-                d.dt
+                d.dt,
+                match d.stepper {
+                    wingcheck_model::TimeScheme::Auto => {
+                        "auto (TR-BDF2; the exponential scheme, exact for the held estimate, for the explicit-FTDO runs in the modal basis)".to_string()
+                    }
+                    s => s.name().to_string(),
+                }
             ),
             "discretisation.*",
         ),

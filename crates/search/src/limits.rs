@@ -1,7 +1,7 @@
 //! Work guards of a search, checked before any work starts: the number of points, the
 //! estimated core time, and the number of worker threads.
 
-use wingcheck_model::{apply_overrides, Config, Method};
+use wingcheck_model::{apply_overrides, Config, Method, TimeScheme};
 
 use crate::axis::{Axis, Spacing};
 use crate::SearchError;
@@ -28,6 +28,12 @@ const SECONDS_PER_MODE_STEP: f64 = 4e-9;
 /// Cost per unknown and integrator step (s), the simulator's sparse stepper: ≈ 1 µs per step
 /// at 48 unknowns (README, "Speed"); rounded up.
 const SECONDS_PER_UNKNOWN_STEP: f64 = 3e-8;
+/// Cost per entry of the exponential scheme's (2n)² step operator and integrator step (s):
+/// measured ≈ 1.5e-10 s (144 states, 3.1 µs per step, one core); rounded up.
+const SECONDS_PER_EXPONENTIAL_ENTRY_STEP: f64 = 3e-10;
+/// Setup of the exponential scheme per (2n)³ (s): its ≈ 20 doublings of five dense products,
+/// measured ≈ 13 ms at 144 states (4.4e-9 s per (2n)³); rounded up.
+const SECONDS_PER_EXPONENTIAL_SETUP_CUBE: f64 = 1e-8;
 /// Theory per point (λ2, λ1, the μ and ε SOCPs): measured ≈ 4 ms; rounded up.
 const SECONDS_PER_POINT_THEORY: f64 = 8e-3;
 
@@ -48,7 +54,7 @@ pub struct WorkEstimate {
 pub fn unknowns(cfg: &Config) -> usize {
     match cfg.discretisation.method {
         Method::Fe => 3 * cfg.discretisation.elements,
-        Method::Fd => 2 * cfg.discretisation.elements,
+        Method::Fd => 2 * cfg.discretisation.fd_points,
     }
 }
 
@@ -66,6 +72,7 @@ pub fn estimate(base: &Config, axes: &[Axis]) -> WorkEstimate {
     let points = axes.iter().fold(1u128, |acc, a| acc.saturating_mul(a.len() as u128));
     let (steps0, n0) = point_cost(base);
     let (mut steps, mut n) = (steps0.max(1) as f64, n0.max(1) as f64);
+    let mut exponential = base.time_scheme(true) == TimeScheme::Exponential;
     for a in axes {
         let idx: Vec<usize> = match &a.spacing {
             Spacing::List { values } => (0..values.len().min(256)).collect(),
@@ -77,17 +84,24 @@ pub fn estimate(base: &Config, axes: &[Axis]) -> WorkEstimate {
                 let (s, k) = point_cost(&cfg);
                 most_steps = most_steps.max(s);
                 most_n = most_n.max(k);
+                exponential |= cfg.time_scheme(true) == TimeScheme::Exponential;
             }
         }
         steps *= most_steps as f64 / steps0.max(1) as f64;
         n *= most_n as f64 / n0.max(1) as f64;
     }
     let per = if n <= MODAL_AUTO_UNKNOWNS as f64 { SECONDS_PER_MODE_STEP } else { SECONDS_PER_UNKNOWN_STEP };
+    let mut point_seconds = steps * n * per + SECONDS_PER_POINT_THEORY;
+    if exponential {
+        let states = 2.0 * n;
+        point_seconds += steps * states * states * SECONDS_PER_EXPONENTIAL_ENTRY_STEP
+            + states.powi(3) * SECONDS_PER_EXPONENTIAL_SETUP_CUBE;
+    }
     WorkEstimate {
         points,
         steps_per_point: steps.min(u64::MAX as f64) as u64,
         unknowns: n.min(usize::MAX as f64) as usize,
-        core_seconds: (steps * n * per + SECONDS_PER_POINT_THEORY) * points as f64,
+        core_seconds: point_seconds * points as f64,
     }
 }
 

@@ -125,7 +125,7 @@ impl TipTrace {
 
 /// Run the closed loop of `cfg` on a shared basis and signal (built from configurations that
 /// agree with `cfg` on the keys they read; [`RunCache`] guarantees it), with the scheme
-/// `cfg.discretisation.stepper` selects.
+/// `cfg.time_scheme(true)` selects (`discretisation.stepper`, `auto` resolved).
 pub fn run(cfg: &Config, basis: &ModalBasis, signal: &InputSignal) -> Result<TipTrace, SimError> {
     cfg.validate().map_err(SimError::Config)?;
     let lp = ModalLoop::new(cfg, basis)?;
@@ -174,8 +174,8 @@ pub fn run(cfg: &Config, basis: &ModalBasis, signal: &InputSignal) -> Result<Tip
                 g_hat,
             };
             step += 1;
-            lp.step(&mut st, &input);
-            squares.update(t0 + (j + 1) as f64 * h, taus(&st, g_hat));
+            let exact = lp.step(&mut st, &input);
+            squares.update_step(t0 + (j + 1) as f64 * h, taus(&st, g_hat), exact);
         }
         squares.update(k as f64 * period, taus(&st, [signal.g_hat[0][k], signal.g_hat[1][k]]));
         if k % every == 0 || k == total {

@@ -19,6 +19,8 @@ pub struct Timing {
     pub unknowns: usize,
     /// Basis the run was stepped in (`modal` or `nodal`).
     pub basis: String,
+    /// Time scheme it was stepped with (`auto` resolved).
+    pub stepper: String,
     /// Horizon (s).
     pub t_end: f64,
     /// Integrator steps.
@@ -43,6 +45,7 @@ pub fn time_config(cfg: &Config, repeats: usize) -> Result<Timing, SimError> {
     let mut steps = 0;
     let mut unknowns = 0;
     let mut basis = String::new();
+    let mut stepper = String::new();
     for _ in 0..repeats.max(1) {
         let t = Instant::now();
         let out = simulate(cfg, RunOptions::default())?;
@@ -50,12 +53,14 @@ pub fn time_config(cfg: &Config, repeats: usize) -> Result<Timing, SimError> {
         steps = out.stats.steps;
         unknowns = out.stats.unknowns;
         basis = out.stats.basis;
+        stepper = out.stats.stepper;
     }
     let run_seconds = median(runs);
     Ok(Timing {
         elements: cfg.discretisation.grid_size(),
         unknowns,
         basis,
+        stepper,
         t_end: cfg.horizon.t_end,
         steps,
         run_seconds,

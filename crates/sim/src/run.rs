@@ -196,6 +196,9 @@ pub struct RunStats {
     pub factor_nnz: usize,
     /// Basis the loop was stepped in: `modal` or `nodal` (`discretisation.basis`).
     pub basis: String,
+    /// Time scheme it was stepped with: `trbdf2`, `trapezoid` or `exponential`
+    /// (`discretisation.stepper`, `auto` resolved by `Config::time_scheme`).
+    pub stepper: String,
     /// Integrator steps taken.
     pub steps: usize,
     /// Wall time for assembly and factorisation (s).
@@ -225,12 +228,15 @@ const DIVERGENCE_FACTOR: f64 = 1e12;
 /// `discretisation.basis`, with `auto` resolved to `modal` when `disc` has at most
 /// [`MODAL_AUTO_UNKNOWNS`] unknowns and its modal basis passes its orthonormality check
 /// ([`crate::modal::MASS_TOLERANCE`], [`crate::modal::STIFFNESS_TOLERANCE`]), `nodal`
-/// otherwise. An explicit `modal` whose basis
-/// cannot be built or fails the check is an error naming the reason.
+/// otherwise. An explicit `modal` (or `auto` with `discretisation.stepper = exponential`, which
+/// runs in the modal basis only) whose basis cannot be built or fails the check is an error
+/// naming the reason.
 pub fn resolved_basis(cfg: &Config, disc: &Discretisation) -> Result<(StepBasis, Option<ModalBasis>), SimError> {
+    let needs_modal = cfg.discretisation.stepper == wingcheck_model::TimeScheme::Exponential;
     match cfg.discretisation.basis {
         StepBasis::Nodal => Ok((StepBasis::Nodal, None)),
         StepBasis::Modal => Ok((StepBasis::Modal, Some(ModalBasis::of(disc)?))),
+        StepBasis::Auto if needs_modal => Ok((StepBasis::Modal, Some(ModalBasis::of(disc)?))),
         StepBasis::Auto if disc.dim() > MODAL_AUTO_UNKNOWNS => Ok((StepBasis::Nodal, None)),
         StepBasis::Auto => match ModalBasis::of(disc) {
             Ok(basis) => Ok((StepBasis::Modal, Some(basis))),
@@ -300,6 +306,7 @@ fn simulate_nodal(
             unknowns,
             factor_nnz,
             basis: "nodal".into(),
+            stepper: cfg.time_scheme(false).name().into(),
             steps: total * cfg.steps_per_sample(),
             setup_seconds,
             stepping_seconds: start.elapsed().as_secs_f64(),

@@ -67,9 +67,9 @@ pub fn simulate_modal(
     crate::cpu::clear_upper_vector_state();
     for k in 1..=total {
         signal.advance(|t, input| {
-            lp.step(&mut st, input);
+            let square = lp.step(&mut st, input);
             let t1 = t + h;
-            full_rate.update(t1, &peak_values(&lp, &st, input.g_hat, signal_g(cfg, t1)));
+            full_rate.update_step(t1, &peak_values(&lp, &st, input.g_hat, signal_g(cfg, t1)), square);
         });
         let now = signal.current();
         let t = k as f64 * period;
@@ -90,6 +90,7 @@ pub fn simulate_modal(
             unknowns: basis.len(),
             factor_nnz: 0,
             basis: "modal".into(),
+            stepper: lp.scheme().name().into(),
             steps: total * cfg.steps_per_sample(),
             setup_seconds,
             stepping_seconds: start.elapsed().as_secs_f64(),

@@ -7,6 +7,7 @@ use wingcheck_model::{Config, ControllerKind, TimeScheme};
 
 use crate::{Sample, SimError};
 
+use super::exact::{ExactStep, LoopCoefficients};
 use super::{ModalBasis, SampleInput};
 
 /// The step matrix S = M/α + C + αK_c of the scheme in the modal basis: D + β U T Uᵀ with
@@ -104,6 +105,10 @@ pub struct ModalState {
     pub v_tip: [f64; 2],
     /// Tip boundary states q'''(s) (1/m²), θ'(s) (1/m).
     pub w: [f64; 2],
+    /// Work buffers of the exponential scheme (empty for the others).
+    pub(crate) exact_x: Vec<f64>,
+    /// See `exact_x`.
+    pub(crate) exact_y: Vec<f64>,
 }
 
 impl ModalState {
@@ -133,8 +138,10 @@ pub struct StepInput {
 pub struct ModalLoop<'a> {
     u: &'a [Vec<f64>; 2],
     solve: StepSolve,
-    /// The scheme.
+    /// The scheme ([`Config::time_scheme`] in the modal basis).
     scheme: TimeScheme,
+    /// The exact transition, for the exponential scheme.
+    exact: Option<ExactStep>,
     h: f64,
     alpha: f64,
     a: f64,
@@ -156,23 +163,38 @@ impl<'a> ModalLoop<'a> {
             ControllerKind::None => [0.0, 0.0],
             _ => [cfg.control.k1, cfg.control.k2],
         };
-        let alpha = match cfg.discretisation.stepper {
+        let scheme = cfg.time_scheme(true);
+        let alpha = match scheme {
             TimeScheme::Trapezoid => 0.5 * h,
-            TimeScheme::Trbdf2 => crate::trbdf2::ALPHA * h,
+            _ => crate::trbdf2::ALPHA * h,
+        };
+        let stiff = [cfg.wing.ei, cfg.wing.gj];
+        let sign = [TipChannel::Bending.bc_sign(), TipChannel::Torsion.bc_sign()];
+        let exact = match scheme {
+            TimeScheme::Exponential => {
+                Some(ExactStep::new(basis, &LoopCoefficients { gain, a, b, xi, stiff, sign }, h)?)
+            }
+            _ => None,
         };
         Ok(ModalLoop {
             u: &basis.tip,
             solve: StepSolve::new(basis, alpha, xi, b + alpha * a, gain)?,
-            scheme: cfg.discretisation.stepper,
+            scheme,
+            exact,
             h,
             alpha,
             a,
             b,
             xi,
             gain,
-            stiff: [cfg.wing.ei, cfg.wing.gj],
-            sign: [TipChannel::Bending.bc_sign(), TipChannel::Torsion.bc_sign()],
+            stiff,
+            sign,
         })
+    }
+
+    /// The scheme this loop steps with (`auto` resolved).
+    pub fn scheme(&self) -> TimeScheme {
+        self.scheme
     }
 
     /// The initial state: η(0), ζ = 0, and the tip boundary states of the initial shape as the
@@ -186,6 +208,8 @@ impl<'a> ModalLoop<'a> {
             y: vec![0.0; basis.len()],
             v_tip: [0.0, 0.0],
             w: crate::stepper::initial_tip_states(cfg),
+            exact_x: self.exact.as_ref().map_or_else(Vec::new, |e| e.buffers().0),
+            exact_y: self.exact.as_ref().map_or_else(Vec::new, |e| e.buffers().1),
         }
     }
 
@@ -212,12 +236,37 @@ impl<'a> ModalLoop<'a> {
         }
     }
 
-    /// One integrator step of the configured scheme.
-    pub fn step(&self, st: &mut ModalState, input: &StepInput) {
-        match self.scheme {
-            TimeScheme::Trapezoid => self.trapezoid_step(st, input),
-            TimeScheme::Trbdf2 => self.trbdf2_step(st, input),
+    /// One integrator step of the configured scheme; returns the exact ∫τ_c² dt over the step
+    /// (N² s, N² m² s) for the exponential scheme, `None` for the others (whose τ is known at
+    /// the step's ends only).
+    pub fn step(&self, st: &mut ModalState, input: &StepInput) -> Option<[f64; 2]> {
+        match (&self.exact, self.scheme) {
+            (Some(exact), _) => Some(self.exponential_step(exact, st, input)),
+            (None, TimeScheme::Trapezoid) => {
+                self.trapezoid_step(st, input);
+                None
+            }
+            (None, _) => {
+                self.trbdf2_step(st, input);
+                None
+            }
         }
+    }
+
+    /// One exact step ([`ExactStep`]); the tip values are recomputed from the modal state, and
+    /// with ξ = 0 the tip states from the end-of-step force (w = s(τ + ḡ)/S).
+    fn exponential_step(&self, exact: &ExactStep, st: &mut ModalState, input: &StepInput) -> [f64; 2] {
+        let u = input.tip_input;
+        let square = exact.advance(st, [u[0], u[1], input.phi, input.g_hat[0], input.g_hat[1]]);
+        st.x_tip = [dot(&self.u[0], &st.eta), dot(&self.u[1], &st.eta)];
+        st.v_tip = [dot(&self.u[0], &st.zeta), dot(&self.u[1], &st.zeta)];
+        if self.xi <= 0.0 {
+            for ch in 0..2 {
+                let force = self.tau(ch, st.x_tip[ch], st.v_tip[ch], input.g_hat[ch]) + u[ch] + input.g_hat[ch];
+                st.w[ch] = self.sign[ch] * force / self.stiff[ch];
+            }
+        }
+        square
     }
 
     /// Tip forces of the right-hand side: ḡ − ĝ − k a x_tip (the displacement part of the

@@ -158,10 +158,18 @@ impl Stepper {
         tip_damp.add(disc.tip_theta, disc.tip_theta, k2);
         let tip = tip_damp.build();
         let (a, b, xi) = (cfg.control.a, cfg.control.b, cfg.wing.xi);
-        let scheme = cfg.discretisation.stepper;
+        let scheme = cfg.time_scheme(false);
         let alpha = match scheme {
             TimeScheme::Trapezoid => 0.5 * h,
             TimeScheme::Trbdf2 => trbdf2::ALPHA * h,
+            TimeScheme::Exponential | TimeScheme::Auto => {
+                return Err(SimError::Config(wingcheck_model::ConfigError::Inconsistent {
+                    fields: "discretisation.stepper, discretisation.basis".into(),
+                    reason: "discretisation.stepper = exponential runs in the modal basis only; this run is \
+                             stepped in the nodal basis"
+                        .into(),
+                }))
+            }
         };
         let stiffness_closed = SymMatrix::combine(&[(1.0, &disc.stiffness), (a, &tip)]);
         let step =
@@ -292,7 +300,7 @@ impl Stepper {
     fn substep(&mut self, t: f64) {
         match self.scheme {
             TimeScheme::Trapezoid => self.substep_trapezoid(t),
-            TimeScheme::Trbdf2 => self.substep_trbdf2(t),
+            _ => self.substep_trbdf2(t),
         }
         self.record_peaks(t + self.h);
     }

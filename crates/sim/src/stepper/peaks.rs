@@ -76,13 +76,22 @@ pub struct SquareIntegral {
 impl SquareIntegral {
     /// Record the values [τ1, τ2] at time t (t never decreases).
     pub fn update(&mut self, t: f64, v: [f64; 2]) {
+        self.update_step(t, v, None);
+    }
+
+    /// Record the values [τ1, τ2] at time t, with the exact ∫τ² dt since the previous instant
+    /// if the scheme provides it (the exponential scheme), the trapezoidal rule otherwise.
+    pub fn update_step(&mut self, t: f64, v: [f64; 2], exact: Option<[f64; 2]>) {
         if !self.started {
             (self.start, self.started) = (t, true);
         }
         let h = t - self.last_t;
         if h > 0.0 {
             for c in 0..2 {
-                self.integral[c] += 0.5 * h * (self.last[c] * self.last[c] + v[c] * v[c]);
+                self.integral[c] += match exact {
+                    Some(square) => square[c],
+                    None => 0.5 * h * (self.last[c] * self.last[c] + v[c] * v[c]),
+                };
             }
         }
         (self.last_t, self.last) = (t, v);
@@ -111,8 +120,14 @@ pub(crate) struct FullRate {
 impl FullRate {
     /// Fold in the values at time t.
     pub(crate) fn update(&mut self, t: f64, v: &[f64; 8]) {
+        self.update_step(t, v, None);
+    }
+
+    /// Fold in the values at time t, the end of a step whose exact ∫τ² the scheme may give
+    /// ([`SquareIntegral::update_step`]).
+    pub(crate) fn update_step(&mut self, t: f64, v: &[f64; 8], exact: Option<[f64; 2]>) {
         self.peaks.update(t, v);
-        self.squares.update(t, [v[4], v[5]]);
+        self.squares.update_step(t, [v[4], v[5]], exact);
     }
 
     /// Full-rate RMS of τ1, τ2 since the previous call ([`SquareIntegral::take_rms`]).
