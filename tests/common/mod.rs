@@ -3,7 +3,11 @@
 
 use wingcheck_model::{apply_overrides, Config};
 
-/// The paper's configuration with overrides.
+/// An SI-scale wing: span 6 m, EI 1e7 N m², GJ 1e6 N m², ρ 100 kg/m, I_p 10 kg m (with the
+/// paper's ρx_c unless a test sets it).
+pub const SI_WING: [&str; 5] = ["wing.span=6", "wing.ei=1e7", "wing.gj=1e6", "wing.rho=100", "wing.ip=10"];
+
+/// The paper's configuration with `key=value` overrides applied.
 pub fn paper_with(sets: &[&str]) -> Config {
     let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
     apply_overrides(&Config::paper(), &sets).expect("valid overrides")
