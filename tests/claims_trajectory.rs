@@ -191,4 +191,7 @@ fn ftdo_vs_dobc_is_only_partly_reproduced() {
     println!("explicit RMS τ1 {value} ± {error} vs dt = T/10: {reference}");
     assert!((value - reference).abs() <= error, "{value} ± {error} vs {reference}");
     assert!(error < 0.05 * value, "estimate uninformative: {error}");
+    // the scheme the explicit runs used is in the evidence and the summary
+    assert_eq!(row.evidence["explicit_stepper"], "exponential");
+    assert!(row.summary.contains("exponential scheme"), "{}", row.summary);
 }

@@ -154,8 +154,27 @@ fn exponential_scheme_refuses_the_nodal_basis_with_the_fields_named() {
     // auto basis on a grid too large for the modal basis: an error naming the limit, no panic
     let big = paper_with(&["discretisation.stepper=exponential", "discretisation.elements=400", "horizon.t_end=0.01"]);
     let err = simulate(&big, RunOptions::default()).unwrap_err().to_string();
-    assert!(err.contains("600"), "{err}");
+    assert!(err.contains("600") && err.contains("discretisation.stepper = exponential needs the modal basis"), "{err}");
     // `auto` on the nodal basis is TR-BDF2, and says so
     let nodal = paper_with(&["observer.rule=explicit", "discretisation.basis=nodal", "horizon.t_end=0.1"]);
     assert_eq!(run(&nodal).stats.stepper, "trbdf2");
+}
+
+#[test]
+fn error_estimate_refines_with_the_base_runs_scheme() {
+    // 51 elements (153 unknowns): the base run is exponential in the modal basis; the doubled
+    // grid (306 unknowns) is above `auto`'s modal limit, where `auto` would mean nodal TR-BDF2
+    // and the estimate would absorb TR-BDF2's ≈ 1 % chatter error (measured before the fix: the
+    // τ1-peak estimate 4.7e-3 at 51 elements against 8.2e-4 at 50). Pinned, the two agree.
+    let estimate = |elements: usize| {
+        let cfg =
+            paper_with(&["observer.rule=explicit", "horizon.t_end=2", &format!("discretisation.elements={elements}")]);
+        let e = wingcheck_sim::simulate_with_error(&cfg, RunOptions::default()).unwrap();
+        assert_eq!(e.output.stats.stepper, "exponential");
+        assert_eq!(e.refined_stepper, "exponential", "{elements} elements");
+        e.peaks.tau1.abs_max.error
+    };
+    let (at50, at51) = (estimate(50), estimate(51));
+    println!("τ1-peak error estimate: 50 elements {at50:.2e}, 51 elements {at51:.2e}");
+    assert!(at51 < 1.5 * at50 && at50 < 1.5 * at51, "{at50:e} vs {at51:e}");
 }

@@ -137,6 +137,7 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
             summary["error_estimate"] = json!({
                 "refined_grid": e.refined_grid,
                 "refined_dt": e.refined_dt,
+                "refined_stepper": e.refined_stepper,
                 "max_q_tip_error": e.max_q_tip_error,
                 "max_theta_tip_error": e.max_theta_tip_error,
                 "max_space_error": e.max_space_error,
@@ -179,13 +180,14 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
                     println!("{:>8} {:>14.6e} {:>9.1e} {:>14.6e} {:>9.1e}", t, q.value, q.error, th.value, th.error);
                 }
                 println!(
-                    "max estimated error over the horizon: q {:.1e} m, θ {:.1e} rad (space {:.1e}, time {:.1e}; refined grid {}, dt {}): {} the tolerance {:.0e}",
+                    "max estimated error over the horizon: q {:.1e} m, θ {:.1e} rad (space {:.1e}, time {:.1e}; refined grid {}, dt {}, {}): {} the tolerance {:.0e}",
                     e.max_q_tip_error,
                     e.max_theta_tip_error,
                     e.max_space_error,
                     e.max_time_error,
                     e.refined_grid,
                     e.refined_dt,
+                    e.refined_stepper,
                     if e.meets_tolerance { "within" } else { "EXCEEDS" },
                     TIP_TOLERANCE
                 );

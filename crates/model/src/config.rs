@@ -340,7 +340,8 @@ pub enum TimeScheme {
     /// The exact transition e^{Ah} of the semi-discrete closed loop over each step with the
     /// inputs held (ĝ exactly, g and the distributed load as their step means), with the exact
     /// ∫τ² dt in each step: τ statistics independent of dt at a fixed observer period. Modal
-    /// basis only; one dense product per step (≈ 30× a TR-BDF2 step) after an O(n³) setup.
+    /// basis only; one dense product per step (≈ 7× a TR-BDF2 step on the default grid) after an
+    /// O(n³) setup (≈ 8× TR-BDF2 per default 20-s run).
     Exponential,
 }
 
@@ -519,6 +520,31 @@ impl Config {
     /// The configuration as pretty JSON (stable key order: struct order).
     pub fn to_json_pretty(&self) -> String {
         serde_json::to_string_pretty(self).expect("config serialises")
+    }
+
+    /// Unknowns (displacement degrees of freedom) of the discretisation: FE 3 per element (q, q'
+    /// per node and θ per node, root clamped), FD 2 per grid interval (q, θ per node but the
+    /// root's) — the number `discretisation.basis = auto` compares with [`MODAL_AUTO_UNKNOWNS`].
+    pub fn unknowns(&self) -> usize {
+        match self.discretisation.method {
+            Method::Fe => 3 * self.discretisation.elements,
+            Method::Fd => 2 * self.discretisation.fd_points,
+        }
+    }
+
+    /// The time scheme a run is expected to use, before its basis is built: the modal basis is
+    /// expected for `basis = modal`, for `stepper = exponential` and for `basis = auto` up to
+    /// [`MODAL_AUTO_UNKNOWNS`] unknowns (there its orthonormality check may still send the run to
+    /// the nodal basis, and `auto` then means the cheaper TR-BDF2). For work estimates.
+    pub fn expected_time_scheme(&self) -> TimeScheme {
+        let modal = match self.discretisation.basis {
+            StepBasis::Modal => true,
+            StepBasis::Nodal => false,
+            StepBasis::Auto => {
+                self.discretisation.stepper == TimeScheme::Exponential || self.unknowns() <= MODAL_AUTO_UNKNOWNS
+            }
+        };
+        self.time_scheme(modal)
     }
 
     /// The time scheme a run of this configuration uses when stepped in the modal basis

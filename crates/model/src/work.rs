@@ -81,16 +81,6 @@ pub struct WorkRefused {
     pub limits: String,
 }
 
-/// Unknowns of the semi-discrete system (displacements and velocities) for `elements`:
-/// FE has 2 Hermite + 1 linear unknowns per element for (q, θ), FD 2 per node plus ghosts.
-pub fn unknowns(method: Method, elements: usize) -> f64 {
-    let per_field = match method {
-        Method::Fe => 3.0 * elements as f64,
-        Method::Fd => 2.0 * (elements as f64 + 3.0),
-    };
-    2.0 * per_field
-}
-
 fn human_bytes(b: f64) -> String {
     if b >= 1e9 {
         format!("{:.3} GB", b / 1e9)
@@ -117,7 +107,7 @@ impl WorkEstimate {
     pub fn simulation(cfg: &Config, fields: bool, json_output: Option<bool>) -> WorkEstimate {
         let steps = (cfg.horizon.t_end / cfg.discretisation.dt).ceil();
         let samples = (cfg.horizon.t_end / cfg.horizon.sample_every).floor() + 1.0;
-        let n = unknowns(cfg.discretisation.method, cfg.discretisation.grid_size());
+        let n = 2.0 * cfg.unknowns() as f64;
         let field_values = if fields { 2.0 * cfg.horizon.field_points as f64 } else { 0.0 };
         let memory = samples * (SERIES_BYTES_PER_SAMPLE + 8.0 * field_values) + 200.0 * n * 8.0;
         let output = match json_output {
@@ -127,7 +117,7 @@ impl WorkEstimate {
         };
         // the exponential scheme (the modal basis, n = displacements + velocities states): one
         // dense product per step after an O(n³) setup
-        let exponential = if cfg.time_scheme(true) == crate::TimeScheme::Exponential {
+        let exponential = if cfg.expected_time_scheme() == crate::TimeScheme::Exponential {
             steps * n * n * SECONDS_PER_EXPONENTIAL_ENTRY_STEP + n.powi(3) * SECONDS_PER_EXPONENTIAL_SETUP_CUBE
         } else {
             0.0
@@ -245,5 +235,12 @@ mod tests {
         let trbdf2 = seconds(&["observer.rule=explicit", "discretisation.stepper=trbdf2"]);
         let exponential = seconds(&["observer.rule=explicit"]);
         assert!(exponential > 2.0 * trbdf2, "{exponential} vs {trbdf2}");
+        // above MODAL_AUTO_UNKNOWNS `auto` runs nodal TR-BDF2, and is estimated as such
+        let fine = ["observer.rule=explicit", "discretisation.elements=200"];
+        let auto = seconds(&fine);
+        let nodal = seconds(&[fine[0], fine[1], "discretisation.stepper=trbdf2"]);
+        assert_eq!(auto, nodal);
+        // a forced exponential scheme there is estimated with its dense step
+        assert!(seconds(&[fine[0], fine[1], "discretisation.stepper=exponential"]) > 10.0 * nodal);
     }
 }

@@ -1,7 +1,7 @@
 //! Work guards of a search, checked before any work starts: the number of points, the
 //! estimated core time, and the number of worker threads.
 
-use wingcheck_model::{apply_overrides, Config, Method, TimeScheme};
+use wingcheck_model::{apply_overrides, Config, TimeScheme};
 
 use crate::axis::{Axis, Spacing};
 use crate::SearchError;
@@ -50,17 +50,9 @@ pub struct WorkEstimate {
     pub core_seconds: f64,
 }
 
-/// Unknowns of the discretisation of `cfg` (FE: 3 per element, FD: 2 per interior node).
-pub fn unknowns(cfg: &Config) -> usize {
-    match cfg.discretisation.method {
-        Method::Fe => 3 * cfg.discretisation.elements,
-        Method::Fd => 2 * cfg.discretisation.fd_points,
-    }
-}
-
 /// Integrator steps and unknowns of one point.
 fn point_cost(cfg: &Config) -> (u64, usize) {
-    (cfg.total_samples() as u64 * cfg.steps_per_sample() as u64, unknowns(cfg))
+    (cfg.total_samples() as u64 * cfg.steps_per_sample() as u64, cfg.unknowns())
 }
 
 /// Estimate the work of a grid over validated axes: for each axis the values of most steps
@@ -72,7 +64,7 @@ pub fn estimate(base: &Config, axes: &[Axis]) -> WorkEstimate {
     let points = axes.iter().fold(1u128, |acc, a| acc.saturating_mul(a.len() as u128));
     let (steps0, n0) = point_cost(base);
     let (mut steps, mut n) = (steps0.max(1) as f64, n0.max(1) as f64);
-    let mut exponential = base.time_scheme(true) == TimeScheme::Exponential;
+    let mut exponential = base.expected_time_scheme() == TimeScheme::Exponential;
     for a in axes {
         let idx: Vec<usize> = match &a.spacing {
             Spacing::List { values } => (0..values.len().min(256)).collect(),
@@ -84,7 +76,7 @@ pub fn estimate(base: &Config, axes: &[Axis]) -> WorkEstimate {
                 let (s, k) = point_cost(&cfg);
                 most_steps = most_steps.max(s);
                 most_n = most_n.max(k);
-                exponential |= cfg.time_scheme(true) == TimeScheme::Exponential;
+                exponential |= cfg.expected_time_scheme() == TimeScheme::Exponential;
             }
         }
         steps *= most_steps as f64 / steps0.max(1) as f64;

@@ -96,6 +96,10 @@ pub struct TipTrace {
     pub tau1_rms: Vec<f64>,
     /// The same for τ2 (N m).
     pub tau2_rms: Vec<f64>,
+    /// Full-rate max |τ1| (N), |τ2| (N m) over [0, T]: every integrator step's end and both
+    /// sides of every sample's jump, as `wingcheck_sim::Peaks` (never the output samples, which
+    /// are phase-locked to the explicit observer's chatter).
+    pub tau_peak: [f64; 2],
     /// g1 − ĝ1 (N).
     pub g1_tilde: Vec<f64>,
     /// g2 − ĝ2 (N m).
@@ -106,9 +110,11 @@ pub struct TipTrace {
 
 impl TipTrace {
     /// The trace of a full simulator run (fallback path and tests).
-    pub fn from_series(s: &wingcheck_sim::Series) -> TipTrace {
+    pub fn from_output(o: &wingcheck_sim::SimOutput) -> TipTrace {
+        let s = &o.series;
         let tilde = |g: &[f64], h: &[f64]| g.iter().zip(h).map(|(a, b)| a - b).collect();
         TipTrace {
+            tau_peak: [o.peaks.tau1.abs_max, o.peaks.tau2.abs_max],
             t: s.t.clone(),
             q_tip: s.q_tip.clone(),
             theta_tip: s.theta_tip.clone(),
@@ -160,7 +166,14 @@ pub fn run(cfg: &Config, basis: &ModalBasis, signal: &InputSignal) -> Result<Tip
     };
     // full-rate ∫τ² dt: after every step with the held estimate, and after each sample's jump
     let taus = |st: &ModalState, gh: [f64; 2]| [0, 1].map(|c| lp.tau(c, st.x_tip[c], st.v_tip[c], gh[c]));
-    squares.update(0.0, taus(&st, [signal.g_hat[0][0], signal.g_hat[1][0]]));
+    let mut peak = [0.0f64; 2];
+    let fold = |peak: &mut [f64; 2], tau: [f64; 2]| {
+        for c in 0..2 {
+            peak[c] = peak[c].max(tau[c].abs());
+        }
+        tau
+    };
+    squares.update(0.0, fold(&mut peak, taus(&st, [signal.g_hat[0][0], signal.g_hat[1][0]])));
     record(0, &st, squares.take_rms(), &mut trace)?;
     wingcheck_sim::cpu::clear_upper_vector_state();
     let mut step = 0;
@@ -175,14 +188,15 @@ pub fn run(cfg: &Config, basis: &ModalBasis, signal: &InputSignal) -> Result<Tip
             };
             step += 1;
             let exact = lp.step(&mut st, &input);
-            squares.update_step(t0 + (j + 1) as f64 * h, taus(&st, g_hat), exact);
+            squares.update_step(t0 + (j + 1) as f64 * h, fold(&mut peak, taus(&st, g_hat)), exact);
         }
-        squares.update(k as f64 * period, taus(&st, [signal.g_hat[0][k], signal.g_hat[1][k]]));
+        squares.update(k as f64 * period, fold(&mut peak, taus(&st, [signal.g_hat[0][k], signal.g_hat[1][k]])));
         if k % every == 0 || k == total {
             st.sync_tip(basis);
             record(k, &st, squares.take_rms(), &mut trace)?;
         }
     }
+    trace.tau_peak = peak;
     Ok(trace)
 }
 

@@ -25,7 +25,8 @@ use crate::theory::{Theory, TheoryCache};
 /// - `settling_time`: the first output sample time after which |q(s,t)| ≤ 5 % |q(s,0)| and
 ///   |θ(s,t)| ≤ 5 % |θ(s,0)| for the rest of the horizon (a channel starting at 0 is ignored);
 ///   empty if not settled by T;
-/// - `tau*_peak`, `tau*_rms`: max |τ| and RMS τ over [0, T];
+/// - `tau*_peak`, `tau*_rms`: max |τ| and RMS τ over [0, T], both at full rate (every
+///   integrator step and both sides of each sample's jump, not the output samples);
 /// - `g*_tilde_rms`: RMS of g̃ = g − ĝ over the window; `energy_t_end`: E(T).
 pub const METRICS: [&str; 21] = [
     "lambda2",
@@ -190,9 +191,9 @@ fn sim_metrics(s: &TipTrace, win: (f64, f64)) -> [Option<f64>; 12] {
         rms(th.iter().copied()),
         max_abs(th.iter().copied()),
         settling_time(s),
-        max_abs(s.tau1.iter().copied()),
+        (!s.t.is_empty()).then_some(s.tau_peak[0]),
         full_rate_rms(s, &s.tau1_rms),
-        max_abs(s.tau2.iter().copied()),
+        (!s.t.is_empty()).then_some(s.tau_peak[1]),
         full_rate_rms(s, &s.tau2_rms),
         rms(w(&s.g1_tilde).into_iter()),
         rms(w(&s.g2_tilde).into_iter()),
@@ -205,7 +206,7 @@ fn sim_metrics(s: &TipTrace, win: (f64, f64)) -> [Option<f64>; 12] {
 pub fn closed_loop(cfg: &Config, runs: &RunCache) -> Result<TipTrace, SimError> {
     match &*runs.basis(cfg) {
         Ok(basis) => crate::modal::run(cfg, basis, &runs.signal(cfg)),
-        Err(_) => simulate(cfg, RunOptions::default()).map(|o| TipTrace::from_series(&o.series)),
+        Err(_) => simulate(cfg, RunOptions::default()).map(|o| TipTrace::from_output(&o)),
     }
 }
 
@@ -333,10 +334,11 @@ mod tests {
             *c = vec![0.0, 1.0, 2.0];
         }
         (s.g1_tilde, s.g2_tilde, s.energy_end) = (vec![0.0; 3], vec![0.0; 3], 2.0);
+        s.tau_peak = [2.5, 3.0]; // full rate: above every output sample's |τ|
         let m = sim_metrics(&s, (0.5, 1.0));
         assert_eq!(m[0], Some(12.5f64.sqrt()));
         assert_eq!(m[1], Some(4.0));
-        assert_eq!(m[5], Some(2.0)); // τ1 peak over [0, T]
+        assert_eq!(m[5], Some(2.5)); // τ1 peak over [0, T], the full-rate one
         assert_eq!(m[9], Some(0.0)); // g̃1 = 0
         assert_eq!(m[11], Some(2.0)); // E(T)
     }

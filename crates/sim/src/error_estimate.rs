@@ -61,6 +61,8 @@ pub struct EstimatedRun {
     pub refined_grid: usize,
     /// Step of the temporal refinement run (s, dt/2).
     pub refined_dt: f64,
+    /// Time scheme of both refinement runs: the base run's (`stats.stepper`).
+    pub refined_stepper: String,
     /// Estimated absolute error of q(s,t_k) (m) at each output sample.
     pub q_tip_error: Vec<f64>,
     /// Estimated absolute error of θ(s,t_k) (rad) at each output sample.
@@ -154,15 +156,30 @@ fn envelope(t: &[f64], e: &[f64]) -> Vec<f64> {
 
 /// Run `cfg` and estimate the discretisation error of every output sample's tip values and of
 /// the full-rate peaks by one refinement in h and one in dt. Refuses (as a configuration
-/// error) a refinement the validation would refuse, e.g. a doubled grid above 4000.
+/// error) a refinement the validation would refuse, e.g. a doubled grid above 4000. Both
+/// refined runs use the time scheme the base run used (`stats.stepper`; with `auto` the doubled
+/// grid could otherwise cross into the nodal basis and another scheme, whose error the estimate
+/// would absorb); a refined grid that cannot run it is an error saying so.
 pub fn simulate_with_error(cfg: &Config, opts: RunOptions<'_>) -> Result<EstimatedRun, SimError> {
     cfg.validate()?;
-    let space_cfg = refined_space(cfg);
-    let time_cfg = refined_time(cfg);
+    let (mut space_cfg, mut time_cfg) = (refined_space(cfg), refined_time(cfg));
     space_cfg.validate()?;
     time_cfg.validate()?;
     let output = simulate(cfg, opts)?;
-    let space = simulate(&space_cfg, RunOptions::default())?;
+    let scheme: wingcheck_model::TimeScheme =
+        output.stats.stepper.parse().map_err(|e: String| SimError::Numerical(format!("run stats: {e}")))?;
+    space_cfg.discretisation.stepper = scheme;
+    time_cfg.discretisation.stepper = scheme;
+    let space = simulate(&space_cfg, RunOptions::default()).map_err(|e| match e {
+        SimError::Numerical(reason) => SimError::Numerical(format!(
+            "the spatial refinement ({} {}) cannot run the base run's {} scheme: {reason}; \
+             set discretisation.stepper=trbdf2 to estimate with TR-BDF2, or use a coarser grid",
+            space_cfg.discretisation.grid_size(),
+            if space_cfg.discretisation.method == Method::Fe { "elements" } else { "intervals" },
+            scheme.name()
+        )),
+        other => other,
+    })?;
     let time = simulate(&time_cfg, RunOptions::default())?;
     let (b, s, t) = (&output.series, &space.series, &time.series);
     let n = b.len();
@@ -188,6 +205,7 @@ pub fn simulate_with_error(cfg: &Config, opts: RunOptions<'_>) -> Result<Estimat
         output,
         refined_grid,
         refined_dt: time_cfg.discretisation.dt,
+        refined_stepper: space.stats.stepper.clone(),
         q_tip_error: eq,
         theta_tip_error: et,
         max_q_tip_error: max_q,

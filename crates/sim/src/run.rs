@@ -233,10 +233,19 @@ const DIVERGENCE_FACTOR: f64 = 1e12;
 /// naming the reason.
 pub fn resolved_basis(cfg: &Config, disc: &Discretisation) -> Result<(StepBasis, Option<ModalBasis>), SimError> {
     let needs_modal = cfg.discretisation.stepper == wingcheck_model::TimeScheme::Exponential;
+    let modal = || {
+        ModalBasis::of(disc).map_err(|e| match e {
+            SimError::Numerical(reason) if needs_modal => SimError::Numerical(format!(
+                "discretisation.stepper = exponential needs the modal basis: {reason}; \
+                 use discretisation.stepper=trbdf2 (or auto) or a coarser grid"
+            )),
+            other => other,
+        })
+    };
     match cfg.discretisation.basis {
         StepBasis::Nodal => Ok((StepBasis::Nodal, None)),
-        StepBasis::Modal => Ok((StepBasis::Modal, Some(ModalBasis::of(disc)?))),
-        StepBasis::Auto if needs_modal => Ok((StepBasis::Modal, Some(ModalBasis::of(disc)?))),
+        StepBasis::Modal => Ok((StepBasis::Modal, Some(modal()?))),
+        StepBasis::Auto if needs_modal => Ok((StepBasis::Modal, Some(modal()?))),
         StepBasis::Auto if disc.dim() > MODAL_AUTO_UNKNOWNS => Ok((StepBasis::Nodal, None)),
         StepBasis::Auto => match ModalBasis::of(disc) {
             Ok(basis) => Ok((StepBasis::Modal, Some(basis))),

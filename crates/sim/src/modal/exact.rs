@@ -13,8 +13,10 @@
 //! block exponential would need e^{−Aᵀh}, which overflows: the stiff Kelvin–Voigt modes decay
 //! at ξω² ≫ 1/h.) Q_c is stored as its eigenvalue-truncated factor (∫τ² = Σ_j (f_jᵀX)²).
 //!
-//! Work: O(N³ log(‖A‖h)) once per run, N = 2n + 7, then one dense (2n + 2)×N product per step:
-//! ≈ 30× a TR-BDF2 step in the same basis. What it buys: τ statistics that do not depend on dt
+//! Work: O(N³ log(‖A‖h)) once per run, N = 2n + 2 + 5 (2n + 5 with ξ = 0: no tip states),
+//! then one dense (2n + 2 + r1 + r2)×N product per step (r_c: the Gramian factors' ranks, ≈ 23
+//! each on the default grid): measured 3.1 µs against TR-BDF2's 0.43 µs in the same basis
+//! (≈ 7×; ≈ 8× per 20-s run with the 13-ms setup, `wingcheck bench`). What it buys: τ statistics that do not depend on dt
 //! at a fixed observer period, however the held estimate jumps (the explicit FTDO alternates at
 //! the sample rate, which one TR-BDF2 step per sample resolves only to 1–2 % in RMS τ).
 
@@ -32,8 +34,12 @@ pub(crate) const INPUTS: usize = 5;
 const TAYLOR_DEGREE: usize = 18;
 /// ‖A s₀‖₁ bound of the Taylor start.
 const START_NORM: f64 = 0.25;
-/// Gramian eigenvalues below this fraction of the largest are dropped from its factor (their
-/// sum bounds the relative error of ∫τ² for a state of unit size).
+/// Gramian eigenvalues below this fraction of the largest are dropped from its factor. The
+/// computed Q carries an absolute round-off of order ε‖Q‖ in every entry anyway, so the quadratic
+/// form XᵀQX has an error of order ε‖Q‖·|X|² with or without the truncation, which adds at most
+/// N·1e-15·‖Q‖·|X|² (in the state's own coordinates: energy coordinates for the modes, the tip
+/// states and the held inputs in their units). Measured: rank 23 of 151 on the default grid, 38
+/// on an SI-scale wing; the runs' RMS τ agree with TR-BDF2's dt → 0 limit (tests/exponential.rs).
 const GRAMIAN_CUTOFF: f64 = 1e-15;
 
 /// The closed loop's transition over one step and its τ Gramians, built once per run.
