@@ -152,6 +152,12 @@ pub struct Manifest {
     pub options: SearchOptions,
     /// Metric columns.
     pub metrics: Vec<String>,
+    /// Time scheme of the base point's closed loop (`Config::expected_time_scheme`:
+    /// `discretisation.stepper` with `auto` resolved — `exponential` for the explicit FTDO in the
+    /// modal basis, `trbdf2` otherwise); points whose axes change the rule, the controller or the
+    /// grid follow the same rule.
+    #[serde(default)]
+    pub time_scheme: String,
 }
 
 /// A validated search.
@@ -239,6 +245,7 @@ impl Search {
                 .into(),
             options: self.options.clone(),
             metrics: METRICS.iter().map(|m| m.to_string()).collect(),
+            time_scheme: self.base.expected_time_scheme().name().into(),
         }
     }
 

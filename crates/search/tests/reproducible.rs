@@ -133,6 +133,8 @@ fn result_files_have_the_documented_shape() {
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("manifest.json")).unwrap()).unwrap();
     assert_eq!(manifest["base_config_sha256"], wingcheck_claims::config_sha256(&s.base));
     assert_eq!(manifest["axis_specs"][1], "control.b=0.5,1,2,4");
+    // the paper's base point (implicit FTDO): `auto` resolves to TR-BDF2
+    assert_eq!(manifest["time_scheme"], "trbdf2");
     let svg = std::fs::read_to_string(dir.path().join("heatmap-rms_q_tip.svg")).unwrap();
     assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
 }
