@@ -12,12 +12,14 @@
 mod config;
 mod error;
 mod overrides;
+mod scheme;
 mod validate;
 pub mod work;
 
 pub use config::*;
 pub use error::ConfigError;
 pub use overrides::{apply_override, apply_overrides};
+pub use scheme::{StepBasis, TimeScheme, MODAL_AUTO_UNKNOWNS, MODAL_MAX_UNKNOWNS};
 
 /// The paper's configuration (`configs/paper.json`), embedded at compile time.
 pub const PAPER_JSON: &str = include_str!("../../../configs/paper.json");
