@@ -9,16 +9,18 @@
 //! ∫_0^h τ_c² = Xᵀ Q_c X with the Gramian Q_c = ∫_0^h e^{Aᵀs} c_c c_cᵀ e^{As} ds of the output
 //! row τ_c = c_cᵀ X. Both come from one scaling-and-squaring chain: at s₀ = h/2^m with
 //! ‖A s₀‖₁ ≤ ¼, e^{As₀} by its Taylor series and Q_c(s₀) by the series of e^{Aᵀs}c integrated
-//! term by term; then m doublings E(2s) = E(s)², Q(2s) = Q(s) + E(s)ᵀQ(s)E(s). (Van Loan's
+//! term by term; then m doublings E(2s) = E(s)², carried as F = E − I (F ← 2F + F²), and
+//! Q(2s) = Q(s) + E(s)ᵀQ(s)E(s). (Van Loan's
 //! block exponential would need e^{−Aᵀh}, which overflows: the stiff Kelvin–Voigt modes decay
 //! at ξω² ≫ 1/h.) Q_c is stored as its eigenvalue-truncated factor (∫τ² = Σ_j (f_jᵀX)²).
 //!
 //! Work: O(N³ log(‖A‖h)) once per run, N = 2n + 2 + 5 (2n + 5 with ξ = 0: no tip states),
 //! then one dense (2n + 2 + r1 + r2)×N product per step (r_c: the Gramian factors' ranks, ≈ 23
 //! each on the default grid): measured 3.1 µs against TR-BDF2's 0.43 µs in the same basis
-//! (≈ 7×; ≈ 8× per 20-s run with the 13-ms setup, `wingcheck bench`). What it buys: τ statistics that do not depend on dt
-//! at a fixed observer period, however the held estimate jumps (the explicit FTDO alternates at
-//! the sample rate, which one TR-BDF2 step per sample resolves only to 1–2 % in RMS τ).
+//! (≈ 7×; ≈ 8× per 20-s run with the 13-ms setup, `wingcheck bench`). What it buys: τ
+//! statistics that do not depend on dt at a fixed observer period, however the held estimate
+//! jumps (the explicit FTDO alternates at the sample rate, which one TR-BDF2 step per sample
+//! resolves only to 1–2 % in RMS τ).
 
 use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, MatMut, MatRef, Par, Side};
@@ -68,6 +70,70 @@ pub(crate) struct LoopCoefficients {
     pub(crate) sign: [f64; 2],
 }
 
+/// e ← I + f.
+fn identity_plus(f: &Mat<f64>, e: &mut Mat<f64>) {
+    for j in 0..f.ncols() {
+        for i in 0..f.nrows() {
+            e[(i, j)] = f[(i, j)] + if i == j { 1.0 } else { 0.0 };
+        }
+    }
+}
+
+/// The closed loop's matrix A (Ẋ = AX) in X = (p, ζ, w, u) and its output rows c_c (τ_c = c_cᵀX),
+/// for modes with frequencies `omega` and `tip_states` = 2 (ξ > 0) or 0.
+fn closed_loop(
+    basis: &ModalBasis,
+    co: &LoopCoefficients,
+    omega: &[f64],
+    tip_states: usize,
+) -> (Mat<f64>, [Vec<f64>; 2]) {
+    let n = basis.len();
+    let len = 2 * n + tip_states + INPUTS;
+    let (w0, u0) = (2 * n, 2 * n + tip_states);
+    let u = &basis.tip;
+    // Tip values in X: x_c = Σ U_cj p_j/ω_j, v_c = Σ U_cj ζ_j; the tip force
+    // f_c = −k_c(a x_c + b v_c) + (ḡ_c − ĝ_c).
+    let force_row = |c: usize| -> Vec<f64> {
+        let mut row = vec![0.0; len];
+        for j in 0..n {
+            row[j] = -co.gain[c] * co.a * u[c][j] / omega[j];
+            row[n + j] = -co.gain[c] * co.b * u[c][j];
+        }
+        row[u0 + c] = 1.0;
+        row
+    };
+    let force = [force_row(0), force_row(1)];
+    let mut a = Mat::<f64>::zeros(len, len);
+    for i in 0..n {
+        a[(i, n + i)] = omega[i];
+        a[(n + i, i)] = -omega[i];
+        a[(n + i, n + i)] = -co.xi * basis.omega2[i];
+        for (c, row) in force.iter().enumerate() {
+            for (j, r) in row.iter().enumerate() {
+                a[(n + i, j)] += u[c][i] * r;
+            }
+        }
+        a[(n + i, u0 + 2)] = basis.load[i];
+    }
+    if tip_states == 2 {
+        for (c, row) in force.iter().enumerate() {
+            let scale = co.sign[c] / (co.xi * co.stiff[c]);
+            for (j, r) in row.iter().enumerate() {
+                a[(w0 + c, j)] += scale * r;
+            }
+            a[(w0 + c, w0 + c)] -= 1.0 / co.xi;
+        }
+    }
+    // τ_c = f_c − (ḡ_c − ĝ_c) − ĝ_c
+    let outputs = [0, 1].map(|c| {
+        let mut row = force[c].clone();
+        row[u0 + c] = 0.0;
+        row[u0 + 3 + c] = -1.0;
+        row
+    });
+    (a, outputs)
+}
+
 impl ExactStep {
     /// e^{Ah} and the Gramians for step h (s) of the loop on `basis`.
     pub(crate) fn new(basis: &ModalBasis, co: &LoopCoefficients, h: f64) -> Result<ExactStep, SimError> {
@@ -78,48 +144,7 @@ impl ExactStep {
         let omega: Vec<f64> = basis.omega2.iter().map(|w| w.sqrt()).collect();
         let tip_states = if co.xi > 0.0 { 2 } else { 0 };
         let len = 2 * n + tip_states + INPUTS;
-        let (w0, u0) = (2 * n, 2 * n + tip_states);
-        let u = &basis.tip;
-        // Tip values in X: x_c = Σ U_cj p_j/ω_j, v_c = Σ U_cj ζ_j; the tip force
-        // f_c = −k_c(a x_c + b v_c) + (ḡ_c − ĝ_c).
-        let force_row = |c: usize| -> Vec<f64> {
-            let mut row = vec![0.0; len];
-            for j in 0..n {
-                row[j] = -co.gain[c] * co.a * u[c][j] / omega[j];
-                row[n + j] = -co.gain[c] * co.b * u[c][j];
-            }
-            row[u0 + c] = 1.0;
-            row
-        };
-        let force = [force_row(0), force_row(1)];
-        let mut a = Mat::<f64>::zeros(len, len);
-        for i in 0..n {
-            a[(i, n + i)] = omega[i];
-            a[(n + i, i)] = -omega[i];
-            a[(n + i, n + i)] = -co.xi * basis.omega2[i];
-            for (c, row) in force.iter().enumerate() {
-                for (j, r) in row.iter().enumerate() {
-                    a[(n + i, j)] += u[c][i] * r;
-                }
-            }
-            a[(n + i, u0 + 2)] = basis.load[i];
-        }
-        if tip_states == 2 {
-            for (c, row) in force.iter().enumerate() {
-                let scale = co.sign[c] / (co.xi * co.stiff[c]);
-                for (j, r) in row.iter().enumerate() {
-                    a[(w0 + c, j)] += scale * r;
-                }
-                a[(w0 + c, w0 + c)] -= 1.0 / co.xi;
-            }
-        }
-        // τ_c = f_c − (ḡ_c − ĝ_c) − ĝ_c
-        let outputs = [0, 1].map(|c| {
-            let mut row = force[c].clone();
-            row[u0 + c] = 0.0;
-            row[u0 + 3 + c] = -1.0;
-            row
-        });
+        let (a, outputs) = closed_loop(basis, co, &omega, tip_states);
         let norm = (0..len).map(|j| (0..len).map(|i| a[(i, j)].abs()).sum::<f64>()).fold(0.0, f64::max);
         if !(norm.is_finite() && h.is_finite() && h > 0.0) {
             return Err(SimError::Numerical(format!("exponential scheme: ‖A‖₁ = {norm:e}, h = {h:e}")));
@@ -174,11 +199,7 @@ impl ExactStep {
         });
         let mut qe = Mat::<f64>::zeros(len, len);
         for _ in 0..doublings {
-            for j in 0..len {
-                for i in 0..len {
-                    e[(i, j)] = f[(i, j)] + if i == j { 1.0 } else { 0.0 };
-                }
-            }
+            identity_plus(&f, &mut e);
             for qc in q.iter_mut() {
                 // Q ← Q + EᵀQE (symmetrised)
                 matmul(qe.as_mut(), Accum::Replace, qc.as_ref(), e.as_ref(), 1.0, Par::Seq);
@@ -197,11 +218,7 @@ impl ExactStep {
                 }
             }
         }
-        for j in 0..len {
-            for i in 0..len {
-                e[(i, j)] = f[(i, j)] + if i == j { 1.0 } else { 0.0 };
-            }
-        }
+        identity_plus(&f, &mut e);
         let rows = 2 * n + tip_states;
         let mut factor_rows: Vec<Vec<f64>> = Vec::new();
         let mut ranks = [0; 2];

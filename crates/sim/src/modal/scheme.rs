@@ -133,16 +133,22 @@ pub struct StepInput {
     pub g_hat: [f64; 2],
 }
 
+/// The scheme of a loop ([`Config::time_scheme`] in the modal basis) with what its steps use:
+/// the Woodbury step solve of the implicit schemes, the exact transition of the exponential one.
+#[derive(Debug)]
+enum Stepping {
+    Trapezoid(StepSolve),
+    Trbdf2(StepSolve),
+    Exponential(ExactStep),
+}
+
 /// Everything a step reads that is fixed over a run.
 #[derive(Debug)]
 pub struct ModalLoop<'a> {
     u: &'a [Vec<f64>; 2],
-    solve: StepSolve,
-    /// The scheme ([`Config::time_scheme`] in the modal basis).
-    scheme: TimeScheme,
-    /// The exact transition, for the exponential scheme.
-    exact: Option<ExactStep>,
+    stepping: Stepping,
     h: f64,
+    /// α of the implicit scheme's step matrix (s): h/2 (trapezoid), γh/2 (TR-BDF2).
     alpha: f64,
     a: f64,
     b: f64,
@@ -170,47 +176,44 @@ impl<'a> ModalLoop<'a> {
         };
         let stiff = [cfg.wing.ei, cfg.wing.gj];
         let sign = [TipChannel::Bending.bc_sign(), TipChannel::Torsion.bc_sign()];
-        let exact = match scheme {
+        let solve = || StepSolve::new(basis, alpha, xi, b + alpha * a, gain);
+        let stepping = match scheme {
+            TimeScheme::Trapezoid => Stepping::Trapezoid(solve()?),
             TimeScheme::Exponential => {
-                Some(ExactStep::new(basis, &LoopCoefficients { gain, a, b, xi, stiff, sign }, h)?)
+                Stepping::Exponential(ExactStep::new(basis, &LoopCoefficients { gain, a, b, xi, stiff, sign }, h)?)
             }
-            _ => None,
+            _ => Stepping::Trbdf2(solve()?),
         };
-        Ok(ModalLoop {
-            u: &basis.tip,
-            solve: StepSolve::new(basis, alpha, xi, b + alpha * a, gain)?,
-            scheme,
-            exact,
-            h,
-            alpha,
-            a,
-            b,
-            xi,
-            gain,
-            stiff,
-            sign,
-        })
+        Ok(ModalLoop { u: &basis.tip, stepping, h, alpha, a, b, xi, gain, stiff, sign })
     }
 
     /// The scheme this loop steps with (`auto` resolved).
     pub fn scheme(&self) -> TimeScheme {
-        self.scheme
+        match self.stepping {
+            Stepping::Trapezoid(_) => TimeScheme::Trapezoid,
+            Stepping::Trbdf2(_) => TimeScheme::Trbdf2,
+            Stepping::Exponential(_) => TimeScheme::Exponential,
+        }
     }
 
     /// The initial state: η(0), ζ = 0, and the tip boundary states of the initial shape as the
     /// nodal stepper sets them (q'''(s,0) = −3 q_tip/s³ for the cantilever shape, 0 for the
     /// linear one; θ'(s,0) = θ_tip/s).
     pub fn initial_state(&self, cfg: &Config, basis: &ModalBasis) -> ModalState {
-        ModalState {
+        let mut st = ModalState {
             x_tip: [dot(&basis.tip[0], &basis.eta0), dot(&basis.tip[1], &basis.eta0)],
             eta: basis.eta0.clone(),
             zeta: vec![0.0; basis.len()],
             y: vec![0.0; basis.len()],
             v_tip: [0.0, 0.0],
             w: crate::stepper::initial_tip_states(cfg),
-            exact_x: self.exact.as_ref().map_or_else(Vec::new, |e| e.buffers().0),
-            exact_y: self.exact.as_ref().map_or_else(Vec::new, |e| e.buffers().1),
+            exact_x: Vec::new(),
+            exact_y: Vec::new(),
+        };
+        if let Stepping::Exponential(exact) = &self.stepping {
+            (st.exact_x, st.exact_y) = exact.buffers();
         }
+        st
     }
 
     /// The state as a [`Sample`] at time t with the observer's output `obs` (energy from the
@@ -240,14 +243,14 @@ impl<'a> ModalLoop<'a> {
     /// (N² s, N² m² s) for the exponential scheme, `None` for the others (whose τ is known at
     /// the step's ends only).
     pub fn step(&self, st: &mut ModalState, input: &StepInput) -> Option<[f64; 2]> {
-        match (&self.exact, self.scheme) {
-            (Some(exact), _) => Some(self.exponential_step(exact, st, input)),
-            (None, TimeScheme::Trapezoid) => {
-                self.trapezoid_step(st, input);
+        match &self.stepping {
+            Stepping::Exponential(exact) => Some(self.exponential_step(exact, st, input)),
+            Stepping::Trapezoid(solve) => {
+                self.trapezoid_step(solve, st, input);
                 None
             }
-            (None, _) => {
-                self.trbdf2_step(st, input);
+            Stepping::Trbdf2(solve) => {
+                self.trbdf2_step(solve, st, input);
                 None
             }
         }
@@ -282,12 +285,12 @@ impl<'a> ModalLoop<'a> {
 
     /// One trapezoidal step (α = h/2): S v̄ = (2/h)ζ − Ω²η + f̄, η += h v̄, ζ = 2v̄ − ζ; the
     /// tip states as `crate::Stepper`'s trapezoidal step.
-    pub fn trapezoid_step(&self, st: &mut ModalState, input: &StepInput) {
+    fn trapezoid_step(&self, solve: &StepSolve, st: &mut ModalState, input: &StepInput) {
         let h = self.h;
         let f = self.tip_forces(input, st.x_tip);
-        let t = self.solve.rhs(self.u, &st.zeta, &st.eta, input.phi, f, &mut st.y);
-        let (c, vbar) = self.solve.correct(t);
-        let z = &self.solve.z;
+        let t = solve.rhs(self.u, &st.zeta, &st.eta, input.phi, f, &mut st.y);
+        let (c, vbar) = solve.correct(t);
+        let z = &solve.z;
         for (((yi, (zt, et)), &z0), &z1) in
             st.y.iter().zip(st.zeta.iter_mut().zip(st.eta.iter_mut())).zip(&z[0]).zip(&z[1])
         {
@@ -315,20 +318,19 @@ impl<'a> ModalLoop<'a> {
     /// (η̂, ζ̂) = A(η_γ, ζ_γ) − B(η, ζ), S ζ₁ = ζ̂/α − Ω²η̂ + f̄, η₁ = η̂ + αζ₁. The stage-2
     /// right-hand side is formed in the pass that finishes stage 1 (its tip forces need only
     /// the tip values of stage 1); the tip states by the same stages.
-    pub fn trbdf2_step(&self, st: &mut ModalState, input: &StepInput) {
+    fn trbdf2_step(&self, sv: &StepSolve, st: &mut ModalState, input: &StepInput) {
         use crate::trbdf2::{A, B};
         let alpha = self.alpha;
         let (xn, vn) = (st.x_tip, st.v_tip);
         // Stage 1.
         let f = self.tip_forces(input, xn);
-        let t = self.solve.rhs(self.u, &st.zeta, &st.eta, input.phi, f, &mut st.y);
-        let (c, u_tip) = self.solve.correct(t);
+        let t = sv.rhs(self.u, &st.zeta, &st.eta, input.phi, f, &mut st.y);
+        let (c, u_tip) = sv.correct(t);
         let xg = [0, 1].map(|ch| xn[ch] + 2.0 * alpha * u_tip[ch]);
         let vg = [0, 1].map(|ch| 2.0 * u_tip[ch] - vn[ch]);
         let x_hat = [0, 1].map(|ch| A * xg[ch] - B * xn[ch]);
         // Stage 1's solution u = y − D⁻¹U c; stage 2's D⁻¹ r into y (η ← η̂, ζ ← ζ̂).
         let f2 = self.tip_forces(input, x_hat);
-        let sv = &self.solve;
         let (eta_u, zeta_u, zeta_z) = (2.0 * alpha * A, 2.0 * A, A + B);
         let (mut t0, mut t1) = (0.0, 0.0);
         for (((((yi, (zt, et)), (&cz, &ce)), &ld), (&z0, &z1)), (&u0, &u1)) in
