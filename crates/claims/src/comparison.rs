@@ -201,12 +201,24 @@ pub fn run_in(
     a: f64,
     b: f64,
 ) -> Result<Series, ClaimsError> {
+    Ok(output_in(study, cfg, kind, rule, a, b)?.series.clone())
+}
+
+/// The whole output (series and run stats) of the run [`run_in`] takes the series of.
+fn output_in(
+    study: &Study,
+    cfg: &Config,
+    kind: ControllerKind,
+    rule: ObserverRule,
+    a: f64,
+    b: f64,
+) -> Result<std::sync::Arc<wingcheck_sim::SimOutput>, ClaimsError> {
     let mut c = cfg.clone();
     c.control.kind = kind;
     c.observer.rule = rule;
     c.control.a = a;
     c.control.b = b;
-    Ok(study.simulate(&c)?.series.clone())
+    study.simulate(&c)
 }
 
 /// The three runs at the configured gains, serialised flat as `ftdo-implicit.<metric>`,
@@ -319,12 +331,8 @@ pub struct ComparisonEvidence {
 pub fn evidence(cfg: &Config, study: &Study) -> Result<(ComparisonEvidence, Series, Series), ClaimsError> {
     let (a0, b0) = (cfg.control.a, cfg.control.b);
     let fi = run_in(study, cfg, ControllerKind::Ftdo, ObserverRule::Implicit, a0, b0)?;
-    let fe = run_in(study, cfg, ControllerKind::Ftdo, ObserverRule::Explicit, a0, b0)?;
-    let explicit_stepper = {
-        let mut c = cfg.clone();
-        (c.control.kind, c.observer.rule) = (ControllerKind::Ftdo, ObserverRule::Explicit);
-        study.simulate(&c)?.stats.stepper.clone()
-    };
+    let explicit = output_in(study, cfg, ControllerKind::Ftdo, ObserverRule::Explicit, a0, b0)?;
+    let (fe, explicit_stepper) = (explicit.series.clone(), explicit.stats.stepper.clone());
     let mut half_dt = cfg.clone();
     half_dt.discretisation.dt = 0.5 * cfg.discretisation.dt;
     let fe_half = run_in(study, &half_dt, ControllerKind::Ftdo, ObserverRule::Explicit, a0, b0)?;
