@@ -18,6 +18,13 @@ pub const SECONDS_PER_EXPONENTIAL_ENTRY_STEP: f64 = 3e-10;
 /// measured ≈ 4e-9 s (13 ms at 144 states), rounded up for the stiffer, longer chains of finer
 /// grids.
 pub const SECONDS_PER_EXPONENTIAL_SETUP_CUBE: f64 = 1e-8;
+/// Estimated seconds of the exponential scheme's work beyond the per-unknown stepping cost, for
+/// `steps` integrator steps of a loop with `states` states (displacements + velocities): one
+/// dense states² product per step after the O(states³) setup. Used by every work estimate (the
+/// commands' and the search's).
+pub fn exponential_seconds(steps: f64, states: f64) -> f64 {
+    steps * states * states * SECONDS_PER_EXPONENTIAL_ENTRY_STEP + states.powi(3) * SECONDS_PER_EXPONENTIAL_SETUP_CUBE
+}
 /// Explicit-FTDO simulations `check` runs with the exponential scheme, in units of one run at
 /// the configured dt: one at dt and one at dt/2 (ftdo-vs-dobc's RMS τ error).
 pub const CHECK_EXPLICIT_RUNS: f64 = 3.0;
@@ -118,7 +125,7 @@ impl WorkEstimate {
         // the exponential scheme (the modal basis, n = displacements + velocities states): one
         // dense product per step after an O(n³) setup
         let exponential = if cfg.expected_time_scheme() == crate::TimeScheme::Exponential {
-            steps * n * n * SECONDS_PER_EXPONENTIAL_ENTRY_STEP + n.powi(3) * SECONDS_PER_EXPONENTIAL_SETUP_CUBE
+            exponential_seconds(steps, n)
         } else {
             0.0
         };

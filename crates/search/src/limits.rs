@@ -28,12 +28,6 @@ const SECONDS_PER_MODE_STEP: f64 = 4e-9;
 /// Cost per unknown and integrator step (s), the simulator's sparse stepper: ≈ 1 µs per step
 /// at 48 unknowns (README, "Speed"); rounded up.
 const SECONDS_PER_UNKNOWN_STEP: f64 = 3e-8;
-/// Cost per entry of the exponential scheme's (2n)² step operator and integrator step (s):
-/// measured ≈ 1.5e-10 s (144 states, 3.1 µs per step, one core); rounded up.
-const SECONDS_PER_EXPONENTIAL_ENTRY_STEP: f64 = 3e-10;
-/// Setup of the exponential scheme per (2n)³ (s): its ≈ 20 doublings of five dense products,
-/// measured ≈ 13 ms at 144 states (4.4e-9 s per (2n)³); rounded up.
-const SECONDS_PER_EXPONENTIAL_SETUP_CUBE: f64 = 1e-8;
 /// Theory per point (λ2, λ1, the μ and ε SOCPs): measured ≈ 4 ms; rounded up.
 const SECONDS_PER_POINT_THEORY: f64 = 8e-3;
 
@@ -85,9 +79,7 @@ pub fn estimate(base: &Config, axes: &[Axis]) -> WorkEstimate {
     let per = if n <= MODAL_AUTO_UNKNOWNS as f64 { SECONDS_PER_MODE_STEP } else { SECONDS_PER_UNKNOWN_STEP };
     let mut point_seconds = steps * n * per + SECONDS_PER_POINT_THEORY;
     if exponential {
-        let states = 2.0 * n;
-        point_seconds += steps * states * states * SECONDS_PER_EXPONENTIAL_ENTRY_STEP
-            + states.powi(3) * SECONDS_PER_EXPONENTIAL_SETUP_CUBE;
+        point_seconds += wingcheck_model::work::exponential_seconds(steps, 2.0 * n);
     }
     WorkEstimate {
         points,
