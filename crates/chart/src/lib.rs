@@ -14,6 +14,7 @@
 //! rasters with vector axes ([`heatmap_svg`]).
 
 mod clip;
+mod data;
 mod field;
 mod grid;
 mod line;
@@ -21,6 +22,7 @@ mod surface;
 mod symlog;
 mod ticks;
 
+pub use data::{Line, PlotData};
 pub use field::{heatmap_svg, Heatmap};
 pub use grid::{grid_heatmap_svg, viridis, GridAxis, GridHeatmap, Mark, MarkShape};
 pub use line::{line_svg, LineChart, LineStyle};

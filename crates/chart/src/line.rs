@@ -3,12 +3,12 @@
 //! markers (e.g. a reaching time t_f), horizontal reference levels (a threshold) and dashed
 //! reference lines (e.g. an O(h²) slope).
 
+use crate::PlotData;
 use plotters::coord::combinators::LogCoord;
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use wingcheck_claims::PlotData;
 
 use crate::symlog::{SymLog, SymLogCoord};
 use crate::ChartError;

@@ -25,14 +25,7 @@ use serde::{Deserialize, Serialize};
 use wingcheck_cert::exact::{from_f64_exact, parse_rational};
 use wingcheck_model::Config;
 
-/// A computed number with an estimate of its absolute error.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct Estimate {
-    /// The value.
-    pub value: f64,
-    /// Estimated absolute error (≥ 0; 0 means exact up to rounding).
-    pub error: f64,
-}
+pub use wingcheck_model::Estimate;
 
 /// A yes/no fact that may be undecided when an error estimate straddles the threshold.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]

@@ -12,6 +12,7 @@
 mod config;
 mod error;
 mod overrides;
+pub mod quantity;
 mod scheme;
 mod validate;
 pub mod work;
@@ -19,6 +20,7 @@ pub mod work;
 pub use config::*;
 pub use error::ConfigError;
 pub use overrides::{apply_override, apply_overrides};
+pub use quantity::{Accuracy, ErrorSource, Estimate, Quantity, Unit, ValueBasis};
 pub use scheme::{StepBasis, TimeScheme, MODAL_AUTO_UNKNOWNS, MODAL_MAX_UNKNOWNS};
 
 /// The paper's configuration (`configs/paper.json`), embedded at compile time.

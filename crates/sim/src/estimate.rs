@@ -1,32 +1,7 @@
 //! A number with its estimated error, and the Richardson/Romberg extrapolation that produces
 //! most of them. One definition, used by the converged modes and the trajectory estimates.
 
-use serde::Serialize;
-
-/// A value with an estimated bound on its absolute error (same units as the value).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Estimate {
-    /// The value.
-    pub value: f64,
-    /// Estimated bound on |value − exact| (≥ 0).
-    pub error: f64,
-}
-
-impl Estimate {
-    /// Relative error bound error/|value| (∞ for a zero value with a nonzero error).
-    pub fn relative_error(&self) -> f64 {
-        if self.error == 0.0 {
-            0.0
-        } else {
-            self.error / self.value.abs()
-        }
-    }
-
-    /// True if `other` lies within this estimate's error bar.
-    pub fn contains(&self, other: f64) -> bool {
-        (other - self.value).abs() <= self.error
-    }
-}
+pub use wingcheck_model::Estimate;
 
 /// Romberg table of values u_k on meshes h_k = h_0/2^k (coarse → fine), for an error
 /// expansion u_h = u + c_1 h^{p_1} + c_2 h^{p_2} + …, with `exponents` = [p_1, p_2, …].

@@ -1,0 +1,374 @@
+//! Reported numbers with their unit and their error or basis: the one vocabulary every crate
+//! uses to hand a number to a reader (the ledger's evidence, the report, the search's outputs).
+//!
+//! A [`Quantity`] is a labelled value with a [`Unit`] and an [`Accuracy`]: either an error
+//! estimate (± an absolute bound on |value − exact| covering the named [`ErrorSource`]s) or the
+//! [`ValueBasis`] it rests on when no error is estimated (exact, configured, a closed form, a
+//! re-verified solver, a simulation at the configured grid, a one-sided bound, …). Units are a
+//! closed enum, so a ratio is [`Unit::Dimensionless`] by construction and never prints "m".
+//!
+//! [`format_value`] is the one number format: significant digits matched to the stated error
+//! (two significant digits of the error), four significant digits without one.
+
+use serde::{Deserialize, Serialize};
+
+/// A value with an estimated bound on its absolute error (same units as the value).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Estimate {
+    /// The value.
+    pub value: f64,
+    /// Estimated bound on |value − exact| (≥ 0; 0 means exact up to rounding).
+    pub error: f64,
+}
+
+impl Estimate {
+    /// Relative error bound error/|value| (∞ for a zero value with a nonzero error).
+    pub fn relative_error(&self) -> f64 {
+        if self.error == 0.0 {
+            0.0
+        } else {
+            self.error / self.value.abs()
+        }
+    }
+
+    /// True if `other` lies within this estimate's error bar.
+    pub fn contains(&self, other: f64) -> bool {
+        (other - self.value).abs() <= self.error
+    }
+}
+
+/// The unit of a reported number. Serialised as its symbol (`"1"` for dimensionless).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum Unit {
+    /// A pure number (ratios, relative differences, exponents).
+    #[serde(rename = "1")]
+    Dimensionless,
+    /// A count of cases, points, elements.
+    #[serde(rename = "count")]
+    Count,
+    /// Metre (bending displacement q).
+    #[serde(rename = "m")]
+    Metre,
+    /// Radian (twist θ).
+    #[serde(rename = "rad")]
+    Radian,
+    /// Second.
+    #[serde(rename = "s")]
+    Second,
+    /// 1/s (decay rates, the ratio a/b of the control law's weights).
+    #[serde(rename = "1/s")]
+    PerSecond,
+    /// rad/s (natural frequencies, twist rate).
+    #[serde(rename = "rad/s")]
+    RadianPerSecond,
+    /// m/s (bending rate).
+    #[serde(rename = "m/s")]
+    MetrePerSecond,
+    /// Newton (τ1, g1, σ1).
+    #[serde(rename = "N")]
+    Newton,
+    /// Newton metre (τ2, g2, σ2).
+    #[serde(rename = "N m")]
+    NewtonMetre,
+    /// N/s (rate of g1).
+    #[serde(rename = "N/s")]
+    NewtonPerSecond,
+    /// N m/s (rate of g2).
+    #[serde(rename = "N m/s")]
+    NewtonMetrePerSecond,
+    /// N/m (the distributed load g_h).
+    #[serde(rename = "N/m")]
+    NewtonPerMetre,
+    /// Joule (the wing's energy).
+    #[serde(rename = "J")]
+    Joule,
+    /// The units of the Lyapunov function W and its constants (λ1, λ2, λ3, ε, W(0)): the paper
+    /// mixes kinetic, elastic and cross terms weighted by a and b, so these carry no single
+    /// physical unit; they are stated "in W units".
+    #[serde(rename = "W units")]
+    LyapunovUnits,
+}
+
+impl Unit {
+    /// The symbol as printed after a number ("" for dimensionless: a ratio prints no unit).
+    pub fn symbol(self) -> &'static str {
+        match self {
+            Unit::Dimensionless | Unit::Count => "",
+            Unit::Metre => "m",
+            Unit::Radian => "rad",
+            Unit::Second => "s",
+            Unit::PerSecond => "1/s",
+            Unit::RadianPerSecond => "rad/s",
+            Unit::MetrePerSecond => "m/s",
+            Unit::Newton => "N",
+            Unit::NewtonMetre => "N m",
+            Unit::NewtonPerSecond => "N/s",
+            Unit::NewtonMetrePerSecond => "N m/s",
+            Unit::NewtonPerMetre => "N/m",
+            Unit::Joule => "J",
+            Unit::LyapunovUnits => "W units",
+        }
+    }
+
+    /// True for units that carry no dimension (ratios and counts).
+    pub fn is_dimensionless(self) -> bool {
+        matches!(self, Unit::Dimensionless | Unit::Count)
+    }
+}
+
+/// What an error estimate covers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ErrorSource {
+    /// The spatial grid (h-refinement).
+    Grid,
+    /// The time step (dt-refinement).
+    TimeStep,
+    /// Floating-point round-off (a relative floor from the conditioning of the computation).
+    RoundOff,
+    /// Extrapolation to the limit (Richardson/Romberg truncation of the series).
+    Extrapolation,
+    /// An iterative solver's stopping tolerance.
+    Solver,
+    /// The sample times of a time series (an extreme between samples).
+    Sampling,
+    /// A statistical spread (e.g. sensitivity to the start of a chattering observer).
+    Spread,
+}
+
+/// What a number without an error estimate rests on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ValueBasis {
+    /// Exact: rational arithmetic, an integer count, or a definition.
+    Exact,
+    /// An input value of the configuration (or one derived from it by a definition).
+    Configured,
+    /// A closed form evaluated in floating point (round-off only, relative ~1e-15).
+    ClosedForm,
+    /// A floating-point solver's answer re-verified against its constraints.
+    Solver,
+    /// A simulation at the configured grid and time step (no error estimate).
+    Simulation,
+    /// The maximum over a finite search: a lower bound on the supremum.
+    SearchMaximum,
+    /// An upper bound of the true value (the true value is ≤ this number).
+    UpperBound,
+    /// A lower bound of the true value (the true value is ≥ this number).
+    LowerBound,
+}
+
+impl ValueBasis {
+    /// The basis in words, as printed beside a number.
+    pub fn text(self) -> &'static str {
+        match self {
+            ValueBasis::Exact => "exact",
+            ValueBasis::Configured => "configured",
+            ValueBasis::ClosedForm => "closed form",
+            ValueBasis::Solver => "solver, re-verified",
+            ValueBasis::Simulation => "simulation",
+            ValueBasis::SearchMaximum => "max over a search",
+            ValueBasis::UpperBound => "upper bound",
+            ValueBasis::LowerBound => "lower bound",
+        }
+    }
+}
+
+/// The error of a number, or the basis it rests on.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum Accuracy {
+    /// ± `error` (absolute, ≥ 0, in the value's unit), covering the listed sources.
+    Error {
+        /// Estimated bound on |value − exact|.
+        error: f64,
+        /// The sources the bound covers.
+        covers: Vec<ErrorSource>,
+    },
+    /// No error estimate; what the number rests on.
+    Basis {
+        /// The basis.
+        basis: ValueBasis,
+    },
+}
+
+/// A labelled number with its unit and its error or basis: the leaf of every reported
+/// evidence table (serialised `{"label", "value", "unit", "error", "covers"}` or
+/// `{"label", "value", "unit", "basis"}`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Quantity {
+    /// What the number is, in words (symbols defined in the report's notation box).
+    pub label: String,
+    /// The value (finite).
+    pub value: f64,
+    /// Its unit.
+    pub unit: Unit,
+    /// Its error or basis.
+    #[serde(flatten)]
+    pub accuracy: Accuracy,
+}
+
+impl Quantity {
+    /// A number resting on `basis`.
+    pub fn based(label: impl Into<String>, value: f64, unit: Unit, basis: ValueBasis) -> Quantity {
+        Quantity { label: label.into(), value: value + 0.0, unit, accuracy: Accuracy::Basis { basis } }
+    }
+
+    /// An exact number (rational arithmetic, a count, a definition).
+    pub fn exact(label: impl Into<String>, value: f64, unit: Unit) -> Quantity {
+        Self::based(label, value, unit, ValueBasis::Exact)
+    }
+
+    /// A count (exact, [`Unit::Count`]).
+    pub fn count(label: impl Into<String>, n: usize) -> Quantity {
+        Self::exact(label, n as f64, Unit::Count)
+    }
+
+    /// An input of the configuration.
+    pub fn configured(label: impl Into<String>, value: f64, unit: Unit) -> Quantity {
+        Self::based(label, value, unit, ValueBasis::Configured)
+    }
+
+    /// `value ± error` covering `covers`.
+    pub fn with_error(
+        label: impl Into<String>,
+        value: f64,
+        error: f64,
+        unit: Unit,
+        covers: &[ErrorSource],
+    ) -> Quantity {
+        Quantity {
+            label: label.into(),
+            value: value + 0.0,
+            unit,
+            accuracy: Accuracy::Error { error: error.abs() + 0.0, covers: covers.to_vec() },
+        }
+    }
+
+    /// An [`Estimate`] covering `covers`.
+    pub fn estimate(label: impl Into<String>, e: Estimate, unit: Unit, covers: &[ErrorSource]) -> Quantity {
+        Self::with_error(label, e.value, e.error, unit, covers)
+    }
+
+    /// The error estimate, if there is one.
+    pub fn error(&self) -> Option<f64> {
+        match self.accuracy {
+            Accuracy::Error { error, .. } => Some(error),
+            Accuracy::Basis { .. } => None,
+        }
+    }
+
+    /// The same quantity under another label.
+    pub fn relabel(mut self, label: impl Into<String>) -> Quantity {
+        self.label = label.into();
+        self
+    }
+
+    /// The value as printed: digits matched to the error, with the unit (`0.12086 1/s`).
+    pub fn value_text(&self) -> String {
+        let v = format_value(self.value, self.error());
+        match self.unit.symbol() {
+            "" => v,
+            u => format!("{v} {u}"),
+        }
+    }
+
+    /// The error or basis as printed (`± 3.4e-13`, `exact`, `simulation`).
+    pub fn accuracy_text(&self) -> String {
+        match &self.accuracy {
+            Accuracy::Error { error, .. } => format!("± {}", format_error(*error)),
+            Accuracy::Basis { basis } => basis.text().to_string(),
+        }
+    }
+
+    /// Is the value (and the error) finite?
+    pub fn is_finite(&self) -> bool {
+        self.value.is_finite() && self.error().is_none_or(f64::is_finite)
+    }
+}
+
+/// A number as printed: with an error, rounded to the decade of the error's second significant
+/// digit (`0.120859922046612 ± 3.4e-13` → `0.12085992204661`), at least one and at most 15
+/// significant digits; without one, 4 significant digits. Fixed notation for
+/// 1e-3 ≤ |v| < 1e5, else scientific (`1.23e-5`). Deterministic; parses back as f64.
+pub fn format_value(value: f64, error: Option<f64>) -> String {
+    if !value.is_finite() {
+        return format!("{value}");
+    }
+    if value == 0.0 {
+        return match error {
+            Some(e) if e > 0.0 => format!("0 (± {})", format_error(e)),
+            _ => "0".into(),
+        };
+    }
+    let mag = value.abs().log10().floor() as i32;
+    let digits = match error {
+        Some(e) if e > 0.0 && e.is_finite() => (mag - (e.log10().floor() as i32 - 1) + 1).clamp(1, 15),
+        Some(_) => 15,
+        None => 4,
+    } as usize;
+    with_significant(value, digits)
+}
+
+/// An error bar as printed: two significant digits (`3.4e-13`, `0.0021`).
+pub fn format_error(error: f64) -> String {
+    if error == 0.0 || !error.is_finite() {
+        return format!("{error}");
+    }
+    with_significant(error, 2)
+}
+
+/// `value` with `digits` significant digits, fixed notation for 1e-3 ≤ |v| < 1e5 (trailing
+/// zeros kept: they are significant), else scientific with a bare exponent (`1.2e-5`).
+pub fn with_significant(value: f64, digits: usize) -> String {
+    let digits = digits.max(1);
+    let sci = format!("{:.*e}", digits - 1, value);
+    // The exponent after rounding (9.99 → 1.00e1 moves the decade).
+    let (_, exp) = sci.split_once('e').expect("exponent");
+    let exp: i32 = exp.parse().expect("integer exponent");
+    if (-3..5).contains(&exp) {
+        let decimals = (digits as i32 - 1 - exp).max(0) as usize;
+        format!("{value:.decimals$}")
+    } else {
+        sci
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn digits_follow_the_error() {
+        // ω₁ of the paper wing with its Romberg error: down to the error's second digit (1e-14).
+        assert_eq!(format_value(0.120859922046612, Some(3.4e-13)), "0.12085992204661");
+        assert_eq!(format_value(-4.15400123, Some(3.3e-4)), "-4.15400");
+        assert_eq!(format_value(-215.9000001, None), "-215.9");
+        assert_eq!(format_value(1.5e-5, None), "1.500e-5");
+        assert_eq!(format_value(9.9996, None), "10.00");
+        assert_eq!(format_value(123456.0, None), "1.235e5");
+        assert_eq!(format_error(3.39e-13), "3.4e-13");
+        assert_eq!(format_error(0.0021), "0.0021");
+        // Every printed number parses back.
+        for v in [0.1208599220466, -215.9, 1.5e-5, 3.1e7] {
+            assert!(format_value(v, None).parse::<f64>().is_ok());
+        }
+    }
+
+    #[test]
+    fn ratios_print_no_unit_and_serialise_their_basis() {
+        let q = Quantity::exact("printed λ2", -215.9, Unit::LyapunovUnits);
+        assert_eq!(q.value_text(), "-215.9 W units");
+        let r = Quantity::based("DOBC / FTDO", 2094.0, Unit::Dimensionless, ValueBasis::Simulation);
+        assert_eq!(r.value_text(), "2094");
+        let json = serde_json::to_value(&r).unwrap();
+        assert_eq!(json["unit"], "1");
+        assert_eq!(json["basis"], "simulation");
+        let e = Quantity::with_error("ω₁", 0.12, 1e-9, Unit::PerSecond, &[ErrorSource::Grid]);
+        let json = serde_json::to_value(&e).unwrap();
+        assert_eq!(json["error"], 1e-9);
+        assert_eq!(json["covers"][0], "grid");
+        let back: Quantity = serde_json::from_value(json).unwrap();
+        assert_eq!(back, e);
+    }
+}
