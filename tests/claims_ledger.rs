@@ -1,12 +1,12 @@
-//! The ledger for any valid configuration: no NaN/inf/null anywhere, each verdict agrees with
-//! its own evidence, texts follow the facts of the run, and the documented JSON shape
-//! (docs/ledger.md) is the one produced.
+//! The ledger for any valid configuration: no NaN/inf/null anywhere, every evidence value a
+//! labelled leaf, each verdict agrees with its own evidence, texts follow the facts of the run,
+//! and the documented JSON shape (docs/ledger.md) is the one produced.
 
 use proptest::prelude::*;
 use serde_json::Value;
 use wingcheck_claims::mu;
 use wingcheck_claims::theory::{Decision, MuData};
-use wingcheck_claims::{check_all, evidence_map, ClaimId, Ledger, Study, Verdict};
+use wingcheck_claims::{check_all, CheckSettings, ClaimId, Evidence, Explain, Ledger, Study, Verdict};
 use wingcheck_model::{apply_overrides, Config};
 
 fn cfg_with(sets: &[String]) -> Config {
@@ -36,9 +36,9 @@ fn no_non_finite(v: &Value) -> bool {
 proptest! {
     #![proptest_config(ProptestConfig { cases: cases() * 2, ..ProptestConfig::default() })]
 
-    /// The mu-conditions evidence over random valid configurations (documented ranges of
-    /// issue 10: a log-uniform in [1e-6, 1e3], b/a in [1, 1e8], k1, k2 ∈ {0} ∪ [0.01, 10],
-    /// ξ ∈ [0, 2], κ's in [0.1, 10]): finite, and the verdict follows the evidence.
+    /// The mu-conditions evidence over random valid configurations (a log-uniform in
+    /// [1e-6, 1e3], b/a in [1, 1e8], k1, k2 ∈ {0} ∪ [0.01, 10], ξ ∈ [0, 2], κ's in [0.1, 10]):
+    /// finite, and the verdict follows the evidence.
     #[test]
     fn mu_evidence_is_finite_and_consistent(
         la in -6.0f64..3.0, lr in 0.0f64..8.0, k1 in prop_oneof![Just(0.0), 0.01f64..10.0],
@@ -50,28 +50,28 @@ proptest! {
         let cfg = short(&[&format!("control.a={a}"), &format!("control.b={b}"), &format!("control.k1={k1}"),
             &format!("control.k2={k2}"), &format!("wing.xi={xi}"), &format!("observer.kappa1={kap}"),
             &format!("observer.kappa4={kap}")]);
-        let e = mu::evidence(&cfg, &Study::new()).unwrap();
-        let v = serde_json::to_value(evidence_map(&e)).unwrap();
+        let m = mu::check(&cfg, &Study::new(), &CheckSettings::default()).unwrap();
+        let v = m.row.evidence_json();
         prop_assert!(no_non_finite(&v), "{v}");
-        let (verdict, _) = mu::verdict(&e);
-        prop_assert_eq!(verdict == Verdict::Holds, e.satisfiable);
+        let (verdict, _) = m.evidence.verdict();
+        prop_assert_eq!(verdict == Verdict::Holds, m.evidence.satisfiable.value);
         let d = MuData::new(&cfg, a, b);
         // (32) holds iff a verified (exact) point exists, iff λ3* > 0 with k1, k2 > 0
-        if e.satisfiable {
-            let best = e.best.as_ref().unwrap();
+        if m.evidence.satisfiable.value {
+            let best = m.best().unwrap();
             prop_assert!(best.verified_exact);
             prop_assert!(best.lambda > 0.0 && best.epsilon.is_finite());
         }
         if k1 > 0.0 && k2 > 0.0 {
-            prop_assert_eq!(e.satisfiable, d.lambda3_sup() > 0.0);
+            prop_assert_eq!(m.evidence.satisfiable.value, d.lambda3_sup() > 0.0);
             // the closed-form boundary agrees (away from it by 1e-9 relative)
-            let r = e.a_over_b_boundary;
+            let r = m.evidence.a_over_b_boundary.value;
             if (a / b - r).abs() > 1e-9 * r {
-                prop_assert_eq!(e.satisfiable, a / b < r, "a/b = {} r* = {}", a / b, r);
+                prop_assert_eq!(m.evidence.satisfiable.value, a / b < r, "a/b = {} r* = {}", a / b, r);
             }
         }
         // an accepted solver answer agrees with the closed form
-        if let Some(c) = &e.lambda3_socp {
+        if let Some(c) = &m.computed.lambda3_socp {
             if c.accepted {
                 prop_assert!(c.relative_difference < 1e-6, "{c:?}");
             }
@@ -79,33 +79,13 @@ proptest! {
     }
 }
 
-/// The typed evidence of the row, deserialised from its JSON, decides the row's verdict and
-/// basis through the module's own `verdict` function (None for a row whose computation failed).
-fn verdict_from_own_evidence(r: &wingcheck_claims::ClaimRow) -> Option<(Verdict, wingcheck_claims::Basis)> {
-    use wingcheck_claims::{comparison, finite_time, lemmas, uub, wbounds};
-    if r.evidence.is_empty() {
-        return None;
-    }
-    let v = serde_json::to_value(&r.evidence).unwrap();
-    fn typed<T: serde::de::DeserializeOwned>(id: ClaimId, v: Value) -> T {
-        serde_json::from_value(v).unwrap_or_else(|e| panic!("{id}: evidence does not deserialise into its struct: {e}"))
-    }
-    Some(match r.id {
-        ClaimId::WBounds => wbounds::verdict(&typed(r.id, v)),
-        ClaimId::MuConditions => mu::verdict(&typed(r.id, v)),
-        ClaimId::Uub => uub::verdict(&typed(r.id, v)),
-        ClaimId::FiniteTime1 | ClaimId::FiniteTime2 => finite_time::verdict(&typed(r.id, v)),
-        ClaimId::Lemmas => lemmas::verdict(&typed(r.id, v)),
-        ClaimId::FtdoVsDobc => comparison::verdict(&typed(r.id, v)),
-    })
-}
-
 proptest! {
     #![proptest_config(ProptestConfig { cases: 5, ..ProptestConfig::default() })]
 
     /// The WHOLE check over random valid configurations (ranges as above; every κ drawn
     /// independently, so κ2 < ζ1 or κ5 < ζ2 occurs), horizon 2 s: it completes, the JSON holds
-    /// no NaN/inf/null, and every row's verdict is the one its own (deserialised) evidence gives.
+    /// no NaN/inf/null, every evidence value is a labelled leaf, and every row's verdict is the
+    /// one its own evidence gives.
     #[test]
     fn whole_check_is_finite_and_consistent(
         la in -6.0f64..3.0, lr in 0.0f64..8.0, k1 in prop_oneof![Just(0.0), 0.01f64..10.0],
@@ -124,52 +104,50 @@ proptest! {
         let v = serde_json::to_value(&l).unwrap();
         prop_assert!(no_non_finite(&v));
         for r in &l.rows {
-            prop_assert!(!r.summary.contains("internal error"), "{}: {}", r.id, r.summary);
+            prop_assert!(!r.finding_text().contains("Internal error"), "{}: {}", r.id, r.finding_text());
         }
         verdict_matches_evidence(&l);
     }
 }
 
+/// Each row's verdict and basis are those its own evidence gives, and the row agrees with the
+/// facts the evidence records.
 fn verdict_matches_evidence(l: &Ledger) {
     for r in &l.rows {
-        if let Some((verdict, basis)) = verdict_from_own_evidence(r) {
-            assert_eq!((r.verdict, r.basis), (verdict, basis), "{}: verdict vs its own evidence", r.id);
+        if let Some(e) = r.evidence.explain() {
+            assert_eq!((r.verdict, r.basis), e.verdict(), "{}: verdict vs its own evidence", r.id);
+            assert_eq!(r.finding, e.finding(), "{}", r.id);
+            assert!(r.finding.len() <= 3, "{}: {:?}", r.id, r.finding);
         }
-        match r.id {
-            ClaimId::WBounds => {
-                let d: Decision = serde_json::from_value(r.evidence["w_positive_definite"].clone()).unwrap();
+        assert!(r.evidence.nodes().is_ok(), "{}: {:?}", r.id, r.evidence.nodes());
+        match &r.evidence {
+            Evidence::WBounds(e) => {
+                let d = e.w_positive_definite.value;
                 let expect = match d {
                     Decision::Yes => Verdict::HoldsAfterCorrection,
                     Decision::No => Verdict::Fails,
                     Decision::Undecided => Verdict::Inconclusive,
                 };
                 assert_eq!(r.verdict, expect, "W-bounds");
-                // "W is positive definite" only where decided so and λ2* exceeds its stated error
-                let (l2, err) = (
-                    r.evidence["lambda2_tight"].as_f64().unwrap(),
-                    r.evidence["lambda2_tight_error"].as_f64().unwrap(),
-                );
                 assert_eq!(
-                    r.summary.contains("W is positive definite"),
-                    d == Decision::Yes && l2 > err,
+                    r.finding_text().contains("W is positive definite there"),
+                    d == Decision::Yes,
                     "{}",
-                    r.summary
+                    r.finding_text()
                 );
             }
-            ClaimId::MuConditions => {
-                assert_eq!(r.verdict == Verdict::Holds, r.evidence["satisfiable"] == true);
-            }
-            ClaimId::Uub if r.verdict != Verdict::Inconclusive => {
-                if r.evidence["bound_violated"] == true {
+            Evidence::Mu(e) => assert_eq!(r.verdict == Verdict::Holds, e.satisfiable.value),
+            Evidence::Uub(e) => {
+                if e.bound_violated.value {
                     assert_eq!(r.verdict, Verdict::Fails);
-                } else if r.evidence["w0_diverges"] == true {
+                } else if e.w0_diverges.value {
                     assert_eq!(r.verdict, Verdict::Vacuous);
                 }
             }
-            ClaimId::FiniteTime1 | ClaimId::FiniteTime2 => {
-                if r.evidence["hypothesis_holds"] == false {
+            Evidence::FiniteTime(e) => {
+                if !e.hypothesis_holds.value {
                     assert_eq!(r.verdict, Verdict::Inconclusive);
-                } else if r.evidence["sigma0"] == 0.0 && r.verdict != Verdict::Fails {
+                } else if e.sigma0.value == 0.0 && r.verdict != Verdict::Fails {
                     assert_eq!(r.verdict, Verdict::TriviallyTrue);
                 }
             }
@@ -200,7 +178,7 @@ fn full_ledgers_off_the_paper_point_are_finite_and_consistent() {
         let json = serde_json::to_string(&l).unwrap();
         assert!(!json.contains("null") && !json.contains("NaN"));
         for r in &l.rows {
-            assert!(!r.summary.contains("internal error"), "{}: {}", r.id, r.summary);
+            assert!(!r.finding_text().contains("Internal error"), "{}: {}", r.id, r.finding_text());
         }
         verdict_matches_evidence(&l);
     }
@@ -209,60 +187,66 @@ fn full_ledgers_off_the_paper_point_are_finite_and_consistent() {
 #[test]
 fn texts_follow_the_facts_of_the_run() {
     let study = Study::new();
+    let settings = CheckSettings::default();
     // W-bounds: a/b = 0.05 < ω₁ ≈ 0.121 (positive definite) vs a/b = 1 (indefinite)
     let (lo, hi) = (short(&["control.a=0.05"]), short(&[]));
-    let wl = wingcheck_claims::wbounds::check(&lo).unwrap().row.summary;
-    let wh = wingcheck_claims::wbounds::check(&hi).unwrap().row.summary;
+    let w = |c: &Config| wingcheck_claims::wbounds::check(c, &settings).unwrap().row.finding_text();
+    let (wl, wh) = (w(&lo), w(&hi));
     assert!(wl.contains("W is positive definite") && !wh.contains("W is positive definite"));
     assert!(wh.contains("indefinite") && !wl.contains("indefinite"));
     // mu: a/b = 1e-4 < r* (satisfiable) vs 1 (μ3 < 0)
-    let ml = mu::check(&short(&["control.a=1e-4"]), &study).unwrap().row.summary;
-    let mh = mu::check(&hi, &study).unwrap().row.summary;
-    assert!(ml.contains("are satisfiable") && mh.contains("cannot hold") && mh.contains("μ3"));
+    let ml = mu::check(&short(&["control.a=1e-4"]), &study, &settings).unwrap().row.finding_text();
+    let mh = mu::check(&hi, &study, &settings).unwrap().row.finding_text();
+    assert!(ml.contains("can be met") && mh.contains("cannot hold") && mh.contains("μ3"), "{ml} / {mh}");
     // UUB: linear initial shape (W(0) = ∞) vs the clamp-compatible cantilever shape
     let uub = |cfg: &Config| {
         let st = Study::new();
-        let w = wingcheck_claims::wbounds::check(cfg).unwrap();
-        let m = mu::check(cfg, &st).unwrap();
-        wingcheck_claims::uub::check(cfg, &w, &m, &st).unwrap().summary
+        let w = wingcheck_claims::wbounds::check(cfg, &settings).unwrap();
+        let m = mu::check(cfg, &st, &settings).unwrap();
+        wingcheck_claims::uub::check(cfg, &w, &m, &st, &settings).unwrap().finding_text()
     };
-    assert!(uub(&hi).contains("keeps growing"));
-    assert!(uub(&short(&["initial.shape=cantilever"])).contains("converges under refinement"));
+    assert!(uub(&hi).contains("grows without bound"));
+    assert!(!uub(&short(&["initial.shape=cantilever"])).contains("grows without bound"));
     // finite-time-1: σ1(0) = 0 at the paper's state (trivially true) vs ν1(0) = 0.5
     use wingcheck_claims::finite_time::{check as ft, Channel};
-    assert!(ft(&hi, Channel::Bending).unwrap().summary.contains("trivially true"));
-    assert!(!ft(&short(&["observer.nu1_0=0.5"]), Channel::Bending).unwrap().summary.contains("trivially true"));
+    let ftt = |c: &Config, ch| ft(c, ch, &settings).unwrap().finding_text();
+    assert!(ftt(&hi, Channel::Bending).contains("nothing is tested"));
+    assert!(!ftt(&short(&["observer.nu1_0=0.5"]), Channel::Bending).contains("nothing is tested"));
     // finite-time-2: hypothesis κ5 ≥ ζ2 = 0.06 holds at the paper's κ5 = 1, fails at 0.01
-    assert!(ft(&short(&["observer.kappa5=0.01"]), Channel::Torsion).unwrap().summary.contains("hypothesis FAILS"));
-    assert!(!ft(&hi, Channel::Torsion).unwrap().summary.contains("hypothesis FAILS"));
+    assert!(ftt(&short(&["observer.kappa5=0.01"]), Channel::Torsion).contains("hypothesis fails"));
+    assert!(!ftt(&hi, Channel::Torsion).contains("hypothesis fails"));
     // ftdo-vs-dobc: the tip-disturbance bounds quoted are this run's (0.08 N vs 0.5 N)
     use wingcheck_claims::comparison::check as cmp;
-    assert!(cmp(&hi, &study).unwrap().summary.contains("0.080 N"));
-    assert!(cmp(&short(&["disturbance.tip_bending.amp=0.48"]), &study).unwrap().summary.contains("0.500 N"));
+    assert!(cmp(&hi, &study, &settings).unwrap().details.join(" ").contains("ζ1 = 0.08000 N"));
+    let amp = short(&["disturbance.tip_bending.amp=0.48"]);
+    assert!(cmp(&amp, &study, &settings).unwrap().details.join(" ").contains("ζ1 = 0.5000 N"));
 }
 
 #[test]
 fn lemma_texts_follow_the_span_and_the_exponent() {
     use wingcheck_claims::lemmas;
+    let settings = CheckSettings::default();
     // Span f = 2 (the paper's): the counterexample is ω = z^k with the least k such that
     // 2k + 1 > f² = 4, i.e. k = 2: ω(2)² = 2⁴ = 16 > 2∫_0^2 z⁴ dz = 2·32/5 = 64/5 (by hand);
     // the degree-1 ratio is 3/f² = 0.75 (∫_0^1 x² = 1/3).
-    let two = lemmas::check(&short(&[])).unwrap().summary;
-    assert!(two.contains("on [0, 2]") && two.contains("ω = z^2:"), "{two}");
-    assert!(two.contains("ω(f)² = 16 > f∫ω² = 64/5"), "{two}");
-    assert!(two.contains("0.750 at degree 1"), "{two}");
-    assert!(two.contains("p = a1/a2 = 0.538462"), "{two}"); // 7/13
-                                                            // Span f = 6 with a1/a2 = 3/5: least k with 2k + 1 > 36 is k = 18; degree-1 ratio 3/36.
-    let six = lemmas::check(&short(&["wing.span=6", "observer.a1=3", "observer.a2=5"])).unwrap();
-    let s6 = &six.summary;
-    assert!(s6.contains("on [0, 6]") && s6.contains("ω = z^18:"), "{s6}");
-    assert!(s6.contains("0.083 at degree 1") && s6.contains("p = a1/a2 = 0.600000"), "{s6}");
-    assert!(!s6.contains("64/5") && !s6.contains("on [0, 2]"));
+    let two = lemmas::check(&short(&[]), &settings).unwrap();
+    let t2 = two.finding_text();
+    assert!(t2.contains("on [0, 2 m]") && t2.contains("ω = z^2 "), "{t2}");
+    assert!(t2.contains("ω(f)² = 16 > f∫ω² = 64/5"), "{t2}");
+    assert!(two.details.join(" ").contains("(0.7500 at degree 1,"), "{:?}", two.details);
+    assert!(two.assumptions.join(" ").contains("p = a1/a2 = 0.5385"), "{:?}", two.assumptions); // 7/13
+                                                                                                // Span f = 6 with a1/a2 = 3/5: least k with 2k + 1 > 36 is k = 18; degree-1 ratio 3/36.
+    let six = lemmas::check(&short(&["wing.span=6", "observer.a1=3", "observer.a2=5"]), &settings).unwrap();
+    let t6 = six.finding_text();
+    assert!(t6.contains("on [0, 6 m]") && t6.contains("ω = z^18 "), "{t6}");
+    assert!(six.details.join(" ").contains("(0.08333 at degree 1,"), "{:?}", six.details);
+    assert!(six.assumptions.join(" ").contains("p = a1/a2 = 0.6000"), "{:?}", six.assumptions);
+    assert!(!t6.contains("64/5") && !t6.contains("on [0, 2 m]"));
     // the evidence carries the same facts, exactly
-    let cex = &six.evidence["lemma2_counterexample"];
-    assert_eq!(cex["omega"], "z^18");
-    assert_eq!(cex["f"], 6.0);
-    assert_eq!(cex["printed_violated"], true);
+    let Evidence::Lemmas(e) = &six.evidence else { panic!("lemmas evidence") };
+    assert_eq!(e.lemma2_counterexample.omega.value, "z^18");
+    assert_eq!(e.lemma2_counterexample.f.value, 6.0);
+    assert!(e.lemma2_counterexample.printed_violated.value);
 }
 
 #[test]
@@ -274,18 +258,28 @@ fn each_distinct_simulation_runs_once() {
     assert!(std::sync::Arc::ptr_eq(&a, &b));
     assert_eq!(study.simulations_run(), 1);
     // the mu row's FTDO run at the paper's gains is the configured run (kind = ftdo)
-    mu::check(&cfg, &study).unwrap();
+    mu::check(&cfg, &study, &CheckSettings::default()).unwrap();
     assert_eq!(study.simulations_run(), 1);
+    // two threads asking for the same run at once: it runs once, both get it
+    let other = short(&["control.a=0.7"]);
+    let (x, y) = std::thread::scope(|s| {
+        let x = s.spawn(|| study.ftdo(&other).unwrap());
+        let y = s.spawn(|| study.ftdo(&other).unwrap());
+        (x.join().unwrap(), y.join().unwrap())
+    });
+    assert!(std::sync::Arc::ptr_eq(&x, &y));
+    assert_eq!(study.simulations_run(), 2);
 }
 
-/// docs/ledger.md documents the JSON shape with an example: its row keys and its
+/// docs/ledger.md documents the JSON shape with an example: its top-level keys, row keys and
 /// mu-conditions evidence keys must be exactly those `check --json` produces.
 #[test]
 fn documented_ledger_shape_is_the_produced_one() {
     let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/ledger.md")).unwrap();
-    let start = doc.find("```json").expect("a json example") + 7;
-    let end = start + doc[start..].find("```").unwrap();
-    let example: Value = serde_json::from_str(&doc[start..end]).expect("the example parses");
+    let section = &doc[doc.find("## Example").expect("the example section")..];
+    let start = section.find("```json").expect("a json example") + 7;
+    let end = start + section[start..].find("```").unwrap();
+    let example: Value = serde_json::from_str(&section[start..end]).expect("the example parses");
     let produced = serde_json::to_value(check_all(&short(&["control.a=1e-4"])).unwrap()).unwrap();
     let keys = |v: &Value| v.as_object().unwrap().keys().cloned().collect::<Vec<_>>();
     assert_eq!(keys(&example), keys(&produced));
@@ -294,13 +288,12 @@ fn documented_ledger_shape_is_the_produced_one() {
     assert_eq!(keys(ex_row), keys(row));
     assert_eq!(keys(&ex_row["evidence"]), keys(&row["evidence"]));
     assert_eq!(keys(&ex_row["evidence"]["best"]), keys(&row["evidence"]["best"]));
-    // every verdict and basis named in the doc's vocabulary tables exists
-    for v in
-        ["holds", "fails", "holds-after-correction", "vacuous", "trivially-true", "partly-reproduced", "inconclusive"]
-    {
-        assert!(doc.contains(&format!("`{v}`")), "verdict {v} undocumented");
+    assert_eq!(keys(&example["settings"]), keys(&produced["settings"]));
+    // every verdict and basis exists in the doc's vocabulary tables
+    for v in Verdict::ALL {
+        assert!(doc.contains(&format!("`{}`", v.name())), "verdict {} undocumented", v.name());
     }
-    for b in ["exact-certificate", "analytic", "float-solver", "simulation"] {
-        assert!(doc.contains(&format!("`{b}`")), "basis {b} undocumented");
+    for b in wingcheck_claims::Basis::ALL {
+        assert!(doc.contains(&format!("`{}`", b.name())), "basis {} undocumented", b.name());
     }
 }

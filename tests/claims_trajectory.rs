@@ -5,7 +5,7 @@ mod common;
 
 use wingcheck_claims::finite_time::reach::{bound_38, bound_38_literal, filippov_reach, lemma3_time};
 use wingcheck_claims::finite_time::{self, Channel};
-use wingcheck_claims::{comparison, lemmas, Verdict};
+use wingcheck_claims::{comparison, lemmas, CheckSettings, Evidence, Verdict};
 use wingcheck_control::ObserverGain;
 use wingcheck_model::Config;
 
@@ -68,120 +68,147 @@ fn bound_38_is_lemma_3_with_phi1_2kappa1_phi2_2p_kappa3_phi3_p() {
     assert!(bound_38(0.8, 4.0, 13, 7, 1.0).is_err(), "a1 < a2 < 2a1 is required");
 }
 
+fn finite_time_evidence(row: &wingcheck_claims::ClaimRow) -> &finite_time::FiniteTimeEvidence {
+    match &row.evidence {
+        Evidence::FiniteTime(e) => e,
+        other => panic!("{}: not finite-time evidence: {other:?}", row.id),
+    }
+}
+
+/// The digital run of `rule` at hold period `t`.
+fn digital<'a>(e: &'a finite_time::FiniteTimeEvidence, rule: &str, t: f64) -> &'a finite_time::DigitalRecord {
+    e.digital.rows.iter().find(|r| r.rule.value == rule && r.period.value == t).expect("the run")
+}
+
 #[test]
 fn finite_time_2_holds_with_printed_bound_and_measured_time() {
-    let row = finite_time::check(&Config::paper(), Channel::Torsion).unwrap();
-    println!("{}", row.summary);
+    let settings = CheckSettings::default();
+    let row = finite_time::check(&Config::paper(), Channel::Torsion, &settings).unwrap();
+    println!("{}", row.finding_text());
     assert_eq!(row.id.name(), "finite-time-2");
     assert_eq!(row.verdict, Verdict::Holds);
-    assert!((row.number("sigma0").unwrap() - sigma2_0()).abs() < 1e-12);
+    let e = finite_time_evidence(&row);
+    assert!((e.sigma0.value - sigma2_0()).abs() < 1e-12);
     // Reference: (39) evaluated by hand from σ2(0): (13/(2·0.8·6)) ln(1 + 0.8 Q0^{6/13}/(2^{−6/13}·4)).
     let q0 = 0.5 * sigma2_0().powi(2);
     let by_hand = 13.0 / (2.0 * 0.8 * 6.0) * (0.8 * q0.powf(6.0 / 13.0) / (2f64.powf(7.0 / 13.0 - 1.0) * 4.0)).ln_1p();
-    assert!((row.number("bound_s").unwrap() - by_hand).abs() < 1e-12);
+    assert!((e.bound_s.value - by_hand).abs() < 1e-12);
     assert!((by_hand - 0.069504300703).abs() < 1e-11);
     // Reference: Filippov time 0.0540814241 (σ-domain RK4; 2000 vs 4000 steps agree to 1e-14, and the
     // constant-g closed form above validates the integrator).
-    let measured = row.number("measured_s").unwrap();
+    let m = e.measured_s.quantity().expect("reached");
+    let measured = m.value;
     assert!((measured - 0.054081424119).abs() < 1e-9, "{measured}");
-    assert!(row.number("measured_error_s").unwrap() < 1e-10);
+    assert!(m.error().unwrap() < 1e-10);
     assert!(measured < by_hand);
     // Literal exponents Q0^(a2 − a1/a2) give ~1e-20 s: cannot be what is meant.
     assert!(bound_38_literal(0.8, 4.0, 7, 13, sigma2_0()) < 1e-15);
     // Sharpness (g ≡ κ5, closed form = bound): ratio 1 to round-off.
-    assert!((row.number("sharp_ratio").unwrap() - 1.0).abs() < 1e-10);
-    assert!(row.number("sweep_max_ratio").unwrap() < 1.0);
-    assert_eq!(row.evidence["implicit_stays_in_band"], serde_json::json!(true));
-    for t in finite_time::PERIODS {
-        let k = format!("{t:e}");
+    assert!((e.sharp_ratio.quantity().unwrap().value - 1.0).abs() < 1e-10);
+    assert!(e.sweep_max_ratio.quantity().unwrap().value < 1.0);
+    assert!(e.implicit_stays_in_band.value);
+    for t in settings.hold_periods {
         // Digital reaching times converge to the Filippov time: within one sample (O(T)).
         for rule in ["implicit", "explicit"] {
-            let r = row.number(&format!("{rule}_reach_s_T{k}")).unwrap();
+            let r = digital(e, rule, t).reach.quantity().expect("reached").value;
             assert!((r - measured).abs() <= t + 1e-12, "{rule} T={t}: {r}");
         }
         // Implicit: sampled g̃ = g(t_k) − ḡ_{k−1} ≈ (T/2)·ġ ≤ T·sup|ġ|.
-        let gi = row.number(&format!("implicit_gtilde_max_T{k}")).unwrap();
-        assert!(gi <= t * row.number("gdot_sup").unwrap() * 1.01, "T={t}: {gi}");
+        let gi = digital(e, "implicit", t).gtilde_max.value;
+        assert!(gi <= t * e.gdot_sup.value * 1.01, "T={t}: {gi}");
         // Explicit: chatter of ĝ does not vanish (≥ κ5 = 1), σ's band is O(T) (≤ T(κ5 + κ6 + ζ)).
-        assert!(row.number(&format!("explicit_gtilde_max_T{k}")).unwrap() > 1.0);
-        assert!(row.number(&format!("explicit_sigma_after_max_T{k}")).unwrap() <= t * (1.0 + 4.0 + 0.06) * 1.01);
+        let ex = digital(e, "explicit", t);
+        assert!(ex.gtilde_max.value > 1.0);
+        assert!(ex.sigma_after_max.quantity().unwrap().value <= t * (1.0 + 4.0 + 0.06) * 1.01);
     }
     assert_eq!(row.plots.len(), 4);
 }
 
 #[test]
 fn finite_time_1_is_trivial_at_the_paper_initial_state() {
-    // Linear initial shape ⇒ q'''(s,0) = 0 ⇒ σ1(0) = 0: bound 0, σ1 never leaves 0 (ζ1 = 0.08 < κ2 = 1).
-    let row = finite_time::check(&Config::paper(), Channel::Bending).unwrap();
+    // Linear initial shape: q'''(s,0) = 0, so σ1(0) = 0: bound 0, σ1 never leaves 0 (ζ1 = 0.08 < κ2 = 1).
+    let row = finite_time::check(&Config::paper(), Channel::Bending, &CheckSettings::default()).unwrap();
     assert_eq!(row.verdict, Verdict::TriviallyTrue);
-    assert_eq!(row.number("sigma0").unwrap(), 0.0);
-    assert_eq!(row.number("bound_s").unwrap(), 0.0);
-    assert_eq!(row.number("measured_s").unwrap(), 0.0);
-    assert!((row.number("zeta").unwrap() - 0.08).abs() < 1e-15);
-    assert!(row.number("sweep_max_ratio").unwrap() < 1.0);
-    assert!(row.number("implicit_sigma_after_max_T1e-3").unwrap() <= 1e-3 * 0.08);
+    let e = finite_time_evidence(&row);
+    assert_eq!(e.sigma0.value, 0.0);
+    assert_eq!(e.bound_s.value, 0.0);
+    assert_eq!(e.measured_s.quantity().unwrap().value, 0.0);
+    assert!((e.zeta.value - 0.08).abs() < 1e-15);
+    assert!(e.sweep_max_ratio.quantity().unwrap().value < 1.0);
+    assert!(digital(e, "implicit", 1e-3).sigma_after_max.quantity().unwrap().value <= 1e-3 * 0.08);
+    // the finding says what the trivial case means, from the evidence
+    assert!(row.finding[0].contains("σ1(0) = 0"), "{:?}", row.finding);
 }
 
 #[test]
 fn finite_time_is_inconclusive_when_the_hypothesis_fails() {
     // κ5 = 0.05 < ζ2 = 0.06: Theorem 4 does not apply.
     let cfg = common::paper_with(&["observer.kappa5=0.05"]);
-    let row = finite_time::check(&cfg, Channel::Torsion).unwrap();
-    assert_eq!(row.evidence["hypothesis_holds"], serde_json::json!(false));
+    let row = finite_time::check(&cfg, Channel::Torsion, &CheckSettings::default()).unwrap();
+    assert!(!finite_time_evidence(&row).hypothesis_holds.value);
     assert_eq!(row.verdict, Verdict::Inconclusive);
+    assert!(row.finding[0].contains("hypothesis fails"), "{:?}", row.finding);
 }
 
 #[test]
 fn lemmas_hold_after_correcting_lemma_2() {
-    let row = lemmas::check(&Config::paper()).unwrap();
-    println!("{}", row.summary);
+    let row = lemmas::check(&Config::paper(), &CheckSettings::default()).unwrap();
+    println!("{}", row.finding_text());
     assert_eq!(row.verdict, Verdict::HoldsAfterCorrection);
     assert!(row.correction.as_deref().unwrap_or("").contains("ω̄'"));
+    let Evidence::Lemmas(e) = &row.evidence else { panic!("lemmas evidence") };
     // Lemma 1: max ab/(a²/p + p b²) = 1/2 exactly (AM–GM), so (11) holds with slack 2.
-    assert!((row.number("lemma1_max_ratio").unwrap() - 0.5).abs() < 1e-12);
+    assert!((e.lemma1_max_ratio.value - 0.5).abs() < 1e-12);
     // Lemma 2 printed, on [0, 2]: best ratio over degree ≤ K is K(K+2)/f² (by hand: K = 1 gives
     // 3/4 from ∫_0^1 x² = 1/3; K = 2 gives 8/4 from the 2×2 Hilbert-type system); float tolerance
     // grows with the conditioning of the Gram matrix.
-    let printed = row.evidence["lemma2_printed_ratio_by_degree"].as_array().unwrap();
-    for (i, v) in printed.iter().enumerate() {
-        let k = (i + 1) as f64;
+    for r in &e.lemma2_by_degree.rows {
+        let k = r.degree.value;
         let expect = k * (k + 2.0) / 4.0;
-        assert!((v.as_f64().unwrap() - expect).abs() <= 1e-5 * expect, "K = {k}");
+        assert!((r.printed.value - expect).abs() <= 1e-5 * expect, "K = {k}");
     }
     // Corrected form: sharp constant 1 (ω = z) at every degree.
-    assert!((row.number("lemma2_corrected_max_ratio").unwrap() - 1.0).abs() < 1e-9);
-    let cex = &row.evidence["lemma2_counterexample"];
-    assert_eq!(cex["rhs_printed"], "64/5");
-    assert_eq!(cex["printed_violated"], true);
+    assert!((e.lemma2_corrected_max_ratio.value - 1.0).abs() < 1e-9);
+    let cex = &e.lemma2_counterexample;
+    assert_eq!(cex.rhs_printed.value, "64/5");
+    assert!(cex.printed_violated.value);
+    // the finding names the configured counterexample (16 > 64/5 on [0, 2] for ω = z²)
+    assert!(row.finding[1].contains("ω = z^2") && row.finding[1].contains("16 > f∫ω² = 64/5"), "{}", row.finding[1]);
     // Lemma 3: (14) is the exact reaching time; independent RK4 agrees to < 1e-6 relative.
-    assert!(row.number("lemma3_max_rel_err").unwrap() < 1e-6);
-    assert_eq!(row.number("lemma3_violations").unwrap(), 0.0);
+    assert!(e.lemma3_max_rel_err.value < 1e-6);
+    assert_eq!(e.lemma3_violations.value, 0.0);
 }
 
 #[test]
 fn ftdo_vs_dobc_is_only_partly_reproduced() {
-    let row = comparison::check(&Config::paper(), &wingcheck_claims::Study::new()).unwrap();
-    println!("{}", row.summary);
+    let row = comparison::check(&Config::paper(), &wingcheck_claims::Study::new(), &CheckSettings::default()).unwrap();
+    println!("{}", row.finding_text());
     // g̃ clearly smaller (reproduced), tip response not clearly better (not reproduced)
     assert_eq!(row.verdict, Verdict::PartlyReproduced);
-    assert_eq!(row.evidence["gtilde_clearly_smaller"], true);
-    assert_eq!(row.evidence["tip_response_clearly_better"], false);
+    let Evidence::Comparison(e) = &row.evidence else { panic!("comparison evidence") };
+    assert!(e.gtilde_clearly_smaller.value);
+    assert!(!e.tip_response_clearly_better.value);
     // FTDO's g̃ vanishes (implicit rule, within the reaching time ≈ 0.054 s + one output sample),
     // DOBC's stays ≈ ġ: late RMS ratio ~2e3.
-    assert!(row.number("ftdo-implicit.gtilde2_settle_s").unwrap() <= 0.07);
-    assert_eq!(row.evidence["dobc.gtilde1_settle_s"], comparison::NEVER_SETTLED);
-    assert!(row.number("gtilde_ratio_late").unwrap() > 100.0);
+    let (ftdo, dobc) = (&e.runs.rows[0], &e.runs.rows[1]);
+    assert_eq!(ftdo.run.value, "FTDO, implicit rule");
+    assert!(ftdo.gtilde2_settle.quantity().unwrap().value <= 0.07);
+    assert_eq!(dobc.gtilde1_settle.text(), wingcheck_claims::NEVER_SETTLED);
+    assert!(e.gtilde_ratio_late.as_ref().unwrap().value > 100.0);
     // Tip responses within ~12% everywhere, and DOBC slightly better over the late half.
-    assert!(row.number("max_abs_rel_diff_tip").unwrap() < 0.15);
-    assert!(row.number("late_min_rel_diff").unwrap() < 0.0);
+    assert!(e.max_abs_rel_diff_tip.value < 15.0);
+    assert!(e.late_min_rel_diff.value < 0.0);
     assert_eq!(row.plots.len(), 6);
+    // the sweep is centred on the configured (a, b) = (1, 1): × and ÷ 2 in each weight
+    let ab: Vec<(f64, f64)> = e.ab_sweep.rows.iter().map(|p| (p.a.value, p.b.value)).collect();
+    assert_eq!(ab, vec![(0.5, 1.0), (2.0, 1.0), (1.0, 0.5), (1.0, 2.0)]);
 
     // The explicit FTDO's full-rate RMS τ1 carries a dt error that bounds its actual error.
     // Reference: the same run (the `auto` scheme: exponential for the explicit FTDO) at
     // dt = T/10, the dt-refinement the estimate is about; that this scheme converges to the right
     // limit is checked against extrapolated TR-BDF2 in tests/exponential.rs (within 1e-7).
-    let value = row.number("ftdo-explicit.rms_tau1").unwrap();
-    let error = row.number("explicit_rms_tau1_dt_error").unwrap();
+    let value = e.explicit_rms_tau1.value;
+    let error = e.explicit_rms_tau1.error().unwrap();
     let mut c = Config::paper();
     c.control.kind = wingcheck_model::ControllerKind::Ftdo;
     c.observer.rule = wingcheck_model::ObserverRule::Explicit;
@@ -191,7 +218,32 @@ fn ftdo_vs_dobc_is_only_partly_reproduced() {
     println!("explicit RMS τ1 {value} ± {error} vs dt = T/10: {reference}");
     assert!((value - reference).abs() <= error, "{value} ± {error} vs {reference}");
     assert!(error < 0.05 * value, "estimate uninformative: {error}");
-    // the scheme the explicit runs used is in the evidence and the summary
-    assert_eq!(row.evidence["explicit_stepper"], "exponential");
-    assert!(row.summary.contains("exponential scheme"), "{}", row.summary);
+    // the scheme the explicit runs used is in the evidence and the text
+    assert_eq!(e.explicit_stepper.value, "exponential");
+    assert!(row.details.join(" ").contains("exponential scheme"), "{:?}", row.details);
+}
+
+/// With the explicit rule configured, the comparison is DOBC against the explicit FTDO (whose
+/// chattering g̃ is larger than DOBC's), the implicit rule the secondary comparison, and the
+/// sweep centred on the configured weights.
+#[test]
+fn ftdo_vs_dobc_follows_the_configured_rule_and_weights() {
+    let cfg = common::paper_with(&["observer.rule=explicit", "control.a=0.4", "control.b=3", "horizon.t_end=4"]);
+    let row = comparison::check(&cfg, &wingcheck_claims::Study::new(), &CheckSettings::default()).unwrap();
+    let Evidence::Comparison(e) = &row.evidence else { panic!("comparison evidence") };
+    assert_eq!(e.runs.rows[0].run.value, "FTDO, explicit rule");
+    assert_eq!(e.runs.rows[2].run.value, "FTDO, implicit rule");
+    // the explicit observer chatters (|g̃| ~ κ_sw): DOBC's disturbance error is the smaller one
+    let r = e.gtilde_ratio_late.as_ref().unwrap().value;
+    assert!(r < 1.0, "DOBC / explicit FTDO = {r}");
+    assert!(!e.gtilde_clearly_smaller.value);
+    assert!(
+        row.finding[0].contains("DOBC's disturbance error is") && row.finding[0].contains("explicit rule"),
+        "{}",
+        row.finding[0]
+    );
+    let ab: Vec<(f64, f64)> = e.ab_sweep.rows.iter().map(|p| (p.a.value, p.b.value)).collect();
+    assert_eq!(ab, vec![(0.2, 3.0), (0.8, 3.0), (0.4, 1.5), (0.4, 6.0)]);
+    // the ratio against the other (implicit) rule is the secondary comparison, > 1
+    assert!(e.gtilde_ratio_late_other_rule.as_ref().unwrap().value > 1.0);
 }

@@ -166,7 +166,8 @@ fn check_json_is_the_ledger_and_honours_overrides() {
     // a/b = 0.05 < ω₁ ≈ 0.121: W is positive definite after the correction (tests/claims_lyapunov.rs)
     assert_eq!(rows[0]["verdict"], "holds-after-correction");
     for key in ["lambda1_printed", "lambda2_printed", "lambda1_tight", "lambda2_tight", "a_over_b_max"] {
-        assert!(rows[0]["evidence"][key].is_number(), "missing {key}");
+        let q = &rows[0]["evidence"][key];
+        assert!(q["value"].is_number() && q["label"].is_string() && q["unit"].is_string(), "missing {key}: {q}");
     }
 }
 

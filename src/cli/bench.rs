@@ -192,16 +192,16 @@ fn bench_check(cfg: &wingcheck_model::Config, repeats: usize, as_json: bool) -> 
     for _ in 0..repeats.max(1) {
         let t = Instant::now();
         let study = wingcheck_claims::Study::new();
-        let ledger = wingcheck_claims::check_all_with(cfg, &study)?;
+        let ledger = wingcheck_claims::check_all_with(cfg, &study, &wingcheck_claims::CheckSettings::default())?;
         totals.push(t.elapsed().as_secs_f64());
         sims = study.simulations_run();
         for (i, r) in ledger.rows.iter().enumerate() {
             if rows.len() <= i {
                 rows.push((r.id.to_string(), Vec::new()));
             }
-            rows[i].1.push(r.seconds);
+            rows[i].1.push(ledger.wall_seconds.iter().find(|w| w.what == r.id.name()).map_or(0.0, |w| w.seconds));
         }
-        sdp.push(ledger.row("W-bounds").and_then(|r| r.number("sdp_seconds")).unwrap_or(0.0));
+        sdp.push(ledger.wall_seconds.iter().find(|w| w.what == "W-bounds SDP cross-check").map_or(0.0, |w| w.seconds));
     }
     let tmp = std::env::temp_dir().join(format!("wingcheck-bench-proofs-{}", std::process::id()));
     let t = Instant::now();

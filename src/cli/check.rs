@@ -26,18 +26,25 @@ pub fn run(a: CheckArgs) -> anyhow::Result<()> {
         return Ok(());
     }
     println!("claim ledger ({}, config sha256 {})", ledger.tool, &ledger.config_sha256[..12]);
-    println!("{:<14} {:<28} {:<23} {:<18} {:>7}", "id", "equation", "verdict", "basis", "time");
+    println!("{:<14} {:<32} {:<23} {:<18} {:>7}", "id", "equation", "verdict", "basis", "time");
     for r in &ledger.rows {
-        println!("{:<14} {:<28} {:<23} {:<18} {:>6.2}s", r.id, r.equation, r.verdict.name(), r.basis.name(), r.seconds);
+        let seconds = ledger.wall_seconds.iter().find(|w| w.what == r.id.name()).map_or(0.0, |w| w.seconds);
+        println!("{:<14} {:<32} {:<23} {:<18} {:>6.2}s", r.id, r.equation, r.verdict.name(), r.basis.name(), seconds);
     }
+    println!("(wall times overlap: the rows run on two threads)");
     for r in &ledger.rows {
-        println!("\n[{}] {} — {}", r.id, r.verdict.name(), r.claim);
-        println!("  {}", r.summary);
+        println!("\n[{}] {} ({}) — {}", r.id, r.verdict.name(), r.basis.name(), r.claim);
+        for s in &r.finding {
+            println!("  {s}");
+        }
+        for q in &r.decisive {
+            println!("  · {}: {} ({})", q.label, q.value_text(), q.accuracy_text());
+        }
+        for s in &r.details {
+            println!("  {s}");
+        }
         if let Some(c) = &r.correction {
             println!("  correction: {c}");
-        }
-        for (k, v) in &r.evidence {
-            println!("  {k} = {v}");
         }
         for s in &r.assumptions {
             println!("  assumed: {s}");

@@ -1,68 +1,15 @@
-//! The claim ledger: one row per claim of the paper with a verdict, the basis it rests on,
-//! evidence numbers, assumptions, and the data behind its figures.
+//! The claim ledger: one row per claim of the paper with a verdict, the basis it rests on, a
+//! short finding with its decisive numbers, the typed evidence, assumptions, certificates and
+//! the data behind its figures. Wall times are kept apart from the reproducible content.
 
-use std::collections::BTreeMap;
+use serde::{Deserialize, Serialize};
+use wingcheck_model::Quantity;
 
-use serde::{Deserialize, Deserializer, Serialize, Serializer};
-use serde_json::Value;
+pub use crate::spec::ClaimId;
 pub use wingcheck_chart::{Line, PlotData};
 
-/// How a value that exists only once σ has reached zero (or its band) is written when it has
-/// not: evidence and texts.
-pub const NOT_REACHED: &str = "not reached within the run";
-/// How a settling time that is not reached before the horizon is written in evidence and texts.
-pub const NEVER_SETTLED: &str = "never within the horizon";
-
-/// A number, or `None` written as a fixed text (never null).
-macro_rules! number_or_text {
-    ($(#[$doc:meta])* $name:ident, $text:expr) => {
-        $(#[$doc])*
-        #[derive(Debug, Clone, Copy, PartialEq, Default)]
-        pub struct $name(pub Option<f64>);
-
-        impl Serialize for $name {
-            fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-                match self.0 {
-                    Some(x) => s.serialize_f64(x),
-                    None => s.serialize_str($text),
-                }
-            }
-        }
-
-        impl<'de> Deserialize<'de> for $name {
-            fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-                match Value::deserialize(d)? {
-                    Value::Number(n) => Ok($name(n.as_f64())),
-                    Value::String(t) if t == $text => Ok($name(None)),
-                    v => Err(serde::de::Error::custom(format!("expected a number or \"{}\", got {v}", $text))),
-                }
-            }
-        }
-
-        impl std::fmt::Display for $name {
-            /// `x.xxxxe±y <unit-less>` or the text.
-            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-                match self.0 {
-                    Some(x) => write!(f, "{x:.4e}"),
-                    None => f.write_str($text),
-                }
-            }
-        }
-    };
-}
-
-number_or_text!(
-    /// A value that exists only once σ reached zero or its band (a reaching time in s, or σ's
-    /// magnitude after reaching); otherwise serialised as [`NOT_REACHED`].
-    Reached,
-    NOT_REACHED
-);
-number_or_text!(
-    /// A settling time (s), or [`NEVER_SETTLED`] when the signal is still outside its threshold
-    /// at the end of the horizon.
-    SettleTime,
-    NEVER_SETTLED
-);
+use crate::evidence::{Evidence, Explain};
+use crate::settings::CheckSettings;
 
 /// What the check concluded. Never overclaims: see [`Basis`] for what it rests on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -79,13 +26,24 @@ pub enum Verdict {
     /// True, but only because the hypothesis makes it trivial (e.g. a reaching-time bound of 0 s
     /// when the observer error starts at zero); nothing was tested.
     TriviallyTrue,
-    /// Part of the claim is reproduced and part is not; the summary says which.
+    /// Part of the claim is reproduced and part is not; the finding says which.
     PartlyReproduced,
     /// Not decided (not computed, or the evidence is not strong enough); the row says why.
     Inconclusive,
 }
 
 impl Verdict {
+    /// Every verdict, in the order of the legend.
+    pub const ALL: [Verdict; 7] = [
+        Verdict::Holds,
+        Verdict::HoldsAfterCorrection,
+        Verdict::PartlyReproduced,
+        Verdict::TriviallyTrue,
+        Verdict::Vacuous,
+        Verdict::Fails,
+        Verdict::Inconclusive,
+    ];
+
     /// Kebab-case name as printed.
     pub fn name(self) -> &'static str {
         match self {
@@ -98,116 +56,217 @@ impl Verdict {
             Verdict::Inconclusive => "inconclusive",
         }
     }
+
+    /// One line of the legend: what the verdict means.
+    pub fn meaning(self) -> &'static str {
+        match self {
+            Verdict::Holds => "the claim holds as printed",
+            Verdict::Fails => "false as printed: a counterexample or a violated condition is in the evidence",
+            Verdict::HoldsAfterCorrection => "holds only after the stated correction",
+            Verdict::Vacuous => "formally valid but uninformative",
+            Verdict::TriviallyTrue => "true only because the hypothesis makes it trivial; nothing was tested",
+            Verdict::PartlyReproduced => "part of the claim is reproduced, part is not",
+            Verdict::Inconclusive => "not decided; the row says why",
+        }
+    }
 }
 
 /// What a verdict rests on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Basis {
-    /// A certificate re-checked in exact rational arithmetic (proof, for the stated discretisation).
+    /// A certificate re-checked in exact rational arithmetic (proof, for the stated statement).
     ExactCertificate,
     /// A closed-form argument (stated in the row and the docs) whose conditions are evaluated in
     /// exact rational arithmetic from the configuration's decimals.
     Analytic,
     /// A floating-point solver's answer (SDP/LP/eigenvalues): evidence, not proof.
     FloatSolver,
+    /// Floating-point computation without a solver (a search, an ODE integration, an exact
+    /// counterexample beside float checks): evidence for the cases computed.
+    Computation,
     /// Simulation of the closed loop: evidence for the simulated cases only.
     Simulation,
 }
 
 impl Basis {
+    /// Every basis, in the order of the legend.
+    pub const ALL: [Basis; 5] =
+        [Basis::ExactCertificate, Basis::Analytic, Basis::FloatSolver, Basis::Computation, Basis::Simulation];
+
     /// Kebab-case name as printed.
     pub fn name(self) -> &'static str {
         match self {
             Basis::ExactCertificate => "exact-certificate",
             Basis::Analytic => "analytic",
             Basis::FloatSolver => "float-solver",
+            Basis::Computation => "computation",
             Basis::Simulation => "simulation",
         }
     }
-}
 
-/// The claims of the paper, in the paper's order.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
-pub enum ClaimId {
-    /// Theorem 1, (22)–(28).
-    #[serde(rename = "W-bounds")]
-    WBounds,
-    /// (29)–(32).
-    #[serde(rename = "mu-conditions")]
-    MuConditions,
-    /// Theorem 2, (33)–(37).
-    #[serde(rename = "UUB")]
-    Uub,
-    /// Theorem 3, (38).
-    #[serde(rename = "finite-time-1")]
-    FiniteTime1,
-    /// Theorem 3, (39).
-    #[serde(rename = "finite-time-2")]
-    FiniteTime2,
-    /// Lemmas 1–3.
-    #[serde(rename = "lemmas")]
-    Lemmas,
-    /// Section 4: FTDO vs DOBC.
-    #[serde(rename = "ftdo-vs-dobc")]
-    FtdoVsDobc,
-}
-
-impl ClaimId {
-    /// Every claim, in the paper's order.
-    pub const ALL: [ClaimId; 7] = [
-        ClaimId::WBounds,
-        ClaimId::MuConditions,
-        ClaimId::Uub,
-        ClaimId::FiniteTime1,
-        ClaimId::FiniteTime2,
-        ClaimId::Lemmas,
-        ClaimId::FtdoVsDobc,
-    ];
-
-    /// The id as printed.
-    pub fn name(self) -> &'static str {
+    /// What it means, in a line.
+    pub fn meaning(self) -> &'static str {
         match self {
-            ClaimId::WBounds => "W-bounds",
-            ClaimId::MuConditions => "mu-conditions",
-            ClaimId::Uub => "UUB",
-            ClaimId::FiniteTime1 => "finite-time-1",
-            ClaimId::FiniteTime2 => "finite-time-2",
-            ClaimId::Lemmas => "lemmas",
-            ClaimId::FtdoVsDobc => "ftdo-vs-dobc",
-        }
-    }
-
-    /// Where in the paper.
-    pub fn equation(self) -> &'static str {
-        match self {
-            ClaimId::WBounds => "(22)–(28), Theorem 1",
-            ClaimId::MuConditions => "(29)–(32)",
-            ClaimId::Uub => "(33)–(37), Theorem 2",
-            ClaimId::FiniteTime1 => "(38), Theorem 3",
-            ClaimId::FiniteTime2 => "(39), Theorem 3",
-            ClaimId::Lemmas => "Lemmas 1–3, (12)–(14)",
-            ClaimId::FtdoVsDobc => "Section 4, Figs 3–20",
+            Basis::ExactCertificate => "proof: re-checked in exact rational arithmetic",
+            Basis::Analytic => "a closed-form argument whose conditions are decided in exact arithmetic",
+            Basis::FloatSolver => "a floating-point solver, re-verified: evidence, not proof",
+            Basis::Computation => "floating-point searches and integrations: evidence for the cases computed",
+            Basis::Simulation => "closed-loop simulation: evidence for the simulated cases",
         }
     }
 }
 
-impl std::fmt::Display for ClaimId {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.pad(self.name())
+/// One claim's row.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ClaimRow {
+    /// Claim id.
+    pub id: ClaimId,
+    /// Where in the paper (equations, theorem), from the claim table.
+    pub equation: String,
+    /// The claim in words, from the claim table.
+    pub claim: String,
+    /// Verdict.
+    pub verdict: Verdict,
+    /// What the verdict rests on.
+    pub basis: Basis,
+    /// The finding: at most three short sentences.
+    pub finding: Vec<String>,
+    /// The decisive numbers, each with its unit and error or basis.
+    pub decisive: Vec<Quantity>,
+    /// Further sentences of explanation (the detail section).
+    pub details: Vec<String>,
+    /// The correction under which the claim holds (for `holds-after-correction`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub correction: Option<String>,
+    /// The typed evidence: labelled quantities, flags, texts and tables ([`crate::display`]).
+    pub evidence: Evidence,
+    /// Assumptions made where the paper is silent.
+    pub assumptions: Vec<String>,
+    /// Certificate files (`<id>.json` in `wingcheck certify`'s output for this configuration)
+    /// backing the row.
+    pub certificates: Vec<String>,
+    /// Data behind the row's figures.
+    pub plots: Vec<PlotData>,
+}
+
+impl ClaimRow {
+    /// A decided row: verdict, finding, numbers and correction from the evidence itself.
+    pub fn decided<E: Explain + Into<Evidence>>(
+        id: ClaimId,
+        evidence: E,
+        assumptions: Vec<String>,
+        plots: Vec<PlotData>,
+    ) -> ClaimRow {
+        let (verdict, basis) = evidence.verdict();
+        let spec = id.spec();
+        ClaimRow {
+            id,
+            equation: id.equation(),
+            claim: spec.claim.into(),
+            verdict,
+            basis,
+            finding: evidence.finding(),
+            decisive: evidence.decisive(),
+            details: evidence.details(),
+            correction: evidence.correction(),
+            evidence: evidence.into(),
+            assumptions,
+            certificates: Vec::new(),
+            plots,
+        }
+    }
+
+    /// A row that has not been decided, with the reason (and the basis the reason rests on).
+    pub fn inconclusive(id: ClaimId, basis: Basis, reason: impl Into<String>) -> ClaimRow {
+        let spec = id.spec();
+        ClaimRow {
+            id,
+            equation: id.equation(),
+            claim: spec.claim.into(),
+            verdict: Verdict::Inconclusive,
+            basis,
+            finding: vec![reason.into()],
+            decisive: Vec::new(),
+            details: Vec::new(),
+            correction: None,
+            evidence: Evidence::None,
+            assumptions: Vec::new(),
+            certificates: Vec::new(),
+            plots: Vec::new(),
+        }
+    }
+
+    /// The finding as one paragraph.
+    pub fn finding_text(&self) -> String {
+        self.finding.join(" ")
+    }
+
+    /// The evidence serialised (the row's `evidence` in `check --json`).
+    pub fn evidence_json(&self) -> serde_json::Value {
+        serde_json::to_value(&self.evidence).expect("evidence serialises")
+    }
+
+    /// Numeric evidence by its JSON path (`lambda2_tight`, `runs.ftdo.rms_q_full`): a
+    /// quantity's value.
+    pub fn number(&self, path: &str) -> Option<f64> {
+        crate::display::number_at(&self.evidence_json(), path)
     }
 }
 
-/// A typed evidence struct as the row's key → value map (its serde serialisation); every
-/// value must be finite (checked by [`Ledger::non_finite`]).
-pub fn evidence_map<T: Serialize>(e: &T) -> BTreeMap<String, Value> {
-    match serde_json::to_value(e) {
-        Ok(Value::Object(m)) => m.into_iter().collect(),
-        _ => BTreeMap::new(),
+/// A wall time (not reproducible content): what took how long.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WallTime {
+    /// What was timed (`W-bounds`, `W-bounds SDP cross-check N = 32`).
+    pub what: String,
+    /// Wall seconds.
+    pub seconds: f64,
+}
+
+/// The whole ledger.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Ledger {
+    /// Tool name and version.
+    pub tool: String,
+    /// SHA-256 of the configuration's canonical JSON.
+    pub config_sha256: String,
+    /// The checker's numerical settings (grids, tolerances, thresholds) used for every row.
+    pub settings: CheckSettings,
+    /// One row per claim, in the paper's order.
+    pub rows: Vec<ClaimRow>,
+    /// Wall times of the rows and their parts (they run concurrently, so they overlap). Not
+    /// serialised: `check --json` is reproducible byte for byte; `check` and the report's
+    /// provenance print them.
+    #[serde(skip)]
+    pub wall_seconds: Vec<WallTime>,
+}
+
+impl Ledger {
+    /// Row by id.
+    pub fn row(&self, id: ClaimId) -> Option<&ClaimRow> {
+        self.rows.iter().find(|r| r.id == id)
+    }
+
+    /// JSON paths of every null, NaN or infinite value (and of texts printing NaN / "inf") in
+    /// the ledger; empty for a valid ledger.
+    pub fn non_finite(&self) -> Vec<String> {
+        non_finite_paths(self)
     }
 }
 
-fn find_non_finite(v: &Value, path: &str, out: &mut Vec<String>) {
+/// JSON paths of every null, NaN or infinite value (and of texts printing NaN / "inf") in the
+/// serialisation of `v`.
+pub fn non_finite_paths<T: Serialize>(v: &T) -> Vec<String> {
+    let mut out = Vec::new();
+    match serde_json::to_value(v) {
+        Ok(v) => find_non_finite(&v, "$", &mut out),
+        Err(e) => out.push(format!("$ (does not serialise: {e})")),
+    }
+    out
+}
+
+fn find_non_finite(v: &serde_json::Value, path: &str, out: &mut Vec<String>) {
+    use serde_json::Value;
     match v {
         Value::Null => out.push(path.to_string()),
         Value::Number(n) if n.as_f64().is_none_or(|x| !x.is_finite()) => out.push(path.to_string()),
@@ -217,109 +276,5 @@ fn find_non_finite(v: &Value, path: &str, out: &mut Vec<String>) {
             out.push(path.to_string())
         }
         _ => {}
-    }
-}
-
-/// One claim's row.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct ClaimRow {
-    /// Claim id.
-    pub id: ClaimId,
-    /// Where in the paper (equation numbers, theorem).
-    pub equation: String,
-    /// The claim in words.
-    pub claim: String,
-    /// Verdict.
-    pub verdict: Verdict,
-    /// What the verdict rests on.
-    pub basis: Basis,
-    /// One-paragraph summary of the finding.
-    pub summary: String,
-    /// The correction under which the claim holds (for `holds-after-correction`).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub correction: Option<String>,
-    /// Key numbers and facts (stable keys; tests assert on them).
-    pub evidence: BTreeMap<String, Value>,
-    /// Evidence keys to show first (e.g. in the report's ledger table), most important first.
-    #[serde(default)]
-    pub highlights: Vec<String>,
-    /// Assumptions made where the paper is silent.
-    pub assumptions: Vec<String>,
-    /// Certificate files backing the row (relative to the proofs directory).
-    #[serde(default)]
-    pub certificates: Vec<String>,
-    /// Data behind the row's figures.
-    #[serde(default)]
-    pub plots: Vec<PlotData>,
-    /// Wall time spent on this row (s); not part of the reproducible content.
-    pub seconds: f64,
-}
-
-impl ClaimRow {
-    /// A row that has not been decided, with the reason.
-    pub fn inconclusive(id: ClaimId, claim: &str, reason: &str) -> ClaimRow {
-        ClaimRow {
-            id,
-            equation: id.equation().into(),
-            claim: claim.into(),
-            verdict: Verdict::Inconclusive,
-            basis: Basis::Simulation,
-            summary: reason.into(),
-            correction: None,
-            evidence: BTreeMap::new(),
-            highlights: Vec::new(),
-            assumptions: Vec::new(),
-            certificates: Vec::new(),
-            plots: Vec::new(),
-            seconds: 0.0,
-        }
-    }
-
-    /// Numeric evidence value by key.
-    pub fn number(&self, key: &str) -> Option<f64> {
-        self.evidence.get(key).and_then(Value::as_f64)
-    }
-}
-
-/// The whole ledger.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Ledger {
-    /// Tool name and version.
-    pub tool: String,
-    /// SHA-256 of the configuration's canonical JSON.
-    pub config_sha256: String,
-    /// One row per claim, in the paper's order.
-    pub rows: Vec<ClaimRow>,
-}
-
-impl Ledger {
-    /// Row by id.
-    pub fn row(&self, id: &str) -> Option<&ClaimRow> {
-        self.rows.iter().find(|r| r.id.name() == id)
-    }
-
-    /// JSON paths of every null, NaN or infinite value (and of texts printing NaN / "= inf")
-    /// in the ledger; empty for a valid ledger.
-    pub fn non_finite(&self) -> Vec<String> {
-        let mut out = Vec::new();
-        match serde_json::to_value(self) {
-            Ok(v) => find_non_finite(&v, "$", &mut out),
-            Err(e) => out.push(format!("$ (does not serialise: {e})")),
-        }
-        for r in &self.rows {
-            for (what, text) in
-                [("summary", &r.summary), ("correction", r.correction.as_ref().unwrap_or(&String::new()))]
-            {
-                if text.contains("NaN") || text.split(|c: char| !c.is_alphanumeric()).any(|w| w == "inf") {
-                    out.push(format!("{}.{what}", r.id));
-                }
-            }
-            for p in &r.plots {
-                if p.lines.iter().any(|l| l.x.iter().chain(&l.y).any(|v| !v.is_finite())) {
-                    out.push(format!("{}.plots.{}", r.id, p.name));
-                }
-            }
-        }
-        out
     }
 }

@@ -1,31 +1,39 @@
-//! The claim checker: for each claim of the paper (table at the end of
-//! `docs/model.md`) a verdict with evidence, the basis it rests on, and the
-//! assumptions made where the paper is silent.
+//! The claim checker: for each claim of the paper ([`spec::CLAIMS`]) a verdict with evidence,
+//! the basis it rests on, and the assumptions made where the paper is silent.
 //!
-//! Rows: `W-bounds` and `mu-conditions` ([`wbounds`], [`mu`]) rest on convex optimisation and
-//! exact certificates; `UUB` ([`uub`]) combines them with simulation; `finite-time-1/2`
-//! ([`finite_time`]), `lemmas` ([`lemmas`]) and `ftdo-vs-dobc` ([`comparison`]) on simulation
-//! and adversarial search.
+//! Rows: `W-bounds` and `mu-conditions` ([`wbounds`], [`mu`]) rest on convex optimisation,
+//! closed forms and exact certificates; `UUB` ([`uub`]) combines them with simulation;
+//! `finite-time-1/2` ([`finite_time`]), `lemmas` ([`lemmas`]) and `ftdo-vs-dobc`
+//! ([`comparison`]) on simulation and adversarial search. Each row's evidence is a typed struct
+//! of labelled quantities ([`display`]) with its own [`evidence::Explain`]: the verdict and the
+//! words come from the evidence alone.
 
 pub mod certify;
 pub mod comparison;
 pub mod convex;
+pub mod display;
+pub mod evidence;
 pub mod finite_time;
 mod ledger;
 pub mod lemmas;
 pub mod lyapunov;
 pub mod mu;
 pub mod sdp;
+pub mod settings;
 pub mod socp;
+pub mod spec;
 pub mod study;
 pub mod theory;
 pub mod uub;
 pub mod wbounds;
 
-pub use ledger::{
-    evidence_map, Basis, ClaimId, ClaimRow, Ledger, Line, PlotData, Reached, SettleTime, Verdict, NEVER_SETTLED,
-    NOT_REACHED,
-};
+use std::sync::Arc;
+use std::time::Instant;
+
+pub use display::{NEVER_SETTLED, NOT_REACHED};
+pub use evidence::{Evidence, Explain};
+pub use ledger::{Basis, ClaimId, ClaimRow, Ledger, Line, PlotData, Verdict, WallTime};
+pub use settings::CheckSettings;
 pub use study::Study;
 
 use sha2::{Digest, Sha256};
@@ -34,9 +42,9 @@ use wingcheck_model::Config;
 /// Errors of the claim checker (a failed claim is a verdict, not an error).
 #[derive(Debug, thiserror::Error)]
 pub enum ClaimsError {
-    /// A simulation needed as evidence failed.
+    /// A simulation needed as evidence failed (shared: the study runs each simulation once).
     #[error(transparent)]
-    Sim(#[from] wingcheck_sim::SimError),
+    Sim(Arc<wingcheck_sim::SimError>),
     /// A numerical step failed.
     #[error("numerical failure in {what}: {detail}")]
     Numerical {
@@ -47,6 +55,12 @@ pub enum ClaimsError {
     },
 }
 
+impl From<wingcheck_sim::SimError> for ClaimsError {
+    fn from(e: wingcheck_sim::SimError) -> Self {
+        ClaimsError::Sim(Arc::new(e))
+    }
+}
+
 /// SHA-256 (hex) of the configuration's JSON (struct field order, so stable).
 pub fn config_sha256(cfg: &Config) -> String {
     let mut h = Sha256::new();
@@ -55,81 +69,133 @@ pub fn config_sha256(cfg: &Config) -> String {
 }
 
 /// Run every check on `cfg` and assemble the ledger, in the paper's order, with a fresh
-/// [`Study`] (each distinct simulation runs once).
+/// [`Study`] (each distinct simulation runs once) and the default [`CheckSettings`].
 pub fn check_all(cfg: &Config) -> Result<Ledger, ClaimsError> {
-    check_all_with(cfg, &Study::new())
+    check_all_with(cfg, &Study::new(), &CheckSettings::default())
 }
 
-fn isolate(id: ClaimId, claim: &str, r: Result<ClaimRow, ClaimsError>) -> ClaimRow {
-    r.unwrap_or_else(|e| ClaimRow::inconclusive(id, claim, &format!("not decided: {e}")))
+/// A row's outcome with its wall time; a failed computation becomes `inconclusive`.
+fn timed(id: ClaimId, f: impl FnOnce() -> Result<ClaimRow, ClaimsError>) -> (ClaimRow, WallTime) {
+    let start = Instant::now();
+    let row = f().unwrap_or_else(|e| ClaimRow::inconclusive(id, Basis::Computation, format!("Not decided: {e}.")));
+    (row, WallTime { what: id.name().into(), seconds: start.elapsed().as_secs_f64() })
 }
 
-/// [`check_all`] with a caller's study (e.g. shared with the report's own runs). A row whose
-/// computation fails becomes `inconclusive` with the reason; the other rows are still
-/// computed, so this only returns `Ok`.
-pub fn check_all_with(cfg: &Config, study: &Study) -> Result<Ledger, ClaimsError> {
-    const UUB_CLAIM: &str = "q, θ uniformly ultimately bounded, with the printed bound";
+/// The rows that rest on simulation, on their own thread.
+fn simulation_rows(cfg: &Config, study: &Study, settings: &CheckSettings) -> Vec<(ClaimRow, WallTime)> {
+    vec![
+        timed(ClaimId::FiniteTime1, || finite_time::check(cfg, finite_time::Channel::Bending, settings)),
+        timed(ClaimId::FiniteTime2, || finite_time::check(cfg, finite_time::Channel::Torsion, settings)),
+        timed(ClaimId::FtdoVsDobc, || comparison::check(cfg, study, settings)),
+    ]
+}
+
+/// The rows that rest on theory (W-bounds, mu-conditions, UUB, lemmas), and their wall times.
+fn theory_rows(cfg: &Config, study: &Study, settings: &CheckSettings) -> (Vec<(ClaimRow, WallTime)>, Vec<WallTime>) {
+    let start = Instant::now();
+    let w = wbounds::check(cfg, settings);
+    let w_time = WallTime { what: ClaimId::WBounds.name().into(), seconds: start.elapsed().as_secs_f64() };
+    let start = Instant::now();
+    let m = mu::check(cfg, study, settings);
+    let m_time = WallTime { what: ClaimId::MuConditions.name().into(), seconds: start.elapsed().as_secs_f64() };
+    let uub = match (&w, &m) {
+        (Ok(w), Ok(m)) => timed(ClaimId::Uub, || uub::check(cfg, w, m, study, settings)),
+        _ => (
+            ClaimRow::inconclusive(
+                ClaimId::Uub,
+                Basis::Computation,
+                "Not decided: it needs the W-bounds and mu-conditions rows, which could not be computed.",
+            ),
+            WallTime { what: ClaimId::Uub.name().into(), seconds: 0.0 },
+        ),
+    };
+    let extra = w.as_ref().map(|w| w.wall.clone()).unwrap_or_default();
+    let fail =
+        |id: ClaimId, e: &ClaimsError| ClaimRow::inconclusive(id, Basis::Computation, format!("Not decided: {e}."));
+    let rows = vec![
+        (w.as_ref().map_or_else(|e| fail(ClaimId::WBounds, e), |w| w.row.clone()), w_time),
+        (m.as_ref().map_or_else(|e| fail(ClaimId::MuConditions, e), |m| m.row.clone()), m_time),
+        uub,
+        timed(ClaimId::Lemmas, || lemmas::check(cfg, settings)),
+    ];
+    (rows, extra)
+}
+
+/// The certificate files `certify` writes for `cfg`, per claim (empty with the reason when the
+/// configuration cannot be certified).
+fn certificate_files(cfg: &Config) -> Result<Vec<(ClaimId, String)>, String> {
+    let files = certify::certificates(cfg).map_err(|e| e.to_string())?;
+    Ok(files
+        .iter()
+        .filter_map(|f| {
+            let id = spec::CLAIMS.iter().find(|s| s.certificates.contains(&f.id.as_str()))?.id;
+            Some((id, format!("{}.json", f.id)))
+        })
+        .collect())
+}
+
+/// [`check_all`] with a caller's study (e.g. shared with the report's own runs) and settings.
+/// A row whose computation fails becomes `inconclusive` with the reason; the other rows are
+/// still computed, so this only returns `Ok`.
+pub fn check_all_with(cfg: &Config, study: &Study, settings: &CheckSettings) -> Result<Ledger, ClaimsError> {
     // Two independent groups of rows on two threads (each row is deterministic, so the
     // ledger does not depend on the schedule; the study's cache is thread-safe).
-    let (theory_rows, sim_rows) = std::thread::scope(|scope| {
-        let sims = scope.spawn(|| {
-            [
-                isolate(
-                    ClaimId::FiniteTime1,
-                    "finite-time convergence of g̃1 within (38)",
-                    finite_time::check(cfg, finite_time::Channel::Bending),
-                ),
-                isolate(
-                    ClaimId::FiniteTime2,
-                    "finite-time convergence of g̃2 within (39)",
-                    finite_time::check(cfg, finite_time::Channel::Torsion),
-                ),
-                isolate(
-                    ClaimId::FtdoVsDobc,
-                    "FTDO gives clearly better vibration suppression than DOBC",
-                    comparison::check(cfg, study),
-                ),
-            ]
-        });
-        let w = wbounds::check(cfg);
-        let m = mu::check(cfg, study);
-        let uub_row = match (&w, &m) {
-            (Ok(w), Ok(m)) => isolate(ClaimId::Uub, UUB_CLAIM, uub::check(cfg, w, m, study)),
-            _ => ClaimRow::inconclusive(
-                ClaimId::Uub,
-                UUB_CLAIM,
-                "not decided: it needs the W-bounds and mu-conditions rows, which could not be computed",
-            ),
-        };
-        let theory = [
-            isolate(ClaimId::WBounds, "0 ≤ λ2 κ ≤ W ≤ λ1 κ with the printed λ1, λ2, y1–y3", w.map(|w| w.row)),
-            isolate(ClaimId::MuConditions, "conditions on the gains and the η's make Ẇ ≤ −λW + ε", m.map(|m| m.row)),
-            uub_row,
-            isolate(ClaimId::Lemmas, "Lemmas 1–3", lemmas::check(cfg)),
-        ];
+    let ((theory, extra, certificates), sims) = std::thread::scope(|scope| {
+        let sims = scope.spawn(|| simulation_rows(cfg, study, settings));
+        let (theory, extra) = theory_rows(cfg, study, settings);
+        let certificates = certificate_files(cfg);
         let sims = sims.join().unwrap_or_else(|_| {
             [ClaimId::FiniteTime1, ClaimId::FiniteTime2, ClaimId::FtdoVsDobc]
-                .map(|id| ClaimRow::inconclusive(id, id.name(), "not decided: the computation panicked"))
+                .map(|id| {
+                    let row = ClaimRow::inconclusive(id, Basis::Computation, "Not decided: the computation panicked.");
+                    (row, WallTime { what: id.name().into(), seconds: 0.0 })
+                })
+                .into()
         });
-        (theory, sims)
+        ((theory, extra, certificates), sims)
     });
-    let [w_row, m_row, uub_row, lemmas_row] = theory_rows;
-    let [ft1, ft2, cmp] = sim_rows;
-    let rows = vec![w_row, m_row, uub_row, ft1, ft2, lemmas_row, cmp];
-    let mut ledger =
-        Ledger { tool: format!("wingcheck {}", env!("CARGO_PKG_VERSION")), config_sha256: config_sha256(cfg), rows };
-    // A non-finite value is a bug of the row that produced it: never print it, say so instead.
+    let mut by_id: Vec<(ClaimRow, WallTime)> = theory.into_iter().chain(sims).collect();
+    by_id.sort_by_key(|(r, _)| r.id);
+    let mut rows = Vec::new();
+    let mut wall_seconds = Vec::new();
+    for (mut row, time) in by_id {
+        match &certificates {
+            Ok(files) => {
+                row.certificates = files.iter().filter(|(id, _)| *id == row.id).map(|(_, f)| f.clone()).collect()
+            }
+            Err(why) if !row.id.spec().certificates.is_empty() => {
+                row.assumptions.push(format!("no certificate: certify cannot write one for this configuration ({why})"))
+            }
+            Err(_) => {}
+        }
+        rows.push(row);
+        wall_seconds.push(time);
+    }
+    wall_seconds.extend(extra);
+    let mut ledger = Ledger {
+        tool: format!("wingcheck {}", env!("CARGO_PKG_VERSION")),
+        config_sha256: config_sha256(cfg),
+        settings: settings.clone(),
+        rows,
+        wall_seconds,
+    };
+    reject_unlabelled_or_non_finite(&mut ledger);
+    Ok(ledger)
+}
+
+/// A non-finite value, or evidence that is not made of labelled leaves, is a bug of the row
+/// that produced it: never print it, say so instead.
+fn reject_unlabelled_or_non_finite(ledger: &mut Ledger) {
     for i in 0..ledger.rows.len() {
-        let one = Ledger { tool: String::new(), config_sha256: String::new(), rows: vec![ledger.rows[i].clone()] };
-        let bad = one.non_finite();
-        if !bad.is_empty() {
-            let r = &ledger.rows[i];
-            ledger.rows[i] = ClaimRow::inconclusive(
-                r.id,
-                &r.claim,
-                &format!("internal error: the computation produced non-finite values at {}", bad.join(", ")),
-            );
+        let r = &ledger.rows[i];
+        let bad = ledger::non_finite_paths(r);
+        let problem = if !bad.is_empty() {
+            Some(format!("the computation produced non-finite values at {}", bad.join(", ")))
+        } else {
+            r.evidence.nodes().err().map(|e| format!("evidence without a label at {e}"))
+        };
+        if let Some(p) = problem {
+            ledger.rows[i] = ClaimRow::inconclusive(r.id, Basis::Computation, format!("Internal error: {p}."));
         }
     }
-    Ok(ledger)
 }

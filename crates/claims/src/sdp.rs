@@ -557,34 +557,3 @@ impl PencilSdpRow {
         }
     }
 }
-
-fn list(ns: &[usize]) -> String {
-    ns.iter().map(|n| n.to_string()).collect::<Vec<_>>().join(", ")
-}
-
-/// One sentence on the SDP cross-check, from its table (no wall times: they are not
-/// reproducible content and live in the `seconds` fields).
-pub fn cross_check_summary(rows: &[PencilSdpRow]) -> String {
-    let good: Vec<usize> = rows.iter().filter(|r| r.accepted).map(|r| r.elements).collect();
-    let worst = rows
-        .iter()
-        .filter(|r| r.accepted)
-        .flat_map(|r| [&r.lambda2, &r.lambda1].map(|s| s.difference.unwrap_or(0.0) / r.scale))
-        .fold(0.0f64, f64::max);
-    let mut text = if good.is_empty() {
-        "SDP cross-check (clarabel): no N accepted".to_string()
-    } else {
-        format!(
-            "SDP (clarabel) agrees with the eigenvalues at N = {} to {worst:.1e} of max |W/κ|, each λ re-verified against W − λκ ⪰ 0 to {SDP_TOLERANCE:.0e} of it (float evidence, not proof)",
-            list(&good)
-        )
-    };
-    for r in rows.iter().filter(|r| !r.accepted) {
-        let why: Vec<String> = [("λ2", &r.lambda2), ("λ1", &r.lambda1)]
-            .iter()
-            .filter_map(|(name, s)| s.reason.as_ref().map(|why| format!("{name}: {why}")))
-            .collect();
-        text.push_str(&format!("; not accepted at N = {} ({})", r.elements, why.join("; ")));
-    }
-    text
-}

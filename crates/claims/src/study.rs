@@ -1,9 +1,11 @@
 //! The study layer: every distinct closed-loop simulation a `check` (or `report`) needs runs
-//! once, cached by the SHA-256 of the simulated configuration (thread-safe; a cached value is a
-//! pure function of its key, so caching never changes a result).
+//! once, cached by the SHA-256 of the simulated configuration. Thread-safe, and a run that is
+//! in flight is waited for rather than started twice, so the ledger and the report can share
+//! one study from several threads. A cached value is a pure function of its key, so caching
+//! never changes a result.
 
 use std::collections::HashMap;
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, OnceLock};
 
 use wingcheck_model::{Config, ControllerKind};
 use wingcheck_sim::{simulate, RunOptions, SimOutput};
@@ -11,10 +13,13 @@ use wingcheck_sim::{simulate, RunOptions, SimOutput};
 use crate::theory::{g_hmax, DisturbanceBounds};
 use crate::{config_sha256, ClaimsError};
 
+/// A run's outcome, shared by everyone who asked for it.
+type Shared = Arc<OnceLock<Result<Arc<SimOutput>, Arc<wingcheck_sim::SimError>>>>;
+
 /// Cache of simulations, keyed by configuration hash.
 #[derive(Default)]
 pub struct Study {
-    runs: Mutex<HashMap<String, Arc<SimOutput>>>,
+    runs: Mutex<HashMap<String, Shared>>,
     performed: Mutex<usize>,
 }
 
@@ -24,16 +29,16 @@ impl Study {
         Study::default()
     }
 
-    /// The simulation of `cfg` with q(z,t), θ(z,t) on the output grid (run once per config).
+    /// The simulation of `cfg` with q(z,t), θ(z,t) on the output grid (run once per config;
+    /// a second caller of a run in flight waits for it).
     pub fn simulate(&self, cfg: &Config) -> Result<Arc<SimOutput>, ClaimsError> {
         let key = config_sha256(cfg);
-        if let Some(out) = self.runs.lock().expect("study lock").get(&key) {
-            return Ok(out.clone());
-        }
-        let out = Arc::new(simulate(cfg, RunOptions { fields: true, progress: None })?);
-        *self.performed.lock().expect("study lock") += 1;
-        self.runs.lock().expect("study lock").entry(key).or_insert(out.clone());
-        Ok(out)
+        let cell = self.runs.lock().expect("study lock").entry(key).or_default().clone();
+        let out = cell.get_or_init(|| {
+            *self.performed.lock().expect("study lock") += 1;
+            simulate(cfg, RunOptions { fields: true, progress: None }).map(Arc::new).map_err(Arc::new)
+        });
+        out.clone().map_err(ClaimsError::Sim)
     }
 
     /// The configuration with the FTDO controller (the paper's design), simulated once.
@@ -49,11 +54,13 @@ impl Study {
     }
 
     /// Disturbance bounds of (29)–(32): g_hmax ([`g_hmax`]) and ζ3, ζ4 = sup_t |g̃1|, |g̃2| of
-    /// the FTDO run of the configuration.
+    /// the FTDO run of the configuration, at full rate ([`wingcheck_sim::metrics::observer_error_sup`]).
     pub fn disturbance_bounds(&self, cfg: &Config) -> Result<DisturbanceBounds, ClaimsError> {
         let out = self.ftdo(cfg)?;
-        let s = &out.series;
-        let sup = |g: &[f64], h: &[f64]| g.iter().zip(h).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
-        Ok(DisturbanceBounds { g_hmax: g_hmax(cfg), zeta3: sup(&s.g1, &s.g1_hat), zeta4: sup(&s.g2, &s.g2_hat) })
+        Ok(DisturbanceBounds {
+            g_hmax: g_hmax(cfg),
+            zeta3: wingcheck_sim::metrics::observer_error_sup(&out, 0),
+            zeta4: wingcheck_sim::metrics::observer_error_sup(&out, 1),
+        })
     }
 }

@@ -43,6 +43,9 @@ pub enum Unit {
     /// A pure number (ratios, relative differences, exponents).
     #[serde(rename = "1")]
     Dimensionless,
+    /// A pure number in percent (relative differences).
+    #[serde(rename = "%")]
+    Percent,
     /// A count of cases, points, elements.
     #[serde(rename = "count")]
     Count,
@@ -87,6 +90,10 @@ pub enum Unit {
     /// physical unit; they are stated "in W units".
     #[serde(rename = "W units")]
     LyapunovUnits,
+    /// Configuration values of different physical units compared as numbers in SI, as the
+    /// paper does (e.g. min{ρ, I_p, EI, GJ} against 2ρx_c).
+    #[serde(rename = "SI, mixed")]
+    MixedSi,
 }
 
 impl Unit {
@@ -94,6 +101,7 @@ impl Unit {
     pub fn symbol(self) -> &'static str {
         match self {
             Unit::Dimensionless | Unit::Count => "",
+            Unit::Percent => "%",
             Unit::Metre => "m",
             Unit::Radian => "rad",
             Unit::Second => "s",
@@ -107,12 +115,13 @@ impl Unit {
             Unit::NewtonPerMetre => "N/m",
             Unit::Joule => "J",
             Unit::LyapunovUnits => "W units",
+            Unit::MixedSi => "(SI, mixed)",
         }
     }
 
     /// True for units that carry no dimension (ratios and counts).
     pub fn is_dimensionless(self) -> bool {
-        matches!(self, Unit::Dimensionless | Unit::Count)
+        matches!(self, Unit::Dimensionless | Unit::Count | Unit::Percent)
     }
 }
 
@@ -152,6 +161,8 @@ pub enum ValueBasis {
     Simulation,
     /// The maximum over a finite search: a lower bound on the supremum.
     SearchMaximum,
+    /// Derived from other reported numbers (a ratio, an observed order); see theirs.
+    Derived,
     /// An upper bound of the true value (the true value is ≤ this number).
     UpperBound,
     /// A lower bound of the true value (the true value is ≥ this number).
@@ -168,6 +179,7 @@ impl ValueBasis {
             ValueBasis::Solver => "solver, re-verified",
             ValueBasis::Simulation => "simulation",
             ValueBasis::SearchMaximum => "max over a search",
+            ValueBasis::Derived => "derived",
             ValueBasis::UpperBound => "upper bound",
             ValueBasis::LowerBound => "lower bound",
         }
@@ -264,12 +276,43 @@ impl Quantity {
         self
     }
 
-    /// The value as printed: digits matched to the error, with the unit (`0.12086 1/s`).
+    /// The number as printed, without its unit: a count as an integer; an exact or configured
+    /// value as its shortest decimal (`0.35`, `1e-3`) when that has at most 8 significant
+    /// digits; a one-sided bound with 7 significant digits; otherwise digits matched to the
+    /// error ([`format_value`]).
+    pub fn number_text(&self) -> String {
+        let exactish = matches!(self.accuracy, Accuracy::Basis { basis: ValueBasis::Exact | ValueBasis::Configured });
+        if self.unit == Unit::Count && self.value.fract() == 0.0 && self.value.abs() < 1e15 {
+            format!("{:.0}", self.value)
+        } else if exactish && significant_digits(self.value) <= 8 {
+            crate::format_number(self.value)
+        } else if matches!(self.accuracy, Accuracy::Basis { basis: ValueBasis::UpperBound | ValueBasis::LowerBound }) {
+            // a one-sided bound is compared with the value it bounds: show enough digits
+            with_significant(self.value, 7)
+        } else {
+            format_value(self.value, self.error())
+        }
+    }
+
+    /// The value as printed ([`Quantity::number_text`]) with the unit (`0.12086 1/s`).
     pub fn value_text(&self) -> String {
-        let v = format_value(self.value, self.error());
+        let v = self.number_text();
         match self.unit.symbol() {
             "" => v,
             u => format!("{v} {u}"),
+        }
+    }
+
+    /// The value with its error and unit (`0.12085992204661 ± 3.4e-13 1/s`), or with its unit
+    /// alone when it has no error estimate.
+    pub fn pm_text(&self) -> String {
+        let unit = match self.unit.symbol() {
+            "" => String::new(),
+            u => format!(" {u}"),
+        };
+        match self.error() {
+            Some(e) => format!("{} ± {}{unit}", format_value(self.value, Some(e)), format_error(e)),
+            None => format!("{}{unit}", self.number_text()),
         }
     }
 
@@ -308,6 +351,13 @@ pub fn format_value(value: f64, error: Option<f64>) -> String {
         None => 4,
     } as usize;
     with_significant(value, digits)
+}
+
+/// Significant digits of the shortest round-trip decimal of `x` (0 for 0).
+fn significant_digits(x: f64) -> usize {
+    let s = format!("{:e}", x.abs());
+    let mantissa = s.split('e').next().unwrap_or("");
+    mantissa.chars().filter(|c| c.is_ascii_digit()).count()
 }
 
 /// An error bar as printed: two significant digits (`3.4e-13`, `0.0021`).

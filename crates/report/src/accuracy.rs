@@ -52,7 +52,7 @@ fn study(t: &[f64], runs: &[Vec<f64>]) -> (Vec<f64>, f64, f64) {
 }
 
 /// The accuracy figure and table from `runs.accuracy`.
-pub fn accuracy(accuracy: &[Vec<SimOutput>]) -> (Figure, Vec<AccuracyRow>) {
+pub fn accuracy(accuracy: &[Vec<std::sync::Arc<SimOutput>>]) -> (Figure, Vec<AccuracyRow>) {
     let mut rows = Vec::new();
     let mut lines = Vec::new();
     let mut cap = Caption::default().t(format!(
@@ -68,13 +68,13 @@ pub fn accuracy(accuracy: &[Vec<SimOutput>]) -> (Figure, Vec<AccuracyRow>) {
                 .map(|o| if key == "q" { o.series.q_tip.clone() } else { o.series.theta_tip.clone() })
                 .collect();
             let (errors, p, order) = study(t, &series);
-            let label = format!("{} {qname}", m.to_uppercase());
-            cap = cap.t(format!("{label} ")).n(format!("acc.{m}.{key}.order"), order).t("; ");
+            let label = format!("{} {qname}", m.name().to_uppercase());
+            cap = cap.t(format!("{label} ")).n(format!("acc.{}.{key}.order", m.name()), order).t("; ");
             let x: Vec<f64> = GRIDS.iter().map(|&g| g as f64).collect();
             lines.push(Line { label: label.clone(), x: x.clone(), y: errors.clone(), points: false });
             lines.push(Line { label: String::new(), x, y: errors.clone(), points: true });
             rows.push(AccuracyRow {
-                method: m.to_string(),
+                method: m.name().to_string(),
                 quantity: qname.into(),
                 richardson_order: fmt_num(p),
                 errors: errors.iter().map(|e| fmt_num(*e)).collect(),

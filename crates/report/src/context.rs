@@ -2,13 +2,13 @@
 //! shows is computed here; the template only lays it out.
 
 use serde::Serialize;
-use serde_json::Value;
+use wingcheck_claims::display::{Cell, Column, Node};
 use wingcheck_claims::{ClaimRow, Ledger};
-use wingcheck_model::Config;
+use wingcheck_model::{Config, Quantity};
 
 use crate::accuracy::AccuracyRow;
 use crate::figure::{Figure, Part};
-use crate::stats::fmt_num;
+use crate::ReportError;
 
 /// Root of the template context.
 #[derive(Serialize)]
@@ -105,122 +105,6 @@ pub struct GroupCtx {
     pub figures: Vec<FigCtx>,
 }
 
-/// A key/value pair of evidence.
-#[derive(Serialize)]
-pub struct Kv {
-    /// Key.
-    pub key: String,
-    /// Formatted value.
-    pub value: String,
-    /// Unit (from the key's naming convention: `_s` seconds, `q` m, `theta` rad, …), or empty.
-    pub unit: String,
-}
-
-/// Evidence with a common `label.` prefix pivoted into a table: one row per metric, one
-/// column per label (e.g. controller × metric).
-#[derive(Serialize)]
-pub struct Pivot {
-    /// Column labels.
-    pub columns: Vec<String>,
-    /// Rows: metric, unit, one value per column (`—` when missing).
-    pub rows: Vec<(String, String, Vec<String>)>,
-}
-
-/// A ledger row.
-#[derive(Serialize)]
-pub struct RowCtx {
-    /// Claim id.
-    pub id: String,
-    /// Anchor of its section.
-    pub anchor: String,
-    /// Paper equation / theorem.
-    pub equation: String,
-    /// Claim in words.
-    pub claim: String,
-    /// Verdict name.
-    pub verdict: String,
-    /// Basis name.
-    pub basis: String,
-    /// Summary.
-    pub summary: String,
-    /// Correction, if any.
-    pub correction: Option<String>,
-    /// The ledger's digest: finding sentence and decisive numbers.
-    pub digest: crate::digest::Digest,
-    /// Scalar evidence without a label prefix.
-    pub evidence: Vec<Kv>,
-    /// Evidence with label prefixes, pivoted.
-    pub pivot: Option<Pivot>,
-    /// Evidence values that are lists of records (e.g. the SDP cross-check per N, the (a, b)
-    /// sweep), each as its own table.
-    pub tables: Vec<EvidenceTable>,
-    /// The decisive figure (the row's first plot).
-    pub lead_figure: Option<FigCtx>,
-    /// Assumptions.
-    pub assumptions: Vec<String>,
-    /// Certificate files.
-    pub certificates: Vec<String>,
-    /// The row's other plots.
-    pub figures: Vec<FigCtx>,
-}
-
-/// A list-of-records evidence value as a table: one row per record, one column per field.
-#[derive(Serialize)]
-pub struct EvidenceTable {
-    /// Evidence key (underscores as spaces).
-    pub key: String,
-    /// Field names, each with its unit in parentheses where the naming convention gives one.
-    pub columns: Vec<String>,
-    /// Formatted values, row by row.
-    pub rows: Vec<Vec<String>>,
-}
-
-/// `v` as a table if it is an object (one row) or a non-empty array of objects (a row each):
-/// one column per field (the union of the records' keys in first-seen order), a nested
-/// object's fields flattened one level into `parent: field` columns.
-fn evidence_table(key: &str, v: &Value) -> Option<EvidenceTable> {
-    let records: Vec<&serde_json::Map<String, Value>> = match v {
-        Value::Object(one) => vec![one],
-        _ => v.as_array()?.iter().map(Value::as_object).collect::<Option<_>>()?,
-    };
-    if records.is_empty() {
-        return None;
-    }
-    let flat: Vec<Vec<(String, &Value)>> = records
-        .iter()
-        .map(|r| {
-            r.iter()
-                .flat_map(|(k, v)| match v.as_object() {
-                    Some(inner) => inner.iter().map(|(ik, iv)| (format!("{k}: {ik}"), iv)).collect::<Vec<_>>(),
-                    None => vec![(k.clone(), v)],
-                })
-                .collect()
-        })
-        .collect();
-    let mut fields: Vec<String> = Vec::new();
-    for r in &flat {
-        for (k, _) in r {
-            if !fields.contains(k) {
-                fields.push(k.clone());
-            }
-        }
-    }
-    let columns = fields
-        .iter()
-        .map(|f| match unit_of(f) {
-            "" => f.replace('_', " "),
-            u => format!("{} ({u})", f.replace('_', " ")),
-        })
-        .collect();
-    let rows = flat
-        .iter()
-        .map(|r| {
-            fields.iter().map(|f| r.iter().find(|(k, _)| k == f).map_or("—".into(), |(_, v)| value_text(v))).collect()
-        })
-        .collect();
-    Some(EvidenceTable { key: key.replace('_', " "), columns, rows })
-}
-
 /// A value the paper leaves out.
 #[derive(Serialize)]
 pub struct Assumption {
@@ -257,110 +141,143 @@ pub fn claim_anchor(id: &str) -> String {
     format!("claim-{}", crate::figure::safe_name(id))
 }
 
-/// A value with sensible digits: integers as integers, other numbers to 4 significant digits,
-/// arrays and objects compactly (numbers inside formatted the same way).
-fn value_text(v: &Value) -> String {
-    match v {
-        Value::Number(n) => match (n.as_i64(), n.as_f64()) {
-            (Some(i), _) => i.to_string(),
-            (None, Some(f)) if f.fract() == 0.0 && f.abs() < 1e6 => format!("{f:.0}"),
-            (None, Some(f)) => fmt_num(f),
-            _ => n.to_string(),
-        },
-        Value::String(s) => s.clone(),
-        Value::Bool(b) => if *b { "yes" } else { "no" }.into(),
-        Value::Null => "—".into(),
-        Value::Array(a) => format!("[{}]", a.iter().map(value_text).collect::<Vec<_>>().join(", ")),
-        Value::Object(m) => {
-            format!("{{{}}}", m.iter().map(|(k, v)| format!("{k}: {}", value_text(v))).collect::<Vec<_>>().join(", "))
-        }
+/// A number as the page shows it: label, formatted value with its unit, error or basis.
+#[derive(Serialize)]
+pub struct NumberCtx {
+    /// What it is.
+    pub label: String,
+    /// The value with its unit.
+    pub value: String,
+    /// `± …` or the basis.
+    pub accuracy: String,
+}
+
+impl From<&Quantity> for NumberCtx {
+    fn from(q: &Quantity) -> Self {
+        NumberCtx { label: q.label.clone(), value: q.value_text(), accuracy: q.accuracy_text() }
     }
 }
 
-/// The unit of an evidence key by the claims crate's naming convention, or "".
-pub fn unit_of(key: &str) -> &'static str {
-    let k = key.rsplit('.').next().unwrap_or(key);
-    if k.ends_with("_rad_s") {
-        "rad/s"
-    } else if k.ends_with("_s") || k.contains("_s_T") || k == "seconds" {
-        "s"
-    } else if k.contains("gtilde1") || k.contains("tau1") {
-        "N"
-    } else if k.contains("gtilde2") || k.contains("tau2") {
-        "N m"
-    } else if k.contains("theta") {
-        "rad"
-    } else if k.contains("_q_")
-        || k.ends_with("_q")
-        || k.starts_with("rms_q")
-        || k.starts_with("max_q")
-        || k.ends_with("_m")
-    {
-        "m"
+/// A table of evidence as the page shows it.
+#[derive(Serialize)]
+pub struct TableCtx {
+    /// What it shows.
+    pub label: String,
+    /// Column headers (label, with the unit in brackets where there is one).
+    pub columns: Vec<String>,
+    /// Rows of cells (`value` and `accuracy`).
+    pub rows: Vec<Vec<Cell>>,
+}
+
+/// A ledger row.
+#[derive(Serialize)]
+pub struct RowCtx {
+    /// Claim id.
+    pub id: String,
+    /// Anchor of its section.
+    pub anchor: String,
+    /// Paper equation / theorem.
+    pub equation: String,
+    /// Claim in words.
+    pub claim: String,
+    /// Verdict name.
+    pub verdict: String,
+    /// Basis name.
+    pub basis: String,
+    /// The finding: short sentences.
+    pub finding: Vec<String>,
+    /// The decisive numbers.
+    pub decisive: Vec<NumberCtx>,
+    /// Further sentences.
+    pub details: Vec<String>,
+    /// Correction, if any.
+    pub correction: Option<String>,
+    /// The evidence's single values (numbers, yes/no facts, texts), in field order.
+    pub evidence: Vec<NumberCtx>,
+    /// The evidence's tables.
+    pub tables: Vec<TableCtx>,
+    /// The decisive figure (the row's first plot).
+    pub lead_figure: Option<FigCtx>,
+    /// Assumptions.
+    pub assumptions: Vec<String>,
+    /// Certificate files.
+    pub certificates: Vec<String>,
+    /// The row's other plots.
+    pub figures: Vec<FigCtx>,
+}
+
+fn header(c: &Column) -> String {
+    if c.unit.is_empty() {
+        c.label.clone()
     } else {
-        ""
+        format!("{} ({})", c.label, c.unit)
     }
 }
 
-/// Evidence keys of the form `label.metric` pivoted (None if there are none).
-fn pivot(r: &ClaimRow) -> Option<Pivot> {
-    let mut columns: Vec<String> = Vec::new();
-    let mut metrics: Vec<String> = Vec::new();
-    for k in r.evidence.keys() {
-        if let Some((l, m)) = k.split_once('.') {
-            if !columns.iter().any(|c| c == l) {
-                columns.push(l.to_string());
-            }
-            if !metrics.iter().any(|c| c == m) {
-                metrics.push(m.to_string());
-            }
-        }
+/// A table node as the page lays it out: a table of a few records with many fields (e.g. the
+/// runs × metrics) is transposed, one row per field and one column per record, headed by the
+/// records' first field when that is a text (the run's name).
+fn table_ctx(label: &str, columns: &[Column], rows: &[Vec<Cell>]) -> TableCtx {
+    let transpose = rows.len() <= 4 && columns.len() > 6;
+    if !transpose {
+        return TableCtx { label: label.into(), columns: columns.iter().map(header).collect(), rows: rows.to_vec() };
     }
-    if columns.is_empty() {
-        return None;
-    }
-    let rows = metrics
+    let named = rows.iter().all(|r| r.first().is_some_and(|c| c.accuracy.is_empty()));
+    let skip = usize::from(named);
+    let mut head = vec![String::new()];
+    head.extend(rows.iter().enumerate().map(|(i, r)| if named { r[0].value.clone() } else { format!("{}", i + 1) }));
+    let body = columns
         .iter()
-        .map(|m| {
-            let vals =
-                columns.iter().map(|c| r.evidence.get(&format!("{c}.{m}")).map_or("—".into(), value_text)).collect();
-            (m.replace('_', " "), unit_of(m).to_string(), vals)
+        .enumerate()
+        .skip(skip)
+        .map(|(j, c)| {
+            let mut cells = vec![Cell { value: header(c), accuracy: String::new() }];
+            cells.extend(rows.iter().map(|r| r[j].clone()));
+            cells
         })
         .collect();
-    Some(Pivot { columns, rows })
+    TableCtx { label: label.into(), columns: head, rows: body }
 }
 
-/// The ledger row's context; `figures` are the row's plots already turned into figures,
-/// `digest` its ledger digest.
-pub fn row_ctx(r: &ClaimRow, figures: &[Figure], digest: crate::digest::Digest) -> RowCtx {
+/// The ledger row's context; `figures` are the row's plots already turned into figures.
+pub fn row_ctx(r: &ClaimRow, figures: &[Figure]) -> Result<RowCtx, ReportError> {
     let id = r.id.to_string();
-    let (mut tables, mut evidence) = (Vec::new(), Vec::new());
-    for (k, v) in r.evidence.iter().filter(|(k, _)| !k.contains('.')) {
-        match evidence_table(k, v) {
-            Some(table) => tables.push(table),
-            None => evidence.push(Kv { key: k.replace('_', " "), value: value_text(v), unit: unit_of(k).into() }),
+    let nodes = r.evidence.nodes().map_err(|e| ReportError::Evidence { claim: id.clone(), detail: e })?;
+    let (mut evidence, mut tables) = (Vec::new(), Vec::new());
+    for n in &nodes {
+        match n {
+            Node::Quantity(q) => evidence.push(NumberCtx::from(q)),
+            Node::Flag(f) => evidence.push(NumberCtx {
+                label: f.label.clone(),
+                value: if f.value { "yes" } else { "no" }.into(),
+                accuracy: String::new(),
+            }),
+            Node::Text(t) => {
+                evidence.push(NumberCtx { label: t.label.clone(), value: t.value.clone(), accuracy: String::new() })
+            }
+            Node::Table { label, columns, rows } => tables.push(table_ctx(label, columns, rows)),
         }
     }
     let mut figs = figures.iter().map(FigCtx::from);
     let lead_figure = figs.next();
-    RowCtx {
+    Ok(RowCtx {
         anchor: claim_anchor(&id),
         id,
         equation: r.equation.clone(),
         claim: r.claim.clone(),
         verdict: r.verdict.name().into(),
         basis: r.basis.name().into(),
-        summary: r.summary.clone(),
+        finding: r.finding.clone(),
+        decisive: r.decisive.iter().map(NumberCtx::from).collect(),
+        details: r.details.clone(),
         correction: r.correction.clone(),
-        digest,
         evidence,
-        pivot: pivot(r),
         tables,
         lead_figure,
         assumptions: r.assumptions.clone(),
         certificates: r.certificates.clone(),
         figures: figs.collect(),
-    }
+    })
 }
 
 /// Values the paper leaves out (or gets wrong) and what this report used, from the config.

@@ -51,7 +51,15 @@ pub enum ReportError {
         run: String,
         /// Underlying error.
         #[source]
-        source: wingcheck_sim::SimError,
+        source: wingcheck_claims::ClaimsError,
+    },
+    /// A row's evidence is not made of labelled values (a bug of the claim checker).
+    #[error("the evidence of {claim} cannot be shown: {detail}")]
+    Evidence {
+        /// The claim.
+        claim: String,
+        /// Where.
+        detail: String,
     },
     /// The claim checker failed.
     #[error("claim checker failed: {0}")]

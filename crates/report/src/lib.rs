@@ -19,7 +19,6 @@ mod accuracy;
 pub mod atomic;
 use wingcheck_chart as chart;
 mod context;
-mod digest;
 mod error;
 mod figure;
 mod paper;
@@ -32,7 +31,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use rayon::prelude::*;
-use wingcheck_claims::{check_all, config_sha256, Ledger};
+use wingcheck_claims::{check_all_with, config_sha256, CheckSettings, Ledger, Study};
 use wingcheck_model::Config;
 
 pub use atomic::MARKER;
@@ -148,7 +147,8 @@ fn report(progress: Option<&(dyn Fn(Progress) + Sync)>, stage: &str, done: usize
     }
 }
 
-/// The region map's stage: ω1 from the run's discretisation, r* in closed form, then the search.
+/// The region map's stage: ω1 (the converged value the ledger uses), r* in closed form, then
+/// the search.
 fn region_stage(
     cfg: &Config,
     progress: Option<&(dyn Fn(Progress) + Sync)>,
@@ -175,12 +175,15 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     let progress: Option<&(dyn Fn(Progress) + Sync)> = Some(&on_progress);
     let mut timings = Vec::new();
 
-    // Stage 1: the ledger, the simulations and the region map, concurrently.
+    // Stage 1: the ledger, the simulations and the region map, concurrently; the ledger and
+    // the figures share one study, so every simulation runs once.
+    let study = Study::new();
+    let settings = CheckSettings::default();
     let (ledger, (runs, region)) = rayon::join(
         || {
             let t = Instant::now();
             report(progress, "ledger", 0, 1);
-            let l = check_all(cfg);
+            let l = check_all_with(cfg, &study, &settings);
             report(progress, "ledger", 1, 1);
             (l, t.elapsed().as_secs_f64())
         },
@@ -188,7 +191,7 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
             rayon::join(
                 || {
                     let t = Instant::now();
-                    let r = runs::run_all(cfg, progress);
+                    let r = runs::run_all(cfg, &study, progress);
                     (r, t.elapsed().as_secs_f64())
                 },
                 || {
@@ -202,27 +205,11 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     timings.push(StageTiming { name: "ledger".into(), seconds: ledger.1 });
     timings.push(StageTiming { name: "simulations".into(), seconds: runs.1 });
     timings.push(StageTiming { name: "region map".into(), seconds: region.1 });
-    let (mut ledger, runs, region) = (ledger.0?, runs.0?, region.0?);
+    let (ledger, runs, region) = (ledger.0?, runs.0?, region.0?);
     report(progress, "region map", 1, 1);
-    // Digests read the rows' typed evidence, so they are taken before the wall times move out.
-    let digests: Vec<digest::Digest> = ledger.rows.iter().map(digest::digest).collect();
     let region_fig = region.as_ref().map(|r| r.figure());
-    // Wall times are not reproducible content: the rows' own `seconds` and evidence keys
-    // named `seconds` / `*_seconds` move to the wall-time block of the provenance section.
-    let mut row_walltimes = Vec::new();
-    for r in &mut ledger.rows {
-        row_walltimes.push((format!("ledger row {}", r.id), r.seconds));
-        r.seconds = 0.0;
-        let keys: Vec<String> = r.evidence.keys().filter(|k| is_walltime_key(k)).cloned().collect();
-        for k in keys {
-            if let Some(v) = r.evidence.remove(&k).and_then(|v| v.as_f64()) {
-                row_walltimes.push((format!("ledger row {}: {k}", r.id), v));
-            }
-        }
-        for (k, v) in r.evidence.iter_mut() {
-            strip_walltimes(v, &format!("ledger row {}: {k}", r.id), &mut row_walltimes);
-        }
-    }
+    let row_walltimes: Vec<(String, f64)> =
+        ledger.wall_seconds.iter().map(|w| (format!("ledger: {}", w.what), w.seconds)).collect();
 
     // Stage 2: figure data and captions.
     let t = Instant::now();
@@ -280,7 +267,7 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
         config_sha256: config_sha256(cfg),
         config_json: cfg.to_json_pretty(),
         platform: format!("{}/{}", std::env::consts::OS, std::env::consts::ARCH),
-        rows: ledger.rows.iter().zip(&row_figs).zip(digests).map(|((r, f), d)| row_ctx(r, f, d)).collect(),
+        rows: ledger.rows.iter().zip(&row_figs).map(|(r, f)| row_ctx(r, f)).collect::<Result<_, _>>()?,
         groups: groups
             .iter()
             .map(|g| GroupCtx {
@@ -324,34 +311,6 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     timings.push(StageTiming { name: "write".into(), seconds: t.elapsed().as_secs_f64() });
     report(progress, "write", 1, 1);
     Ok(ReportSummary { out_dir: out_dir.to_path_buf(), timings, files, ledger })
-}
-
-/// Move wall-time keys nested anywhere inside `v` (objects in objects or arrays) to `out`.
-fn strip_walltimes(v: &mut serde_json::Value, path: &str, out: &mut Vec<(String, f64)>) {
-    match v {
-        serde_json::Value::Object(m) => {
-            let keys: Vec<String> = m.keys().filter(|k| is_walltime_key(k)).cloned().collect();
-            for k in keys {
-                if let Some(x) = m.remove(&k).and_then(|x| x.as_f64()) {
-                    out.push((format!("{path}.{k}"), x));
-                }
-            }
-            for (k, x) in m.iter_mut() {
-                strip_walltimes(x, &format!("{path}.{k}"), out);
-            }
-        }
-        serde_json::Value::Array(a) => {
-            for (i, x) in a.iter_mut().enumerate() {
-                strip_walltimes(x, &format!("{path}[{i}]"), out);
-            }
-        }
-        _ => {}
-    }
-}
-
-/// Evidence keys that hold wall times (`seconds`, `*_seconds`), by convention.
-pub fn is_walltime_key(key: &str) -> bool {
-    key == "seconds" || key.ends_with("_seconds")
 }
 
 /// A ledger row's plots as figures (files `claim-<row>-<plot>`).

@@ -2,8 +2,8 @@
 //! and the DOBC − FTDO difference maps.
 //! Every number in a caption is computed here from the series it describes.
 
-use wingcheck_claims::comparison::{settle_time, GTILDE_THRESHOLD};
 use wingcheck_model::Config;
+use wingcheck_sim::metrics::{settle_time, GTILDE_THRESHOLD};
 use wingcheck_sim::SimOutput;
 
 use crate::chart::{Heatmap, LineChart};
@@ -384,11 +384,10 @@ pub fn comparison_figures(cfg: &Config, runs: &Runs) -> Vec<Figure> {
     figs
 }
 
-/// The fundamental (lowest natural) angular frequency ω1 (rad/s) of the configured wing on the
-/// run's own discretisation.
+/// The fundamental (lowest natural) angular frequency ω1 (rad/s) of the configured wing: the
+/// converged value the ledger's W ≻ 0 threshold uses ([`wingcheck_claims::theory::w_threshold`]).
 pub fn omega1(cfg: &Config) -> Option<f64> {
-    let disc = wingcheck_sim::Discretisation::new(cfg);
-    wingcheck_sim::modes::natural_frequencies(&disc, 1).ok()?.first().copied().filter(|w| w.is_finite() && *w > 0.0)
+    wingcheck_claims::theory::w_threshold(cfg).ok().map(|e| e.value).filter(|w| w.is_finite() && *w > 0.0)
 }
 
 /// A sentence on the fundamental period 2π/ω1 against the horizon.

@@ -1,74 +1,71 @@
-//! The simulations behind the report, run in parallel: the paper's three closed loops
-//! (no control, FTDO, DOBC) with fields, and the grid-convergence runs of the accuracy
-//! section (FD and FE at [`GRIDS`] elements, uniform grid).
+//! The simulations behind the report, run in parallel through the claims' [`Study`] (so a run
+//! the ledger also needs — the FTDO and DOBC loops at the configured gains — is simulated
+//! once): the paper's three closed loops (no control, FTDO, DOBC) with fields, and the
+//! grid-convergence runs of the accuracy section (FD and FE at [`GRIDS`] elements, uniform
+//! grid).
 
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Arc;
 
 use rayon::prelude::*;
-use wingcheck_model::{apply_overrides, Config};
-use wingcheck_sim::{simulate, RunOptions, SimOutput};
+use wingcheck_claims::Study;
+use wingcheck_model::{Config, ControllerKind, Method};
+use wingcheck_sim::SimOutput;
 
 use crate::{Progress, ReportError};
 
 /// Element counts of the accuracy study.
-pub const GRIDS: [usize; 4] = [8, 16, 32, 64];
+pub const GRIDS: [usize; 4] = wingcheck_model::work::REPORT_ACCURACY_GRIDS;
 
 /// Discretisation methods of the accuracy study.
-pub const METHODS: [&str; 2] = ["fd", "fe"];
+pub const METHODS: [Method; 2] = [Method::Fd, Method::Fe];
 
 /// All runs of a report.
 pub struct Runs {
     /// τ1 = τ2 = 0 (paper Figs 3–4).
-    pub none: SimOutput,
+    pub none: Arc<SimOutput>,
     /// Proposed controller (Figs 5–12).
-    pub ftdo: SimOutput,
+    pub ftdo: Arc<SimOutput>,
     /// DOBC comparison (Figs 13–20).
-    pub dobc: SimOutput,
+    pub dobc: Arc<SimOutput>,
     /// Accuracy runs: `accuracy[m][g]` for `METHODS[m]`, `GRIDS[g]` (controller as in the config).
-    pub accuracy: Vec<Vec<SimOutput>>,
+    pub accuracy: Vec<Vec<Arc<SimOutput>>>,
 }
 
-/// `cfg` with overrides applied, errors naming the variant.
-pub fn variant(cfg: &Config, sets: &[String]) -> Result<Config, ReportError> {
-    apply_overrides(cfg, sets).map_err(|source| ReportError::Config { variant: sets.join(" "), source })
-}
-
-/// The controller variants of the paper's figures.
-pub fn controller(cfg: &Config, kind: &str) -> Result<Config, ReportError> {
-    variant(cfg, &[format!("control.kind={kind}")])
+/// `cfg` with another controller (the paper's figure groups).
+pub fn controller(cfg: &Config, kind: ControllerKind) -> Config {
+    let mut c = cfg.clone();
+    c.control.kind = kind;
+    c
 }
 
 /// The accuracy-study variant: `method` at `elements`, uniform grid.
-pub fn accuracy_variant(cfg: &Config, method: &str, elements: usize) -> Result<Config, ReportError> {
-    variant(
-        cfg,
-        &[
-            format!("discretisation.method={method}"),
-            format!("discretisation.elements={elements}"),
-            format!("discretisation.fd_points={elements}"),
-            "discretisation.grading=0".to_string(),
-        ],
-    )
+pub fn accuracy_variant(cfg: &Config, method: Method, elements: usize) -> Config {
+    let mut c = cfg.clone();
+    c.discretisation.method = method;
+    c.discretisation.elements = elements;
+    c.discretisation.fd_points = elements;
+    c.discretisation.grading = 0.0;
+    c
 }
 
-/// Run everything (in parallel), reporting each finished run to `progress`.
-pub fn run_all(cfg: &Config, progress: Option<&(dyn Fn(Progress) + Sync)>) -> Result<Runs, ReportError> {
-    let mut jobs: Vec<(String, Config, bool)> = Vec::new();
-    for kind in ["none", "ftdo", "dobc"] {
-        jobs.push((kind.to_string(), controller(cfg, kind)?, true));
+/// Run everything (in parallel) through `study`, reporting each finished run to `progress`.
+pub fn run_all(cfg: &Config, study: &Study, progress: Option<&(dyn Fn(Progress) + Sync)>) -> Result<Runs, ReportError> {
+    let mut jobs: Vec<(String, Config)> = Vec::new();
+    for kind in [ControllerKind::None, ControllerKind::Ftdo, ControllerKind::Dobc] {
+        jobs.push((kind.name().to_string(), controller(cfg, kind)));
     }
     for m in METHODS {
         for n in GRIDS {
-            jobs.push((format!("{m}-{n}"), accuracy_variant(cfg, m, n)?, false));
+            jobs.push((format!("{}-{n}", m.name()), accuracy_variant(cfg, m, n)));
         }
     }
     let done = AtomicUsize::new(0);
     let total = jobs.len();
-    let mut outs: Vec<SimOutput> = jobs
+    let mut outs: Vec<Arc<SimOutput>> = jobs
         .par_iter()
-        .map(|(name, c, fields)| {
-            let out = simulate(c, RunOptions { fields: *fields, progress: None })
-                .map_err(|source| ReportError::Sim { run: name.clone(), source });
+        .map(|(name, c)| {
+            let out = study.simulate(c).map_err(|source| ReportError::Sim { run: name.clone(), source });
             let k = done.fetch_add(1, Ordering::SeqCst) + 1;
             if let Some(p) = progress {
                 p(Progress { stage: "simulations", done: k, total });

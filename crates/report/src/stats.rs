@@ -1,23 +1,17 @@
 //! Small statistics over sampled series, used for the numbers printed in captions.
 //! Windows are closed intervals [t0, t1] of the sample times.
 
-/// max |v| over samples with t ∈ [t0, t1] (NaN if none).
+use wingcheck_sim::metrics::{self, Window};
+
+/// max |v| over samples with t ∈ [t0, t1] ([`wingcheck_sim::metrics::max_abs_in`]); the
+/// captions' windows always hold the last sample, 0 for an empty one.
 pub fn max_abs(t: &[f64], v: &[f64], t0: f64, t1: f64) -> f64 {
-    window(t, v, t0, t1).map(f64::abs).fold(f64::NAN, f64::max)
+    metrics::max_abs_in(t, v, Window { t0, t1 }).unwrap_or(0.0)
 }
 
-/// Root mean square of v over samples with t ∈ [t0, t1] (NaN if none).
+/// Root mean square of v over samples with t ∈ [t0, t1] ([`wingcheck_sim::metrics::rms_in`]).
 pub fn rms(t: &[f64], v: &[f64], t0: f64, t1: f64) -> f64 {
-    let (n, s) = window(t, v, t0, t1).fold((0usize, 0.0), |(n, s), x| (n + 1, s + x * x));
-    if n == 0 {
-        f64::NAN
-    } else {
-        (s / n as f64).sqrt()
-    }
-}
-
-fn window<'a>(t: &'a [f64], v: &'a [f64], t0: f64, t1: f64) -> impl Iterator<Item = f64> + 'a {
-    t.iter().zip(v).filter(move |(t, _)| **t >= t0 && **t <= t1).map(|(_, v)| *v)
+    metrics::rms_in(t, v, Window { t0, t1 }).unwrap_or(0.0)
 }
 
 /// Elementwise a − b.
@@ -40,22 +34,10 @@ pub fn loglog_slope(x: &[f64], y: &[f64]) -> f64 {
     sxy / sxx
 }
 
-/// A number with 4 significant digits, fixed notation for 1e-3 ≤ |v| < 1e4, else scientific.
-/// Deterministic, and parses back with `str::parse::<f64>`.
+/// A number with 4 significant digits ([`wingcheck_model::quantity::format_value`], the one
+/// number format). Deterministic, and parses back with `str::parse::<f64>`.
 pub fn fmt_num(v: f64) -> String {
-    if !v.is_finite() {
-        return format!("{v}");
-    }
-    if v == 0.0 {
-        return "0".into();
-    }
-    let a = v.abs();
-    if (1e-3..1e4).contains(&a) {
-        let decimals = (3 - a.log10().floor() as i32).max(0) as usize;
-        format!("{v:.decimals$}")
-    } else {
-        format!("{v:.3e}")
-    }
+    wingcheck_model::quantity::format_value(v, None)
 }
 
 #[cfg(test)]

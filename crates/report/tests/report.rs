@@ -144,15 +144,16 @@ fn report_is_well_formed_complete_and_matches_the_ledger() {
     // row per record, never a compact "{…}" dump in an evidence cell.
     let captions: Vec<String> =
         doc.descendants().filter(|n| n.has_tag_name("caption")).map(|n| text(n).trim().to_string()).collect();
-    for key in ["sdp cross check", "ab sweep"] {
-        assert!(captions.iter().any(|c| c == key), "no table for {key}: {captions:?}");
+    let w = expected.row(wingcheck_claims::ClaimId::WBounds).unwrap();
+    let wingcheck_claims::Evidence::WBounds(we) = &w.evidence else { panic!("W-bounds evidence") };
+    let c = expected.row(wingcheck_claims::ClaimId::FtdoVsDobc).unwrap();
+    let wingcheck_claims::Evidence::Comparison(ce) = &c.evidence else { panic!("comparison evidence") };
+    for label in [&we.sdp_cross_check.label, &ce.ab_sweep.label] {
+        assert!(captions.iter().any(|c| c == label), "no table for {label}: {captions:?}");
     }
-    let sdp_rows = expected.rows.iter().find(|r| r.id.to_string() == "W-bounds").unwrap().evidence["sdp_cross_check"]
-        .as_array()
-        .unwrap()
-        .len();
+    let sdp_rows = we.sdp_cross_check.rows.len();
     let caption =
-        doc.descendants().find(|n| n.has_tag_name("caption") && text(*n).trim() == "sdp cross check").unwrap();
+        doc.descendants().find(|n| n.has_tag_name("caption") && text(*n).trim() == we.sdp_cross_check.label).unwrap();
     let table_rows = caption.parent().unwrap().descendants().filter(|n| n.has_tag_name("tr")).count();
     assert_eq!(table_rows, sdp_rows + 1, "header + one row per N");
     for td in doc.descendants().filter(|n| n.has_tag_name("td") && has_class(n, "num")) {
@@ -312,11 +313,23 @@ fn ledger_digest_charts_sizes_links_and_provenance() {
         .map(text)
         .collect::<Vec<_>>()
         .join(" ");
+    fn keys(v: &serde_json::Value, out: &mut Vec<String>) {
+        if let Some(m) = v.as_object() {
+            for (k, x) in m {
+                out.push(k.clone());
+                keys(x, out);
+            }
+        } else if let Some(a) = v.as_array() {
+            a.iter().for_each(|x| keys(x, out));
+        }
+    }
     for r in &summary.ledger.rows {
-        for key in r.evidence.keys().filter(|k| k.contains('_') || k.contains('.')) {
+        let mut all = Vec::new();
+        keys(&r.evidence_json(), &mut all);
+        for key in all.iter().filter(|k| k.contains('_') || k.contains('.')) {
             assert!(!cells.contains(key.as_str()), "ledger shows the raw evidence key {key}");
         }
-        assert!(!r.summary.is_empty());
+        assert!(!r.finding.is_empty());
     }
     // Every row has a one-sentence finding and at least two decisive numbers.
     for tr in table.descendants().filter(|n| n.has_tag_name("tr") && n.attribute("id").is_some()) {
@@ -331,10 +344,28 @@ fn ledger_digest_charts_sizes_links_and_provenance() {
     let mut total_svg = 0usize;
     let claim_charts = summary.files.iter().filter(|f| f.starts_with("claim-") && f.ends_with(".svg")).count();
     assert!(claim_charts > 0, "the claims' evidence plots are among the charts checked");
+    // A claim plot's axes are labelled as the ledger's plot data says (a dimensional axis with
+    // its unit in brackets, a dimensionless one — elements N, a ratio — without a "(1)").
+    let claim_axes: Vec<(String, String, String)> = summary
+        .ledger
+        .rows
+        .iter()
+        .flat_map(|r| {
+            r.plots.iter().map(move |p| (format!("{}-{}", r.id, p.name), p.x_label.clone(), p.y_label.clone()))
+        })
+        .collect();
     for f in summary.files.iter().filter(|f| f.ends_with(".svg")) {
         let svg = read(&out.join(f));
         total_svg += svg.len();
-        let labels: Vec<String> = svg_texts(&svg).into_iter().filter(|t| has_unit(t)).collect();
+        let texts = svg_texts(&svg);
+        if let Some((_, x, y)) = claim_axes.iter().find(|(name, _, _)| f == &format!("claim-{name}.svg")) {
+            for label in [x, y] {
+                assert!(texts.contains(label), "{f}: axis label {label} missing: {texts:?}");
+                assert!(!label.ends_with("(1)"), "{f}: dimensionless axis labelled (1): {label}");
+            }
+            continue;
+        }
+        let labels: Vec<String> = texts.into_iter().filter(|t| has_unit(t)).collect();
         assert!(labels.len() >= 2, "{f}: axis labels with units, found {labels:?}");
     }
     // The mu-conditions plot (sup λ3/b ≈ 1e-5 below r*, down to ≈ −40 above) has a symmetric-log

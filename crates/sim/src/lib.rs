@@ -19,6 +19,7 @@ pub mod error_estimate;
 pub mod estimate;
 pub mod fd;
 pub mod fe;
+pub mod metrics;
 pub mod modal;
 pub mod modes;
 pub mod output;

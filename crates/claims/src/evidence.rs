@@ -1,0 +1,105 @@
+//! The typed evidence of a row and the one trait that turns it into a verdict and words.
+//!
+//! Each claim module computes its evidence struct (labelled [`wingcheck_model::Quantity`]s,
+//! [`crate::display::Flag`]s, [`crate::display::Text`]s, [`crate::display::Table`]s) and
+//! implements [`Explain`] on it: the verdict and its basis, the finding (≤ 3 short sentences),
+//! the decisive numbers, further detail and the correction all come from the evidence alone, so
+//! `check`, `check --json` and the report say the same thing at any configuration.
+
+use serde::Serialize;
+use wingcheck_model::Quantity;
+
+use crate::comparison::ComparisonEvidence;
+use crate::finite_time::FiniteTimeEvidence;
+use crate::lemmas::LemmasEvidence;
+use crate::mu::MuEvidence;
+use crate::uub::UubEvidence;
+use crate::wbounds::WBoundsEvidence;
+use crate::{Basis, Verdict};
+
+/// Verdict and words from a row's evidence.
+pub trait Explain {
+    /// The verdict and what it rests on.
+    fn verdict(&self) -> (Verdict, Basis);
+    /// The finding: at most three short sentences, every number from the evidence.
+    fn finding(&self) -> Vec<String>;
+    /// The decisive numbers (two to four), with units and errors or bases.
+    fn decisive(&self) -> Vec<Quantity>;
+    /// Further sentences for the detail section.
+    fn details(&self) -> Vec<String> {
+        Vec::new()
+    }
+    /// The correction under which the claim holds, if any.
+    fn correction(&self) -> Option<String> {
+        None
+    }
+}
+
+/// A row's evidence, one variant per claim (serialised as the claim's own struct).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum Evidence {
+    /// W-bounds.
+    WBounds(Box<WBoundsEvidence>),
+    /// mu-conditions.
+    Mu(Box<MuEvidence>),
+    /// UUB.
+    Uub(Box<UubEvidence>),
+    /// finite-time-1 / finite-time-2.
+    FiniteTime(Box<FiniteTimeEvidence>),
+    /// lemmas.
+    Lemmas(Box<LemmasEvidence>),
+    /// ftdo-vs-dobc.
+    Comparison(Box<ComparisonEvidence>),
+    /// Nothing was computed (an inconclusive row); serialised as `{}`.
+    #[serde(serialize_with = "serialize_empty")]
+    None,
+}
+
+impl Evidence {
+    /// The evidence's own verdict (None for [`Evidence::None`]).
+    pub fn explain(&self) -> Option<&dyn Explain> {
+        Some(match self {
+            Evidence::WBounds(e) => e.as_ref(),
+            Evidence::Mu(e) => e.as_ref(),
+            Evidence::Uub(e) => e.as_ref(),
+            Evidence::FiniteTime(e) => e.as_ref(),
+            Evidence::Lemmas(e) => e.as_ref(),
+            Evidence::Comparison(e) => e.as_ref(),
+            Evidence::None => return None,
+        })
+    }
+
+    /// The display nodes of the evidence ([`crate::display::nodes`]).
+    pub fn nodes(&self) -> Result<Vec<crate::display::Node>, String> {
+        match self {
+            Evidence::None => Ok(Vec::new()),
+            e => crate::display::nodes(e),
+        }
+    }
+}
+
+macro_rules! evidence_from {
+    ($($t:ty => $v:ident),* $(,)?) => {
+        $(impl From<$t> for Evidence {
+            fn from(e: $t) -> Evidence {
+                Evidence::$v(Box::new(e))
+            }
+        })*
+    };
+}
+
+evidence_from!(
+    WBoundsEvidence => WBounds,
+    MuEvidence => Mu,
+    UubEvidence => Uub,
+    FiniteTimeEvidence => FiniteTime,
+    LemmasEvidence => Lemmas,
+    ComparisonEvidence => Comparison,
+);
+
+/// `{}`: the evidence of a row that computed nothing (an untagged unit variant would be null).
+fn serialize_empty<S: serde::Serializer>(s: S) -> Result<S::Ok, S::Error> {
+    use serde::ser::SerializeMap;
+    s.serialize_map(Some(0))?.end()
+}

@@ -1,0 +1,171 @@
+//! The claim table: one spec per claim of the paper (its id, the paper's equations and theorem,
+//! the claim in words, the certificates it can rest on). Every place that names a claim — the
+//! ledger rows, the report, `certify`/`verify`'s manifest, an inconclusive row, docs/ledger.md —
+//! reads it from here.
+
+use serde::{Deserialize, Serialize};
+
+/// The claims of the paper, in the paper's order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+pub enum ClaimId {
+    /// Theorem 1, (22)–(28).
+    #[serde(rename = "W-bounds")]
+    WBounds,
+    /// (29)–(32).
+    #[serde(rename = "mu-conditions")]
+    MuConditions,
+    /// Theorem 2, (33)–(37).
+    #[serde(rename = "UUB")]
+    Uub,
+    /// Theorem 3, (38).
+    #[serde(rename = "finite-time-1")]
+    FiniteTime1,
+    /// Theorem 4, (39).
+    #[serde(rename = "finite-time-2")]
+    FiniteTime2,
+    /// Lemmas 1–3, (11)–(14).
+    #[serde(rename = "lemmas")]
+    Lemmas,
+    /// Section 4: FTDO vs DOBC (57).
+    #[serde(rename = "ftdo-vs-dobc")]
+    FtdoVsDobc,
+}
+
+/// What the ledger knows about one claim before checking it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ClaimSpec {
+    /// The claim.
+    pub id: ClaimId,
+    /// The id as printed (`W-bounds`).
+    pub name: &'static str,
+    /// The paper's equations (`(22)–(28)`).
+    pub equations: &'static str,
+    /// The theorem, lemma or section (`Theorem 1`).
+    pub theorem: &'static str,
+    /// The claim in words.
+    pub claim: &'static str,
+    /// Ids of the certificates (`<id>.json` in a proofs directory) the claim can rest on; which
+    /// of them `certify` writes depends on the configuration.
+    pub certificates: &'static [&'static str],
+}
+
+/// Every claim, in the paper's order.
+pub const CLAIMS: [ClaimSpec; 7] = [
+    ClaimSpec {
+        id: ClaimId::WBounds,
+        name: "W-bounds",
+        equations: "(22)–(28)",
+        theorem: "Theorem 1",
+        claim: "0 ≤ λ2 κ ≤ W ≤ λ1 κ with the printed λ1, λ2, y1–y3",
+        certificates: &[
+            "w-bounds-lower",
+            "w-bounds-upper",
+            "w-bounds-indefinite",
+            "w-bounds-ratio-above",
+            "w-bounds-ratio-below",
+        ],
+    },
+    ClaimSpec {
+        id: ClaimId::MuConditions,
+        name: "mu-conditions",
+        equations: "(29)–(32)",
+        theorem: "Theorem 2's conditions",
+        claim: "conditions on the gains and the η's make Ẇ ≤ −λW + ε with the printed λ, ε",
+        certificates: &["mu-conditions-infeasible"],
+    },
+    ClaimSpec {
+        id: ClaimId::Uub,
+        name: "UUB",
+        equations: "(33)–(37)",
+        theorem: "Theorem 2",
+        claim: "q, θ are uniformly ultimately bounded, with the printed bound",
+        certificates: &[],
+    },
+    ClaimSpec {
+        id: ClaimId::FiniteTime1,
+        name: "finite-time-1",
+        equations: "(38)",
+        theorem: "Theorem 3",
+        claim: "g̃1 reaches 0 no later than t_f1, if κ2 ≥ ζ1",
+        certificates: &[],
+    },
+    ClaimSpec {
+        id: ClaimId::FiniteTime2,
+        name: "finite-time-2",
+        equations: "(39)",
+        theorem: "Theorem 4",
+        claim: "g̃2 reaches 0 no later than t_f2, if κ5 ≥ ζ2",
+        certificates: &[],
+    },
+    ClaimSpec {
+        id: ClaimId::Lemmas,
+        name: "lemmas",
+        equations: "(11)–(14)",
+        theorem: "Lemmas 1–3",
+        claim: "the inequalities used in the proofs",
+        certificates: &[],
+    },
+    ClaimSpec {
+        id: ClaimId::FtdoVsDobc,
+        name: "ftdo-vs-dobc",
+        equations: "(57)",
+        theorem: "Section 4, Figs 3–20",
+        claim: "the proposed FTDO controller suppresses vibration better than DOBC",
+        certificates: &[],
+    },
+];
+
+impl ClaimId {
+    /// Every claim, in the paper's order.
+    pub const ALL: [ClaimId; 7] = [
+        ClaimId::WBounds,
+        ClaimId::MuConditions,
+        ClaimId::Uub,
+        ClaimId::FiniteTime1,
+        ClaimId::FiniteTime2,
+        ClaimId::Lemmas,
+        ClaimId::FtdoVsDobc,
+    ];
+
+    /// The claim's spec.
+    pub fn spec(self) -> &'static ClaimSpec {
+        CLAIMS.iter().find(|s| s.id == self).expect("every claim has a spec")
+    }
+
+    /// The id as printed.
+    pub fn name(self) -> &'static str {
+        self.spec().name
+    }
+
+    /// Where in the paper: equations, then the theorem (`(22)–(28), Theorem 1`).
+    pub fn equation(self) -> String {
+        let s = self.spec();
+        format!("{}, {}", s.equations, s.theorem)
+    }
+
+    /// The claim by its printed id.
+    pub fn from_name(name: &str) -> Option<ClaimId> {
+        CLAIMS.iter().find(|s| s.name == name).map(|s| s.id)
+    }
+}
+
+impl std::fmt::Display for ClaimId {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.pad(self.name())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_table_has_one_spec_per_claim_in_order() {
+        for (spec, id) in CLAIMS.iter().zip(ClaimId::ALL) {
+            assert_eq!(spec.id, id);
+            // the serialised id is the printed name
+            assert_eq!(serde_json::to_value(id).unwrap(), spec.name);
+            assert_eq!(ClaimId::from_name(spec.name), Some(id));
+        }
+    }
+}
