@@ -19,7 +19,7 @@ use crate::settings::CheckSettings;
 use crate::study::Study;
 use crate::ClaimsError;
 
-pub use explain::{check, ComparisonEvidence, RunRecord, SweepRecord};
+pub use explain::{check, ComparisonEvidence, RunRecord, SweepRecord, TipDifferences};
 
 /// Metrics of one run (units: m, rad, N, N m, s).
 #[derive(Debug, Clone, PartialEq)]

@@ -14,7 +14,7 @@
 //! relative tolerance. Any other status is recorded and the answer is not used.
 
 use clarabel::solver::SolverStatus;
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
 use crate::socp::Socp;
 use crate::theory::{Etas, MuData};
@@ -23,10 +23,10 @@ use crate::theory::{Etas, MuData};
 pub const ROW_TOLERANCE: f64 = 1e-7;
 
 /// The outcome of one cross-check.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CrossCheck {
-    /// Clarabel's status, as text.
-    pub status: String,
+    /// Clarabel's status.
+    pub status: crate::status::SolveStatus,
     /// Solved and re-verified against the printed constraints.
     pub accepted: bool,
     /// Largest violation of a row, relative to the row's magnitude (≤ 0: none).
@@ -158,10 +158,6 @@ fn usable(out: &crate::socp::SocpOutcome) -> bool {
     matches!(out.status, SolverStatus::Solved | SolverStatus::AlmostSolved) && out.x.iter().all(|v| v.is_finite())
 }
 
-fn status_text(s: SolverStatus) -> String {
-    format!("{s:?}")
-}
-
 /// Passes of re-scaling: after each solve every η scale is multiplied by the solver's y, so
 /// that the next solve sees its optimum near y = 1 (a rotated cone u·η ≥ 1 is resolved to a
 /// relative accuracy only when u and η are of similar size).
@@ -182,7 +178,7 @@ fn solve_rescaled(
             Ok(o) => o,
             Err(e) => {
                 return CrossCheck {
-                    status: format!("setup error: {e}"),
+                    status: crate::status::SolveStatus::NotRun(format!("setup error: {e}")),
                     accepted: false,
                     max_row_violation: 0.0,
                     solver_value: 0.0,
@@ -224,7 +220,7 @@ fn solve_rescaled(
     let accepted = solved && viol <= ROW_TOLERANCE && value.is_finite();
     let rel = if accepted { (value - closed).abs() / scale.abs().max(f64::MIN_POSITIVE) } else { 0.0 };
     CrossCheck {
-        status: status_text(out.status),
+        status: crate::status::SolveStatus::Clarabel(out.status),
         accepted,
         max_row_violation: if viol.is_finite() { viol } else { f64::MAX },
         solver_value: if accepted { value } else { 0.0 },

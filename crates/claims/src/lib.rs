@@ -22,6 +22,7 @@ pub mod sdp;
 pub mod settings;
 pub mod socp;
 pub mod spec;
+pub mod status;
 pub mod study;
 pub mod theory;
 pub mod uub;

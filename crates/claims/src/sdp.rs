@@ -21,16 +21,17 @@
 //! A float SDP is evidence, not proof.
 
 use faer::{Mat, MatRef, Side};
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
 /// Relative tolerance of the re-verification of an SDP answer.
 pub const SDP_TOLERANCE: f64 = 1e-7;
 
 /// Outcome of one SDP cross-check.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SdpCheck {
-    /// clarabel's status.
-    pub status: String,
+    /// clarabel's status (simplified).
+    #[serde(serialize_with = "debug_name")]
+    pub status: wingcheck_lapack::sdp::SdpStatus,
     /// The SDP's λ (0 when not accepted).
     pub lambda_sdp: f64,
     /// λ_min of the pencil from the symmetric eigenvalue solver.
@@ -39,6 +40,10 @@ pub struct SdpCheck {
     pub accepted: bool,
     /// Solve time (s); not reproducible content.
     pub seconds: f64,
+}
+
+fn debug_name<T: std::fmt::Debug, S: serde::Serializer>(v: &T, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_str(&format!("{v:?}"))
 }
 
 fn symmetrise(m: &Mat<f64>) -> Mat<f64> {
@@ -64,7 +69,7 @@ pub fn max_lambda(a: &Mat<f64>, b: &Mat<f64>) -> Result<SdpCheck, String> {
         _ => (false, 0.0),
     };
     Ok(SdpCheck {
-        status: format!("{:?}", out.status),
+        status: out.status,
         lambda_sdp: if accepted { lambda_sdp } else { 0.0 },
         lambda_eig: eig[0],
         accepted,
@@ -87,11 +92,10 @@ pub const PENCIL_SOLVER_TOLERANCES: [f64; 2] = [1e-9, 1e-8];
 
 /// One side of the pencil SDP at one N: λ2 = max λ s.t. W − λκ ⪰ 0, or λ1 = −max μ s.t.
 /// −W − μκ ⪰ 0 (units of W/κ).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct PencilSide {
     /// clarabel's status (`not run` when the problem could not be posed).
-    pub status: String,
+    pub status: crate::status::SolveStatus,
     /// Interior-point iterations (of the last solve).
     pub iterations: u32,
     /// Formulations tried: 1, or 2 when the first point was not Solved or not re-verified
@@ -118,8 +122,7 @@ pub struct PencilSide {
 }
 
 /// The SDP cross-check at one element count N.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct PencilSdpRow {
     /// Elements N.
     pub elements: usize,
@@ -242,21 +245,23 @@ struct ReducedPencil {
 
 const STRUCTURE_TOLERANCE: f64 = 1e-12;
 
-fn reduce(
+/// The velocity blocks of W and κ as multiples of the lumped velocity mass M and of the
+/// couplings C1, C2 (the structure the exact elimination of the velocities needs), checked on
+/// the assembled matrices: (a_b, b, diag M), or the residual when W, κ do not have it.
+type VelocityStructure = ([[f64; 2]; 2], [[f64; 2]; 2], Vec<f64>);
+
+fn velocity_structure(
     w: &Mat<f64>,
     kappa: &Mat<f64>,
-    c1: &Mat<f64>,
-    c2: &Mat<f64>,
+    cs: [MatRef<'_, f64>; 2],
     n: usize,
-    h: f64,
-) -> Result<ReducedPencil, String> {
+) -> Result<VelocityStructure, String> {
     let (nd, nv) = (3 * n, 4 * n);
     let off = [nd, nd + nv];
+    let dcol = [0, 2 * n];
     let m: Vec<f64> = (0..nv).map(|i| kappa[(nd + i, nd + i)]).collect();
     let mm = Mat::from_fn(nv, nv, |i, j| if i == j { m[i] } else { 0.0 });
     let block = |r0: usize, c0: usize, r: usize, c: usize| w.submatrix(r0, c0, r, c);
-    let cs = [c1.as_ref(), c2.as_ref()];
-    let dcol = [0, 2 * n];
     let mut a_b = [[0.0; 2]; 2];
     let mut b = [[0.0; 2]; 2];
     let mut residual = 0.0f64;
@@ -281,6 +286,51 @@ fn reduce(
             residual / scale
         ));
     }
+    Ok((a_b, b, m))
+}
+
+/// The change of basis T·S of the 3N displacements: the hierarchical basis T, then the
+/// block-Cholesky S that makes κ's displacement block the identity (checked to 1e-10).
+fn hierarchical_congruence(kappa_d: &Mat<f64>, n: usize, h: f64) -> Result<Mat<f64>, String> {
+    let nd = 3 * n;
+    let (th, tl) = hierarchical_basis(n, h)?;
+    let mut t = Mat::<f64>::zeros(nd, nd);
+    t.submatrix_mut(0, 0, 2 * n, 2 * n).copy_from(&th);
+    t.submatrix_mut(2 * n, 2 * n, n, n).copy_from(&tl);
+    let kh = t.transpose() * kappa_d * &t;
+    let mut s = Mat::<f64>::zeros(nd, nd);
+    for c in 0..n {
+        let (i0, i1) = (2 * c, 2 * c + 1);
+        let l11 = kh[(i0, i0)].sqrt();
+        let l21 = kh[(i0, i1)] / l11;
+        let l22 = (kh[(i1, i1)] - l21 * l21).sqrt();
+        s[(i0, i0)] = 1.0 / l11;
+        s[(i0, i1)] = -l21 / (l11 * l22);
+        s[(i1, i1)] = 1.0 / l22;
+    }
+    for i in 2 * n..nd {
+        s[(i, i)] = 1.0 / kh[(i, i)].sqrt();
+    }
+    let ts = &t * &s;
+    let identity_error = (ts.transpose() * kappa_d * &ts - Mat::<f64>::identity(nd, nd)).norm_max();
+    if !identity_error.is_finite() || identity_error > 1e-10 {
+        return Err(format!("the hierarchical basis did not orthonormalise κ (error {identity_error:.1e})"));
+    }
+    Ok(ts)
+}
+
+fn reduce(
+    w: &Mat<f64>,
+    kappa: &Mat<f64>,
+    c1: &Mat<f64>,
+    c2: &Mat<f64>,
+    n: usize,
+    h: f64,
+) -> Result<ReducedPencil, String> {
+    let nd = 3 * n;
+    let cs = [c1.as_ref(), c2.as_ref()];
+    let dcol = [0, 2 * n];
+    let (a_b, b, m) = velocity_structure(w, kappa, cs, n)?;
     // G_ij = C_iᵀ M⁻¹ C_j embedded in the 3N displacement space
     let minv_c = |c: MatRef<'_, f64>| Mat::from_fn(c.nrows(), c.ncols(), |i, j| c[(i, j)] / m[i]);
     let embed = |k: usize, l: usize| {
@@ -296,38 +346,14 @@ fn reduce(
         }
         e
     };
-    // hierarchical basis, then the congruence making the κ-block the identity
-    let (th, tl) = hierarchical_basis(n, h)?;
-    let mut t = Mat::<f64>::zeros(nd, nd);
-    t.submatrix_mut(0, 0, 2 * n, 2 * n).copy_from(&th);
-    t.submatrix_mut(2 * n, 2 * n, n, n).copy_from(&tl);
     let kappa_d = kappa.submatrix(0, 0, nd, nd).to_owned();
-    let kh = t.transpose() * &kappa_d * &t;
-    let mut s = Mat::<f64>::zeros(nd, nd);
-    for c in 0..n {
-        let (i0, i1) = (2 * c, 2 * c + 1);
-        let l11 = kh[(i0, i0)].sqrt();
-        let l21 = kh[(i0, i1)] / l11;
-        let l22 = (kh[(i1, i1)] - l21 * l21).sqrt();
-        s[(i0, i0)] = 1.0 / l11;
-        s[(i0, i1)] = -l21 / (l11 * l22);
-        s[(i1, i1)] = 1.0 / l22;
-    }
-    for i in 2 * n..nd {
-        s[(i, i)] = 1.0 / kh[(i, i)].sqrt();
-    }
-    let ts = &t * &s;
+    let ts = hierarchical_congruence(&kappa_d, n, h)?;
     let congruent = |x: &Mat<f64>| ts.transpose() * x * &ts;
-    let kappa_dd = congruent(&kappa_d);
-    let identity_error = (&kappa_dd - Mat::<f64>::identity(nd, nd)).norm_max();
-    if !identity_error.is_finite() || identity_error > 1e-10 {
-        return Err(format!("the hierarchical basis did not orthonormalise κ (error {identity_error:.1e})"));
-    }
     Ok(ReducedPencil {
         a_b,
         b,
         w_dd: congruent(&w.submatrix(0, 0, nd, nd).to_owned()),
-        kappa_dd,
+        kappa_dd: congruent(&kappa_d),
         g: [congruent(&embed(0, 0)), congruent(&embed(0, 1)), congruent(&embed(1, 1))],
     })
 }
@@ -386,7 +412,7 @@ fn solve_side(r: &ReducedPencil, sign: f64, sigma: f64, beta: f64) -> Result<Sid
         let p_over_sigma =
             (1..4).map(|k| sol.x.get(k).copied().unwrap_or(0.0) / (m[k - 1] * b2)).fold(0.0f64, |a, v| a.max(v.abs()));
         out = Some(SideSolution {
-            status: format!("{:?}", sol.raw_status),
+            status: crate::status::SolveStatus::Clarabel(sol.raw_status),
             iterations: sol.iterations,
             tolerance: tol,
             lambda,
@@ -401,7 +427,7 @@ fn solve_side(r: &ReducedPencil, sign: f64, sigma: f64, beta: f64) -> Result<Sid
 }
 
 struct SideSolution {
-    status: String,
+    status: crate::status::SolveStatus,
     iterations: u32,
     tolerance: f64,
     lambda: Option<f64>,
@@ -425,75 +451,14 @@ pub fn pencil_cross_check(
     span: f64,
 ) -> PencilSdpRow {
     let start = std::time::Instant::now();
-    let not_run = |reason: &str| PencilSdpRow::not_run(n, reason).lambda2;
     let dimension = w.nrows();
     let (c, eig) = match congruent_to_identity(w, kappa) {
         Ok(x) => x,
         Err(e) => return PencilSdpRow { seconds: start.elapsed().as_secs_f64(), ..PencilSdpRow::not_run(n, &e) },
     };
     let sigma = eig[0].abs().max(eig[dimension - 1].abs()).max(f64::MIN_POSITIVE);
-    let delta = SDP_TOLERANCE * sigma;
     let reduced = reduce(w, kappa, c1, c2, n, span / n as f64);
-    let side = |sign: f64, lambda_eig: f64| -> PencilSide {
-        let r = match &reduced {
-            Ok(r) => r,
-            Err(e) => return PencilSide { lambda_eig: Some(lambda_eig), ..not_run(e) },
-        };
-        let verify = |x: &SideSolution| {
-            x.status == "Solved" && x.lambda.is_some_and(|l| pencil_feasible(&c, sign, l - sign * delta))
-        };
-        let first = match solve_side(r, sign, sigma, 1.0) {
-            Ok(x) => x,
-            Err(e) => return PencilSide { lambda_eig: Some(lambda_eig), ..not_run(&format!("SDP: {e}")) },
-        };
-        // Not Solved or not re-verified (never because of the eigenvalue comparison): once more
-        // with the 4×4 LMI rescaled by β = 1/√max(|P/σ|, |B/σ|²) from the first point, which
-        // makes its P-block O(1) (measured: on an SI-scale wing at a/b ≈ 5 the first point has
-        // P ≈ 0, violating the 4×4 LMI by ~|B/σ|² ≈ 2e-9, and λ1 fails re-verification).
-        let mut attempts = 1;
-        let chosen = if verify(&first) {
-            first
-        } else {
-            let scale = first.p_over_sigma.max(first.b_over_sigma * first.b_over_sigma);
-            match (scale > 0.0).then(|| solve_side(r, sign, sigma, 1.0 / scale.sqrt())) {
-                Some(Ok(second)) => {
-                    attempts = 2;
-                    second
-                }
-                _ => first,
-            }
-        };
-        let verified = verify(&chosen);
-        let SideSolution { status, iterations, tolerance, lambda, .. } = chosen;
-        let difference = lambda.map(|l| (l - lambda_eig).abs());
-        let accepted = verified;
-        let agrees = accepted && difference.is_some_and(|d| d <= delta);
-        let reason = if status != "Solved" {
-            Some(format!("clarabel status {status} (only Solved is accepted)"))
-        } else if !verified {
-            let constraint = if sign > 0.0 { "W − λκ ⪰ 0" } else { "λκ − W ⪰ 0" };
-            Some(format!("re-verification failed: the returned λ violates {constraint} by more than δ = {delta:.1e}"))
-        } else if !agrees {
-            Some(format!(
-                "feasible but {:.1e} from the eigenvalue, more than δ = {delta:.1e}",
-                difference.unwrap_or(0.0)
-            ))
-        } else {
-            None
-        };
-        PencilSide {
-            status,
-            iterations,
-            attempts,
-            solver_tolerance: tolerance,
-            lambda_sdp: lambda,
-            lambda_eig: Some(lambda_eig),
-            difference,
-            accepted,
-            agrees,
-            reason,
-        }
-    };
+    let side = |sign: f64, lambda_eig: f64| pencil_side(&reduced, &c, sign, sigma, lambda_eig, n);
     let lambda2 = side(1.0, eig[0]);
     let lambda1 = side(-1.0, eig[dimension - 1]);
     PencilSdpRow {
@@ -504,6 +469,76 @@ pub fn pencil_cross_check(
         lambda2,
         lambda1,
         seconds: start.elapsed().as_secs_f64(),
+    }
+}
+
+/// One side of the cross-check at N (sign 1: λ2 = min W/κ; −1: λ1 = max W/κ): clarabel on the
+/// reduced pencil, once more rescaled if the first point is not Solved or not re-verified, then
+/// re-verified against the original constraint and compared with the eigenvalue.
+fn pencil_side(
+    reduced: &Result<ReducedPencil, String>,
+    c: &Mat<f64>,
+    sign: f64,
+    sigma: f64,
+    lambda_eig: f64,
+    n: usize,
+) -> PencilSide {
+    let not_run = |reason: &str| PencilSdpRow::not_run(n, reason).lambda2;
+    let delta = SDP_TOLERANCE * sigma;
+    let r = match &reduced {
+        Ok(r) => r,
+        Err(e) => return PencilSide { lambda_eig: Some(lambda_eig), ..not_run(e) },
+    };
+    let verify = |x: &SideSolution| {
+        x.status.is_solved() && x.lambda.is_some_and(|l| pencil_feasible(c, sign, l - sign * delta))
+    };
+    let first = match solve_side(r, sign, sigma, 1.0) {
+        Ok(x) => x,
+        Err(e) => return PencilSide { lambda_eig: Some(lambda_eig), ..not_run(&format!("SDP: {e}")) },
+    };
+    // Not Solved or not re-verified (never because of the eigenvalue comparison): once more
+    // with the 4×4 LMI rescaled by β = 1/√max(|P/σ|, |B/σ|²) from the first point, which
+    // makes its P-block O(1) (measured: on an SI-scale wing at a/b ≈ 5 the first point has
+    // P ≈ 0, violating the 4×4 LMI by ~|B/σ|² ≈ 2e-9, and λ1 fails re-verification).
+    let mut attempts = 1;
+    let chosen = if verify(&first) {
+        first
+    } else {
+        let scale = first.p_over_sigma.max(first.b_over_sigma * first.b_over_sigma);
+        match (scale > 0.0).then(|| solve_side(r, sign, sigma, 1.0 / scale.sqrt())) {
+            Some(Ok(second)) => {
+                attempts = 2;
+                second
+            }
+            _ => first,
+        }
+    };
+    let verified = verify(&chosen);
+    let SideSolution { status, iterations, tolerance, lambda, .. } = chosen;
+    let difference = lambda.map(|l| (l - lambda_eig).abs());
+    let accepted = verified;
+    let agrees = accepted && difference.is_some_and(|d| d <= delta);
+    let reason = if !status.is_solved() {
+        Some(format!("clarabel status {status} (only Solved is accepted)"))
+    } else if !verified {
+        let constraint = if sign > 0.0 { "W − λκ ⪰ 0" } else { "λκ − W ⪰ 0" };
+        Some(format!("re-verification failed: the returned λ violates {constraint} by more than δ = {delta:.1e}"))
+    } else if !agrees {
+        Some(format!("feasible but {:.1e} from the eigenvalue, more than δ = {delta:.1e}", difference.unwrap_or(0.0)))
+    } else {
+        None
+    };
+    PencilSide {
+        status,
+        iterations,
+        attempts,
+        solver_tolerance: tolerance,
+        lambda_sdp: lambda,
+        lambda_eig: Some(lambda_eig),
+        difference,
+        accepted,
+        agrees,
+        reason,
     }
 }
 
@@ -535,7 +570,7 @@ impl PencilSdpRow {
     /// A row for an N whose SDP could not be posed (e.g. the assembly failed), saying why.
     pub fn not_run(elements: usize, reason: &str) -> Self {
         let side = PencilSide {
-            status: "not run".into(),
+            status: crate::status::SolveStatus::NotRun(reason.to_string()),
             iterations: 0,
             attempts: 0,
             solver_tolerance: 0.0,

@@ -21,7 +21,7 @@ use crate::lyapunov::{assemble, decimal, tight_constants, Coupling, LyapunovPara
 use crate::mu::MuResult;
 use crate::settings::CheckSettings;
 use crate::study::Study;
-use crate::theory::Decision;
+use crate::theory::{Decision, UubBound};
 use crate::wbounds::{num, WBounds};
 use crate::{Basis, ClaimId, ClaimRow, ClaimsError, Line, PlotData, Verdict};
 
@@ -41,6 +41,15 @@ pub struct W0Record {
     pub elements: Quantity,
     /// W(0) there.
     pub w0: Quantity,
+}
+
+impl W0Record {
+    fn of(&(n, v): &(usize, f64)) -> W0Record {
+        W0Record {
+            elements: Quantity::count("uniform FE elements", n),
+            w0: Quantity::based("W(0)", v, Unit::LyapunovUnits, ValueBasis::ClosedForm),
+        }
+    }
 }
 
 /// The evidence of the `UUB` row (present when a point satisfying (32) exists).
@@ -190,6 +199,169 @@ fn no_operating_point(cfg: &Config, m: &MuResult) -> ClaimRow {
     row
 }
 
+/// The facts of the bound at the operating point, before they are put into words.
+struct Computed {
+    /// The operating point (configured gains, or the mu row's fallback).
+    best: crate::theory::BestPoint,
+    /// λ2 on the Galerkin space at the operating point.
+    lambda2: f64,
+    /// (elements, W(0)) per mesh.
+    w0s: [(usize, f64); 3],
+    /// The bound (37) with the coarsest mesh's W(0).
+    bound: UubBound,
+    /// Sample times (s), the simulated envelopes max_z |q|, max_z |θ| and the bounds there.
+    t: Vec<f64>,
+    env: [Vec<f64>; 2],
+    bounds: [Vec<f64>; 2],
+    /// Output grid points in z of the envelope.
+    field_points: usize,
+    /// max |q(s,t)|, |θ(s,t)| over [t_end/2, t_end] at the configured gains.
+    config_tail: [f64; 2],
+}
+
+/// λ2 at the operating point, the W(0) study, the simulated envelope and the bound.
+fn compute(
+    cfg: &Config,
+    best: crate::theory::BestPoint,
+    lambda2: f64,
+    study: &Study,
+    settings: &CheckSettings,
+) -> Result<Computed, ClaimsError> {
+    let mut sim_cfg = cfg.clone();
+    sim_cfg.control.a = best.a;
+    sim_cfg.control.b = best.b;
+    sim_cfg.control.kind = ControllerKind::Ftdo;
+    let out = study.simulate(&sim_cfg)?;
+    let fields = out.fields.as_ref().ok_or_else(|| num("the UUB envelope")("the run recorded no fields".into()))?;
+    let envelope = |f: &[Vec<f64>]| f.iter().map(|r| r.iter().fold(0.0f64, |a, v| a.max(v.abs()))).collect::<Vec<_>>();
+    let w0s = settings.uub_w0_elements.map(|n| (n, w_initial(cfg, best.b, n)));
+    let bound = UubBound { span: cfg.wing.span, lambda2, lambda: best.lambda, epsilon: best.epsilon, w0: w0s[0].1 };
+    let t = out.series.t.clone();
+    let bounds = [t.iter().map(|&tt| bound.q(tt)).collect(), t.iter().map(|&tt| bound.theta(tt)).collect()];
+    let here = study.simulate(cfg)?;
+    let late = Window::second_half(cfg.horizon.t_end);
+    let tail = |v: &[f64]| wingcheck_sim::metrics::max_abs(&v[window_indices(&here.series.t, late)]).unwrap_or(0.0);
+    Ok(Computed {
+        best,
+        lambda2,
+        w0s,
+        bound,
+        env: [envelope(&fields.q), envelope(&fields.theta)],
+        bounds,
+        t,
+        field_points: fields.z.len(),
+        config_tail: [tail(&here.series.q_tip), tail(&here.series.theta_tip)],
+    })
+}
+
+fn evidence_of(c: &Computed, hypotheses_here: bool, cfg: &Config, settings: &CheckSettings) -> UubEvidence {
+    let (best, n2) = (&c.best, settings.uub_lambda2_elements);
+    let fmt = |v: f64| wingcheck_model::quantity::format_value(v, None);
+    let at = format!("at a = {}, b = {}", fmt(best.a), fmt(best.b));
+    let lower = |label: String, v: f64| Quantity::based(label, v, Unit::Metre, ValueBasis::LowerBound);
+    let sim = |label: String, v: f64, unit: Unit| Quantity::based(label, v, unit, ValueBasis::Simulation);
+    let based = |label: String, v: f64, unit: Unit, basis: ValueBasis| Quantity::based(label, v, unit, basis);
+    let late = Window::second_half(cfg.horizon.t_end);
+    let tail = |v: &[f64]| max_abs_in(&c.t, v, late).unwrap_or(0.0);
+    let [bq, bt] = [c.bounds[0].last().copied().unwrap_or(0.0), c.bounds[1].last().copied().unwrap_or(0.0)];
+    let violated = (0..2).any(|k| c.env[k].iter().zip(&c.bounds[k]).any(|(e, b)| e > b));
+    UubEvidence {
+        hypotheses_hold_at_config: Flag::new("λ2 > 0 and (32) hold at the configured gains", hypotheses_here),
+        evaluated_at_a: based(
+            "a where the bound is evaluated".into(),
+            best.a,
+            Unit::Dimensionless,
+            ValueBasis::ClosedForm,
+        ),
+        evaluated_at_b: Quantity::configured("b where the bound is evaluated", best.b, Unit::Second),
+        lambda: based(format!("decay rate λ {at} (optimistic)"), best.lambda, Unit::PerSecond, ValueBasis::UpperBound),
+        decay_time_constant_s: based(
+            format!("decay time 1/λ {at}"),
+            1.0 / best.lambda,
+            Unit::Second,
+            ValueBasis::LowerBound,
+        ),
+        epsilon: based(format!("ε of (32) {at}"), best.epsilon, Unit::LyapunovUnits, ValueBasis::ClosedForm),
+        lambda2_tight: based(
+            format!("λ2({n2}) = min W/κ {at} (≥ λ2*)"),
+            c.lambda2,
+            Unit::LyapunovUnits,
+            ValueBasis::UpperBound,
+        ),
+        w0_by_elements: Table::new("W(0) under refinement", c.w0s.iter().map(W0Record::of).collect()),
+        w0_diverges: Flag::new(
+            "W(0) keeps growing under refinement",
+            c.w0s[2].1 > settings.uub_w0_divergence_ratio * c.w0s[1].1,
+        ),
+        ultimate_bound_q_m: lower(format!("ultimate bound √(s³ε/(λ2λ)) on |q| {at}"), c.bound.ultimate_q()),
+        bound_q_at_t_end_m: lower(format!("bound (37) on |q| at t_end {at}, W(0) on {} elements", c.w0s[0].0), bq),
+        measured_max_abs_q_second_half_m: sim(
+            format!("simulated max_z |q| over [t_end/2, t_end] {at}"),
+            tail(&c.env[0]),
+            Unit::Metre,
+        ),
+        ratio_bound_over_measured_q: ratio_of(
+            format!("bound / simulated envelope of q at t_end {at}"),
+            bq,
+            tail(&c.env[0]),
+            ValueBasis::Derived,
+        ),
+        ratio_bound_over_measured_theta: ratio_of(
+            format!("bound / simulated envelope of θ at t_end {at}"),
+            bt,
+            tail(&c.env[1]),
+            ValueBasis::Derived,
+        ),
+        vacuity_ratio: Quantity::exact(
+            "ratio above which a bound that holds is called vacuous",
+            settings.vacuity_ratio,
+            Unit::Dimensionless,
+        ),
+        bound_violated: Flag::new("the simulated envelope exceeds the bound somewhere", violated),
+        field_points: Quantity::count("output grid points in z of the envelope", c.field_points),
+        config_max_abs_q_tip_second_half_m: sim(
+            "max |q(s,t)| over [t_end/2, t_end] at the configured gains".into(),
+            c.config_tail[0],
+            Unit::Metre,
+        ),
+        config_max_abs_theta_tip_second_half_rad: sim(
+            "max |θ(s,t)| over [t_end/2, t_end] at the configured gains".into(),
+            c.config_tail[1],
+            Unit::Radian,
+        ),
+    }
+}
+
+fn plot(c: &Computed, e: &UubEvidence) -> PlotData {
+    let stride = (c.t.len() / 400).max(1);
+    let pick = |v: &[f64]| v.iter().step_by(stride).copied().collect::<Vec<_>>();
+    let fmt = |v: f64| wingcheck_model::quantity::format_value(v, None);
+    PlotData {
+        name: "uub-bound-vs-envelope".into(),
+        title: format!(
+            "Theorem 2's bound (37) against the simulated envelope at a = {}, b = {}{}",
+            fmt(c.best.a),
+            fmt(c.best.b),
+            e.ratio_bound_over_measured_q
+                .as_ref()
+                .map_or(String::new(), |r| format!("; ratio at t_end {}", r.value_text()))
+        ),
+        x_label: "t (s)".into(),
+        y_label: "max_z |q(z,t)| (m)".into(),
+        log_x: false,
+        log_y: true,
+        lines: vec![
+            Line { label: "bound (37)".into(), x: pick(&c.t), y: pick(&c.bounds[0]), points: false },
+            Line {
+                label: "simulated max_z |q|".into(),
+                x: pick(&c.t),
+                y: pick(&c.env[0]).iter().map(|v| v.max(1e-12)).collect(),
+                points: false,
+            },
+        ],
+    }
+}
+
 /// Check Theorem 2.
 pub fn check(
     cfg: &Config,
@@ -203,156 +375,24 @@ pub fn check(
     let n2 = settings.uub_lambda2_elements;
     let p = LyapunovParams::from_config(cfg, Coupling::Corrected, n2).with_weights(&decimal(best.a), &decimal(best.b));
     let lambda2 = tight_constants(&assemble(&p).map_err(num("assembly"))?).map_err(num("eigen"))?.lambda2;
+    let fmt = |v: f64| wingcheck_model::quantity::format_value(v, None);
     if lambda2 <= 0.0 {
         return Ok(ClaimRow::inconclusive(
             ClaimId::Uub,
             Basis::FloatSolver,
             format!(
                 "At the operating point a = {}, b = {} W is not positive definite (λ2 = {}), so (37) does not apply.",
-                wingcheck_model::quantity::format_value(best.a, None),
-                wingcheck_model::quantity::format_value(best.b, None),
-                wingcheck_model::quantity::format_value(lambda2, None)
+                fmt(best.a),
+                fmt(best.b),
+                fmt(lambda2)
             ),
         ));
     }
-    let mut sim_cfg = cfg.clone();
-    sim_cfg.control.a = best.a;
-    sim_cfg.control.b = best.b;
-    sim_cfg.control.kind = ControllerKind::Ftdo;
-    let out = study.simulate(&sim_cfg)?;
-    let fields = out.fields.as_ref().ok_or_else(|| num("the UUB envelope")("the run recorded no fields".into()))?;
-    let t = &out.series.t;
-    let env_q: Vec<f64> = fields.q.iter().map(|r| r.iter().fold(0.0f64, |a, v| a.max(v.abs()))).collect();
-    let env_t: Vec<f64> = fields.theta.iter().map(|r| r.iter().fold(0.0f64, |a, v| a.max(v.abs()))).collect();
-    let s = cfg.wing.span;
-    let w0s = settings.uub_w0_elements.map(|n| (n, w_initial(cfg, best.b, n)));
-    let w0 = w0s[0].1;
-    let w0_diverges = w0s[2].1 > settings.uub_w0_divergence_ratio * w0s[1].1;
-    let (lam, eps) = (best.lambda, best.epsilon);
-    let core = |tt: f64| w0 * (-lam * tt).exp() + eps / lam;
-    let bound_q: Vec<f64> = t.iter().map(|&tt| (s.powi(3) / lambda2 * core(tt)).sqrt()).collect();
-    let bound_t: Vec<f64> = t.iter().map(|&tt| (s / lambda2 * core(tt)).sqrt()).collect();
-    let violated = env_q.iter().zip(&bound_q).any(|(e, b)| e > b) || env_t.iter().zip(&bound_t).any(|(e, b)| e > b);
-    let n = t.len();
-    let late = Window::second_half(cfg.horizon.t_end);
-    let tail = |v: &[f64]| max_abs_in(t, v, late).unwrap_or(0.0);
-    let here = study.simulate(cfg)?;
-    let ht = &here.series;
-    let here_tail = |v: &[f64]| wingcheck_sim::metrics::max_abs(&v[window_indices(&ht.t, late)]).unwrap_or(0.0);
-    let at = format!(
-        "at a = {}, b = {}",
-        wingcheck_model::quantity::format_value(best.a, None),
-        wingcheck_model::quantity::format_value(best.b, None)
-    );
-    let lower = |label: String, v: f64| Quantity::based(label, v, Unit::Metre, ValueBasis::LowerBound);
-    let sim = |label: String, v: f64, unit: Unit| Quantity::based(label, v, unit, ValueBasis::Simulation);
-    let e = UubEvidence {
-        hypotheses_hold_at_config: Flag::new("λ2 > 0 and (32) hold at the configured gains", hypotheses_here),
-        evaluated_at_a: Quantity::based(
-            "a where the bound is evaluated",
-            best.a,
-            Unit::Dimensionless,
-            ValueBasis::ClosedForm,
-        ),
-        evaluated_at_b: Quantity::configured("b where the bound is evaluated", best.b, Unit::Second),
-        lambda: Quantity::based(
-            format!("decay rate λ {at} (optimistic)"),
-            lam,
-            Unit::PerSecond,
-            ValueBasis::UpperBound,
-        ),
-        decay_time_constant_s: Quantity::based(
-            format!("decay time 1/λ {at}"),
-            1.0 / lam,
-            Unit::Second,
-            ValueBasis::LowerBound,
-        ),
-        epsilon: Quantity::based(format!("ε of (32) {at}"), eps, Unit::LyapunovUnits, ValueBasis::ClosedForm),
-        lambda2_tight: Quantity::based(
-            format!("λ2({n2}) = min W/κ {at} (≥ λ2*)"),
-            lambda2,
-            Unit::LyapunovUnits,
-            ValueBasis::UpperBound,
-        ),
-        w0_by_elements: Table::new(
-            "W(0) under refinement",
-            w0s.iter()
-                .map(|&(n, v)| W0Record {
-                    elements: Quantity::count("uniform FE elements", n),
-                    w0: Quantity::based("W(0)", v, Unit::LyapunovUnits, ValueBasis::ClosedForm),
-                })
-                .collect(),
-        ),
-        w0_diverges: Flag::new("W(0) keeps growing under refinement", w0_diverges),
-        ultimate_bound_q_m: lower(
-            format!("ultimate bound √(s³ε/(λ2λ)) on |q| {at}"),
-            (s.powi(3) / lambda2 * eps / lam).sqrt(),
-        ),
-        bound_q_at_t_end_m: lower(
-            format!("bound (37) on |q| at t_end {at}, W(0) on {} elements", w0s[0].0),
-            bound_q[n - 1],
-        ),
-        measured_max_abs_q_second_half_m: sim(
-            format!("simulated max_z |q| over [t_end/2, t_end] {at}"),
-            tail(&env_q),
-            Unit::Metre,
-        ),
-        ratio_bound_over_measured_q: ratio_of(
-            format!("bound / simulated envelope of q at t_end {at}"),
-            bound_q[n - 1],
-            tail(&env_q),
-            ValueBasis::Derived,
-        ),
-        ratio_bound_over_measured_theta: ratio_of(
-            format!("bound / simulated envelope of θ at t_end {at}"),
-            bound_t[n - 1],
-            tail(&env_t),
-            ValueBasis::Derived,
-        ),
-        vacuity_ratio: Quantity::exact(
-            "ratio above which a bound that holds is called vacuous",
-            settings.vacuity_ratio,
-            Unit::Dimensionless,
-        ),
-        bound_violated: Flag::new("the simulated envelope exceeds the bound somewhere", violated),
-        field_points: Quantity::count("output grid points in z of the envelope", fields.z.len()),
-        config_max_abs_q_tip_second_half_m: sim(
-            "max |q(s,t)| over [t_end/2, t_end] at the configured gains".into(),
-            here_tail(&ht.q_tip),
-            Unit::Metre,
-        ),
-        config_max_abs_theta_tip_second_half_rad: sim(
-            "max |θ(s,t)| over [t_end/2, t_end] at the configured gains".into(),
-            here_tail(&ht.theta_tip),
-            Unit::Radian,
-        ),
-    };
-    let stride = (n / 400).max(1);
-    let pick = |v: &[f64]| v.iter().step_by(stride).copied().collect::<Vec<_>>();
-    let plot = PlotData {
-        name: "uub-bound-vs-envelope".into(),
-        title: format!(
-            "Theorem 2's bound (37) against the simulated envelope {at}{}",
-            e.ratio_bound_over_measured_q
-                .as_ref()
-                .map_or(String::new(), |r| format!("; ratio at t_end {}", r.value_text()))
-        ),
-        x_label: "t (s)".into(),
-        y_label: "max_z |q(z,t)| (m)".into(),
-        log_x: false,
-        log_y: true,
-        lines: vec![
-            Line { label: "bound (37)".into(), x: pick(t), y: pick(&bound_q), points: false },
-            Line {
-                label: "simulated max_z |q|".into(),
-                x: pick(t),
-                y: pick(&env_q).iter().map(|v| v.max(1e-12)).collect(),
-                points: false,
-            },
-        ],
-    };
+    let c = compute(cfg, best, lambda2, study, settings)?;
+    let e = evidence_of(&c, hypotheses_here, cfg, settings);
+    let at = format!("a = {}, b = {}", fmt(best.a), fmt(best.b));
     let assumptions = vec![
-        if hypotheses_here || m.evidence.best_at_configured.value {
+        if m.evidence.best_at_configured.value {
             "operating point: the configured gains (they satisfy (32))".to_string()
         } else {
             format!("operating point {at} = half the closed-form μ boundary (the configured gains do not satisfy (32))")
@@ -361,9 +401,10 @@ pub fn check(
             "W(0) from the discretised initial state (uniform FE meshes of {:?} elements, zero initial velocity)",
             settings.uub_w0_elements
         ),
-        format!("simulated envelope: max over the {}-point output grid in z (horizon.field_points)", fields.z.len()),
+        format!("simulated envelope: max over the {}-point output grid in z (horizon.field_points)", c.field_points),
         "ζ3, ζ4 from the FTDO run at the configured gains".into(),
         format!("λ2 on {n2} Galerkin elements and λ with λ1 on a Galerkin space: both make the evaluated bound a lower bound of the theorem's bound (optimistic)"),
     ];
-    Ok(ClaimRow::decided(ClaimId::Uub, e, assumptions, vec![plot]))
+    let plots = vec![plot(&c, &e)];
+    Ok(ClaimRow::decided(ClaimId::Uub, e, assumptions, plots))
 }

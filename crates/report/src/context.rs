@@ -45,6 +45,10 @@ pub struct Page {
     pub row_assumptions: Vec<RowAssumption>,
     /// Wall time per stage (the only non-reproducible content of the page).
     pub timings: Vec<Timing>,
+    /// Each verdict with its meaning (from the claims crate's vocabulary).
+    pub verdict_legend: Vec<(&'static str, &'static str)>,
+    /// Each basis with its meaning.
+    pub basis_legend: Vec<(&'static str, &'static str)>,
 }
 
 /// Build and run provenance.

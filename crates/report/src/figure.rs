@@ -48,8 +48,13 @@ pub enum Chart {
     Heat(Heatmap),
     /// A field over (t, z) as a 3-D surface.
     Surface(Heatmap),
-    /// The (a, b) region map.
-    Region(Box<crate::region::RegionMap>),
+    /// A grid heatmap with marks (the (a, b) region map) and the CSV of its data.
+    Grid {
+        /// The chart.
+        map: Box<crate::chart::GridHeatmap>,
+        /// The data behind it.
+        csv: String,
+    },
 }
 
 /// A figure of the report.
@@ -82,7 +87,7 @@ impl Figure {
             Chart::Line(c) => Rendered { svg: line_svg(c)?, csv: c.data.to_csv() },
             Chart::Heat(h) => Rendered { svg: heatmap_svg(h)?, csv: h.to_csv() },
             Chart::Surface(s) => Rendered { svg: surface_svg(s)?, csv: s.to_csv() },
-            Chart::Region(r) => Rendered { svg: r.svg()?, csv: r.to_csv() },
+            Chart::Grid { map, csv } => Rendered { svg: crate::chart::grid_heatmap_svg(map)?, csv: csv.clone() },
         })
     }
 }

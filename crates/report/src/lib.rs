@@ -173,53 +173,18 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     let tracker = Tracker::new(opts);
     let on_progress = |p: Progress| tracker.update(p);
     let progress: Option<&(dyn Fn(Progress) + Sync)> = Some(&on_progress);
-    let mut timings = Vec::new();
+    let (ledger, runs, region, mut timings) = compute(cfg, progress)?;
 
-    // Stage 1: the ledger, the simulations and the region map, concurrently; the ledger and
-    // the figures share one study, so every simulation runs once.
-    let study = Study::new();
-    let settings = CheckSettings::default();
-    let (ledger, (runs, region)) = rayon::join(
-        || {
-            let t = Instant::now();
-            report(progress, "ledger", 0, 1);
-            let l = check_all_with(cfg, &study, &settings);
-            report(progress, "ledger", 1, 1);
-            (l, t.elapsed().as_secs_f64())
-        },
-        || {
-            rayon::join(
-                || {
-                    let t = Instant::now();
-                    let r = runs::run_all(cfg, &study, progress);
-                    (r, t.elapsed().as_secs_f64())
-                },
-                || {
-                    let t = Instant::now();
-                    let r = region_stage(cfg, progress);
-                    (r, t.elapsed().as_secs_f64())
-                },
-            )
-        },
-    );
-    timings.push(StageTiming { name: "ledger".into(), seconds: ledger.1 });
-    timings.push(StageTiming { name: "simulations".into(), seconds: runs.1 });
-    timings.push(StageTiming { name: "region map".into(), seconds: region.1 });
-    let (ledger, runs, region) = (ledger.0?, runs.0?, region.0?);
-    report(progress, "region map", 1, 1);
-    let region_fig = region.as_ref().map(|r| r.figure());
-    let row_walltimes: Vec<(String, f64)> =
-        ledger.wall_seconds.iter().map(|w| (format!("ledger: {}", w.what), w.seconds)).collect();
-
-    // Stage 2: figure data and captions.
+    // Figure data and captions.
     let t = Instant::now();
+    let region_fig = region.as_ref().map(|r| r.figure());
     let groups = paper::paper_figures(cfg, &runs);
     let comparison = paper::comparison_figures(cfg, &runs);
     let (acc_fig, acc_rows) = accuracy::accuracy(&runs.accuracy);
     let row_figs: Vec<Vec<Figure>> = ledger.rows.iter().map(claim_figures).collect();
     timings.push(StageTiming { name: "figure data".into(), seconds: t.elapsed().as_secs_f64() });
 
-    // Stage 3: SVG + CSV of every figure, in parallel.
+    // SVG + CSV of every figure, in parallel.
     let t = Instant::now();
     let all: Vec<&Figure> = groups
         .iter()
@@ -229,66 +194,23 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
         .chain(region_fig.iter())
         .chain(row_figs.iter().flatten())
         .collect();
-    let total = all.len();
-    let done = std::sync::atomic::AtomicUsize::new(0);
-    let mut files: Vec<String> = all
-        .par_iter()
-        .map(|f| {
-            let r = f.render()?;
-            let svg = staging.write(&format!("{}.svg", f.file), r.svg.as_bytes())?;
-            let csv = staging.write(&format!("{}.csv", f.file), r.csv.as_bytes())?;
-            let k = done.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
-            report(progress, "charts", k, total);
-            Ok::<_, ReportError>([svg, csv])
-        })
-        .collect::<Result<Vec<_>, _>>()?
-        .into_iter()
-        .flatten()
-        .collect();
+    let mut files = render_charts(&all, &staging, progress)?;
     timings.push(StageTiming { name: "charts".into(), seconds: t.elapsed().as_secs_f64() });
 
-    // Stage 4: the page.
+    // The page.
     let t = Instant::now();
-    let mut page = Page {
-        tool: ledger.tool.clone(),
-        build: Build {
-            git_commit: provenance::GIT_COMMIT.into(),
-            rustc: provenance::RUSTC_VERSION.into(),
-            date: provenance::utc_string(std::time::SystemTime::now()),
-            command_line: opts.command_line.unwrap_or("(library call)").into(),
-            total_seconds: String::new(),
-        },
-        region: region_fig.as_ref().map(FigCtx::from),
-        region_missing: if region_fig.is_none() {
-            "The region map was not drawn: the fundamental frequency or the closed-form (32) boundary of this configuration is not a positive finite number.".into()
-        } else {
-            String::new()
-        },
-        config_sha256: config_sha256(cfg),
-        config_json: cfg.to_json_pretty(),
-        platform: format!("{}/{}", std::env::consts::OS, std::env::consts::ARCH),
-        rows: ledger.rows.iter().zip(&row_figs).map(|(r, f)| row_ctx(r, f)).collect::<Result<_, _>>()?,
-        groups: groups
-            .iter()
-            .map(|g| GroupCtx {
-                id: g.id.into(),
-                title: g.title.clone(),
-                intro: g.intro.clone(),
-                figures: g.figures.iter().map(FigCtx::from).collect(),
-            })
-            .collect(),
-        comparison: comparison.iter().map(FigCtx::from).collect(),
-        accuracy_figure: FigCtx::from(&acc_fig),
-        accuracy_rows: acc_rows,
-        grids: GRIDS.to_vec(),
-        assumptions: assumptions(cfg),
-        row_assumptions: row_assumptions(&ledger),
-        timings: Vec::new(),
+    let figures = PageFigures {
+        region: region_fig.as_ref(),
+        groups: &groups,
+        comparison: &comparison,
+        accuracy: (&acc_fig, acc_rows),
+        rows: &row_figs,
     };
+    let mut page = page(cfg, opts, &ledger, figures)?;
     page.timings = timings
         .iter()
         .map(|s| (s.name.clone(), s.seconds))
-        .chain(row_walltimes)
+        .chain(ledger.wall_seconds.iter().map(|w| (format!("ledger: {}", w.what), w.seconds)))
         .map(|(name, seconds)| Timing { name, seconds: format!("{seconds:.3}") })
         .collect();
     page.build.total_seconds = format!("{:.3}", started.elapsed().as_secs_f64());
@@ -311,6 +233,115 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     timings.push(StageTiming { name: "write".into(), seconds: t.elapsed().as_secs_f64() });
     report(progress, "write", 1, 1);
     Ok(ReportSummary { out_dir: out_dir.to_path_buf(), timings, files, ledger })
+}
+
+type Computed = (Ledger, runs::Runs, Option<region::RegionMap>, Vec<StageTiming>);
+
+/// The ledger, the simulations and the region map, concurrently; the ledger and the figures
+/// share one study, so every simulation runs once.
+fn compute(cfg: &Config, progress: Option<&(dyn Fn(Progress) + Sync)>) -> Result<Computed, ReportError> {
+    let study = Study::new();
+    let settings = CheckSettings::default();
+    let ((ledger, lt), ((runs, st), (region, rt))) = rayon::join(
+        || {
+            report(progress, "ledger", 0, 1);
+            let t = Instant::now();
+            let l = check_all_with(cfg, &study, &settings).map_err(ReportError::from);
+            report(progress, "ledger", 1, 1);
+            (l, t.elapsed().as_secs_f64())
+        },
+        || rayon::join(|| timed(|| runs::run_all(cfg, &study, progress)), || timed(|| region_stage(cfg, progress))),
+    );
+    let timings = vec![
+        StageTiming { name: "ledger".into(), seconds: lt },
+        StageTiming { name: "simulations".into(), seconds: st },
+        StageTiming { name: "region map".into(), seconds: rt },
+    ];
+    report(progress, "region map", 1, 1);
+    Ok((ledger?, runs?, region?, timings))
+}
+
+/// `f()` and its wall time (s).
+fn timed<T>(f: impl FnOnce() -> T) -> (T, f64) {
+    let t = Instant::now();
+    (f(), t.elapsed().as_secs_f64())
+}
+
+/// The SVG and CSV of every figure, written into the staging directory in parallel; the file
+/// names written.
+fn render_charts(
+    all: &[&Figure],
+    staging: &atomic::Staging,
+    progress: Option<&(dyn Fn(Progress) + Sync)>,
+) -> Result<Vec<String>, ReportError> {
+    let total = all.len();
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    Ok(all
+        .par_iter()
+        .map(|f| {
+            let r = f.render()?;
+            let svg = staging.write(&format!("{}.svg", f.file), r.svg.as_bytes())?;
+            let csv = staging.write(&format!("{}.csv", f.file), r.csv.as_bytes())?;
+            let k = done.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
+            report(progress, "charts", k, total);
+            Ok::<_, ReportError>([svg, csv])
+        })
+        .collect::<Result<Vec<_>, _>>()?
+        .into_iter()
+        .flatten()
+        .collect())
+}
+
+/// The figures a page shows, by section.
+struct PageFigures<'a> {
+    region: Option<&'a Figure>,
+    groups: &'a [paper::Group],
+    comparison: &'a [Figure],
+    accuracy: (&'a Figure, Vec<accuracy::AccuracyRow>),
+    rows: &'a [Vec<Figure>],
+}
+
+/// The template's context (wall times are filled in by the caller).
+fn page(cfg: &Config, opts: &ReportOptions, ledger: &Ledger, figs: PageFigures) -> Result<Page, ReportError> {
+    Ok(Page {
+        tool: ledger.tool.clone(),
+        build: Build {
+            git_commit: provenance::GIT_COMMIT.into(),
+            rustc: provenance::RUSTC_VERSION.into(),
+            date: provenance::utc_string(std::time::SystemTime::now()),
+            command_line: opts.command_line.unwrap_or("(library call)").into(),
+            total_seconds: String::new(),
+        },
+        region: figs.region.map(FigCtx::from),
+        region_missing: if figs.region.is_none() {
+            "The region map was not drawn: the fundamental frequency or the closed-form (32) boundary of this configuration is not a positive finite number.".into()
+        } else {
+            String::new()
+        },
+        config_sha256: config_sha256(cfg),
+        config_json: cfg.to_json_pretty(),
+        platform: format!("{}/{}", std::env::consts::OS, std::env::consts::ARCH),
+        rows: ledger.rows.iter().zip(figs.rows).map(|(r, f)| row_ctx(r, f)).collect::<Result<_, _>>()?,
+        groups: figs
+            .groups
+            .iter()
+            .map(|g| GroupCtx {
+                id: g.id.into(),
+                title: g.title.clone(),
+                intro: g.intro.clone(),
+                figures: g.figures.iter().map(FigCtx::from).collect(),
+            })
+            .collect(),
+        comparison: figs.comparison.iter().map(FigCtx::from).collect(),
+        accuracy_figure: FigCtx::from(figs.accuracy.0),
+        accuracy_rows: figs.accuracy.1,
+        grids: GRIDS.to_vec(),
+        assumptions: assumptions(cfg),
+        row_assumptions: row_assumptions(ledger),
+        timings: Vec::new(),
+        verdict_legend: wingcheck_claims::Verdict::ALL.iter().map(|v| (v.name(), v.meaning())).collect(),
+        basis_legend: wingcheck_claims::Basis::ALL.iter().map(|b| (b.name(), b.meaning())).collect(),
+    })
 }
 
 /// A ledger row's plots as figures (files `claim-<row>-<plot>`).

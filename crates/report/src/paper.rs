@@ -138,7 +138,7 @@ fn surface(n: u32, run: &str, desc: &str, f: Field, out: &SimOutput, c: &Ctx) ->
     let sf = Heatmap { name: format!("fig{n}-surface"), ..field_map(n, f, out, c) };
     let caption = Caption::default()
         .t(format!(
-            "{} {s}(z,t) {desc} as a 3-D surface, the view of the paper's Figure {n}: height to scale over the whole run, so it shows the shape of the motion (the initial shape and how it decays); colour as in the map above (±",
+            "{} {s}(z,t) {desc} as a 3-D surface, the view of the paper's Figure {n}: height to scale over the whole run, so it shows the shape of the motion (the initial shape and what follows it); colour as in the map above (±",
             f.what()
         ))
         .n(format!("fig{n}.surface_scale"), sf.scale())
@@ -284,6 +284,23 @@ fn gerr(n: u32, run: &str, desc: &str, ch: u8, out: &SimOutput, c: &Ctx) -> Figu
     }
 }
 
+/// The eight figures of a controlled run, paper Figures n … n + 7 (fields q, θ with their 3-D
+/// views, τ1, τ2, the tips, g̃1, g̃2): 5–12 for the FTDO, 13–20 for DOBC.
+fn controlled(n: u32, run: &str, desc: &str, out: &SimOutput, c: &Ctx) -> Vec<Figure> {
+    vec![
+        heat(n, run, desc, Field::Q, out, c),
+        surface(n, run, desc, Field::Q, out, c),
+        heat(n + 1, run, desc, Field::Theta, out, c),
+        surface(n + 1, run, desc, Field::Theta, out, c),
+        tau(n + 2, run, desc, 1, out, c),
+        tau(n + 3, run, desc, 2, out, c),
+        tip(n + 4, run, desc, Field::Q, out, c),
+        tip(n + 5, run, desc, Field::Theta, out, c),
+        gerr(n + 6, run, desc, 1, out, c),
+        gerr(n + 7, run, desc, 2, out, c),
+    ]
+}
+
 /// Figures 3–20 in three groups (no control, FTDO, DOBC).
 pub fn paper_figures(cfg: &Config, runs: &Runs) -> Vec<Group> {
     let t_end = cfg.horizon.t_end;
@@ -307,36 +324,14 @@ pub fn paper_figures(cfg: &Config, runs: &Runs) -> Vec<Group> {
         Group {
             id: "paper-ftdo",
             title: "Proposed control: law (15) with the finite-time disturbance observer (paper Figures 5–12)".into(),
-            intro: "Gains of Section 4; the values the paper leaves out are listed under Assumptions.".into(),
-            figures: vec![
-                heat(5, "ftdo", pf, Field::Q, ftdo, &c),
-                surface(5, "ftdo", pf, Field::Q, ftdo, &c),
-                heat(6, "ftdo", pf, Field::Theta, ftdo, &c),
-                surface(6, "ftdo", pf, Field::Theta, ftdo, &c),
-                tau(7, "ftdo", pf, 1, ftdo, &c),
-                tau(8, "ftdo", pf, 2, ftdo, &c),
-                tip(9, "ftdo", pf, Field::Q, ftdo, &c),
-                tip(10, "ftdo", pf, Field::Theta, ftdo, &c),
-                gerr(11, "ftdo", pf, 1, ftdo, &c),
-                gerr(12, "ftdo", pf, 2, ftdo, &c),
-            ],
+            intro: "The configured gains; the values the paper leaves out are listed under Assumptions.".into(),
+            figures: controlled(5, "ftdo", pf, ftdo, &c),
         },
         Group {
             id: "paper-dobc",
             title: "Comparison: DOBC (57), corrected (paper Figures 13–20)".into(),
             intro: "Same law (15) and gains, with the linear disturbance observer of (57).".into(),
-            figures: vec![
-                heat(13, "dobc", db, Field::Q, dobc, &c),
-                surface(13, "dobc", db, Field::Q, dobc, &c),
-                heat(14, "dobc", db, Field::Theta, dobc, &c),
-                surface(14, "dobc", db, Field::Theta, dobc, &c),
-                tau(15, "dobc", db, 1, dobc, &c),
-                tau(16, "dobc", db, 2, dobc, &c),
-                tip(17, "dobc", db, Field::Q, dobc, &c),
-                tip(18, "dobc", db, Field::Theta, dobc, &c),
-                gerr(19, "dobc", db, 1, dobc, &c),
-                gerr(20, "dobc", db, 2, dobc, &c),
-            ],
+            figures: controlled(13, "dobc", db, dobc, &c),
         },
     ]
 }

@@ -20,7 +20,7 @@ use rayon::prelude::*;
 use wingcheck_model::Config;
 use wingcheck_search::{modal::RunCache, PointResult, Search, SearchOptions, Status, TheoryCache};
 
-use crate::chart::{grid_heatmap_svg, tick, GridAxis, GridHeatmap, Mark, MarkShape, RGBColor};
+use crate::chart::{tick, GridAxis, GridHeatmap, Mark, MarkShape, RGBColor};
 use crate::figure::{Caption, Chart, Figure};
 use crate::{Progress, ReportError};
 
@@ -280,7 +280,7 @@ impl RegionMap {
             label: "Region map R1".into(),
             title: "(a, b) region map: hypotheses vs tip performance".into(),
             caption: cap.0,
-            chart: Chart::Region(Box::new(self.clone())),
+            chart: Chart::Grid { map: Box::new(self.heatmap()), csv: self.to_csv() },
         }
     }
 
@@ -296,6 +296,22 @@ impl RegionMap {
         };
         let values =
             self.points.iter().map(|p| p.metric(METRIC).filter(|v| v.is_finite() && p.status == Status::Ok)).collect();
+        GridHeatmap {
+            name: "region-map-ab".into(),
+            title: String::new(),
+            x: axis("a, weight of the tip deflection in (15) (dimensionless, log scale)", &self.a),
+            y: axis("b, weight of the tip rate (s, log scale)", &self.b),
+            values,
+            log_values: true,
+            value_label: "RMS |q(s,t)| (m)".into(),
+            missing_label: "run failed or diverged".into(),
+            marks: self.marks(),
+        }
+    }
+
+    /// The map's marks: the region where both hypotheses hold (hatched), the search's verdicts
+    /// per cell, the closed-form boundaries and the configured point.
+    fn marks(&self) -> Vec<Mark> {
         let cells = |f: &dyn Fn(&PointResult) -> bool| -> Vec<(f64, f64)> {
             let mut v = Vec::new();
             for (i, &a) in self.a.iter().enumerate() {
@@ -319,7 +335,7 @@ impl RegionMap {
         // part whatever edge the line leaves by; the chart clips it to the plot.)
         let far = a_lo.min(r_both * b_lo) / 10.0;
         let shade = vec![(far, b_lo), (r_both * b_lo, b_lo), (r_both * b_hi, b_hi), (far, b_hi)];
-        let marks = vec![
+        vec![
             Mark {
                 label: "W ≻ 0 and (32) both hold (closed forms): Theorem 2 applies".into(),
                 colour: SHADE,
@@ -356,28 +372,6 @@ impl RegionMap {
                 shape: MarkShape::Cross,
                 points: vec![self.operating],
             },
-        ];
-        GridHeatmap {
-            name: "region-map-ab".into(),
-            title: String::new(),
-            x: axis("a, weight of the tip deflection in (15) (dimensionless, log scale)", &self.a),
-            y: axis("b, weight of the tip rate (s, log scale)", &self.b),
-            values,
-            log_values: true,
-            value_label: "RMS |q(s,t)| (m)".into(),
-            missing_label: "run failed or diverged".into(),
-            marks,
-        }
-    }
-
-    /// Render as an SVG (the chart crate's grid heatmap).
-    pub fn svg(&self) -> Result<String, ReportError> {
-        if self.a.len() < 2 || self.b.len() < 2 {
-            return Err(ReportError::Chart {
-                name: "region-map".into(),
-                detail: "the map needs at least 2 values of a and of b".into(),
-            });
-        }
-        Ok(grid_heatmap_svg(&self.heatmap())?)
+        ]
     }
 }

@@ -86,14 +86,9 @@ pub struct SweepRecord {
     pub a: Quantity,
     /// b.
     pub b: Quantity,
-    /// (DOBC − FTDO)/FTDO of RMS q over [0, t_end].
-    pub rel_diff_rms_q_full: Quantity,
-    /// The same for θ.
-    pub rel_diff_rms_theta_full: Quantity,
-    /// The same for q over [t_end/2, t_end].
-    pub rel_diff_rms_q_late: Quantity,
-    /// The same for θ over [t_end/2, t_end].
-    pub rel_diff_rms_theta_late: Quantity,
+    /// (DOBC − FTDO)/FTDO of the tip RMS there.
+    #[serde(flatten)]
+    pub rel: TipDifferences,
     /// Late RMS g̃ DOBC / FTDO.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub gtilde_ratio_late: Option<Quantity>,
@@ -103,13 +98,28 @@ fn pct(label: &str, v: f64) -> Quantity {
     Quantity::based(label, 100.0 * v, Unit::Percent, ValueBasis::Simulation)
 }
 
-fn rel_quantities(r: &[f64; 4]) -> [Quantity; 4] {
-    [
-        pct("(DOBC − FTDO)/FTDO of RMS q over [0, t_end]", r[0]),
-        pct("(DOBC − FTDO)/FTDO of RMS θ over [0, t_end]", r[1]),
-        pct("(DOBC − FTDO)/FTDO of RMS q over [t_end/2, t_end]", r[2]),
-        pct("(DOBC − FTDO)/FTDO of RMS θ over [t_end/2, t_end]", r[3]),
-    ]
+/// (DOBC − FTDO)/FTDO of the four tip RMS metrics of one pair of runs.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct TipDifferences {
+    /// RMS q over [0, t_end].
+    pub rel_diff_rms_q_full: Quantity,
+    /// RMS θ over [0, t_end].
+    pub rel_diff_rms_theta_full: Quantity,
+    /// RMS q over [t_end/2, t_end].
+    pub rel_diff_rms_q_late: Quantity,
+    /// RMS θ over [t_end/2, t_end].
+    pub rel_diff_rms_theta_late: Quantity,
+}
+
+impl TipDifferences {
+    fn of(r: &[f64; 4]) -> TipDifferences {
+        TipDifferences {
+            rel_diff_rms_q_full: pct("(DOBC − FTDO)/FTDO of RMS q over [0, t_end]", r[0]),
+            rel_diff_rms_theta_full: pct("(DOBC − FTDO)/FTDO of RMS θ over [0, t_end]", r[1]),
+            rel_diff_rms_q_late: pct("(DOBC − FTDO)/FTDO of RMS q over [t_end/2, t_end]", r[2]),
+            rel_diff_rms_theta_late: pct("(DOBC − FTDO)/FTDO of RMS θ over [t_end/2, t_end]", r[3]),
+        }
+    }
 }
 
 fn gratio(v: Option<f64>) -> Option<Quantity> {
@@ -123,14 +133,9 @@ pub struct ComparisonEvidence {
     pub rule: Text,
     /// The three runs at the configured gains.
     pub runs: Table<RunRecord>,
-    /// (DOBC − FTDO)/FTDO of RMS q over [0, t_end] (configured rule and gains).
-    pub rel_diff_rms_q_full: Quantity,
-    /// The same for θ over [0, t_end].
-    pub rel_diff_rms_theta_full: Quantity,
-    /// The same for q over [t_end/2, t_end].
-    pub rel_diff_rms_q_late: Quantity,
-    /// The same for θ over [t_end/2, t_end].
-    pub rel_diff_rms_theta_late: Quantity,
+    /// (DOBC − FTDO)/FTDO of the tip RMS at the configured rule and gains.
+    #[serde(flatten)]
+    pub rel: TipDifferences,
     /// Late RMS g̃ DOBC / FTDO, both channels combined (configured rule).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub gtilde_ratio_late: Option<Quantity>,
@@ -174,7 +179,6 @@ fn evidence_of(c: &Computed, settings: &CheckSettings) -> ComparisonEvidence {
         (v.clone().fold(f64::MAX, f64::min), v.fold(f64::MIN, f64::max))
     };
     let ranges = [range(0), range(1), range(2), range(3)];
-    let here = rel_quantities(&c.here());
     let ratio = super::gtilde_ratio(&c.ftdo, &c.dobc);
     let margin = settings.indistinguishable;
     let tau = |ch: usize| {
@@ -182,7 +186,6 @@ fn evidence_of(c: &Computed, settings: &CheckSettings) -> ComparisonEvidence {
         let (name, unit) = if ch == 0 { ("τ1", Unit::Newton) } else { ("τ2", Unit::NewtonMetre) };
         Quantity::with_error(format!("full-rate RMS {name}, FTDO explicit rule"), v, e, unit, &[ErrorSource::TimeStep])
     };
-    let [q_full, th_full, q_late, th_late] = here;
     ComparisonEvidence {
         rule: Text::text("FTDO sampling rule compared (the configured one)", rule),
         runs: Table::new(
@@ -193,10 +196,7 @@ fn evidence_of(c: &Computed, settings: &CheckSettings) -> ComparisonEvidence {
                 RunRecord::of(&format!("FTDO, {other} rule"), &c.ftdo_other, settings),
             ],
         ),
-        rel_diff_rms_q_full: q_full,
-        rel_diff_rms_theta_full: th_full,
-        rel_diff_rms_q_late: q_late,
-        rel_diff_rms_theta_late: th_late,
+        rel: TipDifferences::of(&c.here()),
         gtilde_ratio_late: gratio(ratio),
         gtilde_ratio_late_other_rule: gratio(super::gtilde_ratio(&c.ftdo_other, &c.dobc))
             .map(|q| q.relabel(format!("late RMS g̃, DOBC / FTDO with the {other} rule"))),
@@ -210,17 +210,11 @@ fn evidence_of(c: &Computed, settings: &CheckSettings) -> ComparisonEvidence {
             ),
             c.sweep
                 .iter()
-                .map(|p| {
-                    let [r0, r1, r2, r3] = rel_quantities(&p.rel);
-                    SweepRecord {
-                        a: Quantity::configured("a", p.a, Unit::Dimensionless),
-                        b: Quantity::configured("b", p.b, Unit::Second),
-                        rel_diff_rms_q_full: r0,
-                        rel_diff_rms_theta_full: r1,
-                        rel_diff_rms_q_late: r2,
-                        rel_diff_rms_theta_late: r3,
-                        gtilde_ratio_late: gratio(p.gtilde_ratio),
-                    }
+                .map(|p| SweepRecord {
+                    a: Quantity::configured("a", p.a, Unit::Dimensionless),
+                    b: Quantity::configured("b", p.b, Unit::Second),
+                    rel: TipDifferences::of(&p.rel),
+                    gtilde_ratio_late: gratio(p.gtilde_ratio),
                 })
                 .collect(),
         ),
@@ -307,7 +301,7 @@ impl Explain for ComparisonEvidence {
 
     fn decisive(&self) -> Vec<Quantity> {
         let mut out: Vec<Quantity> = self.gtilde_ratio_late.iter().cloned().collect();
-        out.push(self.rel_diff_rms_q_late.clone());
+        out.push(self.rel.rel_diff_rms_q_late.clone());
         out.push(self.max_abs_rel_diff_tip.clone());
         out
     }

@@ -70,13 +70,14 @@ pub struct FiniteTimeEvidence {
     pub reference_period: f64,
 }
 
-fn evidence_of(c: &Computed, settings: &CheckSettings) -> FiniteTimeEvidence {
+/// The digital runs of the channel as records, whether the implicit rule stays in its band at
+/// every hold period, and the largest delay of its reaching time behind the Filippov time.
+fn digital_records(c: &Computed) -> (Vec<DigitalRecord>, bool, f64) {
     let ix = channel_index(c.channel);
     let n = ix + 1;
     let u = channel_unit(c.channel);
-    let rate = if ix == 0 { Unit::NewtonPerSecond } else { Unit::NewtonMetrePerSecond };
-    let s = |label: String, v: f64| Quantity::based(label, v, Unit::Second, ValueBasis::ClosedForm);
     let not_reached = |label: &str| Text::text(label, crate::NOT_REACHED);
+    let sim = |label: String, v: f64| Quantity::based(label, v, u, ValueBasis::Simulation);
     let mut stays_band = true;
     let mut excess: f64 = 0.0;
     let mut digital = Vec::new();
@@ -90,35 +91,28 @@ fn evidence_of(c: &Computed, settings: &CheckSettings) -> FiniteTimeEvidence {
                 || not_reached("t_reach (digital)"),
             ),
             sigma_after_max: Maybe::of(
-                ch.reach_s.map(|_| {
-                    Quantity::based("max |σ_k| after reaching", ch.sigma_after_max, u, ValueBasis::Simulation)
-                }),
+                ch.reach_s.map(|_| sim("max |σ_k| after reaching".into(), ch.sigma_after_max)),
                 || not_reached("max |σ_k| after reaching"),
             ),
-            gtilde_max: Quantity::based(
-                format!("max |g̃{n}| in the chatter window"),
-                ch.gtilde_max,
-                u,
-                ValueBasis::Simulation,
-            ),
-            ghat_jump_max: Quantity::based(
-                format!("max |Δĝ{n}| per sample"),
-                ch.ghat_jump_max,
-                u,
-                ValueBasis::Simulation,
-            ),
-            tau_jump_max: Quantity::based(
-                format!("max |Δτ{n}| per sample"),
-                ch.tau_jump_max,
-                u,
-                ValueBasis::Simulation,
-            ),
+            gtilde_max: sim(format!("max |g̃{n}| in the chatter window"), ch.gtilde_max),
+            ghat_jump_max: sim(format!("max |Δĝ{n}| per sample"), ch.ghat_jump_max),
+            tau_jump_max: sim(format!("max |Δτ{n}| per sample"), ch.tau_jump_max),
         });
         if r.rule == ObserverRule::Implicit {
             stays_band &= ch.reach_s.is_some() && ch.sigma_after_max <= r.period * c.zeta * (1.0 + 1e-9) + 1e-15;
             excess = excess.max(ch.reach_s.unwrap_or(c.run_t_end) - c.fil.reach_s.unwrap_or(0.0));
         }
     }
+    (digital, stays_band, excess)
+}
+
+fn evidence_of(c: &Computed, settings: &CheckSettings) -> FiniteTimeEvidence {
+    let ix = channel_index(c.channel);
+    let n = ix + 1;
+    let u = channel_unit(c.channel);
+    let rate = if ix == 0 { Unit::NewtonPerSecond } else { Unit::NewtonMetrePerSecond };
+    let s = |label: String, v: f64| Quantity::based(label, v, Unit::Second, ValueBasis::ClosedForm);
+    let (digital, stays_band, excess) = digital_records(c);
     let sweep_max = c.sweep.iter().try_fold(0.0f64, |m, (_, r)| r.map(|r| m.max(r)));
     let ratio = |label: &str, v: Option<f64>| {
         Maybe::of(v.map(|r| Quantity::based(label, r, Unit::Dimensionless, ValueBasis::Derived)), || {

@@ -50,7 +50,7 @@ impl CrossCheckRecord {
     fn of(what: &str, c: &CrossCheck) -> CrossCheckRecord {
         CrossCheckRecord {
             quantity: Text::text("quantity", what),
-            status: Text::text("clarabel status", c.status.clone()),
+            status: Text::text("clarabel status", c.status.name()),
             accepted: Flag::new("accepted", c.accepted),
             solver_value: Quantity::based("clarabel", c.solver_value, Unit::LyapunovUnits, ValueBasis::Solver),
             closed_form_value: Quantity::based(
