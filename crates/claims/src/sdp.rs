@@ -489,9 +489,8 @@ fn pencil_side(
         Ok(r) => r,
         Err(e) => return PencilSide { lambda_eig: Some(lambda_eig), ..not_run(e) },
     };
-    let verify = |x: &SideSolution| {
-        x.status.is_solved() && x.lambda.is_some_and(|l| pencil_feasible(c, sign, l - sign * delta))
-    };
+    let verify =
+        |x: &SideSolution| x.status.is_solved() && x.lambda.is_some_and(|l| pencil_feasible(c, sign, l - sign * delta));
     let first = match solve_side(r, sign, sigma, 1.0) {
         Ok(x) => x,
         Err(e) => return PencilSide { lambda_eig: Some(lambda_eig), ..not_run(&format!("SDP: {e}")) },
