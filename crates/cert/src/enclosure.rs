@@ -354,27 +354,52 @@ fn ten_pow(e: i32) -> BigRational {
     }
 }
 
-/// A decimal r with ~16 significant digits and `ok(r)`, starting from the float guess `x`
-/// and stepping by one unit in the last digit (down if `down`) until `ok` holds.
+/// The best decimal with [`DIGITS`] significant digits on one side of a threshold: the largest
+/// r with `ok(r)` if `down` (ok holds below the threshold), else the smallest. Canonical: the
+/// float guess `x` only says where to start looking, so the result does not depend on how
+/// the guess was rounded.
 fn decimal_bound(x: f64, down: bool, ok: impl Fn(&BigRational) -> bool) -> Result<BigRational, EnclosureError> {
+    let fail = |what: &str| EnclosureError::Refuted(format!("could not round the bound to a decimal: {what}"));
     if !(x.is_finite() && x > 0.0) {
-        return Err(EnclosureError::Refuted(format!("the bound's float guess {x:e} is not a positive number")));
+        return Err(fail(&format!("float guess {x:e} is not a positive number")));
     }
-    let e = DIGITS - 1 - x.log10().floor() as i32;
-    let unit = ten_pow(-e);
-    let scaled = from_f64_exact(x).expect("finite") * ten_pow(e);
-    let mut r = if down { scaled.floor() } else { scaled.ceil() } * &unit;
-    for _ in 0..64 {
-        if ok(&r) {
-            return Ok(r);
+    let (lo, hi) = (ten_pow(DIGITS - 1).to_integer(), ten_pow(DIGITS).to_integer());
+    let mut e = DIGITS - 1 - x.log10().floor() as i32;
+    for _ in 0..4 {
+        let unit = ten_pow(-e);
+        let at = |m: &BigInt| ok(&(BigRational::from_integer(m.clone()) * &unit));
+        let guess = from_f64_exact(x).expect("finite") * ten_pow(e);
+        let mut m = if down { guess.floor() } else { guess.ceil() }.to_integer();
+        // Walk to the last grid point on the ok side (the guess is within a few units).
+        let (inward, outward) = if down { (-1, 1) } else { (1, -1) };
+        let mut steps = 0;
+        if at(&m) {
+            while at(&(&m + outward)) && steps < 64 {
+                m += outward;
+                steps += 1;
+            }
+        } else {
+            while !at(&m) && steps < 64 {
+                m += inward;
+                steps += 1;
+            }
         }
-        r = if down { r - &unit } else { r + &unit };
+        if steps >= 64 {
+            return Err(fail("float guess too far off"));
+        }
+        if m >= hi {
+            e -= 1;
+        } else if m < lo {
+            e += 1;
+        } else {
+            return Ok(BigRational::from_integer(m) * unit);
+        }
     }
-    Err(EnclosureError::Refuted("could not round the bound to a decimal (float guess too far off)".into()))
+    Err(fail("no digit count fits"))
 }
 
-/// Checks an enclosure exactly: inputs against `limits` first, then tr(G²), every shift's
-/// inertia, the lower bound's positivity, the test vector's admissibility and R(v).
+/// Checks an enclosure exactly: inputs against `limits` first, then the test vector's
+/// admissibility and R(v), tr(G²), every shift's inertia and the lower bound's positivity.
 ///
 /// # Errors
 /// [`EnclosureError::Invalid`] for inputs out of range, [`EnclosureError::Refuted`] when a
@@ -412,6 +437,8 @@ pub fn check(d: &EnclosureData, limits: &Limits) -> Result<CheckedEnclosure, Enc
     if let Some(i) = d.shifts.iter().position(|l| !l.is_positive()) {
         return Err(invalid(&format!("shifts[{i}]"), "Λ must be > 0"));
     }
+    // The cheap parts first: the test vector's admissibility and R(v), then tr(G²).
+    let (_, _, rayleigh) = rayleigh_quotient(&d.wing, d.rayleigh_elements, &d.vector)?;
     let trace = d.wing.trace_g2();
     let p = pencil(&d.wing, d.inertia_elements);
     // The k − 1 inertia counts are independent: in parallel, collected in order.
@@ -434,7 +461,6 @@ pub fn check(d: &EnclosureData, limits: &Limits) -> Result<CheckedEnclosure, Enc
             to_f64(&bound)
         )));
     }
-    let (_, _, rayleigh) = rayleigh_quotient(&d.wing, d.rayleigh_elements, &d.vector)?;
     let lower = decimal_bound(to_f64(&bound).powf(-0.25), true, |r| {
         let r2 = r * r;
         r.is_positive() && &r2 * &r2 * &bound <= BigRational::one()
