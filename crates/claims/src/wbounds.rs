@@ -11,9 +11,12 @@
 //! 3. The largest a/b for which W is positive definite: W = b·W_b + a·W_a, so W ≻ 0 iff
 //!    a/b < −1/μ_min(W_a, W_b). With the corrected cross term b ρx_c, minimising over the
 //!    velocities gives W ≥ (b/2)[P − (a/b)² ∫ xᵀMx] ⇒ a/b_max = ω₁, the fundamental natural
-//!    frequency of the undamped wing (closed form, checked against the FE modes). The threshold
-//!    used is ω₁ converged over uniform FE meshes with its error estimate
-//!    ([`theory::w_threshold`]): a/b within that error is "at the threshold" (inconclusive).
+//!    frequency of the undamped wing (closed form, checked against the FE modes). The decision
+//!    rests on the certified enclosure ω̲₁ ≤ ω₁ ≤ ω̄₁ of the continuous model
+//!    ([`crate::certify::omega1`], exact): W ≻ 0 for a/b < ω̲₁, W not ≻ 0 for a/b > ω̄₁. Inside
+//!    the enclosure (or without one) it falls back to ω₁ converged over uniform FE meshes with
+//!    its error estimate ([`theory::w_threshold`], evidence): a/b within that error is "at the
+//!    threshold" (inconclusive).
 //! 4. An exact witness: a state (rational coefficients) with W < 0 at the configured a, b
 //!    when a/b exceeds the maximum, evaluated in rational arithmetic: a proof for the PDE,
 //!    since the state lies in the true state space.
@@ -26,6 +29,7 @@ use serde::{Deserialize, Serialize};
 use wingcheck_cert::exact::{parse_rational, to_f64};
 use wingcheck_model::Config;
 
+use crate::certify::omega1::{EnclosureSummary, Position};
 use crate::ledger::{evidence_map, ClaimId};
 use crate::lyapunov::{self, Coupling, LyapunovParams};
 use crate::sdp::{cross_check_summary, PencilSdpRow, SDP_GRIDS, SDP_TOLERANCE};
@@ -218,7 +222,11 @@ pub struct WBoundsEvidence {
     pub a_over_b_max_galerkin16: f64,
     /// Largest a/b with W ≻ 0 on V_16 with the printed cross term (rad/s).
     pub a_over_b_max_printed_cross_term: f64,
-    /// W ≻ 0 at (a, b), decided against the error of ω₁.
+    /// The certified enclosure ω̲₁ ≤ ω₁ ≤ ω̄₁ (rad/s) of the continuous model and where a/b
+    /// lies against it (exact certificate `omega1-enclosure.json`), or why there is none.
+    pub omega1_enclosure: EnclosureSummary,
+    /// W ≻ 0 at (a, b): by the enclosure when a/b lies outside it, else against the error of
+    /// the converged ω₁.
     pub w_positive_definite: Decision,
     /// SDP cross-check of λ2(N), λ1(N) at N ∈ [`SDP_GRIDS`], one row per N (the verdict
     /// never rests on it; a row not accepted says why).
@@ -245,7 +253,12 @@ pub fn evidence(cfg: &Config) -> Result<WBoundsEvidence, ClaimsError> {
             let rows = sdp_cross_check(cfg, Coupling::Corrected);
             (rows, start.elapsed().as_secs_f64())
         });
+        let enclosure = scope.spawn(|| EnclosureSummary::of(cfg));
         let mut e = evidence_without_sdp(cfg)?;
+        e.omega1_enclosure = enclosure
+            .join()
+            .unwrap_or_else(|_| EnclosureSummary::NotCertified { reason: "the enclosure computation panicked".into() });
+        e.w_positive_definite = decide(&e.omega1_enclosure, e.w_positive_definite);
         // A cross-check only: a solver failure is recorded in its row, never fatal to the row.
         (e.sdp_cross_check, e.sdp_seconds) = sdp.join().unwrap_or_else(|_| {
             (SDP_GRIDS.iter().map(|&n| PencilSdpRow::not_run(n, "the SDP computation panicked")).collect(), 0.0)
@@ -304,6 +317,7 @@ fn evidence_without_sdp(cfg: &Config) -> Result<WBoundsEvidence, ClaimsError> {
         a_over_b_max_error: omega.error,
         a_over_b_max_galerkin16: r16,
         a_over_b_max_printed_cross_term: a_over_b_max(cfg, Coupling::Printed, 16)?,
+        omega1_enclosure: EnclosureSummary::NotCertified { reason: "not computed".into() },
         w_positive_definite: theory::w_positive_definite(a, b, omega),
         sdp_cross_check: Vec::new(),
         sdp_tolerance: SDP_TOLERANCE,
@@ -313,15 +327,51 @@ fn evidence_without_sdp(cfg: &Config) -> Result<WBoundsEvidence, ClaimsError> {
     })
 }
 
-/// Verdict from the evidence: W ≻ 0 decided → holds after correction; W indefinite → fails
-/// (exact witness if found); undecided within the error of ω₁ → inconclusive.
+/// W ≻ 0 from the enclosure when a/b lies outside it (exact, for the continuous model), else
+/// the float decision `float` against the converged ω₁.
+pub fn decide(enclosure: &EnclosureSummary, float: Decision) -> Decision {
+    match enclosure.position() {
+        Some(Position::Below) => Decision::Yes,
+        Some(Position::Above) => Decision::No,
+        Some(Position::Inside) | None => float,
+    }
+}
+
+/// Verdict from the evidence: W ≻ 0 decided → holds after correction; W indefinite → fails;
+/// undecided within the error of ω₁ → inconclusive. The basis is the exact certificate when the
+/// enclosure decides W ≻ 0 (or an exact witness shows W indefinite), else the float solver.
 pub fn verdict(e: &WBoundsEvidence) -> (Verdict, Basis) {
+    let certified = e.omega1_enclosure.position();
     match e.w_positive_definite {
+        Decision::Yes if certified == Some(Position::Below) => (Verdict::HoldsAfterCorrection, Basis::ExactCertificate),
         Decision::Yes => (Verdict::HoldsAfterCorrection, Basis::FloatSolver),
         Decision::No => {
-            (Verdict::Fails, if e.witness_w.is_some() { Basis::ExactCertificate } else { Basis::FloatSolver })
+            let exact = certified == Some(Position::Above) || e.witness_w.is_some();
+            (Verdict::Fails, if exact { Basis::ExactCertificate } else { Basis::FloatSolver })
         }
         Decision::Undecided => (Verdict::Inconclusive, Basis::FloatSolver),
+    }
+}
+
+/// One clause on the enclosure for the summary.
+fn enclosure_text(e: &WBoundsEvidence) -> String {
+    match &e.omega1_enclosure {
+        EnclosureSummary::Certified { lower_exact, upper_exact, relative_width, position, .. } => {
+            let interval = format!(
+                "the certified enclosure {lower_exact} ≤ ω₁ ≤ {upper_exact} rad/s (continuous model, exact certificate, relative width {relative_width:.1e})"
+            );
+            match position {
+                Some(Position::Below) => format!("the configured a/b is below {interval}, so W ≻ 0 is proved for the continuous model"),
+                Some(Position::Above) => format!("the configured a/b is above {interval}, so W is proved not positive definite for the continuous model"),
+                Some(Position::Inside) => format!(
+                    "the configured a/b lies inside {interval}, so the certificate does not decide W ≻ 0 here and the verdict rests on the converged float ω₁"
+                ),
+                None => format!("{interval}; b = 0, so a/b is undefined"),
+            }
+        }
+        EnclosureSummary::NotCertified { reason } => {
+            format!("no certified enclosure of ω₁ ({reason}), so the verdict rests on the converged float ω₁")
+        }
     }
 }
 
@@ -358,6 +408,7 @@ pub fn summary(e: &WBoundsEvidence) -> (String, Option<String>) {
     );
     let rt = ratio_text(e.a, e.b);
     let omega = format!("ω₁ = {:.10e} ± {:.1e} rad/s (converged FE modes)", e.a_over_b_max, e.a_over_b_max_error);
+    let enclosure = enclosure_text(e);
     match e.w_positive_definite {
         Decision::Yes => {
             let pd = if e.lambda2_tight > e.lambda2_tight_error {
@@ -366,7 +417,7 @@ pub fn summary(e: &WBoundsEvidence) -> (String, Option<String>) {
                 "a/b < ω₁ − its error, so W ≻ 0, though λ2* is within its stated error of 0 at this resolution".to_string()
             };
             (
-                format!("{printed}{structural}. At {rt} < {omega} {pd}: {tight}."),
+                format!("{printed}{structural}. At {rt} < {omega} {pd}: {tight}. {}.", capitalise(&enclosure)),
                 Some(format!(
                     "replace λ2 = y2 − y3 by the tight λ2* = infimum of W/κ = {:.5e} and λ1 by λ1* = {:.5e}; positive iff a/b < ω₁ (cross term −bρx_c∫q̇θ̇)",
                     e.lambda2_tight, e.lambda1_tight
@@ -379,15 +430,28 @@ pub fn summary(e: &WBoundsEvidence) -> (String, Option<String>) {
                 None => String::new(),
             };
             (
-                format!("{printed}{structural}. At {rt} ≥ {omega} W itself is indefinite: {tight}{witness}. W ≻ 0 only for a/b < ω₁."),
-                Some(format!("choose a/b < ω₁ = {:.6e} rad/s and use the tight λ2* (positive there) instead of y2 − y3", e.a_over_b_max)),
+                format!("{printed}{structural}. At {rt} ≥ {omega} W itself is indefinite: {tight}{witness}. W ≻ 0 only for a/b < ω₁; {enclosure}."),
+                Some(match &e.omega1_enclosure {
+                    EnclosureSummary::Certified { lower_exact, .. } => format!(
+                        "choose a/b < ω̲₁ = {lower_exact} rad/s (certified: W ≻ 0 is then proved) and use the tight λ2* (positive there) instead of y2 − y3"
+                    ),
+                    EnclosureSummary::NotCertified { .. } => format!(
+                        "choose a/b < ω₁ = {:.6e} rad/s and use the tight λ2* (positive there) instead of y2 − y3",
+                        e.a_over_b_max
+                    ),
+                }),
             )
         }
         Decision::Undecided => (
-            format!("{printed}{structural}. {rt} is at the threshold: within the error of {omega}, so whether W ≻ 0 is not decided ({tight}). Keys involved: control.a, control.b."),
+            format!("{printed}{structural}. {rt} is at the threshold: within the error of {omega}, so whether W ≻ 0 is not decided ({tight}); {enclosure}. Keys involved: control.a, control.b."),
             None,
         ),
     }
+}
+
+fn capitalise(s: &str) -> String {
+    let mut c = s.chars();
+    c.next().map_or_else(String::new, |f| f.to_uppercase().chain(c).collect())
 }
 
 /// Check Theorem 1.
@@ -435,9 +499,9 @@ pub fn check(cfg: &Config) -> Result<WBounds, ClaimsError> {
             format!("a = {}, b = {} (the paper does not give them)", e.a, e.b),
             "W_o's last term read as −b ρx_c ∫q̇θ̇ (the paper prints b x_c; the bound (27) uses bρx_c); the printed variant is reported too".into(),
             format!("state space discretised by cubic Hermite q, linear θ, discontinuous cubic velocities on N ∈ {GRIDS:?} uniform elements (the SDP cross-check on N ∈ {SDP_GRIDS:?}); infimum over velocities exact"),
-            "the threshold ω₁ is the converged fundamental frequency (Romberg over uniform FE meshes 16, 32, …, error estimate ~1e-9 relative); the 16-element Galerkin value, an upper bound (Rayleigh–Ritz), is reported as a cross-check".into(),
+            "the threshold ω₁: W ≻ 0 iff a/b < ω₁ for the continuous model (per-mode argument, docs/model.md); decided by the certified enclosure ω̲₁ ≤ ω₁ ≤ ω̄₁ (omega1-enclosure.json: Rayleigh quotient above, trace of the compliance operator with exact inertia counts below) when a/b lies outside it, else by the converged fundamental frequency (Romberg over uniform FE meshes 16, 32, …, error estimate ~1e-9 relative); the 16-element Galerkin value, an upper bound (Rayleigh–Ritz), is reported as a cross-check".into(),
         ],
-        certificates: ["w-bounds-indefinite.json", "w-bounds-lower.json", "w-bounds-upper.json", "w-bounds-ratio-above.json", "w-bounds-ratio-below.json"]
+        certificates: ["w-bounds-indefinite.json", "w-bounds-lower.json", "w-bounds-upper.json", "w-bounds-ratio-above.json", "w-bounds-ratio-below.json", "omega1-enclosure.json"]
             .iter()
             .map(|s| s.to_string())
             .collect(),
