@@ -1,6 +1,7 @@
 //! Certificates for the definiteness and infeasibility facts behind the W-bounds and
-//! mu-conditions rows, written by `wingcheck certify` and re-derived by `wingcheck verify` in
-//! exact rational arithmetic (wingcheck-cert), independent of clarabel and faer.
+//! mu-conditions rows, and the enclosure of the continuous wing's ω₁ ([`omega1`]), written by
+//! `wingcheck certify` and re-derived by `wingcheck verify` in exact rational arithmetic
+//! (wingcheck-cert), independent of clarabel and faer.
 //!
 //! A certificate is a *recipe*: parameters (the configuration's decimals, the Galerkin element
 //! count, λ as a rational) and a witness. The verifier rebuilds W and κ ((22)–(25), via

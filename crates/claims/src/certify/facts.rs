@@ -36,7 +36,7 @@ pub const MAX_FILE_BYTES: u64 = 1 << 20;
 /// 2 s at N = 8 with 32-character parameters). `certify` uses [`super::CERT_ELEMENTS`] = 4.
 pub const MAX_ELEMENTS: usize = 4;
 
-/// The four kinds of fact.
+/// The kinds of fact.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum FactKind {

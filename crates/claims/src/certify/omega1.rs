@@ -58,7 +58,7 @@ pub const SHIFT_DIGITS: usize = 10;
 /// Significant digits of the test vector's entries.
 pub const VECTOR_DIGITS: usize = 10;
 /// What the verifier accepts (checked before any arithmetic).
-pub const LIMITS: Limits = Limits { max_modes: 48, max_inertia_elements: 32, max_rayleigh_elements: 128 };
+pub const LIMITS: Limits = Limits { max_modes: 40, max_inertia_elements: 28, max_rayleigh_elements: 128 };
 
 /// The certificate file, field for field.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
