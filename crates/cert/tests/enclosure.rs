@@ -126,7 +126,7 @@ fn trace_matches_its_closed_form_and_the_uncoupled_spectrum() {
     // Uncoupled: Σ ω⁻⁴ over the analytic spectrum, bending ω = (βs)²/s²·√(EI/ρ) with
     // 1 + cos βs cosh βs = 0 (roots by bisection), torsion ω = (2j−1)π/(2s)·√(GJ/I_p).
     let u = WingConstants { rho_xc: int(0), ..paper_wing() };
-    let (sf, rho, eif, gjf, ip) = (2.0, 10.0, 0.2, 0.5, 1.5);
+    let (sf, rho, eif, gjf, ip): (f64, f64, f64, f64, f64) = (2.0, 10.0, 0.2, 0.5, 1.5);
     let root = |n: usize| {
         let (mut lo, mut hi) = ((n as f64 - 1.0) * std::f64::consts::PI, n as f64 * std::f64::consts::PI);
         let f = |x: f64| 1.0 + x.cos() * x.cosh();
@@ -140,9 +140,9 @@ fn trace_matches_its_closed_form_and_the_uncoupled_spectrum() {
         }
         0.5 * (lo + hi)
     };
-    let bending: f64 = (1..=60).map(|n| (root(n).powi(2) / (sf * sf) * (eif / rho as f64).sqrt()).powi(-4)).sum();
+    let bending: f64 = (1..=60).map(|n| (root(n).powi(2) / (sf * sf) * (eif / rho).sqrt()).powi(-4)).sum();
     let torsion: f64 = (1..=200_000)
-        .map(|j| ((2 * j - 1) as f64 * std::f64::consts::PI / (2.0 * sf) * (gjf / ip as f64).sqrt()).powi(-4))
+        .map(|j| ((2 * j - 1) as f64 * std::f64::consts::PI / (2.0 * sf) * (gjf / ip).sqrt()).powi(-4))
         .sum();
     let exact = to_f64(&u.trace_g2());
     assert!(((bending + torsion) / exact - 1.0).abs() < 1e-12, "{} vs {exact}", bending + torsion);

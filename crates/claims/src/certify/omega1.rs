@@ -200,7 +200,7 @@ pub fn exact_decimal(r: &BigRational) -> String {
             let (int, frac) = text.split_at(text.len() - digits);
             return if digits == 0 { format!("{sign}{int}") } else { format!("{sign}{int}.{frac}") };
         }
-        scaled = scaled * BigRational::from_integer(10.into());
+        scaled *= BigRational::from_integer(10.into());
     }
     wingcheck_cert::exact::to_fraction_string(r)
 }
