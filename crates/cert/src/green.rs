@@ -6,11 +6,15 @@
 //! self-adjoint and positive in the M-inner product, with eigenvalues 1/ωᵢ². K⁻¹ is the integral
 //! operator with the diagonal kernel diag(g_b, g_t),
 //!
-//!     g_b(z, ζ) = min(z,ζ)² (3 max(z,ζ) − min(z,ζ)) / (6 EI),   g_t(z, ζ) = min(z,ζ) / GJ,
+//! ```text
+//! g_b(z, ζ) = min(z,ζ)² (3 max(z,ζ) − min(z,ζ)) / (6 EI),   g_t(z, ζ) = min(z,ζ) / GJ,
+//! ```
 //!
 //! so G is similar (by the constant M^{1/2}) to the operator with kernel M^{1/2} g M^{1/2}, and
 //!
-//!     tr(G²) = Σᵢ ωᵢ⁻⁴ = ∫₀ˢ∫₀ˢ tr(g M g M) dζ dz = ∫₀ˢ∫₀ˢ [ρ² g_b² + 2 m² g_b g_t + I_p² g_t²] dζ dz.
+//! ```text
+//! tr(G²) = Σᵢ ωᵢ⁻⁴ = ∫₀ˢ∫₀ˢ tr(g M g M) dζ dz = ∫₀ˢ∫₀ˢ [ρ² g_b² + 2 m² g_b g_t + I_p² g_t²] dζ dz.
+//! ```
 //!
 //! The coupling enters only as m², so the sign convention of the cross mass does not matter
 //! (θ → −θ maps one convention to the other and leaves K and every boundary condition alone).
