@@ -90,7 +90,7 @@ fn committed_proofs_are_what_certify_makes_now() {
         assert!(on_disk == *text, "proofs/{name} is stale: regenerate with `wingcheck certify`");
     }
     let set = verify_set(&committed).unwrap();
-    assert_eq!(set.certs.len(), 6);
+    assert_eq!(set.certs.len(), 7);
     // The statements are the verifier's: λ of the committed lower bound, as a fraction.
     assert!(set.certs[0].fact.statement.contains("λ = -4149191/1000000"), "{}", set.certs[0].fact.statement);
 }
@@ -328,7 +328,10 @@ fn an_si_scale_wing_certifies_and_a_forged_mu_certificate_is_refuted() {
     certify::write_all(&cfg, &p).unwrap();
     let set = verify_set(&p).unwrap();
     let ids: Vec<&str> = set.certs.iter().map(|c| c.role.id).collect();
-    assert_eq!(ids, ["w-bounds-lower", "w-bounds-upper", "w-bounds-ratio-above", "w-bounds-ratio-below"]);
+    assert_eq!(
+        ids,
+        ["w-bounds-lower", "w-bounds-upper", "w-bounds-ratio-above", "w-bounds-ratio-below", "omega1-enclosure"]
+    );
     assert!(set.conclusions[0].1.contains("W is positive definite on that space"), "{:?}", set.conclusions);
     assert!(set.conclusions[1].1.contains("62419/810"), "{:?}", set.conclusions);
     // Smuggle in the paper's μ3 certificate, re-parametrised for this wing: the verifier builds
@@ -351,4 +354,76 @@ fn an_si_scale_wing_certifies_and_a_forged_mu_certificate_is_refuted() {
             .push(json!({"claim": "mu-conditions (32)", "needs": ["mu-conditions-infeasible"]}));
     });
     assert_rejected(&p, &["mu-conditions-infeasible.json", "refuted"]);
+}
+
+#[test]
+fn the_omega1_enclosure_verifies_and_its_forgeries_are_refused() {
+    let dir = fresh_set();
+    let p = dir.path().join("p");
+    let set = verify_set(&p).unwrap();
+    let e = set.omega1.as_ref().expect("the set has an enclosure");
+    // The verifier's own statement and the paper's ω₁ = 0.12085992204657 (tests/omega1.rs:
+    // characteristic determinant) inside it.
+    let fact = &set.certs.iter().find(|c| c.role.id == "omega1-enclosure").unwrap().fact;
+    assert!(fact.statement.contains("≤ ω₁ ≤") && fact.statement.contains("continuous wing"), "{}", fact.statement);
+    assert!(e.lower_f64() < 0.12085992204657 && 0.12085992204657 < e.upper_f64());
+    assert!(set.conclusions[0].1.contains("a/b = 1 > ω̄₁: W is not positive definite for the continuous model"));
+    let name = "omega1-enclosure.json";
+    let cases: Vec<Forgery<'_>> = vec![
+        // Λ₂ lowered below the second Galerkin eigenvalue (ω₂² ≈ 0.18 here): one negative pivot.
+        (
+            name,
+            Box::new(|v| v["shifts"][0] = json!("0.1")),
+            "Λ2 = 1.0000000000e-1: K_N − Λ2 M_N has only 1 negative pivots",
+        ),
+        // The test vector off the clamp: q(0) ≠ 0 is not an admissible state.
+        (name, Box::new(|v| v["vector"][0] = json!("0.001")), "violates the clamp: q(0)"),
+        (name, Box::new(|v| v["vector"][2] = json!("1/3")), "violates the clamp: θ(0)"),
+        // A changed wing decimal: not the set's wing.
+        (
+            name,
+            Box::new(|v| v["wing"]["ei"] = json!("0.25")),
+            "wing.ei = 1/4 (≈ 2.500000e-1) but the set's config has 1/5",
+        ),
+        (name, Box::new(|v| v["wing"]["rho_xc"] = json!("-3.5")), "wing.rho_xc = -7/2"),
+        // k and the shifts must agree; sizes and numbers are bounded before any arithmetic.
+        (name, Box::new(|v| v["modes"] = json!(20)), "35 shifts, k − 1 = 19 required"),
+        (name, Box::new(|v| v["modes"] = json!(1000)), "k = 1000 outside [1, 40]"),
+        (name, Box::new(|v| v["inertia_elements"] = json!(4000)), "inertia_elements: 4000 outside [1, 28]"),
+        (name, Box::new(|v| v["rayleigh_elements"] = json!(32)), "vector: 260 entries, 132 required"),
+        (name, Box::new(|v| v["vector"] = json!(vec!["1"; 100_000])), "100000 entries, 260 required"),
+        (name, Box::new(|v| v["shifts"][3] = json!("1e99999")), "exponent"),
+        (name, Box::new(|v| v["shifts"][3] = json!("-2")), "Λ must be > 0"),
+        // No room for a statement or the bounds themselves: the verifier derives them.
+        (name, Box::new(|v| v["lower"] = json!("0.12")), "unknown field `lower`"),
+        (name, Box::new(|v| v["fact"] = json!("w-lower-bound")), "expected omega1-enclosure"),
+    ];
+    for (file, edit, mention) in cases {
+        let dir = fresh_set();
+        let p = dir.path().join("p");
+        forge(&p, file, edit);
+        assert_rejected(&p, &[file, mention]);
+    }
+    // Every shift raised to 10⁶ is a true but weaker fact: it verifies, and the verifier
+    // prints the weaker lower bound it implies, tr(G²)^(-1/4) (Λᵢ⁻² = 1e-12 each is negligible)
+    // with tr(G²) = 11ρ²s⁸/(1680EI²) + 11(ρx_c)²s⁶/(180EI·GJ) + I_p²s⁴/(6GJ²)
+    // = 4190.476… + 479.111… + 24 = 4693.5873015873 s⁴ for the paper's wing (by hand).
+    let dir = fresh_set();
+    let p = dir.path().join("p");
+    forge(&p, name, |v| {
+        for s in v["shifts"].as_array_mut().unwrap() {
+            *s = json!("1000000");
+        }
+    });
+    let weak = verify_set(&p).unwrap().omega1.unwrap();
+    let trace_only = 4693.587301587302f64.powf(-0.25);
+    assert!((weak.lower_f64() / trace_only - 1.0).abs() < 1e-12, "{} vs {trace_only}", weak.lower_f64());
+    assert!(weak.lower < e.lower && weak.upper == e.upper);
+    // The set needs its enclosure: dropped from the set and the index, the verifier's table
+    // still requires it.
+    let dir = fresh_set();
+    let p = dir.path().join("p");
+    std::fs::remove_file(p.join(name)).unwrap();
+    drop_from_index(&p, "omega1-enclosure");
+    assert_rejected(&p, &["does not list omega1-enclosure, which the verifier requires"]);
 }

@@ -212,6 +212,7 @@ fn bench_check(cfg: &wingcheck_model::Config, repeats: usize, as_json: bool) -> 
     let verify_s = t.elapsed().as_secs_f64();
     let _ = std::fs::remove_dir_all(&tmp);
     let ok = set?.certs.len();
+    let (compute_s, check_s, worst_s) = bench_enclosure(cfg)?;
     let breakdown: Vec<(String, f64)> = rows.into_iter().map(|(id, v)| (id, median(v))).collect();
     if as_json {
         println!(
@@ -224,6 +225,7 @@ fn bench_check(cfg: &wingcheck_model::Config, repeats: usize, as_json: bool) -> 
                 "certify_seconds": certify_s,
                 "verify_seconds": verify_s,
                 "certificates": files.len(),
+                "omega1_enclosure": {"compute_seconds": compute_s, "check_seconds": check_s, "worst_case_check_seconds": worst_s},
             }))?
         );
         return Ok(());
@@ -237,6 +239,10 @@ fn bench_check(cfg: &wingcheck_model::Config, repeats: usize, as_json: bool) -> 
     println!(
         "certify: {} certificates in {certify_s:.3} s; exact re-verification ({ok} ok) in {verify_s:.3} s",
         files.len()
+    );
+    println!(
+        "  ω₁ enclosure: made and checked in {compute_s:.3} s (uncached); exact check alone {check_s:.3} s; \
+         the slowest valid certificate (the verifier's limits, every number a 32-character fraction) {worst_s:.3} s"
     );
     Ok(())
 }
@@ -327,4 +333,51 @@ fn bench_search(cfg: &wingcheck_model::Config, as_json: bool) -> anyhow::Result<
         );
     }
     Ok(())
+}
+
+/// The ω₁ enclosure's costs: [`omega1::compute_with`] uncached (a plan the ledger does not use,
+/// so nothing is cached), the exact check of the configured certificate, and the exact check
+/// of the slowest certificate the verifier accepts (k, both meshes at their limits, every
+/// shift and vector entry a 32-character fraction).
+fn bench_enclosure(cfg: &wingcheck_model::Config) -> anyhow::Result<(f64, f64, f64)> {
+    use std::time::Instant;
+    use wingcheck_claims::certify::omega1::{self, Plan, LIMITS};
+    let t = Instant::now();
+    let plan = Plan { rayleigh_elements: omega1::PLAN.rayleigh_elements + 1, ..omega1::PLAN };
+    let _ = omega1::compute_with(cfg, &plan)?;
+    let compute_s = t.elapsed().as_secs_f64();
+    let cert = omega1::compute(cfg)?.0.clone();
+    let t = Instant::now();
+    cert.check_exact()?;
+    let check_s = t.elapsed().as_secs_f64();
+    let limits = Plan {
+        modes: LIMITS.max_modes,
+        inertia_elements: LIMITS.max_inertia_elements,
+        rayleigh_elements: LIMITS.max_rayleigh_elements,
+    };
+    let mut worst = omega1::compute_with(cfg, &limits)?.0.clone();
+    // p/q of exactly 32 characters just above each shift (still valid), and each vector entry.
+    let fraction = |v: f64, up: bool| {
+        let mut q: u128 = 98_765_432_109_876_543;
+        loop {
+            let p = (v.abs() * q as f64).ceil() as u128 + u128::from(up);
+            let t = format!("{}{p}/{q}", if v < 0.0 { "-" } else { "" });
+            if t.len() <= 32 {
+                return t;
+            }
+            q = q / 10 + 7;
+        }
+    };
+    for s in worst.shifts.iter_mut() {
+        *s = fraction(s.parse::<f64>()? * 1.0001, true);
+    }
+    for s in worst.vector.iter_mut().skip(3) {
+        let v: f64 = s.parse()?;
+        if v != 0.0 {
+            *s = fraction(v, false);
+        }
+    }
+    let t = Instant::now();
+    worst.check_exact()?;
+    Ok((compute_s, check_s, t.elapsed().as_secs_f64()))
 }

@@ -1,6 +1,7 @@
 //! Certificates for the definiteness and infeasibility facts behind the W-bounds and
-//! mu-conditions rows, written by `wingcheck certify` and re-derived by `wingcheck verify` in
-//! exact rational arithmetic (wingcheck-cert), independent of clarabel and faer.
+//! mu-conditions rows, and the enclosure of the continuous wing's ω₁ ([`omega1`]), written by
+//! `wingcheck certify` and re-derived by `wingcheck verify` in exact rational arithmetic
+//! (wingcheck-cert), independent of clarabel and faer.
 //!
 //! A certificate is a *recipe*: parameters (the configuration's decimals, the Galerkin element
 //! count, λ as a rational) and a witness. The verifier rebuilds W and κ ((22)–(25), via
@@ -11,6 +12,7 @@
 
 pub mod facts;
 pub mod manifest;
+pub mod omega1;
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
@@ -232,12 +234,23 @@ pub fn render_set(cfg: &Config) -> Result<Vec<(String, String)>, CertifyError> {
         entries.push(FileEntry { file: name.clone(), id: c.id.clone(), sha256: manifest::sha256_hex(text.as_bytes()) });
         files.push((name, text));
     }
+    // The ω₁ enclosure (its own file format), after the others.
+    let enclosure = omega1::compute(cfg)?;
+    let text = enclosure.0.to_text();
+    let name = format!("{}.json", omega1::ID);
+    entries.push(FileEntry {
+        file: name.clone(),
+        id: omega1::ID.into(),
+        sha256: manifest::sha256_hex(text.as_bytes()),
+    });
+    files.push((name, text));
+    let ids = certs.iter().map(|c| c.id.as_str()).chain([omega1::ID]);
     let mut claims: Vec<ClaimEntry> = Vec::new();
-    for c in &certs {
-        let claim = manifest::role(&c.id).expect("certify writes known roles").claim;
+    for id in ids {
+        let claim = manifest::role(id).expect("certify writes known roles").claim;
         match claims.iter_mut().find(|e| e.claim == claim) {
-            Some(e) => e.needs.push(c.id.clone()),
-            None => claims.push(ClaimEntry { claim: claim.into(), needs: vec![c.id.clone()] }),
+            Some(e) => e.needs.push(id.into()),
+            None => claims.push(ClaimEntry { claim: claim.into(), needs: vec![id.into()] }),
         }
     }
     let index = Manifest {

@@ -63,6 +63,7 @@ pub const CLAIMS: [ClaimSpec; 7] = [
             "w-bounds-indefinite",
             "w-bounds-ratio-above",
             "w-bounds-ratio-below",
+            "omega1-enclosure",
         ],
     },
     ClaimSpec {

@@ -11,9 +11,12 @@
 //! 3. The largest a/b for which W is positive definite: W = b·W_b + a·W_a, so W ≻ 0 iff
 //!    a/b < −1/μ_min(W_a, W_b). With the corrected cross term b ρx_c, minimising over the
 //!    velocities gives W ≥ (b/2)[P − (a/b)² ∫ xᵀMx] ⇒ a/b_max = ω₁, the fundamental natural
-//!    frequency of the undamped wing (closed form, checked against the FE modes). The threshold
-//!    used is ω₁ converged over uniform FE meshes with its error estimate
-//!    ([`theory::w_threshold`]): a/b within that error is "at the threshold" (inconclusive).
+//!    frequency of the undamped wing (closed form, checked against the FE modes). The decision
+//!    rests on the certified enclosure ω̲₁ ≤ ω₁ ≤ ω̄₁ of the continuous model
+//!    ([`crate::certify::omega1`], exact): W ≻ 0 for a/b < ω̲₁, W not ≻ 0 for a/b > ω̄₁. Inside
+//!    the enclosure (or without one) it falls back to ω₁ converged over uniform FE meshes with
+//!    its error estimate ([`theory::w_threshold`], evidence): a/b within that error is "at the
+//!    threshold" (inconclusive).
 //! 4. An exact witness: a state (rational coefficients) with W < 0 at the configured a, b
 //!    when a/b exceeds the maximum, evaluated in rational arithmetic: a proof for the PDE,
 //!    since the state lies in the true state space.
@@ -28,13 +31,14 @@ use wingcheck_cert::exact::{parse_rational, to_f64};
 use wingcheck_cert::fe::{ClampedMesh, Space};
 use wingcheck_model::Config;
 
+use crate::certify::omega1::{EnclosureSummary, Position};
 use crate::lyapunov::{self, Coupling, LyapunovParams};
 use crate::sdp::PencilSdpRow;
 use crate::settings::CheckSettings;
-use crate::theory::{self, Estimate};
+use crate::theory::{self, Decision, Estimate};
 use crate::{ClaimsError, WallTime};
 
-pub use explain::{check, evidence, sdp_sentence, SdpRecord, WBounds, WBoundsEvidence};
+pub use explain::{check, evidence, sdp_sentence, EnclosureEvidence, SdpRecord, WBounds, WBoundsEvidence};
 
 /// The printed constants of (26)–(28), exactly.
 #[derive(Debug, Clone)]
@@ -198,19 +202,37 @@ pub struct Computed {
     pub ratio_printed_cross: f64,
     /// An exact witness of W(x) < 0 at the configured weights: (W(x), κ(x)).
     pub witness: Option<(f64, f64)>,
+    /// The certified enclosure ω̲₁ ≤ ω₁ ≤ ω̄₁ of the continuous model, or why there is none.
+    pub enclosure: EnclosureSummary,
     /// The SDP cross-check per N.
     pub sdp: Vec<PencilSdpRow>,
     /// Wall time of the SDP cross-check (s).
     pub sdp_seconds: f64,
+    /// Wall time of the enclosure (s).
+    pub enclosure_seconds: f64,
 }
 
-/// Compute everything; the SDP cross-check (independent of the rest) runs on a thread of its
-/// own beside it, and its failure is recorded in its rows, never fatal.
+/// W ≻ 0 from the enclosure when a/b lies outside it (exact, for the continuous model), else
+/// the float decision `float` against the converged ω₁.
+pub fn decide(enclosure: &EnclosureSummary, float: Decision) -> Decision {
+    match enclosure.position() {
+        Some(Position::Below) => Decision::Yes,
+        Some(Position::Above) => Decision::No,
+        Some(Position::Inside) | None => float,
+    }
+}
+
+/// Compute everything; the SDP cross-check and the ω₁ enclosure (independent of the rest) run
+/// on threads of their own beside it, and their failure is recorded, never fatal.
 pub fn compute(cfg: &Config, settings: &CheckSettings) -> Result<Computed, ClaimsError> {
     std::thread::scope(|scope| {
         let sdp = scope.spawn(|| {
             let start = Instant::now();
             (sdp_cross_check(cfg, Coupling::Corrected, &settings.sdp_grids), start.elapsed().as_secs_f64())
+        });
+        let enclosure = scope.spawn(|| {
+            let start = Instant::now();
+            (EnclosureSummary::of(cfg), start.elapsed().as_secs_f64())
         });
         let (a, b) = (cfg.control.a, cfg.control.b);
         let (mut neg, mut cond, mut total) = (0usize, 0usize, 0usize);
@@ -234,6 +256,8 @@ pub fn compute(cfg: &Config, settings: &CheckSettings) -> Result<Computed, Claim
             ratio_galerkin: (finest, a_over_b_max(cfg, Coupling::Corrected, finest)?),
             ratio_printed_cross: a_over_b_max(cfg, Coupling::Printed, finest)?,
             witness,
+            enclosure: EnclosureSummary::NotCertified { reason: "not computed".into() },
+            enclosure_seconds: 0.0,
             sdp: Vec::new(),
             sdp_seconds: 0.0,
         };
@@ -246,13 +270,19 @@ pub fn compute(cfg: &Config, settings: &CheckSettings) -> Result<Computed, Claim
         let mut computed = computed;
         computed.sdp = rows;
         computed.sdp_seconds = seconds;
+        (computed.enclosure, computed.enclosure_seconds) = enclosure.join().unwrap_or_else(|_| {
+            (EnclosureSummary::NotCertified { reason: "the enclosure computation panicked".into() }, 0.0)
+        });
         Ok(computed)
     })
 }
 
-/// The SDP cross-check's wall times: the whole, and per N.
+/// The SDP cross-check's and the enclosure's wall times (the SDP's per N too).
 pub fn sdp_wall_times(c: &Computed) -> Vec<WallTime> {
-    let mut out = vec![WallTime { what: "W-bounds SDP cross-check".into(), seconds: c.sdp_seconds }];
+    let mut out = vec![
+        WallTime { what: "W-bounds SDP cross-check".into(), seconds: c.sdp_seconds },
+        WallTime { what: "W-bounds ω₁ enclosure".into(), seconds: c.enclosure_seconds },
+    ];
     out.extend(c.sdp.iter().map(|r| WallTime { what: format!("W-bounds SDP N = {}", r.elements), seconds: r.seconds }));
     out
 }

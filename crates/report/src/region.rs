@@ -6,8 +6,9 @@
 //! Drawn as the chart crate's grid heatmap ([`GridHeatmap`], the search's own heatmap): the RMS
 //! tip deflection over the search's metric window (colour, log scale), the cells where the
 //! search finds W ≻ 0 and (32) feasible (markers), the closed-form boundaries a/b = ω1 (W ≻ 0
-//! below it) and a/b = r* ((32) feasible below it) as lines, the region where both hold
-//! hatched, and the configured operating point.
+//! below it; drawn at both bounds of the certified enclosure ω̲1 ≤ ω1 ≤ ω̄1 when there is one)
+//! and a/b = r* ((32) feasible below it) as lines, the region where both hold hatched, and the
+//! configured operating point.
 //!
 //! The grid is laid on half-decades through the configured (a, b), so that point is a node;
 //! it spans a/b from a decade below min(r*, ω1, a/b) to a decade above max(…) and b over
@@ -17,6 +18,7 @@
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use rayon::prelude::*;
+use wingcheck_claims::certify::omega1::EnclosureSummary;
 use wingcheck_model::Config;
 use wingcheck_search::{modal::RunCache, PointResult, Search, SearchOptions, Status, TheoryCache};
 
@@ -44,6 +46,8 @@ pub struct RegionMap {
     pub points: Vec<PointResult>,
     /// Closed-form W ≻ 0 boundary a/b = ω1 (rad/s).
     pub omega1: f64,
+    /// The certified enclosure of ω1 for the continuous model (exact), or why there is none.
+    pub omega1_certified: EnclosureSummary,
     /// Closed-form (32) boundary a/b = r*.
     pub r_star: f64,
     /// The configured (a, b).
@@ -114,7 +118,18 @@ pub fn region_map(
         .ok()
         .and_then(|v| v.as_str().map(str::to_uppercase))
         .unwrap_or_else(|| "configured".into());
-    Ok(RegionMap { a, b, points, omega1, r_star, operating: (cfg.control.a, cfg.control.b), window, controller })
+    let omega1_certified = EnclosureSummary::of(cfg);
+    Ok(RegionMap {
+        a,
+        b,
+        points,
+        omega1,
+        omega1_certified,
+        r_star,
+        operating: (cfg.control.a, cfg.control.b),
+        window,
+        controller,
+    })
 }
 
 const BLACK: RGBColor = RGBColor(0, 0, 0);
@@ -158,6 +173,11 @@ impl RegionMap {
         &self.points[i * self.b.len() + j]
     }
 
+    /// The W ≻ 0 boundary: (ω̲1, ω̄1) when certified, else (ω1, ω1).
+    fn w_boundary(&self) -> (f64, f64) {
+        self.omega1_certified.bounds().unwrap_or((self.omega1, self.omega1))
+    }
+
     /// Agreement with the closed forms, medians inside/outside the hypotheses, best cell.
     pub fn stats(&self) -> RegionStats {
         let (mut w_agree, mut mu_agree, mut cells, mut failed) = (0, 0, 0, 0);
@@ -169,7 +189,16 @@ impl RegionMap {
                 let p = self.cell(i, j);
                 if let (Some(w), Some(m)) = (p.w_positive_definite, p.feasible_32) {
                     cells += 1;
-                    w_agree += usize::from(w == (a / b < self.omega1));
+                    // Against the certified enclosure: W ≻ 0 below ω̲1, not above ω̄1 (either inside).
+                    let (lo, hi) = self.w_boundary();
+                    let r = a / b;
+                    w_agree += usize::from(if r < lo {
+                        w
+                    } else if r > hi {
+                        !w
+                    } else {
+                        true
+                    });
                     mu_agree += usize::from(m == (a / b < self.r_star));
                 }
                 let v = p.metric(METRIC).filter(|v| v.is_finite() && p.status == Status::Ok);
@@ -238,7 +267,13 @@ impl RegionMap {
             ))
             .t("open circles: W ≻ 0 (tight λ2 > 0, Theorem 1's hypothesis); red dots: (29)–(32) feasible (best λ3 > 0). Closed-form boundaries: W ≻ 0 iff a/b < ω1 = ")
             .n("region.omega1", self.omega1)
-            .t(" rad/s (white line), (32) feasible iff a/b < r* = ")
+            .t(match &self.omega1_certified {
+                EnclosureSummary::Certified { lower_exact, upper_exact, relative_width, .. } => format!(
+                    " rad/s, certified for the continuous model as {lower_exact} ≤ ω1 ≤ {upper_exact} rad/s (exact certificate, relative width {relative_width:.1e}; white lines at both bounds, indistinguishable at this scale)"
+                ),
+                EnclosureSummary::NotCertified { reason } => format!(" rad/s (white line; no certified enclosure: {reason})"),
+            })
+            .t(", (32) feasible iff a/b < r* = ")
             .n("region.r_star", self.r_star)
             .t(" (red dashed line); hatched: a/b < min(ω1, r*), where both hold and Theorem 2 applies. The search's verdicts agree with the closed forms in ")
             .count("region.w_agree", s.w_agree)
@@ -330,7 +365,8 @@ impl RegionMap {
         let a_lo = self.a[0] / half;
         let line = |r: f64| vec![(r * b_lo, b_lo), (r * b_hi, b_hi)];
         // Both hypotheses (closed form): a/b < min(ω1, r*), the part of the plot left of that line.
-        let r_both = self.omega1.min(self.r_star);
+        let (w_lo, w_hi) = self.w_boundary();
+        let r_both = w_lo.min(self.r_star);
         // (A decade left of both the plot and the line, so the polygon covers the plot's left
         // part whatever edge the line leaves by; the chart clips it to the plot.)
         let far = a_lo.min(r_both * b_lo) / 10.0;
@@ -355,11 +391,17 @@ impl RegionMap {
                 points: cells(&|p| p.feasible_32 == Some(true)),
             },
             Mark {
-                label: "a/b = ω1 (W ≻ 0 left of it, closed form)".into(),
+                label: if self.omega1_certified.bounds().is_some() {
+                    "a/b = ω̲1 and ω̄1, the certified enclosure of ω1 (W ≻ 0 left of it, exact)".into()
+                } else {
+                    "a/b = ω1 (W ≻ 0 left of it, closed form)".into()
+                },
                 colour: W_LINE,
                 shape: MarkShape::Line,
-                points: line(self.omega1),
+                points: line(w_lo),
             },
+            // The upper bound (no second legend entry).
+            Mark { label: String::new(), colour: W_LINE, shape: MarkShape::Line, points: line(w_hi) },
             Mark {
                 label: "a/b = r* ((32) feasible left of it, closed form)".into(),
                 colour: MU_LINE,

@@ -1,7 +1,9 @@
 //! Boundaries of the theory verdicts (W ≻ 0, (32) feasible) along each numeric axis: every
 //! pair of grid neighbours whose verdicts differ brackets a boundary; with a tolerance the
 //! bracket is bisected (geometric midpoint on log axes) using the theory alone, which is cheap
-//! and needs no simulation.
+//! and needs no simulation. A W ≻ 0 boundary along `control.a` or `control.b` is a/b = ω₁, so
+//! with a tolerance it is reported as the certified enclosure ω̲₁ ≤ ω₁ ≤ ω̄₁ of the continuous
+//! model ([`wingcheck_claims::certify::omega1`], exact) instead of a bisected bracket.
 
 use rayon::prelude::*;
 use wingcheck_model::apply_overrides;
@@ -74,7 +76,53 @@ pub fn boundaries(
             }
         }
     }
-    jobs.par_iter().map(|&(p, d, kind, vp)| bisect(search, cache, p, d, kind, vp, tol)).collect()
+    jobs.par_iter()
+        .map(|&(p, d, kind, vp)| {
+            tol.and_then(|_| certified(search, p, d, kind, vp))
+                .unwrap_or_else(|| bisect(search, cache, p, d, kind, vp, tol))
+        })
+        .collect()
+}
+
+/// The W ≻ 0 boundary between point `p` and its upper neighbour along axis `d` from the
+/// certified enclosure, when that axis is `control.a` or `control.b`: a ∈ [ω̲₁ b, ω̄₁ b] or
+/// b ∈ [a/ω̄₁, a/ω̲₁] (rounded outwards). None — bisect instead — for other axes, without a
+/// certificate, or if the interval does not lie inside the grid bracket.
+fn certified(search: &Search, p: usize, d: usize, kind: usize, verdict_lo: bool) -> Option<BoundaryRow> {
+    let axis = &search.grid.axes[d];
+    if kind != 0 || !matches!(axis.key.as_str(), "control.a" | "control.b") {
+        return None;
+    }
+    let cfg = apply_overrides(&search.base, &search.grid.overrides(p)).ok()?;
+    let c = wingcheck_claims::certify::omega1::compute(&cfg).ok()?;
+    let (w_lo, w_hi) = (c.1.lower_f64(), c.1.upper_f64());
+    let (out_lo, out_hi) = (1.0 - 4.0 * f64::EPSILON, 1.0 + 4.0 * f64::EPSILON);
+    let (lo, hi) = if axis.key == "control.a" {
+        (w_lo * cfg.control.b * out_lo, w_hi * cfg.control.b * out_hi)
+    } else {
+        (cfg.control.a / w_hi * out_lo, cfg.control.a / w_lo * out_hi)
+    };
+    let i = search.grid.multi(p)[d];
+    let (g0, g1) = (axis.numeric(i)?, axis.numeric(i + 1)?);
+    if !(g0.min(g1) <= lo && hi <= g0.max(g1)) {
+        return None;
+    }
+    let estimate = if axis.is_log() { (lo * hi).sqrt() } else { 0.5 * (lo + hi) };
+    Some(BoundaryRow {
+        kind: KINDS[kind],
+        axis: d,
+        point: p,
+        lo,
+        hi,
+        estimate,
+        verdict_at_lo: verdict_lo,
+        bisections: 0,
+        note: format!(
+            "certified enclosure {} ≤ ω₁ ≤ {} rad/s of the continuous model (exact; omega1-enclosure.json)",
+            wingcheck_claims::certify::omega1::exact_decimal(&c.1.lower),
+            wingcheck_claims::certify::omega1::exact_decimal(&c.1.upper)
+        ),
+    })
 }
 
 fn bisect(

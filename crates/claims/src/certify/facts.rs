@@ -36,7 +36,7 @@ pub const MAX_FILE_BYTES: u64 = 1 << 20;
 /// 2 s at N = 8 with 32-character parameters). `certify` uses [`super::CERT_ELEMENTS`] = 4.
 pub const MAX_ELEMENTS: usize = 4;
 
-/// The four kinds of fact.
+/// The kinds of fact.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum FactKind {
@@ -48,6 +48,8 @@ pub enum FactKind {
     WNegativeDirection,
     /// μ3 ≥ 0 of (32) has no solution η1, η5 ≥ 0 (Farkas multipliers y).
     Mu3Infeasible,
+    /// ω̲₁ ≤ ω₁ ≤ ω̄₁ for the continuous wing (its own file format, [`super::omega1`]).
+    Omega1Enclosure,
 }
 
 impl FactKind {
@@ -58,6 +60,7 @@ impl FactKind {
             FactKind::WUpperBound => "w-upper-bound",
             FactKind::WNegativeDirection => "w-negative-direction",
             FactKind::Mu3Infeasible => "mu3-infeasible",
+            FactKind::Omega1Enclosure => "omega1-enclosure",
         }
     }
 }
@@ -299,6 +302,9 @@ impl CertificateFile {
                     show(&wx)
                 );
                 Ok(CheckedFact { kind: self.fact, params, lambda: None, elements: Some(n), statement })
+            }
+            FactKind::Omega1Enclosure => {
+                Err(invalid("fact", "an omega1-enclosure certificate has its own format (modes, shifts, vector)"))
             }
             FactKind::Mu3Infeasible => {
                 self.forbid(self.elements.is_some(), "elements")?;

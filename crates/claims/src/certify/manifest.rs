@@ -22,6 +22,7 @@ use wingcheck_cert::exact::{parse_rational_bounded, NumberLimits};
 use wingcheck_model::Config;
 
 use super::facts::{mu3_system, show, CertificateFile, CheckedFact, ExactParams, FactKind, MAX_FILE_BYTES};
+use super::omega1::{self, Omega1Certificate, Omega1Enclosure, Position};
 use super::{format_decimal, CertifyError};
 
 /// File name of the manifest.
@@ -38,6 +39,8 @@ pub enum WeightsRule {
     Config,
     /// b = 1 and any a > 0 (a ratio a/b; W is linear in (a, b), so W(a, b) = b·W(a/b, 1)).
     Ratio,
+    /// The fact does not depend on a, b and the file carries none (the ω₁ enclosure).
+    Independent,
 }
 
 /// One role in the certificate set: its id, the claim it supports, its fact and weights.
@@ -59,7 +62,7 @@ pub const W_BOUNDS: &str = "W-bounds (Theorem 1)";
 pub const MU_CONDITIONS: &str = "mu-conditions (32)";
 
 /// Every role the verifier knows.
-pub const ROLES: [Role; 6] = [
+pub const ROLES: [Role; 7] = [
     Role { id: "w-bounds-lower", claim: W_BOUNDS, fact: FactKind::WLowerBound, weights: WeightsRule::Config },
     Role { id: "w-bounds-upper", claim: W_BOUNDS, fact: FactKind::WUpperBound, weights: WeightsRule::Config },
     Role {
@@ -81,6 +84,7 @@ pub const ROLES: [Role; 6] = [
         fact: FactKind::Mu3Infeasible,
         weights: WeightsRule::Config,
     },
+    Role { id: omega1::ID, claim: W_BOUNDS, fact: FactKind::Omega1Enclosure, weights: WeightsRule::Independent },
 ];
 
 /// The role with this id.
@@ -194,6 +198,9 @@ pub struct VerifiedSet {
     pub certs: Vec<VerifiedCert>,
     /// Per claim, the conclusion the verifier draws from its facts.
     pub conclusions: Vec<(String, String)>,
+    /// The checked enclosure ω̲₁ ≤ ω₁ ≤ ω̄₁ (a set always has one; `None` only if absent,
+    /// which [`verify_set`] refuses).
+    pub omega1: Option<Omega1Enclosure>,
 }
 
 fn bad(field: &str, message: impl Into<String>) -> CertifyError {
@@ -238,6 +245,7 @@ pub fn verify_set(dir: &Path) -> Result<VerifiedSet, CertifyError> {
     // Pass 1, no arithmetic beyond bounded parsing: names, hashes, ids, roles, the set's
     // config and one discretisation across the set.
     let mut parsed: Vec<(&'static Role, CertificateFile, &str)> = Vec::new();
+    let mut enclosure: Option<(&'static Role, Omega1Certificate, &str)> = None;
     for e in &manifest.certificates {
         let role = role(&e.id).ok_or_else(|| bad(&e.file, format!("unknown certificate id {:?}", e.id)))?;
         if e.file != format!("{}.json", e.id) {
@@ -249,6 +257,16 @@ pub fn verify_set(dir: &Path) -> Result<VerifiedSet, CertifyError> {
             return Err(bad(&e.file, format!("content hashes to {hash}, index.json lists {}", e.sha256)));
         }
         let text = std::str::from_utf8(&bytes).map_err(|_| bad(&e.file, "not UTF-8"))?;
+        if role.fact == FactKind::Omega1Enclosure {
+            let file = Omega1Certificate::parse(text).map_err(|err| err.in_file(&e.file))?;
+            if file.id != e.id {
+                return Err(bad(&e.file, format!("id {:?} inside, {:?} in index.json", file.id, e.id)));
+            }
+            let wing = file.exact_wing().map_err(|err| err.in_file(&e.file))?;
+            same_wing(&e.file, &wing, &cfg_params.wing)?;
+            enclosure = Some((role, file, e.file.as_str()));
+            continue;
+        }
         let file = CertificateFile::parse(text).map_err(|err| err.in_file(&e.file))?;
         if file.id != e.id {
             return Err(bad(&e.file, format!("id {:?} inside, {:?} in index.json", file.id, e.id)));
@@ -260,19 +278,7 @@ pub fn verify_set(dir: &Path) -> Result<VerifiedSet, CertifyError> {
             ));
         }
         let params = file.exact_params().map_err(|err| err.in_file(&e.file))?;
-        for (k, (have, want)) in params.wing.iter().zip(&cfg_params.wing).enumerate() {
-            if have != want {
-                return Err(bad(
-                    &e.file,
-                    format!(
-                        "wing.{} = {} but the set's config has {}",
-                        super::facts::WING_FIELDS[k],
-                        show(have),
-                        show(want)
-                    ),
-                ));
-            }
-        }
+        same_wing(&e.file, &params.wing, &cfg_params.wing)?;
         match role.weights {
             WeightsRule::Config if params.weights != cfg_params.weights => {
                 return Err(bad(
@@ -313,8 +319,32 @@ pub fn verify_set(dir: &Path) -> Result<VerifiedSet, CertifyError> {
         let fact = file.check().map_err(|err| err.in_file(name))?;
         certs.push(VerifiedCert { role, fact });
     }
-    let conclusions = conclusions(&manifest, &cfg_params, &certs)?;
-    Ok(VerifiedSet { config: cfg, config_sha256: manifest.config_sha256, certs, conclusions })
+    let mut omega1 = None;
+    if let Some((role, file, name)) = enclosure {
+        let (fact, e) = file.check(&cfg_params.weights).map_err(|err| err.in_file(name))?;
+        certs.push(VerifiedCert { role, fact });
+        omega1 = Some(e);
+    }
+    let conclusions = conclusions(&manifest, &cfg_params, &certs, omega1.as_ref())?;
+    Ok(VerifiedSet { config: cfg, config_sha256: manifest.config_sha256, certs, conclusions, omega1 })
+}
+
+/// A certificate's wing decimals must be the set's config's, exactly.
+fn same_wing(file: &str, have: &[BigRational; 7], want: &[BigRational; 7]) -> Result<(), CertifyError> {
+    for (k, (have, want)) in have.iter().zip(want).enumerate() {
+        if have != want {
+            return Err(bad(
+                file,
+                format!(
+                    "wing.{} = {} but the set's config has {}",
+                    super::facts::WING_FIELDS[k],
+                    show(have),
+                    show(want)
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 fn find<'a>(certs: &'a [VerifiedCert], id: &str) -> Option<&'a CheckedFact> {
@@ -326,7 +356,7 @@ pub fn required(
     cfg_params: &ExactParams,
     lower_lambda: Option<&BigRational>,
 ) -> Vec<(&'static str, Vec<&'static str>)> {
-    let mut w = vec!["w-bounds-lower", "w-bounds-upper", "w-bounds-ratio-above", "w-bounds-ratio-below"];
+    let mut w = vec!["w-bounds-lower", "w-bounds-upper", "w-bounds-ratio-above", "w-bounds-ratio-below", omega1::ID];
     if lower_lambda.is_none_or(|l| !l.is_positive()) {
         w.push("w-bounds-indefinite");
     }
@@ -342,6 +372,7 @@ fn conclusions(
     manifest: &Manifest,
     cfg_params: &ExactParams,
     certs: &[VerifiedCert],
+    omega1: Option<&Omega1Enclosure>,
 ) -> Result<Vec<(String, String)>, CertifyError> {
     let lower = find(certs, "w-bounds-lower").and_then(|f| f.lambda.clone());
     if let Some(f) = find(certs, "w-bounds-ratio-below") {
@@ -390,12 +421,17 @@ fn conclusions(
         };
         let above = find(certs, "w-bounds-ratio-above").map(|f| show(&f.params.weights[0])).expect("required");
         let below = find(certs, "w-bounds-ratio-below").map(|f| show(&f.params.weights[0])).expect("required");
-        format!(
+        let mut text = format!(
             "at {weights}: {} < min W/κ and max W/κ < {} on the {n}-element Galerkin space; {definite}; \
              W is indefinite for a/b = {above} and positive definite on the Galerkin space for a/b = {below}",
             show(&l),
             show(&u)
-        )
+        );
+        if let Some(e) = omega1 {
+            text.push_str("; ");
+            text.push_str(&enclosure_conclusion(e, cfg_params));
+        }
+        text
     };
     out.push((W_BOUNDS.to_string(), w_text));
     if find(certs, "mu-conditions-infeasible").is_some() {
@@ -411,4 +447,30 @@ fn conclusions(
         ));
     }
     Ok(out)
+}
+
+/// What the enclosure decides at the set's a/b, for the continuous model (W ≻ 0 iff a/b < ω₁,
+/// docs/model.md "W ≻ 0 iff a/b < ω₁").
+fn enclosure_conclusion(e: &Omega1Enclosure, p: &ExactParams) -> String {
+    let [a, b] = &p.weights;
+    let ratio = a / b;
+    let head = format!(
+        "{} ≤ ω₁ ≤ {} rad/s for the continuous wing, so ",
+        omega1::exact_decimal(&e.lower),
+        omega1::exact_decimal(&e.upper)
+    );
+    match e.position(&ratio) {
+        Position::Below => {
+            format!("{head}a/b = {} < ω̲₁: W is positive definite for the continuous model", show(&ratio))
+        }
+        Position::Above => format!(
+            "{head}a/b = {} > ω̄₁: W is not positive definite for the continuous model (W(v, −(a/b)v) < 0 for the \
+             certificate's test state v)",
+            show(&ratio)
+        ),
+        Position::Inside => format!(
+            "{head}a/b = {} lies inside the certified interval: the certificates do not decide W ≻ 0 there",
+            show(&ratio)
+        ),
+    }
 }

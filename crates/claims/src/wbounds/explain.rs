@@ -4,6 +4,7 @@ use wingcheck_cert::exact::to_f64;
 use wingcheck_model::{Config, ErrorSource, Quantity, Unit, ValueBasis};
 
 use super::{compute, sdp_wall_times, Computed};
+use crate::certify::omega1::{EnclosureSummary, Position};
 use crate::display::{Fact, Flag, Table, Text};
 use crate::evidence::Explain;
 use crate::sdp::PencilSdpRow;
@@ -104,6 +105,99 @@ impl SdpRecord {
     }
 }
 
+/// The certified enclosure ω̲₁ ≤ ω₁ ≤ ω̄₁ of the continuous model (`omega1-enclosure.json`).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct EnclosureEvidence {
+    /// Whether the wing's ω₁ is certified.
+    pub certified: Flag,
+    /// ω̲₁ (nearest f64 of the exact bound).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lower: Option<Quantity>,
+    /// ω̄₁ (nearest f64 of the exact bound).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub upper: Option<Quantity>,
+    /// ω̲₁ and ω̄₁ as exact decimals.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub exact: Option<Text>,
+    /// (ω̄₁ − ω̲₁)/ω̲₁.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub relative_width: Option<Quantity>,
+    /// Modes k subtracted in the trace bound.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub modes: Option<Quantity>,
+    /// Where the configured a/b lies against the enclosure (`below`, `inside`, `above`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub position: Option<Fact<Position>>,
+    /// Why there is no enclosure.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reason: Option<Text>,
+}
+
+impl EnclosureEvidence {
+    fn of(e: &EnclosureSummary) -> EnclosureEvidence {
+        match e {
+            EnclosureSummary::Certified {
+                lower,
+                upper,
+                lower_exact,
+                upper_exact,
+                relative_width,
+                modes,
+                position,
+                ..
+            } => EnclosureEvidence {
+                certified: Flag::new("ω₁ enclosed by an exact certificate (continuous model)", true),
+                lower: Some(Quantity::based(
+                    "certified lower bound ω̲₁ of ω₁",
+                    *lower,
+                    Unit::PerSecond,
+                    ValueBasis::LowerBound,
+                )),
+                upper: Some(Quantity::based(
+                    "certified upper bound ω̄₁ of ω₁",
+                    *upper,
+                    Unit::PerSecond,
+                    ValueBasis::UpperBound,
+                )),
+                exact: Some(Text::text("ω̲₁ ≤ ω₁ ≤ ω̄₁, exact (1/s)", format!("{lower_exact} ≤ ω₁ ≤ {upper_exact}"))),
+                relative_width: Some(Quantity::based(
+                    "relative width (ω̄₁ − ω̲₁)/ω̲₁",
+                    *relative_width,
+                    Unit::Dimensionless,
+                    ValueBasis::Derived,
+                )),
+                modes: Some(Quantity::count("modes k subtracted in the trace bound", *modes)),
+                position: position.map(|p| Fact::new("configured a/b against the enclosure", p)),
+                reason: None,
+            },
+            EnclosureSummary::NotCertified { reason } => EnclosureEvidence {
+                certified: Flag::new("ω₁ enclosed by an exact certificate (continuous model)", false),
+                lower: None,
+                upper: None,
+                exact: None,
+                relative_width: None,
+                modes: None,
+                position: None,
+                reason: Some(Text::text("why ω₁ is not certified", reason.clone())),
+            },
+        }
+    }
+
+    /// The configured a/b's position, when certified.
+    pub fn position(&self) -> Option<Position> {
+        self.position.as_ref().map(|p| p.value)
+    }
+
+    /// The enclosure in words.
+    fn interval(&self) -> Option<String> {
+        self.exact.as_ref().map(|x| {
+            let w =
+                self.relative_width.as_ref().map_or(String::new(), |w| format!(", relative width {}", w.value_text()));
+            format!("{} 1/s (exact certificate{w})", x.value)
+        })
+    }
+}
+
 /// The evidence of the `W-bounds` row.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct WBoundsEvidence {
@@ -154,7 +248,10 @@ pub struct WBoundsEvidence {
     pub a_over_b_max_galerkin: Quantity,
     /// The same with the printed cross term, on that space.
     pub a_over_b_max_printed_cross_term: Quantity,
-    /// W ≻ 0 at the configured (a, b), decided against the error of ω₁.
+    /// The certified enclosure of ω₁ for the continuous model.
+    pub omega1_enclosure: EnclosureEvidence,
+    /// W ≻ 0 at the configured (a, b): by the enclosure when a/b lies outside it, else against
+    /// the error of the converged ω₁.
     pub w_positive_definite: Fact<Decision>,
     /// The SDP cross-check (evidence only; the verdict never rests on it).
     pub sdp_cross_check: Table<SdpRecord>,
@@ -231,7 +328,11 @@ fn evidence_of(cfg: &Config, c: &Computed) -> WBoundsEvidence {
             &format!("largest a/b with W ≻ 0, printed cross term, {} elements", c.ratio_galerkin.0),
             c.ratio_printed_cross,
         ),
-        w_positive_definite: Fact::new("W ≻ 0 at the configured a, b", theory::w_positive_definite(a, b, c.omega1)),
+        omega1_enclosure: EnclosureEvidence::of(&c.enclosure),
+        w_positive_definite: Fact::new(
+            "W ≻ 0 at the configured a, b",
+            super::decide(&c.enclosure, theory::w_positive_definite(a, b, c.omega1)),
+        ),
         sdp_cross_check: Table::new("SDP cross-check of λ2(N), λ1(N)", c.sdp.iter().map(SdpRecord::of).collect()),
         witness_w: c.witness.map(|(wx, _)| w_units("W(x) of the exact witness state", wx)),
         witness_kappa: c.witness.map(|(_, kx)| w_units("κ(x) of the witness state", kx)),
@@ -290,12 +391,19 @@ impl SdpRecord {
 }
 
 impl Explain for WBoundsEvidence {
-    /// W ≻ 0 decided → holds after correction; indefinite → fails (an exact witness when found);
-    /// within the error of ω₁ → inconclusive.
+    /// W ≻ 0 decided → holds after correction; indefinite → fails; within the error of ω₁ →
+    /// inconclusive. The basis is the exact certificate when the enclosure decides W ≻ 0 (or an
+    /// exact witness shows W indefinite), else the float solver.
     fn verdict(&self) -> (Verdict, Basis) {
+        let certified = self.omega1_enclosure.position();
         match self.w_positive_definite.value {
+            Decision::Yes if certified == Some(Position::Below) => {
+                (Verdict::HoldsAfterCorrection, Basis::ExactCertificate)
+            }
             Decision::Yes => (Verdict::HoldsAfterCorrection, Basis::FloatSolver),
-            Decision::No if self.witness_w.is_some() => (Verdict::Fails, Basis::ExactCertificate),
+            Decision::No if certified == Some(Position::Above) || self.witness_w.is_some() => {
+                (Verdict::Fails, Basis::ExactCertificate)
+            }
             Decision::No => (Verdict::Fails, Basis::FloatSolver),
             Decision::Undecided => (Verdict::Inconclusive, Basis::FloatSolver),
         }
@@ -315,11 +423,18 @@ impl Explain for WBoundsEvidence {
         } else {
             format!("As printed, λ2 = y2 − y3 = {} ≥ 0 at the configured a, b.", fmt(l2))
         };
-        let here = match self.w_positive_definite.value {
-            Decision::Yes => "W is positive definite there",
-            Decision::No if self.witness_w.is_some() => "W is indefinite there (an exact rational state has W < 0)",
-            Decision::No => "W is indefinite there",
-            Decision::Undecided => "that is within the error of the threshold, so W ≻ 0 is not decided",
+        let certified = self.omega1_enclosure.position();
+        let here = match (self.w_positive_definite.value, certified) {
+            (Decision::Yes, Some(Position::Below)) => {
+                "W is positive definite there (proved: below the certified enclosure)"
+            }
+            (Decision::Yes, _) => "W is positive definite there",
+            (Decision::No, Some(Position::Above)) => "W is indefinite there (proved: above the certified enclosure)",
+            (Decision::No, _) if self.witness_w.is_some() => {
+                "W is indefinite there (an exact rational state has W < 0)"
+            }
+            (Decision::No, _) => "W is indefinite there",
+            (Decision::Undecided, _) => "that is within the error of the threshold, so W ≻ 0 is not decided",
         };
         vec![
             printed,
@@ -337,7 +452,10 @@ impl Explain for WBoundsEvidence {
     }
 
     fn decisive(&self) -> Vec<Quantity> {
-        vec![self.lambda2_printed.clone(), self.lambda2_tight.clone(), self.a_over_b_max.clone(), self.a_over_b.clone()]
+        let mut out = vec![self.lambda2_printed.clone(), self.lambda2_tight.clone(), self.a_over_b_max.clone()];
+        out.extend(self.omega1_enclosure.lower.iter().cloned());
+        out.push(self.a_over_b.clone());
+        out
     }
 
     fn details(&self) -> Vec<String> {
@@ -358,6 +476,17 @@ impl Explain for WBoundsEvidence {
             self.a_over_b_max_galerkin.label,
             fmt(&self.a_over_b_max_galerkin)
         ));
+        d.push(match (self.omega1_enclosure.interval(), self.omega1_enclosure.position()) {
+            (Some(i), Some(Position::Inside)) => format!(
+                "The configured a/b lies inside the certified enclosure {i}, so the certificate does not decide W ≻ 0 here; the converged float ω₁ does (evidence)."
+            ),
+            (Some(i), Some(_)) => format!("The certified enclosure {i} decides W ≻ 0 at the configured a/b for the continuous model."),
+            (Some(i), None) => format!("The certified enclosure is {i}; b = 0, so a/b is undefined."),
+            (None, _) => format!(
+                "ω₁ is not certified ({}), so the decision rests on the converged float ω₁.",
+                self.omega1_enclosure.reason.as_ref().map_or("no reason recorded", |r| r.value.as_str())
+            ),
+        });
         d.push(self.sdp_sentence());
         d
     }
@@ -369,10 +498,16 @@ impl Explain for WBoundsEvidence {
                 fmt(&self.lambda2_tight),
                 fmt(&self.lambda1_tight)
             )),
-            Decision::No => Some(format!(
-                "choose a/b < ω₁ = {} and use the tight λ2* (positive there) instead of y2 − y3",
-                fmt(&self.a_over_b_max)
-            )),
+            Decision::No => Some(match &self.omega1_enclosure.lower {
+                Some(lower) => format!(
+                    "choose a/b < ω̲₁ = {} (certified: W ≻ 0 is then proved) and use the tight λ2* (positive there) instead of y2 − y3",
+                    lower.value_text()
+                ),
+                None => format!(
+                    "choose a/b < ω₁ = {} and use the tight λ2* (positive there) instead of y2 − y3",
+                    fmt(&self.a_over_b_max)
+                ),
+            }),
             Decision::Undecided => None,
         }
     }
@@ -421,7 +556,7 @@ pub fn check(cfg: &Config, settings: &CheckSettings) -> Result<WBounds, ClaimsEr
             "state space discretised by cubic Hermite q, linear θ, discontinuous cubic velocities on N ∈ {:?} uniform elements (the SDP cross-check on N ∈ {:?}); the infimum over the velocities is exact",
             settings.w_grids, settings.sdp_grids
         ),
-        "the threshold ω₁ is the converged fundamental frequency (Romberg over uniform FE meshes 16, 32, …, with its error estimate); the Galerkin value on the finest space, an upper bound (Rayleigh–Ritz), is a cross-check".into(),
+        "the threshold ω₁: W ≻ 0 iff a/b < ω₁ for the continuous model (the per-mode argument in model.md); decided by the certified enclosure ω̲₁ ≤ ω₁ ≤ ω̄₁ (omega1-enclosure.json: a Rayleigh quotient above, the trace of the compliance operator with exact inertia counts below) when a/b lies outside it, else by the converged fundamental frequency (Romberg over uniform FE meshes 16, 32, …, with its error estimate); the Galerkin value on the finest space, an upper bound (Rayleigh–Ritz), is a cross-check".into(),
     ];
     let plots = vec![refinement_plot(&e)];
     let row = ClaimRow::decided(ClaimId::WBounds, e.clone(), assumptions, plots);

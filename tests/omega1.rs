@@ -1,0 +1,172 @@
+//! The certified enclosure ω̲₁ ≤ ω₁ ≤ ω̄₁ of the continuous wing against an independent
+//! high-precision ω₁ (the characteristic determinant of the cantilever ODE, computed here), on
+//! the paper's wing, an SI-scale wing and a short, strongly coupled wing; and the W-bounds
+//! row's verdict resting on it at a/b = 0.9 ω₁, 1.1 ω₁ and inside the enclosure.
+
+mod common;
+
+use common::{paper_with, SI_WING};
+use wingcheck_claims::certify::omega1::{self, Position};
+use wingcheck_claims::{wbounds, Basis, CheckSettings, Verdict};
+use wingcheck_model::Config;
+
+/// A short wing with heavy coupling (ρ I_p = 2 against (ρx_c)² = 1.44).
+const COUPLED_WING: [&str; 6] =
+    ["wing.span=0.5", "wing.rho=2", "wing.rho_xc=1.2", "wing.ei=3", "wing.gj=0.8", "wing.ip=1"];
+
+/// e^A of a 6×6 matrix: Taylor series (30 terms) after scaling by 2^-m with ‖A‖/2^m ≤ 1/2,
+/// then m squarings.
+fn expm(a: &[[f64; 6]; 6]) -> [[f64; 6]; 6] {
+    let norm = a.iter().map(|r| r.iter().map(|x| x.abs()).sum::<f64>()).fold(0.0, f64::max);
+    let m = (norm / 0.5).log2().ceil().max(0.0) as i32;
+    let s = 0.5f64.powi(m);
+    let mut term = [[0.0; 6]; 6];
+    let mut sum = [[0.0; 6]; 6];
+    for i in 0..6 {
+        term[i][i] = 1.0;
+        sum[i][i] = 1.0;
+    }
+    let mul = |x: &[[f64; 6]; 6], y: &[[f64; 6]; 6]| {
+        let mut z = [[0.0; 6]; 6];
+        for i in 0..6 {
+            for k in 0..6 {
+                for j in 0..6 {
+                    z[i][j] += x[i][k] * y[k][j];
+                }
+            }
+        }
+        z
+    };
+    let scaled = a.map(|r| r.map(|x| x * s));
+    for k in 1..30 {
+        term = mul(&term, &scaled).map(|r| r.map(|x| x / k as f64));
+        for i in 0..6 {
+            for j in 0..6 {
+                sum[i][j] += term[i][j];
+            }
+        }
+    }
+    for _ in 0..m {
+        sum = mul(&sum, &sum);
+    }
+    sum
+}
+
+/// The characteristic determinant of the free vibration at ω, in x = z/s ∈ [0, 1]: the ODE
+/// q'''' = s⁴ω²(ρq − ρx_c θ)/EI, θ'' = s²ω²(ρx_c q − I_p θ)/GJ (from the model's PDE with
+/// q, θ ∝ e^{iωt}) for y = (q, q', q'', q''', θ, θ'); the clamp leaves q''(0), q'''(0), θ'(0)
+/// free, the free tip needs q''(1) = q'''(1) = θ'(1) = 0: D(ω) = det of that 3×3 block of e^A.
+fn char_det(cfg: &Config, omega: f64) -> f64 {
+    let w = &cfg.wing;
+    let (al, be) = (w.span.powi(4) * omega * omega / w.ei, w.span.powi(2) * omega * omega / w.gj);
+    let mut a = [[0.0; 6]; 6];
+    a[0][1] = 1.0;
+    a[1][2] = 1.0;
+    a[2][3] = 1.0;
+    a[3][0] = al * w.rho;
+    a[3][4] = -al * w.rho_xc;
+    a[4][5] = 1.0;
+    a[5][0] = be * w.rho_xc;
+    a[5][4] = -be * w.ip;
+    let e = expm(&a);
+    let (r, c) = ([2, 3, 5], [2, 3, 5]);
+    let m = |i: usize, j: usize| e[r[i]][c[j]];
+    m(0, 0) * (m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1)) - m(0, 1) * (m(1, 0) * m(2, 2) - m(1, 2) * m(2, 0))
+        + m(0, 2) * (m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0))
+}
+
+/// Lowest root of D: scan up from 1 % of the smaller uncoupled frequency (ω₁ lies below both
+/// by interlacing) in 0.5 % steps to the first sign change, then bisect to round-off.
+fn omega1_reference(cfg: &Config) -> f64 {
+    let w = &cfg.wing;
+    let bending = 1.875104068711961f64.powi(2) / w.span.powi(2) * (w.ei / w.rho).sqrt();
+    let torsion = std::f64::consts::FRAC_PI_2 / w.span * (w.gj / w.ip).sqrt();
+    let mut lo = 0.01 * bending.min(torsion);
+    let d0 = char_det(cfg, lo);
+    let mut hi = lo;
+    while char_det(cfg, hi).signum() == d0.signum() {
+        lo = hi;
+        hi *= 1.005;
+        assert!(hi < 1.01 * bending.min(torsion), "no root below the uncoupled frequencies");
+    }
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if char_det(cfg, mid).signum() == d0.signum() {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+#[test]
+fn the_enclosure_contains_the_characteristic_determinant_root() {
+    let mut si: Vec<&str> = SI_WING.to_vec();
+    si.push("wing.rho_xc=3.5");
+    for (name, sets, width) in
+        [("paper", vec![], 1e-8), ("SI-scale", si, 1e-8), ("short coupled", COUPLED_WING.to_vec(), 2e-7)]
+    {
+        let cfg = paper_with(&sets);
+        let reference = omega1_reference(&cfg);
+        // A second, independent value: the simulator's ω₁ converged over FE meshes (its own
+        // estimate ~1e-12; the two agree to ≤ 3e-15 on these wings).
+        let fe = wingcheck_sim::modes::fundamental_frequency(&cfg).unwrap();
+        println!("{name}: determinant root vs converged FE: {:.1e} relative", (reference / fe.value - 1.0).abs());
+        assert!(
+            (reference / fe.value - 1.0).abs() < 1e-13,
+            "{name}: determinant root {reference:.15} vs converged FE {:.15}",
+            fe.value
+        );
+        // The reference's uncertainty, taken as 1e-12 relative (≥ 300× the two methods'
+        // disagreement), must lie entirely inside the certified enclosure.
+        let c = omega1::compute(&cfg).unwrap();
+        let e = &c.1;
+        let (lo, hi) = (e.lower_f64(), e.upper_f64());
+        println!(
+            "{name}: {lo:.16} ≤ ω₁ = {reference:.16} ≤ {hi:.16}, relative width {:.2e} (below {:.2e}, above {:.2e})",
+            e.relative_width(),
+            1.0 - lo / reference,
+            hi / reference - 1.0
+        );
+        assert!(lo <= reference * (1.0 - 1e-12) && reference * (1.0 + 1e-12) <= hi, "{name}: not contained");
+        assert!(e.relative_width() <= width, "{name}: relative width {:.2e} > {width:.0e}", e.relative_width());
+    }
+}
+
+/// The W-bounds row at a/b = a (b = 1): verdict, basis, its finding and details, the enclosure.
+fn row_at(sets: &[&str], a: f64) -> (Verdict, Basis, String, wbounds::EnclosureEvidence) {
+    let a_set = format!("control.a={a}");
+    let mut sets = sets.to_vec();
+    sets.extend(["control.b=1", a_set.as_str()]);
+    let w = wbounds::check(&paper_with(&sets), &CheckSettings::default()).unwrap();
+    let text = format!("{} {}", w.row.finding_text(), w.row.details.join(" "));
+    (w.row.verdict, w.row.basis, text, w.evidence.omega1_enclosure.clone())
+}
+
+#[test]
+fn the_w_bounds_verdict_rests_on_the_enclosure_outside_it_and_says_so_inside() {
+    for sets in [vec![], SI_WING.to_vec()] {
+        let cfg = paper_with(&sets);
+        let (lo, hi) = {
+            let c = omega1::compute(&cfg).unwrap();
+            (c.1.lower_f64(), c.1.upper_f64())
+        };
+        let omega = 0.5 * (lo + hi);
+        // a/b = 0.9 ω₁: W ≻ 0 proved; a/b = 1.1 ω₁: W proved not positive definite.
+        let (v, b, s, e) = row_at(&sets, 0.9 * omega);
+        assert_eq!(
+            (v, b, e.position()),
+            (Verdict::HoldsAfterCorrection, Basis::ExactCertificate, Some(Position::Below))
+        );
+        assert!(s.contains("proved: below the certified enclosure"), "{s}");
+        let (v, b, s, e) = row_at(&sets, 1.1 * omega);
+        assert_eq!((v, b, e.position()), (Verdict::Fails, Basis::ExactCertificate, Some(Position::Above)));
+        assert!(s.contains("proved: above the certified enclosure"), "{s}");
+        // Inside the enclosure the row says so, and its verdict is the float one (evidence).
+        let (_, b, s, e) = row_at(&sets, omega);
+        assert_eq!(e.position(), Some(Position::Inside), "{e:?}");
+        assert_eq!(b, Basis::FloatSolver);
+        assert!(s.contains("lies inside the certified enclosure"), "{s}");
+    }
+}
