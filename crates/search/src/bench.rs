@@ -7,8 +7,9 @@ use serde::Serialize;
 use wingcheck_model::{apply_overrides, Config};
 use wingcheck_sim::{simulate, RunOptions};
 
-use crate::modal::{InputSignal, ModalBasis, RunCache};
+use crate::modal::{ModalBasis, RunCache};
 use crate::{finalize, run, RunControl, Search, SearchError, SearchOptions};
+use wingcheck_sim::modal::RecordedSignal;
 
 /// One timed run of the whole search.
 #[derive(Debug, Clone, Serialize)]
@@ -109,7 +110,7 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
     let basis = ModalBasis::new(&cfg).map_err(|e| SearchError::Options(e.to_string()))?;
     let modal_basis_seconds = start.elapsed().as_secs_f64();
     let start = Instant::now();
-    let signal = InputSignal::new(&cfg);
+    let signal = RecordedSignal::new(&cfg);
     let input_signal_seconds = start.elapsed().as_secs_f64();
     let (mut modal, mut simulator) = (Vec::new(), Vec::new());
     let runs_cache = RunCache::new();

@@ -17,19 +17,22 @@
 //! eigenproblem with ω² spanning many decades; ≤ 3e-11 on FD wings), not bit for bit.
 //! [`simulate_modal`] is `simulate` in this basis; `discretisation.basis` chooses.
 
+mod drive;
 mod exact;
 mod run;
 pub mod scheme;
 mod signal;
+mod woodbury;
 
 use faer::{Mat, Side};
 use wingcheck_model::{Config, MODAL_MAX_UNKNOWNS};
 
 use crate::{Discretisation, SimError};
 
+pub use drive::{drive, Recorder, Signal};
 pub use run::simulate_modal;
 pub use scheme::{dot, ModalLoop, ModalState, StepInput};
-pub use signal::{ObserverSignal, SampleInput};
+pub use signal::{ObserverSignal, RecordedSignal, Replay, SampleInput};
 
 /// The wing in its modal basis (units: ω² in 1/s², modal coordinates in √kg·m).
 #[derive(Debug)]
@@ -51,6 +54,27 @@ pub struct ModalBasis {
 }
 
 impl ModalBasis {
+    /// A text that is equal for two configurations exactly when their modal bases (and the
+    /// choice of basis, [`crate::resolved_basis`]) are: everything [`Discretisation::new`]
+    /// reads (wing, method, grid, grading, initial shape, distributed load, output grid),
+    /// `discretisation.basis` and whether the stepper is `exponential` (which needs the modal
+    /// basis where `auto` would step in the nodal one). The search's cache key.
+    pub fn key(cfg: &Config) -> String {
+        serde_json::to_string(&(
+            &cfg.wing,
+            &cfg.discretisation.method,
+            &cfg.discretisation.basis,
+            cfg.discretisation.stepper == wingcheck_model::TimeScheme::Exponential,
+            cfg.discretisation.elements,
+            cfg.discretisation.fd_points,
+            cfg.discretisation.grading,
+            &cfg.initial,
+            &cfg.disturbance.distributed,
+            cfg.horizon.field_points,
+        ))
+        .expect("a config serialises")
+    }
+
     /// Modal basis of the configuration's discretised wing; refused above
     /// [`MODAL_MAX_UNKNOWNS`] unknowns (dense O(n³) eigenproblem).
     pub fn new(cfg: &Config) -> Result<ModalBasis, SimError> {
