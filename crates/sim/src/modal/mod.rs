@@ -127,8 +127,20 @@ impl ModalBasis {
     }
 
     /// Mechanical energy ½ Σ (ζ_i² + ω_i² η_i²) = ½(vᵀMv + xᵀKx) (J).
+    /// Summed in [`woodbury::LANES`] partial sums, as [`dot`].
     pub fn energy(&self, eta: &[f64], zeta: &[f64]) -> f64 {
-        0.5 * zeta.iter().zip(eta).zip(&self.omega2).map(|((z, e), w)| z * z + w * e * e).sum::<f64>()
+        use woodbury::{total, LANES};
+        let n = self.len();
+        let (eta, zeta, om) = (&eta[..n], &zeta[..n], &self.omega2[..]);
+        let term = |z: f64, e: f64, w: f64| z * z + w * e * e;
+        let mut s = [0.0; LANES];
+        for ((z, e), w) in zeta.chunks_exact(LANES).zip(eta.chunks_exact(LANES)).zip(om.chunks_exact(LANES)) {
+            for l in 0..LANES {
+                s[l] += term(z[l], e[l], w[l]);
+            }
+        }
+        let tail = n - n % LANES;
+        0.5 * (tail..n).fold(total(&s), |acc, i| acc + term(zeta[i], eta[i], om[i]))
     }
 }
 

@@ -8,12 +8,22 @@ use wingcheck_model::{Config, ControllerKind, TimeScheme};
 use crate::{Sample, SimError};
 
 use super::exact::{ExactStep, LoopCoefficients};
-use super::woodbury::{padded_len, StepSolve};
+use super::woodbury::{padded_len, total, StepSolve, LANES};
 use super::{ModalBasis, SampleInput};
 
-/// Σ x_i y_i.
+/// Σ x_i y_i over the common length, in [`LANES`] partial sums combined in one fixed order
+/// (independent additions, so the sum vectorises; the same bits on every machine).
 pub fn dot(x: &[f64], y: &[f64]) -> f64 {
-    x.iter().zip(y).map(|(p, q)| p * q).sum()
+    let n = x.len().min(y.len());
+    let (x, y) = (&x[..n], &y[..n]);
+    let mut s = [0.0; LANES];
+    for (a, b) in x.chunks_exact(LANES).zip(y.chunks_exact(LANES)) {
+        for l in 0..LANES {
+            s[l] += a[l] * b[l];
+        }
+    }
+    let tail = n - n % LANES;
+    x[tail..].iter().zip(&y[tail..]).fold(total(&s), |acc, (a, b)| acc + a * b)
 }
 
 /// The modal state of the closed loop: x = Φη, v = Φζ, with the tip values and tip boundary

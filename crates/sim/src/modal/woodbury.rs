@@ -54,7 +54,7 @@ pub(crate) struct StepSolve {
 
 /// Σ of the partial sums, in one fixed order.
 #[inline(always)]
-fn total(a: &[f64; LANES]) -> f64 {
+pub(crate) fn total(a: &[f64; LANES]) -> f64 {
     ((a[0] + a[1]) + (a[2] + a[3])) + ((a[4] + a[5]) + (a[6] + a[7]))
 }
 
@@ -91,7 +91,7 @@ impl StepSolve {
         let (cz, ce, ld) = (scaled(&|_| 1.0 / alpha), scaled(&|i| om[i]), scaled(&|i| basis.load[i]));
         let (z0, z1) = (scaled(&|i| u[0][i]), scaled(&|i| u[1][i]));
         let (u0, u1) = (pad(u[0].clone()), pad(u[1].clone()));
-        let dot = |a: &[f64], b: &[f64]| (0..n).map(|i| a[i] * b[i]).sum::<f64>();
+        let dot = super::dot;
         let z: [Vec<f64>; 2] = [0, 1].map(|c| (0..n).map(|i| d_inv[i] * u[c][i]).collect());
         let q = [[dot(&u[0], &z[0]), dot(&u[0], &z[1])], [dot(&u[1], &z[0]), dot(&u[1], &z[1])]];
         let wk = [beta * gain[0], beta * gain[1]];
