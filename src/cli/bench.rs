@@ -334,7 +334,8 @@ fn bench_search(cfg: &wingcheck_model::Config, as_json: bool) -> anyhow::Result<
         );
     }
     if let [i, e] = &b.rules[..] {
-        let cpu = i.cpu_seconds_per_point.zip(e.cpu_seconds_per_point).map_or("-".into(), |(i, e)| format!("{:.2}", e / i));
+        let cpu =
+            i.cpu_seconds_per_point.zip(e.cpu_seconds_per_point).map_or("-".into(), |(i, e)| format!("{:.2}", e / i));
         println!(
             "ratio: explicit / implicit observer per point = {:.2} (wall), {cpu} (CPU)",
             e.wall_seconds_per_point / i.wall_seconds_per_point

@@ -64,7 +64,7 @@ pub struct SearchBench {
     pub input_signal_seconds: f64,
     /// Writing the final files (boundaries, heatmaps, CSV/JSON) of the complete search (s).
     pub finalize_seconds: f64,
-    /// One point's closed loop in the modal runner, median of 5 (s).
+    /// One point's closed loop as the search runs it (shared basis and signal), median of 5 (s).
     pub modal_point_seconds: f64,
     /// The same point with the simulator (`simulate` of the base configuration: modal basis,
     /// observer signal, full series and peaks), median of 5 before and 5 after the search runs
@@ -156,10 +156,11 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
     simulator.extend(simulate_seconds(&cfg, 5)?);
     let simulator_point_seconds = median(simulator);
     let most = thread_counts.iter().copied().max().unwrap_or(1);
-    let small = vec![format!("control.a=1e-4..10:log:8"), format!("control.b=1e-2..1e4:log:8")];
+    let small = vec!["control.a=1e-4..10:log:8".to_string(), "control.b=1e-2..1e4:log:8".to_string()];
     let mut rules = Vec::new();
     for rule in ["implicit", "explicit"] {
-        let c = apply_overrides(base, &[format!("observer.rule={rule}")]).map_err(|e| SearchError::Options(e.to_string()))?;
+        let c = apply_overrides(base, &[format!("observer.rule={rule}")])
+            .map_err(|e| SearchError::Options(e.to_string()))?;
         let (wall, cpu, s) = timed_run(&c, &small, most, &tmp.path().join(format!("rule-{rule}")))?;
         let points = s.evaluated.max(1) as f64;
         rules.push(RuleTiming {
