@@ -1,9 +1,15 @@
 #!/usr/bin/env bash
 # Start a single-node Slurm on this machine (Debian/Ubuntu, as root) to try
-# scripts/slurm-search.sh; tests/search_distributed.rs then runs its Slurm test (it skips,
-# saying so, while `sinfo` does not answer). Stop it with: kill $(cat /run/slurmd.pid)
-# $(cat /run/slurmctld.pid) and munged's pid. Not used by CI.
+# scripts/slurm-search.sh; then `cargo test --release --test search_distributed -- --ignored`
+# runs the Slurm tests. `scripts/local-slurm.sh stop` stops the daemons it started (by their
+# pid files). .ci/run uses it.
 set -euo pipefail
+if [ "${1:-}" = stop ]; then
+    for f in /run/slurmd.pid /run/slurmctld.pid /run/munge/munged.pid; do
+        if [ -f "$f" ]; then kill "$(cat "$f")" 2>/dev/null || true; fi
+    done
+    exit 0
+fi
 command -v slurmctld >/dev/null || DEBIAN_FRONTEND=noninteractive apt-get install -y -q slurm-wlm
 host=$(hostname)
 cpus=$(nproc)
@@ -32,9 +38,19 @@ NodeName=$host CPUs=$cpus State=UNKNOWN
 PartitionName=debug Nodes=ALL Default=YES MaxTime=INFINITE State=UP
 CONF
 chown -R munge:munge /etc/munge /run/munge /var/lib/munge /var/log/munge
-pgrep -x munged >/dev/null || su -s /bin/sh munge -c /usr/sbin/munged
-pgrep -x slurmctld >/dev/null || /usr/sbin/slurmctld
+# running PIDFILE: the daemon of that pid file is alive (not a zombie left by an earlier run)
+running() {
+    local state
+    state=$(awk '/^State:/ { print $2 }' "/proc/$(cat "$1" 2>/dev/null)/status" 2>/dev/null || true)
+    [ -n "$state" ] && [ "$state" != Z ]
+}
+running /run/munge/munged.pid || su -s /bin/sh munge -c /usr/sbin/munged
+running /run/slurmctld.pid || /usr/sbin/slurmctld
 sleep 2
-pgrep -x slurmd >/dev/null || /usr/sbin/slurmd
-for _ in $(seq 20); do sinfo >/dev/null 2>&1 && break; sleep 1; done
+running /run/slurmd.pid || /usr/sbin/slurmd
+# wait until the node takes jobs (idle), not just until the controller answers
+for _ in $(seq 30); do
+    [ "$(timeout 5 sinfo -h -o %t 2>/dev/null)" = idle ] && break
+    sleep 1
+done
 sinfo

@@ -313,11 +313,40 @@ fn bench_search(cfg: &wingcheck_model::Config, as_json: bool) -> anyhow::Result<
         );
     }
     println!(
-        "one point's closed loop: modal runner {:.2} ms vs the simulator {:.2} ms ({:.1}× faster)",
+        "one point's closed loop: {:.2} ms in the search vs {:.2} ms for the default `simulate` run (ratio {:.2})",
         1e3 * b.modal_point_seconds,
         1e3 * b.simulator_point_seconds,
-        b.simulator_point_seconds / b.modal_point_seconds
+        b.modal_point_seconds / b.simulator_point_seconds
     );
+    if let Some(r) = b.runs.last() {
+        println!(
+            "ratio: search wall at {} threads / ({} × one default simulate run) = {:.3} / ({} × {:.2} ms) = {:.3}",
+            r.threads,
+            b.points,
+            r.wall_seconds,
+            b.points,
+            1e3 * b.simulator_point_seconds,
+            b.wall_over_simulate_runs
+        );
+    }
+    for r in &b.rules {
+        let cpu = r.cpu_seconds_per_point.map_or("-".into(), |c| format!("{:.2}", 1e3 * c));
+        println!(
+            "observer.rule={} ({} scheme), {} points: {:.2} ms wall, {cpu} ms CPU per point",
+            r.rule,
+            r.scheme,
+            r.points,
+            1e3 * r.wall_seconds_per_point
+        );
+    }
+    if let [i, e] = &b.rules[..] {
+        let cpu =
+            i.cpu_seconds_per_point.zip(e.cpu_seconds_per_point).map_or("-".into(), |(i, e)| format!("{:.2}", e / i));
+        println!(
+            "ratio: explicit / implicit observer per point = {:.2} (wall), {cpu} (CPU)",
+            e.wall_seconds_per_point / i.wall_seconds_per_point
+        );
+    }
     println!(
         "once per search: modal basis {:.2} ms, observer signal {:.2} ms; final files {:.2} s",
         1e3 * b.modal_basis_seconds,

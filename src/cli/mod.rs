@@ -31,8 +31,14 @@ enum Command {
     /// Write the self-contained HTML report (claim ledger, Figures 3–20, accuracy, provenance).
     Report(report::ReportArgs),
     /// Map the gain region where the theorems' conditions hold and where the closed loop performs.
+    ///
+    /// Exit status: 0 every point ok, 3 finished with some points failed (failures.csv),
+    /// 1 an error, 2 a usage error.
     Search(search::SearchArgs),
     /// Combine the output directories of `search --shard K/N` runs.
+    ///
+    /// Exit status: 0 every point ok, 3 merged with some points failed (failures.csv),
+    /// 1 an error (e.g. missing chunks), 2 a usage error.
     Merge(search::MergeArgs),
     /// The claim ledger: one verdict per claim of the paper, with evidence and assumptions.
     Check(check::CheckArgs),

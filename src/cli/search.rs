@@ -115,7 +115,13 @@ pub fn run_search(a: SearchArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Exit status 2 when the results are complete but some points failed (1 is an error).
+/// Exit status of `search` and `merge` when the run finished (the search, or this shard) but
+/// some points failed (diverged or error; listed in failures.csv): its own status, distinct
+/// from 1 (an error) and 2 (a usage error, clap's), so a script can tell a complete run with
+/// failed points from a command that did not run.
+pub const EXIT_POINTS_FAILED: i32 = 3;
+
+/// Exit with [`EXIT_POINTS_FAILED`] when some points failed.
 fn exit_on_failures(s: &RunSummary) {
     let failed = match s.failed_total {
         Some((diverged, errors)) => {
@@ -132,7 +138,7 @@ fn exit_on_failures(s: &RunSummary) {
         None => s.failed,
     };
     if failed > 0 {
-        std::process::exit(2);
+        std::process::exit(EXIT_POINTS_FAILED);
     }
 }
 

@@ -1,5 +1,7 @@
 //! `wingcheck bench --what search`: points per second on the paper's 32×32 (a, b) grid with
-//! 1 and 2 threads, and where the time goes.
+//! 1 and 2 threads, where the time goes, and the ratios the search is held to, each measured in
+//! the same run: the search's wall time against `points` × one default `simulate` run, and the
+//! explicit observer's cost per point against the implicit one's.
 
 use std::time::Instant;
 
@@ -7,8 +9,9 @@ use serde::Serialize;
 use wingcheck_model::{apply_overrides, Config};
 use wingcheck_sim::{simulate, RunOptions};
 
-use crate::modal::{InputSignal, ModalBasis, RunCache};
+use crate::modal::{ModalBasis, RunCache};
 use crate::{finalize, run, RunControl, Search, SearchError, SearchOptions};
+use wingcheck_sim::modal::RecordedSignal;
 
 /// One timed run of the whole search.
 #[derive(Debug, Clone, Serialize)]
@@ -61,16 +64,63 @@ pub struct SearchBench {
     pub input_signal_seconds: f64,
     /// Writing the final files (boundaries, heatmaps, CSV/JSON) of the complete search (s).
     pub finalize_seconds: f64,
-    /// One point's closed loop in the modal runner, median of 5 (s).
+    /// One point's closed loop as the search runs it (shared basis and signal), median of 5 (s).
     pub modal_point_seconds: f64,
-    /// The same point with the simulator (`simulate`: sparse step solve, observer in the
-    /// loop, full series), median of 5 (s) — the search's per-point cost before.
+    /// The same point with the simulator (`simulate` of the base configuration: modal basis,
+    /// observer signal, full series and peaks), median of 5 before and 5 after the search runs
+    /// (s): the unit of the search's ratio.
     pub simulator_point_seconds: f64,
+    /// Wall time of the run with the most threads / (points × `simulator_point_seconds`).
+    pub wall_over_simulate_runs: f64,
+    /// The implicit and the explicit observer on a smaller grid of the same axes.
+    pub rules: Vec<RuleTiming>,
+}
+
+/// A search with one observer rule (`observer.rule`), on the 8 × 8 grid of the same axes with
+/// the most threads: its cost per point.
+#[derive(Debug, Clone, Serialize)]
+pub struct RuleTiming {
+    /// `implicit` or `explicit`.
+    pub rule: String,
+    /// The time scheme its points use (`discretisation.stepper`, `auto` resolved).
+    pub scheme: String,
+    /// Points.
+    pub points: usize,
+    /// Wall time per point (s).
+    pub wall_seconds_per_point: f64,
+    /// Process CPU time per point (s), where measurable.
+    pub cpu_seconds_per_point: Option<f64>,
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     v[v.len() / 2]
+}
+
+/// One timed whole search of `axes` on `base` with `threads` threads in a new directory under
+/// `tmp`: (wall s, CPU s, summary).
+fn timed_run(
+    base: &Config,
+    axes: &[String],
+    threads: usize,
+    dir: &std::path::Path,
+) -> Result<(f64, Option<f64>, crate::RunSummary), SearchError> {
+    let search = Search::new(base.clone(), axes, SearchOptions::default())?;
+    let (start, cpu0) = (Instant::now(), process_cpu_seconds());
+    let s = run(&search, dir, RunControl { threads: Some(threads), ..Default::default() })?;
+    let wall = start.elapsed().as_secs_f64();
+    Ok((wall, cpu0.zip(process_cpu_seconds()).map(|(a, b)| b - a), s))
+}
+
+/// Median wall time (s) of `repeats` default `simulate` runs of `cfg`.
+fn simulate_seconds(cfg: &Config, repeats: usize) -> Result<Vec<f64>, SearchError> {
+    (0..repeats)
+        .map(|_| {
+            let start = Instant::now();
+            simulate(cfg, RunOptions::default()).map_err(|e| SearchError::Options(e.to_string()))?;
+            Ok(start.elapsed().as_secs_f64())
+        })
+        .collect()
 }
 
 /// Run the benchmark on `base` (the paper config by default): the grid
@@ -83,14 +133,13 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
     let axes = vec![format!("control.a=1e-4..10:log:{n}"), format!("control.b=1e-2..1e4:log:{n}")];
     let search = Search::new(base.clone(), &axes, SearchOptions::default())?;
     let tmp = tempfile::tempdir().map_err(|e| SearchError::Io { path: "temp dir".into(), detail: e.to_string() })?;
+    let cfg = apply_overrides(base, &[]).map_err(|e| SearchError::Options(e.to_string()))?;
+    let mut simulator = simulate_seconds(&cfg, 5)?;
     let mut runs = Vec::new();
     let mut finalize_seconds = 0.0;
     for (k, &threads) in thread_counts.iter().enumerate() {
         let dir = tmp.path().join(format!("run-{k}"));
-        let (start, cpu0) = (Instant::now(), process_cpu_seconds());
-        let s = run(&search, &dir, RunControl { threads: Some(threads), ..Default::default() })?;
-        let wall = start.elapsed().as_secs_f64();
-        let cpu_seconds = cpu0.zip(process_cpu_seconds()).map(|(a, b)| b - a);
+        let (wall, cpu_seconds, s) = timed_run(base, &axes, threads, &dir)?;
         runs.push(ThreadTiming {
             threads,
             wall_seconds: wall,
@@ -104,24 +153,40 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
         finalize(&dir)?;
         finalize_seconds = start.elapsed().as_secs_f64();
     }
-    let cfg = apply_overrides(base, &[]).map_err(|e| SearchError::Options(e.to_string()))?;
+    simulator.extend(simulate_seconds(&cfg, 5)?);
+    let simulator_point_seconds = median(simulator);
+    let most = thread_counts.iter().copied().max().unwrap_or(1);
+    let small = vec!["control.a=1e-4..10:log:8".to_string(), "control.b=1e-2..1e4:log:8".to_string()];
+    let mut rules = Vec::new();
+    for rule in ["implicit", "explicit"] {
+        let c = apply_overrides(base, &[format!("observer.rule={rule}")])
+            .map_err(|e| SearchError::Options(e.to_string()))?;
+        let (wall, cpu, s) = timed_run(&c, &small, most, &tmp.path().join(format!("rule-{rule}")))?;
+        let points = s.evaluated.max(1) as f64;
+        rules.push(RuleTiming {
+            rule: rule.into(),
+            scheme: c.time_scheme(true).name().into(),
+            points: s.evaluated,
+            wall_seconds_per_point: wall / points,
+            cpu_seconds_per_point: cpu.map(|c| c / points),
+        });
+    }
     let start = Instant::now();
     let basis = ModalBasis::new(&cfg).map_err(|e| SearchError::Options(e.to_string()))?;
     let modal_basis_seconds = start.elapsed().as_secs_f64();
     let start = Instant::now();
-    let signal = InputSignal::new(&cfg);
+    let signal = RecordedSignal::new(&cfg);
     let input_signal_seconds = start.elapsed().as_secs_f64();
-    let (mut modal, mut simulator) = (Vec::new(), Vec::new());
+    let mut modal = Vec::new();
     let runs_cache = RunCache::new();
     for _ in 0..5 {
         let start = Instant::now();
         crate::point::closed_loop(&cfg, &runs_cache).map_err(|e| SearchError::Options(e.to_string()))?;
         modal.push(start.elapsed().as_secs_f64());
-        let start = Instant::now();
-        simulate(&cfg, RunOptions::default()).map_err(|e| SearchError::Options(e.to_string()))?;
-        simulator.push(start.elapsed().as_secs_f64());
     }
     drop((basis, signal));
+    let wall_over_simulate_runs =
+        runs.last().map_or(0.0, |r| r.wall_seconds / (search.points() as f64 * simulator_point_seconds));
     Ok(SearchBench {
         axes,
         points: search.points(),
@@ -132,6 +197,8 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
         input_signal_seconds,
         finalize_seconds,
         modal_point_seconds: median(modal),
-        simulator_point_seconds: median(simulator),
+        simulator_point_seconds,
+        wall_over_simulate_runs,
+        rules,
     })
 }

@@ -201,7 +201,7 @@ fn sim_metrics(s: &TipTrace, win: (f64, f64)) -> [Option<f64>; 12] {
     ]
 }
 
-/// The closed loop of `cfg`: the modal runner on the shared basis and observer signal, or the
+/// The closed loop of `cfg`: the simulator's modal driver on the shared basis and observer signal, or the
 /// simulator itself where the modal basis is not available (mass matrix not positive definite).
 pub fn closed_loop(cfg: &Config, runs: &RunCache) -> Result<TipTrace, SimError> {
     match &*runs.basis(cfg) {
@@ -254,7 +254,7 @@ pub fn evaluate(
     // the shared FTDO observer signal, whatever the point's controller.
     let mut ftdo = cfg.clone();
     ftdo.control.kind = ControllerKind::Ftdo;
-    let zetas = Some(runs.signal(&ftdo).sup_tilde(&ftdo));
+    let zetas = Some(crate::modal::sup_tilde(&runs.signal(&ftdo), &ftdo));
     r.sim_seconds = start.elapsed().as_secs_f64();
 
     let start = Instant::now();

@@ -325,7 +325,7 @@ fn simulate_nodal(
 
 /// Stop with a message saying when and why if the state is no longer finite or the energy
 /// has grown beyond any physical meaning (energy above 1e12 × (1 + E(0)), E in J). Public so
-/// that other runners of the same closed loop (the search's modal runner) use the same rule.
+/// that every runner of the closed loop (the nodal stepper, the modal driver) uses the same rule.
 pub fn check_sample(s: &Sample, e0: f64) -> Result<(), SimError> {
     let values = [
         ("q(s,t)", s.q_tip),

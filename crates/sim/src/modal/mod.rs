@@ -17,19 +17,22 @@
 //! eigenproblem with ω² spanning many decades; ≤ 3e-11 on FD wings), not bit for bit.
 //! [`simulate_modal`] is `simulate` in this basis; `discretisation.basis` chooses.
 
+mod drive;
 mod exact;
 mod run;
 pub mod scheme;
 mod signal;
+mod woodbury;
 
 use faer::{Mat, Side};
 use wingcheck_model::{Config, MODAL_MAX_UNKNOWNS};
 
 use crate::{Discretisation, SimError};
 
+pub use drive::{drive, Recorder, Signal};
 pub use run::simulate_modal;
 pub use scheme::{dot, ModalLoop, ModalState, StepInput};
-pub use signal::{ObserverSignal, SampleInput};
+pub use signal::{ObserverSignal, RecordedSignal, Replay, SampleInput};
 
 /// The wing in its modal basis (units: ω² in 1/s², modal coordinates in √kg·m).
 #[derive(Debug)]
@@ -51,6 +54,27 @@ pub struct ModalBasis {
 }
 
 impl ModalBasis {
+    /// A text that is equal for two configurations exactly when their modal bases (and the
+    /// choice of basis, [`crate::resolved_basis`]) are: everything [`Discretisation::new`]
+    /// reads (wing, method, grid, grading, initial shape, distributed load, output grid),
+    /// `discretisation.basis` and whether the stepper is `exponential` (which needs the modal
+    /// basis where `auto` would step in the nodal one). The search's cache key.
+    pub fn key(cfg: &Config) -> String {
+        serde_json::to_string(&(
+            &cfg.wing,
+            &cfg.discretisation.method,
+            &cfg.discretisation.basis,
+            cfg.discretisation.stepper == wingcheck_model::TimeScheme::Exponential,
+            cfg.discretisation.elements,
+            cfg.discretisation.fd_points,
+            cfg.discretisation.grading,
+            &cfg.initial,
+            &cfg.disturbance.distributed,
+            cfg.horizon.field_points,
+        ))
+        .expect("a config serialises")
+    }
+
     /// Modal basis of the configuration's discretised wing; refused above
     /// [`MODAL_MAX_UNKNOWNS`] unknowns (dense O(n³) eigenproblem).
     pub fn new(cfg: &Config) -> Result<ModalBasis, SimError> {
@@ -103,8 +127,20 @@ impl ModalBasis {
     }
 
     /// Mechanical energy ½ Σ (ζ_i² + ω_i² η_i²) = ½(vᵀMv + xᵀKx) (J).
+    /// Summed in [`woodbury::LANES`] partial sums, as [`dot`].
     pub fn energy(&self, eta: &[f64], zeta: &[f64]) -> f64 {
-        0.5 * zeta.iter().zip(eta).zip(&self.omega2).map(|((z, e), w)| z * z + w * e * e).sum::<f64>()
+        use woodbury::{total, LANES};
+        let n = self.len();
+        let (eta, zeta, om) = (&eta[..n], &zeta[..n], &self.omega2[..]);
+        let term = |z: f64, e: f64, w: f64| z * z + w * e * e;
+        let mut s = [0.0; LANES];
+        for ((z, e), w) in zeta.chunks_exact(LANES).zip(eta.chunks_exact(LANES)).zip(om.chunks_exact(LANES)) {
+            for l in 0..LANES {
+                s[l] += term(z[l], e[l], w[l]);
+            }
+        }
+        let tail = n - n % LANES;
+        0.5 * (tail..n).fold(total(&s), |acc, i| acc + term(zeta[i], eta[i], om[i]))
     }
 }
 

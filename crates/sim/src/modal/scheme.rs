@@ -8,85 +8,22 @@ use wingcheck_model::{Config, ControllerKind, TimeScheme};
 use crate::{Sample, SimError};
 
 use super::exact::{ExactStep, LoopCoefficients};
+use super::woodbury::{padded_len, total, StepSolve, LANES};
 use super::{ModalBasis, SampleInput};
 
-/// The step matrix S = M/α + C + αK_c of the scheme in the modal basis: D + β U T Uᵀ with
-/// D = diag(1/α + (ξ + α)ω_i²) (1/s), β = b + αa, T = diag(k1, k2) and U the tip rows of Φ;
-/// solved by the Woodbury identity with a 2×2 capacitance matrix, O(n) per solve.
-#[derive(Debug)]
-pub(crate) struct StepSolve {
-    /// D⁻¹/α: the factor of ζ in D⁻¹ r.
-    coef_zeta: Vec<f64>,
-    /// D⁻¹Ω²: the factor of η in D⁻¹ r.
-    coef_eta: Vec<f64>,
-    /// D⁻¹Φᵀf_h: the distributed load's shape.
-    load_d: Vec<f64>,
-    /// D⁻¹U.
-    z: [Vec<f64>; 2],
-    /// Q = Uᵀ D⁻¹ U.
-    q: [[f64; 2]; 2],
-    /// H = (I + βT Q)⁻¹ βT.
-    hm: [[f64; 2]; 2],
-}
-
-/// Σ x_i y_i.
+/// Σ x_i y_i over the common length, in [`LANES`] partial sums combined in one fixed order
+/// (independent additions, so the sum vectorises; the same bits on every machine).
 pub fn dot(x: &[f64], y: &[f64]) -> f64 {
-    x.iter().zip(y).map(|(p, q)| p * q).sum()
-}
-
-impl StepSolve {
-    pub(crate) fn new(
-        basis: &ModalBasis,
-        alpha: f64,
-        xi: f64,
-        beta: f64,
-        gain: [f64; 2],
-    ) -> Result<StepSolve, SimError> {
-        let (om, u) = (&basis.omega2, &basis.tip);
-        let d_inv: Vec<f64> = om.iter().map(|w| 1.0 / (1.0 / alpha + (xi + alpha) * w)).collect();
-        let z: [Vec<f64>; 2] = [0, 1].map(|c| d_inv.iter().zip(&u[c]).map(|(d, u)| d * u).collect());
-        let coef_zeta = d_inv.iter().map(|d| d / alpha).collect();
-        let coef_eta = d_inv.iter().zip(om).map(|(d, w)| d * w).collect();
-        let load_d = d_inv.iter().zip(&basis.load).map(|(d, f)| d * f).collect();
-        let q = [[dot(&u[0], &z[0]), dot(&u[0], &z[1])], [dot(&u[1], &z[0]), dot(&u[1], &z[1])]];
-        let wk = [beta * gain[0], beta * gain[1]];
-        let g = [[1.0 + wk[0] * q[0][0], wk[0] * q[0][1]], [wk[1] * q[1][0], 1.0 + wk[1] * q[1][1]]];
-        let det = g[0][0] * g[1][1] - g[0][1] * g[1][0];
-        if !(det.is_finite() && det > 0.0) {
-            return Err(SimError::Numerical(format!("step matrix capacitance is singular (det {det:e})")));
+    let n = x.len().min(y.len());
+    let (x, y) = (&x[..n], &y[..n]);
+    let mut s = [0.0; LANES];
+    for (a, b) in x.chunks_exact(LANES).zip(y.chunks_exact(LANES)) {
+        for l in 0..LANES {
+            s[l] += a[l] * b[l];
         }
-        let gi = [[g[1][1] / det, -g[0][1] / det], [-g[1][0] / det, g[0][0] / det]];
-        let hm = [[gi[0][0] * wk[0], gi[0][1] * wk[1]], [gi[1][0] * wk[0], gi[1][1] * wk[1]]];
-        Ok(StepSolve { coef_zeta, coef_eta, load_d, z, q, hm })
     }
-
-    /// y = D⁻¹ r for r = ζ/α − Ω²η + φ̄ Φᵀf_h + U f (f: tip forces, N and N m); returns Uᵀy.
-    /// Iterators over equal-length slices: no bounds checks, vectorised.
-    fn rhs(&self, u: &[Vec<f64>; 2], zeta: &[f64], eta: &[f64], phi: f64, f: [f64; 2], y: &mut [f64]) -> [f64; 2] {
-        let (mut t0, mut t1) = (0.0, 0.0);
-        for (((((yi, (&zt, &et)), (&cz, &ce)), &ld), (&z0, &z1)), (&u0, &u1)) in y
-            .iter_mut()
-            .zip(zeta.iter().zip(eta))
-            .zip(self.coef_zeta.iter().zip(&self.coef_eta))
-            .zip(&self.load_d)
-            .zip(self.z[0].iter().zip(&self.z[1]))
-            .zip(u[0].iter().zip(&u[1]))
-        {
-            let v = cz * zt - ce * et + phi * ld + z0 * f[0] + z1 * f[1];
-            *yi = v;
-            t0 += u0 * v;
-            t1 += u1 * v;
-        }
-        [t0, t1]
-    }
-
-    /// The Woodbury correction c = H t of y (the solution is y − D⁻¹U c) and the solution's
-    /// tip values Uᵀ(y − D⁻¹U c) = t − Q c, for t = Uᵀy.
-    fn correct(&self, t: [f64; 2]) -> ([f64; 2], [f64; 2]) {
-        let (hm, q) = (&self.hm, &self.q);
-        let c = [hm[0][0] * t[0] + hm[0][1] * t[1], hm[1][0] * t[0] + hm[1][1] * t[1]];
-        (c, [t[0] - q[0][0] * c[0] - q[0][1] * c[1], t[1] - q[1][0] * c[0] - q[1][1] * c[1]])
-    }
+    let tail = n - n % LANES;
+    x[tail..].iter().zip(&y[tail..]).fold(total(&s), |acc, (a, b)| acc + a * b)
 }
 
 /// The modal state of the closed loop: x = Φη, v = Φζ, with the tip values and tip boundary
@@ -202,9 +139,9 @@ impl<'a> ModalLoop<'a> {
     pub fn initial_state(&self, cfg: &Config, basis: &ModalBasis) -> ModalState {
         let mut st = ModalState {
             x_tip: [dot(&basis.tip[0], &basis.eta0), dot(&basis.tip[1], &basis.eta0)],
-            eta: basis.eta0.clone(),
-            zeta: vec![0.0; basis.len()],
-            y: vec![0.0; basis.len()],
+            eta: padded(&basis.eta0),
+            zeta: vec![0.0; padded_len(basis.len())],
+            y: vec![0.0; padded_len(basis.len())],
             v_tip: [0.0, 0.0],
             w: crate::stepper::initial_tip_states(cfg),
             exact_x: Vec::new(),
@@ -242,6 +179,7 @@ impl<'a> ModalLoop<'a> {
     /// One integrator step of the configured scheme; returns the exact ∫τ_c² dt over the step
     /// (N² s, N² m² s) for the exponential scheme, `None` for the others (whose τ is known at
     /// the step's ends only).
+    #[inline]
     pub fn step(&self, st: &mut ModalState, input: &StepInput) -> Option<[f64; 2]> {
         match &self.stepping {
             Stepping::Exponential(exact) => Some(self.exponential_step(exact, st, input)),
@@ -254,6 +192,16 @@ impl<'a> ModalLoop<'a> {
                 None
             }
         }
+    }
+
+    /// Step with the baseline instructions even where AVX is available (the results are the
+    /// same bits: see [`super::woodbury`]).
+    #[cfg(test)]
+    pub(crate) fn without_avx(mut self) -> Self {
+        if let Stepping::Trapezoid(s) | Stepping::Trbdf2(s) = &mut self.stepping {
+            s.avx = false;
+        }
+        self
     }
 
     /// One exact step ([`ExactStep`]); the tip values are recomputed from the modal state, and
@@ -285,19 +233,13 @@ impl<'a> ModalLoop<'a> {
 
     /// One trapezoidal step (α = h/2): S v̄ = (2/h)ζ − Ω²η + f̄, η += h v̄, ζ = 2v̄ − ζ; the
     /// tip states as `crate::Stepper`'s trapezoidal step.
+    #[inline(always)]
     fn trapezoid_step(&self, solve: &StepSolve, st: &mut ModalState, input: &StepInput) {
         let h = self.h;
         let f = self.tip_forces(input, st.x_tip);
-        let t = solve.rhs(self.u, &st.zeta, &st.eta, input.phi, f, &mut st.y);
+        let t = solve.rhs(&st.zeta, &st.eta, input.phi, f, &mut st.y);
         let (c, vbar) = solve.correct(t);
-        let z = &solve.z;
-        for (((yi, (zt, et)), &z0), &z1) in
-            st.y.iter().zip(st.zeta.iter_mut().zip(st.eta.iter_mut())).zip(&z[0]).zip(&z[1])
-        {
-            let zbar = yi - z0 * c[0] - z1 * c[1];
-            *et += h * zbar;
-            *zt = 2.0 * zbar - *zt;
-        }
+        solve.trapezoid_update(&st.y, c, h, &mut st.zeta, &mut st.eta);
         let xi = self.xi;
         for ch in 0..2 {
             let xbar = st.x_tip[ch] + 0.5 * h * vbar[ch];
@@ -318,47 +260,25 @@ impl<'a> ModalLoop<'a> {
     /// (η̂, ζ̂) = A(η_γ, ζ_γ) − B(η, ζ), S ζ₁ = ζ̂/α − Ω²η̂ + f̄, η₁ = η̂ + αζ₁. The stage-2
     /// right-hand side is formed in the pass that finishes stage 1 (its tip forces need only
     /// the tip values of stage 1); the tip states by the same stages.
+    #[inline(always)]
     fn trbdf2_step(&self, sv: &StepSolve, st: &mut ModalState, input: &StepInput) {
         use crate::trbdf2::{A, B};
         let alpha = self.alpha;
         let (xn, vn) = (st.x_tip, st.v_tip);
         // Stage 1.
         let f = self.tip_forces(input, xn);
-        let t = sv.rhs(self.u, &st.zeta, &st.eta, input.phi, f, &mut st.y);
+        let t = sv.rhs(&st.zeta, &st.eta, input.phi, f, &mut st.y);
         let (c, u_tip) = sv.correct(t);
         let xg = [0, 1].map(|ch| xn[ch] + 2.0 * alpha * u_tip[ch]);
         let vg = [0, 1].map(|ch| 2.0 * u_tip[ch] - vn[ch]);
         let x_hat = [0, 1].map(|ch| A * xg[ch] - B * xn[ch]);
-        // Stage 1's solution u = y − D⁻¹U c; stage 2's D⁻¹ r into y (η ← η̂, ζ ← ζ̂).
+        // η̂ = A(η + 2αu) − Bη = η + 2αA u and ζ̂ = A(2u − ζ) − Bζ = 2A u − (A + B)ζ (A − B = 1)
         let f2 = self.tip_forces(input, x_hat);
-        let (eta_u, zeta_u, zeta_z) = (2.0 * alpha * A, 2.0 * A, A + B);
-        let (mut t0, mut t1) = (0.0, 0.0);
-        for (((((yi, (zt, et)), (&cz, &ce)), &ld), (&z0, &z1)), (&u0, &u1)) in
-            st.y.iter_mut()
-                .zip(st.zeta.iter_mut().zip(st.eta.iter_mut()))
-                .zip(sv.coef_zeta.iter().zip(&sv.coef_eta))
-                .zip(&sv.load_d)
-                .zip(sv.z[0].iter().zip(&sv.z[1]))
-                .zip(self.u[0].iter().zip(&self.u[1]))
-        {
-            // η̂ = A(η + 2αu) − Bη = η + 2αA u and ζ̂ = A(2u − ζ) − Bζ = 2A u − (A + B)ζ (A − B = 1)
-            let us = *yi - z0 * c[0] - z1 * c[1];
-            let (eh, zh) = (*et + eta_u * us, zeta_u * us - zeta_z * *zt);
-            *et = eh;
-            *zt = zh;
-            let v = cz * zh - ce * eh + input.phi * ld + z0 * f2[0] + z1 * f2[1];
-            *yi = v;
-            t0 += u0 * v;
-            t1 += u1 * v;
-        }
+        let t2 =
+            sv.trbdf2_middle(c, [2.0 * alpha * A, 2.0 * A, A + B], input.phi, f2, &mut st.y, &mut st.zeta, &mut st.eta);
         // Stage 2.
-        let (c2, v1) = sv.correct([t0, t1]);
-        for (((yi, (zt, et)), &z0), &z1) in
-            st.y.iter().zip(st.zeta.iter_mut().zip(st.eta.iter_mut())).zip(&sv.z[0]).zip(&sv.z[1])
-        {
-            *zt = yi - z0 * c2[0] - z1 * c2[1];
-            *et += alpha * *zt;
-        }
+        let (c2, v1) = sv.correct(t2);
+        sv.trbdf2_finish(&st.y, c2, alpha, &mut st.zeta, &mut st.eta);
         let x1 = [0, 1].map(|ch| x_hat[ch] + alpha * v1[ch]);
         // Tip boundary states: ξ S ẇ = s(τ + g) − S w by the same two stages.
         let xi = self.xi;
@@ -376,5 +296,51 @@ impl<'a> ModalLoop<'a> {
         }
         st.x_tip = x1;
         st.v_tip = v1;
+    }
+}
+
+/// `v` with zeros appended to the state length ([`padded_len`]).
+fn padded(v: &[f64]) -> Vec<f64> {
+    let mut p = v.to_vec();
+    p.resize(padded_len(v.len()), 0.0);
+    p
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The AVX loops and the portable ones are the same operations in the same order: after
+    /// 3000 steps of either implicit scheme (paper wing, an off-default gain pair and dt) the
+    /// states are equal bit for bit. Where the CPU has no AVX both runs take the portable path
+    /// (the test then compares a run with itself, and says so).
+    #[test]
+    fn avx_and_portable_steps_give_the_same_bits() {
+        if !std::arch::is_x86_feature_detected!("avx") {
+            println!("skipped: this CPU has no AVX, so there is no second path to compare");
+            return;
+        }
+        for scheme in ["trbdf2", "trapezoid"] {
+            let cfg = wingcheck_model::apply_overrides(
+                &Config::paper(),
+                &[format!("discretisation.stepper={scheme}"), "control.a=3".into(), "discretisation.dt=5e-4".into()],
+            )
+            .unwrap();
+            let basis = ModalBasis::new(&cfg).unwrap();
+            let (fast, portable) =
+                (ModalLoop::new(&cfg, &basis).unwrap(), ModalLoop::new(&cfg, &basis).unwrap().without_avx());
+            let (mut a, mut b) = (fast.initial_state(&cfg, &basis), portable.initial_state(&cfg, &basis));
+            for j in 0..3000 {
+                let s = j as f64 * 1e-3;
+                let input = StepInput { phi: s.cos(), tip_input: [0.1 * s.sin(), -0.2], g_hat: [0.3, (-1f64).powi(j)] };
+                fast.step(&mut a, &input);
+                portable.step(&mut b, &input);
+            }
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&a.eta), bits(&b.eta), "{scheme}");
+            assert_eq!(bits(&a.zeta), bits(&b.zeta), "{scheme}");
+            assert_eq!((a.x_tip, a.v_tip, a.w), (b.x_tip, b.v_tip, b.w), "{scheme}");
+            assert!(a.eta.iter().any(|x| *x != 0.0));
+        }
     }
 }

@@ -8,7 +8,7 @@
 use wingcheck_control::{ChannelObserver, TipChannel};
 use wingcheck_model::{Config, TipDisturbance};
 
-use super::StepInput;
+use super::{Signal, StepInput};
 
 /// The observer's output at one sample t_k.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -36,6 +36,22 @@ pub struct ObserverSignal {
 }
 
 impl ObserverSignal {
+    /// A text that is equal for two configurations exactly when their signals are: everything
+    /// [`ObserverSignal::new`] and a run's length read (observer, disturbances, controller
+    /// kind, initial shape, the wing's span, EI, GJ and ξ, dt, horizon). The search's cache key.
+    pub fn key(cfg: &Config) -> String {
+        serde_json::to_string(&(
+            &cfg.observer,
+            &cfg.disturbance,
+            &cfg.control.kind,
+            &cfg.initial,
+            (cfg.wing.span, cfg.wing.ei, cfg.wing.gj, cfg.wing.xi),
+            cfg.discretisation.dt,
+            &cfg.horizon,
+        ))
+        .expect("a config serialises")
+    }
+
     /// The signal of `cfg` (its observer, disturbances, initial tip states and step).
     pub fn new(cfg: &Config) -> ObserverSignal {
         let w0 = crate::stepper::initial_tip_states(cfg);
@@ -99,5 +115,81 @@ impl ObserverSignal {
         }
         self.k += 1;
         self.update_estimates();
+    }
+}
+
+impl Signal for ObserverSignal {
+    fn current(&self) -> SampleInput {
+        ObserverSignal::current(self)
+    }
+
+    fn advance(&mut self, step: impl FnMut(f64, &StepInput)) {
+        ObserverSignal::advance(self, step)
+    }
+}
+
+/// The whole observer signal of a run, generated once by [`ObserverSignal`] and replayed by
+/// [`RecordedSignal::replay`] for any number of runs that share it (the search's points): the
+/// same numbers as generating it while stepping. Memory: 24 bytes per integrator step and 48
+/// per observer sample.
+#[derive(Debug)]
+pub struct RecordedSignal {
+    /// Per integrator step: φ̄ and ḡ − ĝ of both channels.
+    steps: Vec<[f64; 3]>,
+    /// Per observer sample k = 0..=K.
+    samples: Vec<SampleInput>,
+    h: f64,
+    period: f64,
+    steps_per_sample: usize,
+}
+
+impl RecordedSignal {
+    /// The signal of `cfg` over its horizon (K = `cfg.total_samples()` sample periods).
+    pub fn new(cfg: &Config) -> RecordedSignal {
+        let (m, total) = (cfg.steps_per_sample(), cfg.total_samples());
+        let mut signal = ObserverSignal::new(cfg);
+        let mut steps = Vec::with_capacity(total * m);
+        let mut samples = Vec::with_capacity(total + 1);
+        for k in 0..=total {
+            samples.push(signal.current());
+            if k < total {
+                signal.advance(|_, input| steps.push([input.phi, input.tip_input[0], input.tip_input[1]]));
+            }
+        }
+        RecordedSignal { steps, samples, h: signal.h, period: signal.period, steps_per_sample: m }
+    }
+
+    /// The observer's output at every sample t_k, k = 0..=K.
+    pub fn samples(&self) -> &[SampleInput] {
+        &self.samples
+    }
+
+    /// A cursor at t = 0 that replays the signal ([`Signal`]).
+    pub fn replay(&self) -> Replay<'_> {
+        Replay { signal: self, k: 0 }
+    }
+}
+
+/// A [`RecordedSignal`] being replayed.
+#[derive(Debug)]
+pub struct Replay<'a> {
+    signal: &'a RecordedSignal,
+    k: usize,
+}
+
+impl Signal for Replay<'_> {
+    fn current(&self) -> SampleInput {
+        self.signal.samples[self.k]
+    }
+
+    fn advance(&mut self, mut step: impl FnMut(f64, &StepInput)) {
+        let s = self.signal;
+        let (t0, h, m) = (self.k as f64 * s.period, s.h, s.steps_per_sample);
+        let g_hat = s.samples[self.k].g_hat;
+        for (j, &[phi, u0, u1]) in s.steps[self.k * m..(self.k + 1) * m].iter().enumerate() {
+            // the times as `ObserverSignal::advance` computes them
+            step(t0 + j as f64 * h, &StepInput { phi, tip_input: [u0, u1], g_hat });
+        }
+        self.k += 1;
     }
 }

@@ -1,0 +1,74 @@
+//! The one closed-loop driver of the modal basis: `simulate` ([`super::simulate_modal`]) and
+//! the parameter search run the loop through [`drive`], with the same inputs, the same steps
+//! and the same divergence check, and differ only in what they record ([`Recorder`]) and in
+//! where the observer signal comes from ([`Signal`]: generated while stepping, or replayed from
+//! a [`super::RecordedSignal`] shared by many runs — the same numbers either way).
+
+use wingcheck_model::Config;
+
+use super::{ModalBasis, ModalLoop, ModalState, SampleInput, StepInput};
+use crate::run::check_sample;
+use crate::{Sample, SimError};
+
+/// The observer signal of a run, one sample period at a time (the observer and the
+/// disturbances only: σ_{n+1} − σ_n = h(ḡ − ĝ_k) holds whatever the plant, see [`super`]).
+pub trait Signal {
+    /// The observer's output at the current sample t_k.
+    fn current(&self) -> SampleInput;
+    /// Call `step(t_j, input)` for each integrator step [t_j, t_j + h) of the current sample
+    /// period with its inputs, then move to the next sample.
+    fn advance(&mut self, step: impl FnMut(f64, &StepInput));
+}
+
+/// What a run keeps of the loop it drives.
+pub trait Recorder {
+    /// Called at every recorded instant: t = 0, the end of every integrator step (`exact`: the
+    /// scheme's exact ∫τ_c² dt over that step, N² s and N² m² s, where it has one) and the far
+    /// side of every sample's jump of the held estimate (same t, new `g_hat`, `exact` None).
+    /// Full-rate statistics (peaks, ∫τ² dt) are folded in here.
+    fn instant(&mut self, lp: &ModalLoop<'_>, st: &ModalState, t: f64, g_hat: [f64; 2], exact: Option<[f64; 2]>);
+
+    /// Called at each output sample k (t_k = k T, every `samples_per_output` samples and the
+    /// last), after the tip values were recomputed from the modal state and `sample` passed the
+    /// divergence check ([`check_sample`]).
+    fn output(&mut self, st: &ModalState, sample: &Sample, k: usize) -> Result<(), SimError>;
+}
+
+/// Run the loop `lp` of `cfg` on `basis` over [0, T] from the state `st`, with the observer
+/// signal `signal` (of the same configuration), reporting to `rec`. A run whose sample is not
+/// finite or whose energy explodes stops with [`SimError::Diverged`] saying when and why.
+pub fn drive<S: Signal, R: Recorder>(
+    cfg: &Config,
+    basis: &ModalBasis,
+    lp: &ModalLoop<'_>,
+    st: &mut ModalState,
+    signal: &mut S,
+    rec: &mut R,
+) -> Result<(), SimError> {
+    let (total, every, period) = (cfg.total_samples(), cfg.samples_per_output(), cfg.observer.sample_period);
+    let h = cfg.discretisation.dt;
+    let e0 = basis.energy(&st.eta, &st.zeta);
+    let output = |st: &mut ModalState, obs: &SampleInput, t: f64, k: usize, rec: &mut R| {
+        st.sync_tip(basis);
+        let sample = lp.sample(basis, st, t, obs);
+        check_sample(&sample, e0)?;
+        rec.output(st, &sample, k)
+    };
+    let first = signal.current();
+    rec.instant(lp, st, 0.0, first.g_hat, None);
+    output(st, &first, 0.0, 0, rec)?;
+    crate::cpu::clear_upper_vector_state();
+    for k in 1..=total {
+        signal.advance(|t, input| {
+            let exact = lp.step(st, input);
+            rec.instant(lp, st, t + h, input.g_hat, exact);
+        });
+        let now = signal.current();
+        let t = k as f64 * period;
+        rec.instant(lp, st, t, now.g_hat, None);
+        if k % every == 0 || k == total {
+            output(st, &now, t, k, rec)?;
+        }
+    }
+    Ok(())
+}
