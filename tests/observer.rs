@@ -167,7 +167,7 @@ fn tau_statistics_do_not_depend_on_dt_at_fixed_sample_period() {
         let (coarse, used) = stats(kind, scheme, rule, period);
         let (half, _) = stats(kind, scheme, rule, period / 2.0);
         let (fine, _) = stats(kind, scheme, rule, period / 10.0);
-        assert_eq!(used, resolved, "{scheme}/{rule}");
+        assert_eq!(used.name(), resolved, "{scheme}/{rule}");
         let mut worst_rms: f64 = 0.0;
         for (k, name) in names.iter().enumerate() {
             let rel = (coarse[k] - fine[k]).abs() / fine[k];

@@ -34,11 +34,11 @@ pub fn run(a: BenchArgs) -> anyhow::Result<()> {
     }
     let base = time_config(&cfg, usize::from(a.repeats))?;
     // the other time scheme, measured in the same run for the cost ratio
-    let other = if base.stepper == "trapezoid" { "trbdf2" } else { "trapezoid" };
+    let other = if base.stepper == wingcheck_model::TimeScheme::Trapezoid { "trbdf2" } else { "trapezoid" };
     let other_cfg = apply_overrides(&cfg, &[format!("discretisation.stepper={other}")])?;
     let other_timing = time_config(&other_cfg, usize::from(a.repeats))?;
     // the other basis, measured in the same run for the cost ratio
-    let other_basis = if base.basis == "modal" { "nodal" } else { "modal" };
+    let other_basis = if base.basis == wingcheck_model::StepBasis::Modal { "nodal" } else { "modal" };
     let other_basis_timing = apply_overrides(&cfg, &[format!("discretisation.basis={other_basis}")])
         .map_err(anyhow::Error::from)
         .and_then(|c| time_config(&c, usize::from(a.repeats)).map_err(anyhow::Error::from));

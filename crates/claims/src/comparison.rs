@@ -228,7 +228,7 @@ pub fn compute(
         ftdo_other: metrics(&other, settings),
         dobc: metrics(&dobc, settings),
         explicit_rms_tau,
-        explicit_stepper: explicit.stats.stepper.clone(),
+        explicit_stepper: explicit.stats.stepper.name().to_string(),
         sweep,
         zetas: (zeta(&d.tip_bending), zeta(&d.tip_torsion)),
     };

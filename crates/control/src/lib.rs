@@ -10,6 +10,8 @@
 //! evaluation rules (explicit and implicit/set-valued) and the per-channel bookkeeping; the
 //! simulator feeds it the measured tip quantities.
 
+mod law;
 mod observer;
 
+pub use law::BoundaryLaw;
 pub use observer::{ChannelObserver, ObserverGain, TipChannel};

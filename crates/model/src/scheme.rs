@@ -40,6 +40,12 @@ impl TimeScheme {
     }
 }
 
+impl std::fmt::Display for TimeScheme {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.pad(self.name())
+    }
+}
+
 impl std::str::FromStr for TimeScheme {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
@@ -88,6 +94,12 @@ impl StepBasis {
             StepBasis::Modal => "modal",
             StepBasis::Nodal => "nodal",
         }
+    }
+}
+
+impl std::fmt::Display for StepBasis {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.pad(self.name())
     }
 }
 

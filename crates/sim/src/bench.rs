@@ -18,9 +18,9 @@ pub struct Timing {
     /// Unknowns.
     pub unknowns: usize,
     /// Basis the run was stepped in (`modal` or `nodal`).
-    pub basis: String,
+    pub basis: wingcheck_model::StepBasis,
     /// Time scheme it was stepped with (`auto` resolved).
-    pub stepper: String,
+    pub stepper: wingcheck_model::TimeScheme,
     /// Horizon (s).
     pub t_end: f64,
     /// Integrator steps.
@@ -44,8 +44,8 @@ pub fn time_config(cfg: &Config, repeats: usize) -> Result<Timing, SimError> {
     let mut runs = Vec::with_capacity(repeats);
     let mut steps = 0;
     let mut unknowns = 0;
-    let mut basis = String::new();
-    let mut stepper = String::new();
+    let mut basis = wingcheck_model::StepBasis::default();
+    let mut stepper = wingcheck_model::TimeScheme::default();
     for _ in 0..repeats.max(1) {
         let t = Instant::now();
         let out = simulate(cfg, RunOptions::default())?;

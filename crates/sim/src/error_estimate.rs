@@ -62,7 +62,7 @@ pub struct EstimatedRun {
     /// Step of the temporal refinement run (s, dt/2).
     pub refined_dt: f64,
     /// Time scheme of both refinement runs: the base run's (`stats.stepper`).
-    pub refined_stepper: String,
+    pub refined_stepper: wingcheck_model::TimeScheme,
     /// Estimated absolute error of q(s,t_k) (m) at each output sample.
     pub q_tip_error: Vec<f64>,
     /// Estimated absolute error of θ(s,t_k) (rad) at each output sample.
@@ -166,8 +166,7 @@ pub fn simulate_with_error(cfg: &Config, opts: RunOptions<'_>) -> Result<Estimat
     space_cfg.validate()?;
     time_cfg.validate()?;
     let output = simulate(cfg, opts)?;
-    let scheme: wingcheck_model::TimeScheme =
-        output.stats.stepper.parse().map_err(|e: String| SimError::Numerical(format!("run stats: {e}")))?;
+    let scheme = output.stats.stepper;
     space_cfg.discretisation.stepper = scheme;
     time_cfg.discretisation.stepper = scheme;
     let space = simulate(&space_cfg, RunOptions::default()).map_err(|e| match e {
@@ -205,7 +204,7 @@ pub fn simulate_with_error(cfg: &Config, opts: RunOptions<'_>) -> Result<Estimat
         output,
         refined_grid,
         refined_dt: time_cfg.discretisation.dt,
-        refined_stepper: space.stats.stepper.clone(),
+        refined_stepper: space.stats.stepper,
         q_tip_error: eq,
         theta_tip_error: et,
         max_q_tip_error: max_q,

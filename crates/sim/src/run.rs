@@ -5,7 +5,7 @@
 use std::time::Instant;
 
 use serde::Serialize;
-use wingcheck_model::{Config, StepBasis, MODAL_AUTO_UNKNOWNS};
+use wingcheck_model::{Config, StepBasis, TimeScheme, MODAL_AUTO_UNKNOWNS};
 
 use crate::modal::ModalBasis;
 use crate::stepper::{Peaks, Sample, Stepper};
@@ -194,11 +194,12 @@ pub struct RunStats {
     /// Stored entries of the step matrix's banded Cholesky factor (0 in the modal basis,
     /// which factorises nothing: its step matrix is diagonal plus rank 2).
     pub factor_nnz: usize,
-    /// Basis the loop was stepped in: `modal` or `nodal` (`discretisation.basis`).
-    pub basis: String,
+    /// Basis the loop was stepped in: `modal` or `nodal` (`discretisation.basis`, `auto`
+    /// resolved).
+    pub basis: StepBasis,
     /// Time scheme it was stepped with: `trbdf2`, `trapezoid` or `exponential`
     /// (`discretisation.stepper`, `auto` resolved by `Config::time_scheme`).
-    pub stepper: String,
+    pub stepper: TimeScheme,
     /// Integrator steps taken.
     pub steps: usize,
     /// Wall time for assembly and factorisation (s).
@@ -314,8 +315,8 @@ fn simulate_nodal(
         stats: RunStats {
             unknowns,
             factor_nnz,
-            basis: "nodal".into(),
-            stepper: cfg.time_scheme(false).name().into(),
+            basis: StepBasis::Nodal,
+            stepper: cfg.time_scheme(false),
             steps: total * cfg.steps_per_sample(),
             setup_seconds,
             stepping_seconds: start.elapsed().as_secs_f64(),

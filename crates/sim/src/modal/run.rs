@@ -91,8 +91,8 @@ pub fn simulate_modal(
         stats: RunStats {
             unknowns: basis.len(),
             factor_nnz: 0,
-            basis: "modal".into(),
-            stepper: lp.scheme().name().into(),
+            basis: wingcheck_model::StepBasis::Modal,
+            stepper: lp.scheme(),
             steps: total * cfg.steps_per_sample(),
             setup_seconds,
             stepping_seconds: start.elapsed().as_secs_f64(),

@@ -2,8 +2,8 @@
 //! trapezoidal rule or of TR-BDF2, each solve with the step matrix as diagonal plus rank 2
 //! (Woodbury), O(n) per step.
 
-use wingcheck_control::TipChannel;
-use wingcheck_model::{Config, ControllerKind, TimeScheme};
+use wingcheck_control::{BoundaryLaw, TipChannel};
+use wingcheck_model::{Config, TimeScheme};
 
 use crate::{Sample, SimError};
 
@@ -87,10 +87,9 @@ pub struct ModalLoop<'a> {
     h: f64,
     /// α of the implicit scheme's step matrix (s): h/2 (trapezoid), γh/2 (TR-BDF2).
     alpha: f64,
-    a: f64,
-    b: f64,
+    /// The control law (15).
+    law: BoundaryLaw,
     xi: f64,
-    gain: [f64; 2],
     /// EI (N m²), GJ (N m²).
     stiff: [f64; 2],
     sign: [f64; 2],
@@ -101,11 +100,8 @@ impl<'a> ModalLoop<'a> {
     /// `cfg.discretisation.stepper` selects.
     pub fn new(cfg: &Config, basis: &'a ModalBasis) -> Result<ModalLoop<'a>, SimError> {
         let h = cfg.discretisation.dt;
-        let (a, b, xi) = (cfg.control.a, cfg.control.b, cfg.wing.xi);
-        let gain = match cfg.control.kind {
-            ControllerKind::None => [0.0, 0.0],
-            _ => [cfg.control.k1, cfg.control.k2],
-        };
+        let law = BoundaryLaw::of(cfg);
+        let (a, b, xi, gain) = (law.a, law.b, cfg.wing.xi, law.gains);
         let scheme = cfg.time_scheme(true);
         let alpha = match scheme {
             TimeScheme::Trapezoid => 0.5 * h,
@@ -121,7 +117,7 @@ impl<'a> ModalLoop<'a> {
             }
             _ => Stepping::Trbdf2(solve()?),
         };
-        Ok(ModalLoop { u: &basis.tip, stepping, h, alpha, a, b, xi, gain, stiff, sign })
+        Ok(ModalLoop { u: &basis.tip, stepping, h, alpha, law, xi, stiff, sign })
     }
 
     /// The scheme this loop steps with (`auto` resolved).
@@ -223,12 +219,12 @@ impl<'a> ModalLoop<'a> {
     /// Tip forces of the right-hand side: ḡ − ĝ − k a x_tip (the displacement part of the
     /// control law is in K_c).
     fn tip_forces(&self, input: &StepInput, x_tip: [f64; 2]) -> [f64; 2] {
-        [0, 1].map(|c| input.tip_input[c] - self.a * self.gain[c] * x_tip[c])
+        [0, 1].map(|c| input.tip_input[c] - self.law.stiffness(c) * x_tip[c])
     }
 
-    /// τ = −k(a x + b v) − ĝ at the tip values (x, v) of channel c.
+    /// τ of (15) at the tip values (x, v) of channel c ([`BoundaryLaw::tau`]).
     pub fn tau(&self, c: usize, x: f64, v: f64, g_hat: f64) -> f64 {
-        -self.gain[c] * (self.a * x + self.b * v) - g_hat
+        self.law.tau(c, x, v, g_hat)
     }
 
     /// One trapezoidal step (α = h/2): S v̄ = (2/h)ζ − Ω²η + f̄, η += h v̄, ζ = 2v̄ − ζ; the

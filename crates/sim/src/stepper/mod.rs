@@ -27,8 +27,8 @@ pub mod trbdf2;
 pub(crate) use peaks::FullRate;
 pub use peaks::{Peak, Peaks, SquareIntegral};
 
-use wingcheck_control::{ChannelObserver, TipChannel};
-use wingcheck_model::{Config, ControllerKind, TimeScheme};
+use wingcheck_control::{BoundaryLaw, ChannelObserver, TipChannel};
+use wingcheck_model::{Config, TimeScheme};
 
 use crate::banded::{BandedCholesky, BandedPair};
 use crate::sparse::{SymBuilder, SymMatrix};
@@ -112,6 +112,8 @@ pub struct Sample {
 #[derive(Debug)]
 pub struct Stepper {
     cfg: Config,
+    /// The control law (15).
+    law: BoundaryLaw,
     disc: Discretisation,
     solver: BandedCholesky,
     /// M/α and K_c = K + a·diag(k)|tip, fused for the right-hand side (M/α) v − K_c x.
@@ -149,10 +151,8 @@ impl Stepper {
         cfg.validate().map_err(SimError::Config)?;
         let h = cfg.discretisation.dt;
         let n = disc.dim();
-        let (k1, k2) = match cfg.control.kind {
-            ControllerKind::None => (0.0, 0.0),
-            _ => (cfg.control.k1, cfg.control.k2),
-        };
+        let law = BoundaryLaw::of(cfg);
+        let [k1, k2] = law.gains;
         let mut tip_damp = SymBuilder::new(n);
         tip_damp.add(disc.tip_q, disc.tip_q, k1);
         tip_damp.add(disc.tip_theta, disc.tip_theta, k2);
@@ -186,6 +186,7 @@ impl Stepper {
         let channels = [mk(TipChannel::Bending, w1, k1, disc.tip_q), mk(TipChannel::Torsion, w2, k2, disc.tip_theta)];
         let mut st = Stepper {
             cfg: cfg.clone(),
+            law,
             disc,
             solver,
             rhs_operator,
@@ -268,8 +269,7 @@ impl Stepper {
     /// Control force/moment τ at the current instant with the held estimate.
     fn tau(&self, ch: usize) -> f64 {
         let c = &self.channels[ch];
-        let (a, b) = (self.cfg.control.a, self.cfg.control.b);
-        -c.k * (a * self.x[c.dof] + b * self.v[c.dof]) - c.g_hat
+        self.law.tau(ch, self.x[c.dof], self.v[c.dof], c.g_hat)
     }
 
     /// The current instant as a [`Sample`].

@@ -50,9 +50,10 @@ impl Stepper {
 
     /// τ of both channels at the state (x, v) with the held estimates.
     fn taus_at(&self, x: &[f64], v: &[f64]) -> [f64; 2] {
-        let (a, b) = (self.cfg.control.a, self.cfg.control.b);
-        let tau = |c: &super::Channel| -c.k * (a * x[c.dof] + b * v[c.dof]) - c.g_hat;
-        [tau(&self.channels[0]), tau(&self.channels[1])]
+        [0, 1].map(|i| {
+            let c = &self.channels[i];
+            self.law.tau(i, x[c.dof], v[c.dof], c.g_hat)
+        })
     }
 
     /// One TR-BDF2 step of length h starting at time t.
