@@ -80,15 +80,25 @@ pub fn parse_rational_bounded(text: &str, limits: &NumberLimits) -> Result<BigRa
     if let Some(pos) = s.find(['e', 'E']) {
         let exp: i64 = s[pos + 1..].parse().map_err(|_| parse_err(text, "bad exponent"))?;
         let mantissa = &s[..pos];
-        let frac_len = mantissa.split_once('.').map_or(0, |(_, f)| f.len()) as i64;
-        if (exp - frac_len).abs() > limits.max_exponent {
-            return Err(parse_err(
-                text,
-                &format!("decimal exponent {} outside [-{m}, {m}]", exp - frac_len, m = limits.max_exponent),
-            ));
+        let frac_len = mantissa.split_once('.').map_or(0, |(_, f)| f.len());
+        let m = limits.max_exponent;
+        // checked and unsigned: `i64::MIN.abs()` wraps to i64::MIN in release builds, which
+        // would pass any `≤ m` test
+        match decimal_scale(exp, frac_len) {
+            Some(scale) if scale.unsigned_abs() <= m.unsigned_abs() => {}
+            Some(scale) => {
+                return Err(parse_err(text, &format!("decimal exponent {scale} outside [-{m}, {m}]")));
+            }
+            None => return Err(parse_err(text, &format!("decimal exponent outside [-{m}, {m}]"))),
         }
     }
     parse_rational(text)
+}
+
+/// The power of ten of a decimal `d.ddd e exp` with `frac_len` fraction digits: `exp − frac_len`,
+/// or `None` if that is not an `i64` (never wraps).
+fn decimal_scale(exp: i64, frac_len: usize) -> Option<i64> {
+    exp.checked_sub(i64::try_from(frac_len).ok()?)
 }
 
 /// Parses an exact rational from text.
@@ -142,11 +152,11 @@ pub fn parse_rational(text: &str) -> Result<BigRational, ExactError> {
     if negative {
         num = -num;
     }
-    let scale = exponent
-        .checked_sub(frac_part.len() as i64)
-        .filter(|e| e.abs() <= MAX_DECIMAL_EXPONENT)
+    let scale = decimal_scale(exponent, frac_part.len())
+        .filter(|e| e.unsigned_abs() <= MAX_DECIMAL_EXPONENT.unsigned_abs())
         .ok_or_else(|| parse_err(text, "exponent out of range"))?;
-    let ten_pow = num_traits::pow(BigInt::from(10u32), scale.unsigned_abs() as usize);
+    let power = usize::try_from(scale.unsigned_abs()).map_err(|_| parse_err(text, "exponent out of range"))?;
+    let ten_pow = num_traits::pow(BigInt::from(10u32), power);
     Ok(if scale >= 0 { BigRational::from_integer(num * ten_pow) } else { BigRational::new(num, ten_pow) })
 }
 
