@@ -11,6 +11,7 @@
 
 mod config;
 mod error;
+mod json;
 mod overrides;
 mod scheme;
 mod validate;
