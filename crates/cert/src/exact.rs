@@ -160,6 +160,32 @@ pub fn parse_rational(text: &str) -> Result<BigRational, ExactError> {
     Ok(if scale >= 0 { BigRational::from_integer(num * ten_pow) } else { BigRational::new(num, ten_pow) })
 }
 
+/// Digits of an integer that messages show in full ([`abbreviated`]).
+pub const SHOWN_DIGITS: usize = 24;
+
+/// A rational for messages: `p/q` (or `p`) in full when numerator and denominator have at most
+/// [`SHOWN_DIGITS`] digits; longer ones as their first 8 and last 4 digits with their length
+/// (`-18180890…8353 (250 digits)`), followed by the value (`≈ -1.254826e13`). An exact pivot of
+/// a 44 × 44 LDLᵀ has hundreds of digits, which no reader can use.
+pub fn abbreviated(r: &BigRational) -> String {
+    fn int(n: &BigInt) -> String {
+        let s = n.to_string();
+        let digits = s.trim_start_matches('-').len();
+        if digits <= SHOWN_DIGITS {
+            return s;
+        }
+        let sign = if s.starts_with('-') { "-" } else { "" };
+        let d = s.trim_start_matches('-');
+        format!("{sign}{}…{} ({digits} digits)", &d[..8], &d[digits - 4..])
+    }
+    let full = r.numer().to_string().len() <= SHOWN_DIGITS && r.denom().to_string().len() <= SHOWN_DIGITS;
+    match (r.is_integer(), full) {
+        (true, true) => r.numer().to_string(),
+        (true, false) => format!("{} (≈ {:.6e})", int(r.numer()), to_f64(r)),
+        (false, _) => format!("{}/{} (≈ {:.6e})", int(r.numer()), int(r.denom()), to_f64(r)),
+    }
+}
+
 /// Formats a rational as `"p/q"` (reduced, `q ≥ 1`, sign on `p`), e.g. `"-7/20"`,
 /// `"3/1"`. This is the canonical form written into certificates.
 pub fn to_fraction_string(r: &BigRational) -> String {

@@ -199,7 +199,8 @@ proptest! {
 fn the_i64_min_exponent_is_refused_at_once() {
     // The reproduction: 22 characters whose exponent − 0 fraction digits is i64::MIN,
     // whose abs() wraps to i64::MIN (< 32) in release builds.
-    for text in ["1e-9223372036854775808", "-1e-9223372036854775808", "1.5e-9223372036854775807", "1e9223372036854775807"]
+    for text in
+        ["1e-9223372036854775808", "-1e-9223372036854775808", "1.5e-9223372036854775807", "1e9223372036854775807"]
     {
         let e = parse_rational_bounded(text, &NumberLimits::CERTIFICATE).unwrap_err().to_string();
         assert!(e.contains("exponent"), "{text}: {e}");
