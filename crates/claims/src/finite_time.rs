@@ -41,9 +41,9 @@ pub enum Channel {
 }
 
 /// Hold periods T (s) of the digital-observer study.
-pub const PERIODS: [f64; 3] = [1e-2, 1e-3, 1e-4];
+pub const PERIODS: [f64; 3] = wingcheck_model::work::FINITE_TIME_PERIODS;
 /// Length of the chatter window at the end of each digital run (s).
-pub const WINDOW_S: f64 = 0.5;
+pub const WINDOW_S: f64 = wingcheck_model::work::FINITE_TIME_WINDOW_S;
 /// RK4 steps of the σ-domain Filippov integrator (doubled for the error estimate).
 pub const FILIPPOV_STEPS: usize = 2000;
 
@@ -222,7 +222,7 @@ pub fn evidence(cfg: &Config, channel: Channel) -> Result<(FiniteTimeEvidence, T
     let other_bound = bound_38(other.0.linear, other.0.fractional, other.1, other.2, other_s0)?;
     let t_end = (((bound.max(other_bound).max(fil.reach_s.unwrap_or(0.0)) * 1.25 + 2.0 * WINDOW_S) / 0.01).ceil()
         * 0.01)
-        .min(cfg.horizon.t_end.max(2.0 * WINDOW_S + 0.01));
+        .min(wingcheck_model::work::finite_time_horizon_max(cfg));
     let mut runs: Vec<DigitalRun> = Vec::new();
     for rule in [ObserverRule::Implicit, ObserverRule::Explicit] {
         for &t in &PERIODS {

@@ -174,6 +174,72 @@ pub struct Lemma2Counterexample {
     pub corrected_holds: bool,
 }
 
+/// Largest exact ω(f)² = f^{2k} written out digit by digit (bits of its numerator and
+/// denominator); beyond it the evidence holds the exact values in closed form (`f^(2k)` …).
+/// k ≈ f²/2 grows with the span: at f = 1000, f^{2k} has three million digits, whose decimal
+/// text alone took minutes.
+pub const EXACT_TEXT_BITS: u64 = 4096;
+
+/// The counterexample and its values as f64 (+∞ where they exceed the f64 range).
+struct Counterexample {
+    evidence: Lemma2Counterexample,
+    values: (f64, f64),
+}
+
+/// The exact counterexample ω = z^k on [0, f], k = ⌊(f² − 1)/2⌋ + 1 ≥ 1 (so ω(0) = 0 and
+/// 2k + 1 > f²), in big integers whatever the span: ω(f)² > f∫ω² ⟺ 2k + 1 > f² and
+/// ω(f)² ≤ f∫ω'² ⟺ 2k − 1 ≤ k² are decided on those small numbers, f^{2k} itself is formed only
+/// when it has at most [`EXACT_TEXT_BITS`] bits.
+fn counterexample(span: f64) -> Result<Counterexample, ClaimsError> {
+    use num_bigint::BigInt;
+    use num_rational::BigRational;
+    use num_traits::{Signed, Zero};
+    let f = wingcheck_cert::exact::parse_rational(&format!("{span}"))
+        .map_err(|e| num_err("lemma2 span", format!("span {span} not a decimal: {e}")))?;
+    if !f.is_positive() {
+        return Err(num_err("lemma2 span", format!("span {span} must be > 0")));
+    }
+    let f2 = &f * &f;
+    let one = BigRational::from_integer(1.into());
+    let two = BigRational::from_integer(2.into());
+    let below = ((&f2 - &one) / &two).floor().to_integer();
+    let k: BigInt = if below.is_negative() { BigInt::zero() } else { below } + 1;
+    let q = |n: &BigInt| BigRational::from_integer(n.clone());
+    let (two_k_plus_1, two_k_minus_1) = (BigInt::from(2) * &k + 1, BigInt::from(2) * &k - 1);
+    let printed_violated = q(&two_k_plus_1) > f2;
+    let corrected_holds = two_k_minus_1 <= &k * &k;
+    let two_k: BigInt = BigInt::from(2) * &k;
+    let bits = (f.numer().bits() + f.denom().bits()).saturating_mul(u64::try_from(&two_k).unwrap_or(u64::MAX));
+    let (lhs, rhs, rhs_corr, values) = if bits <= EXACT_TEXT_BITS {
+        let f2k = num_traits::Pow::pow(&f, u64::try_from(&two_k).expect("bounded by EXACT_TEXT_BITS"));
+        let rhs = &f2k * &f2 / q(&two_k_plus_1);
+        let rhs_corr = &f2k * q(&(&k * &k)) / q(&two_k_minus_1);
+        let show = wingcheck_cert::exact::to_f64;
+        let values = (show(&f2k), show(&rhs));
+        (exact_text(&f2k), exact_text(&rhs), exact_text(&rhs_corr), values)
+    } else {
+        let ft = if f.is_integer() { exact_text(&f) } else { format!("({})", exact_text(&f)) };
+        (
+            format!("{ft}^{two_k}"),
+            format!("{ft}^{}/{two_k_plus_1}", &two_k + 2),
+            format!("{ft}^{two_k}·{}/{two_k_minus_1}", &k * &k),
+            (f64::INFINITY, f64::INFINITY),
+        )
+    };
+    Ok(Counterexample {
+        evidence: Lemma2Counterexample {
+            f: span,
+            omega: format!("z^{k}"),
+            lhs_omega_f_sq: lhs,
+            rhs_printed: rhs,
+            printed_violated,
+            rhs_corrected: rhs_corr,
+            corrected_holds,
+        },
+        values,
+    })
+}
+
 /// The evidence of the `lemmas` row (serialised keys as documented in the module docs).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -232,17 +298,8 @@ pub fn evidence(cfg: &Config) -> Result<LemmasEvidence, ClaimsError> {
         corrected.push(lemma2_ratio(span, k, true)?);
     }
     let corr_max = corrected.iter().cloned().fold(0.0, f64::max);
-    let f = wingcheck_cert::exact::parse_rational(&format!("{span}"))
-        .map_err(|e| num_err("lemma2 span", format!("span {span} not a decimal: {e}")))?;
-    let k = ((span * span - 1.0) / 2.0).floor().max(0.0) as u32 + 1;
-    let k = (k..k + 4).find(|&k| num_rational::BigRational::from_integer((2 * k + 1).into()) > &f * &f).unwrap_or(k);
-    let f2k = num_traits::Pow::pow(&f, 2 * k);
-    let lhs = f2k.clone();
-    let rhs = &f2k * &f * &f / num_rational::BigRational::from_integer((2 * k + 1).into());
-    let rhs_corr = &f2k * num_rational::BigRational::from_integer((k * k).into())
-        / num_rational::BigRational::from_integer((2 * k - 1).into());
-    let cex = lhs > rhs;
-    let show = |r: &num_rational::BigRational| wingcheck_cert::exact::to_f64(r);
+    let cx = counterexample(span)?;
+    let cex = cx.evidence.printed_violated;
     // Lemma 3 on a parameter grid: p = a1/a2 of the configured observer, Q0 including σ2(0)²/2.
     let p = cfg.observer.a1 as f64 / cfg.observer.a2 as f64;
     let q0_config = 0.5 * crate::finite_time::sigma0_other(cfg, 1)?.powi(2);
@@ -281,15 +338,8 @@ pub fn evidence(cfg: &Config) -> Result<LemmasEvidence, ClaimsError> {
         lemma2_printed_ratio_by_degree: printed,
         lemma2_corrected_ratio_by_degree: corrected,
         lemma2_corrected_max_ratio: corr_max,
-        lemma2_counterexample: Lemma2Counterexample {
-            f: span,
-            omega: format!("z^{k}"),
-            lhs_omega_f_sq: exact_text(&lhs),
-            rhs_printed: exact_text(&rhs),
-            printed_violated: cex,
-            rhs_corrected: exact_text(&rhs_corr),
-            corrected_holds: lhs <= rhs_corr,
-        },
+        counterexample_values: cx.values,
+        lemma2_counterexample: cx.evidence,
         lemma3_cases: cases,
         lemma3_max_rel_err: max_err,
         lemma3_ineq_cases: ineq,
@@ -297,7 +347,6 @@ pub fn evidence(cfg: &Config) -> Result<LemmasEvidence, ClaimsError> {
         span,
         p,
         q0_config,
-        counterexample_values: (show(&lhs), show(&rhs)),
         lemma3_points: (xs, ys),
     })
 }
@@ -321,9 +370,10 @@ pub fn verdict(e: &LemmasEvidence) -> (Verdict, Basis) {
     (v, Basis::FloatSolver)
 }
 
-/// An exact rational's text if short, else its value to 5 digits (marked ≈).
+/// An exact rational's text if short (or if its value is beyond f64: then the text is the
+/// closed form), else its value to 5 digits (marked ≈).
 fn short_exact(text: &str, value: f64) -> String {
-    if text.len() <= 16 {
+    if text.len() <= 16 || !value.is_finite() {
         text.to_string()
     } else {
         format!("≈{value:.4e}")
