@@ -115,9 +115,12 @@ const CACHE_POINTS: usize = 1024;
 /// chunk of the search is present, write the final files ([`finalize`]). Refused before any
 /// work above the limits ([`limits::check`]) or with a bad thread count.
 pub fn run(search: &Search, out: &Path, ctl: RunControl<'_>) -> Result<RunSummary, SearchError> {
-    limits::check(&search.estimate(), ctl.allow_large)?;
     if let Some(n) = ctl.threads {
         limits::check_threads(n)?;
+    }
+    let threads = ctl.threads.unwrap_or_else(rayon::current_num_threads);
+    limits::check(&search.estimate_with_threads(threads), ctl.allow_large)?;
+    if let Some(n) = ctl.threads {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(n)
             .build()

@@ -209,6 +209,11 @@ impl Search {
         limits::estimate(&self.base, &self.grid.axes)
     }
 
+    /// The work estimate for `threads` worker threads ([`limits::estimate_with_threads`]).
+    pub fn estimate_with_threads(&self, threads: usize) -> WorkEstimate {
+        limits::estimate_with_threads(&self.base, &self.grid.axes, threads)
+    }
+
     /// Number of points.
     pub fn points(&self) -> usize {
         self.grid.len()
@@ -268,10 +273,8 @@ fn check_window(base: &Config, axes: &[Axis], (t0, t1): (f64, f64)) -> Result<()
     }
     let mut cfgs = vec![base.clone()];
     for a in axes {
-        let idx: Vec<usize> = match &a.spacing {
-            Spacing::List { values } => (0..values.len().min(256)).collect(),
-            _ => vec![0, a.len() - 1],
-        };
+        // every value of a list over the horizon or the sample periods (not the first 256)
+        let idx = limits::estimated_values(a);
         cfgs.extend(idx.into_iter().filter_map(|i| wingcheck_model::apply_overrides(base, &[a.override_expr(i)]).ok()));
     }
     for cfg in &cfgs {

@@ -18,8 +18,9 @@ use wingcheck_sim::{check_sample, SimError, SquareIntegral};
 
 pub use wingcheck_sim::modal::ModalBasis;
 
-/// Entries kept per cache before it is cleared (bounds memory on sweeps over wing keys).
-const CACHE_ENTRIES: usize = 16;
+/// Entries kept per cache before it is cleared (bounds memory on sweeps over wing keys; the
+/// search's memory estimate counts them).
+pub const CACHE_ENTRIES: usize = 16;
 
 /// The plant-independent inputs of a run: per integrator step the load factor φ̄ and the
 /// tip inputs ḡ − ĝ; per observer sample ĝ_k and g(t_k).
