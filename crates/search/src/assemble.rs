@@ -52,7 +52,7 @@ impl Iterator for ChunkStream<'_> {
                 return None;
             }
             self.next_chunk += 1;
-            match store::read_chunk(self.dir, c, self.search.chunk_range(c)) {
+            match store::read_chunk(self.dir, self.search, c) {
                 Ok(Some(points)) => self.current = points.into_iter(),
                 Ok(None) => {
                     self.next_chunk = self.search.chunks();
@@ -135,7 +135,7 @@ pub fn finalize(dir: &Path) -> Result<(Vec<String>, (usize, usize)), SearchError
     // every chunk present and complete before anything is written (each read, checked, dropped)
     let mut missing = Vec::new();
     for c in 0..search.chunks() {
-        if store::read_chunk(dir, c, search.chunk_range(c))?.is_none() {
+        if store::read_chunk(dir, &search, c)?.is_none() {
             missing.push(c);
         }
     }

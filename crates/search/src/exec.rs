@@ -139,7 +139,7 @@ fn run_in(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<RunSummar
     let start = Instant::now();
     // Two passes over this shard's chunks (streamed, never collected): count what is done,
     // then evaluate the rest.
-    let is_done = |c: usize| store::read_chunk(out, c, search.chunk_range(c)).map(|p| p.is_some());
+    let is_done = |c: usize| store::read_chunk(out, search, c).map(|p| p.is_some());
     let (mut skipped, mut owned, mut completed, mut total) = (0, 0usize, 0usize, 0usize);
     for c in (0..search.chunks()).filter(|&c| ctl.shard.owns(c)) {
         owned += 1;
@@ -187,7 +187,7 @@ fn run_in(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<RunSummar
                 r
             })
             .collect();
-        store::write_atomic(&store::chunk_path(out, c), store::chunk_text(&points).as_bytes())?;
+        store::write_atomic(&store::chunk_path(out, c), store::chunk_text(search, c, &points).as_bytes())?;
         completed += 1;
         summary.evaluated += points.len();
         summary.failed += points.iter().filter(|p| p.status != Status::Ok).count();
@@ -239,7 +239,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<RunSummary, SearchError> {
     for c in 0..search.chunks() {
         let mut found = None;
         for d in dirs {
-            if store::read_chunk(d, c, search.chunk_range(c))?.is_some() {
+            if store::read_chunk(d, &search, c)?.is_some() {
                 found = Some(d);
                 break;
             }

@@ -20,6 +20,7 @@
 mod assemble;
 pub mod axis;
 pub mod bench;
+pub mod chunk;
 mod exec;
 mod heatmap;
 pub mod limits;
@@ -64,6 +65,15 @@ pub enum SearchError {
         path: String,
         /// What happened.
         detail: String,
+    },
+    /// A chunk file is not this search's (another search's, another tool version's, edited, or
+    /// holding points that are not this grid's): refused, never merged or recomputed over.
+    #[error("{path}: {reason}; it is not a chunk of this search (move it away to recompute it)")]
+    Chunk {
+        /// The chunk file.
+        path: String,
+        /// What does not match.
+        reason: String,
     },
     /// A directory holds a different search, or shards disagree.
     #[error("{dir}: {reason}")]
@@ -257,6 +267,12 @@ impl Search {
     /// The manifest as written (pretty JSON, trailing newline).
     pub fn manifest_text(&self) -> String {
         serde_json::to_string_pretty(&self.manifest()).expect("manifest serialises") + "\n"
+    }
+
+    /// The search's identity in its chunk headers: SHA-256 of [`Search::manifest_text`] (base
+    /// configuration and its hash, axes, options, metrics, scheme).
+    pub fn identity(&self) -> String {
+        chunk::sha256_hex(self.manifest_text().as_bytes())
     }
 
     fn from_manifest(m: Manifest) -> Result<Search, SearchError> {

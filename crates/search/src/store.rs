@@ -1,16 +1,13 @@
-//! On-disk formats: the manifest, chunk files (JSON lines, written via temp file + rename),
-//! per-shard progress files, and the final `results.csv`, `results.json`, `best.json`,
-//! `timings.csv`.
-//!
-//! Floats: chunk files store every metric as the text of Rust's shortest round-trip form
-//! (`format!("{x}")`), parsed back with `str::parse::<f64>` (exact), so results read from
-//! chunks equal the computed values bit for bit.
+//! On-disk formats: the manifest, chunk files ([`crate::chunk`]: JSON lines under a header
+//! naming their search, written via temp file + rename), per-shard progress files, and the final
+//! `results.csv`, `results.json`, `best.json`, `timings.csv`.
 
 use std::path::{Path, PathBuf};
 
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 use serde_json::{json, Map, Value};
 
+pub use crate::chunk::{chunk_text, read_chunk};
 use crate::point::{PointResult, Status, METRICS};
 use crate::SearchError;
 
@@ -38,85 +35,6 @@ pub fn mkdir(path: &Path) -> Result<(), SearchError> {
 /// Path of chunk c.
 pub fn chunk_path(dir: &Path, c: usize) -> PathBuf {
     dir.join(CHUNK_DIR).join(format!("chunk-{c:05}.jsonl"))
-}
-
-/// One line of a chunk file.
-#[derive(Debug, Serialize, Deserialize)]
-struct ChunkLine {
-    index: usize,
-    values: Vec<String>,
-    status: Status,
-    message: String,
-    w_positive_definite: Option<bool>,
-    feasible_32: Option<bool>,
-    metrics: Vec<Option<String>>,
-    sim_seconds: f64,
-    theory_seconds: f64,
-}
-
-/// Serialise a chunk (one JSON line per point, in index order).
-pub fn chunk_text(points: &[PointResult]) -> String {
-    let mut out = String::new();
-    for p in points {
-        let line = ChunkLine {
-            index: p.index,
-            values: p.values.clone(),
-            status: p.status,
-            message: p.message.clone(),
-            w_positive_definite: p.w_positive_definite,
-            feasible_32: p.feasible_32,
-            metrics: p.metrics.iter().map(|m| m.map(|x| format!("{x}"))).collect(),
-            sim_seconds: p.sim_seconds,
-            theory_seconds: p.theory_seconds,
-        };
-        out.push_str(&serde_json::to_string(&line).expect("chunk line serialises"));
-        out.push('\n');
-    }
-    out
-}
-
-/// Read chunk c if present and complete: exactly the points `range`, in order. A missing or
-/// malformed chunk gives `Ok(None)` (it is recomputed).
-pub fn read_chunk(
-    dir: &Path,
-    c: usize,
-    range: std::ops::Range<usize>,
-) -> Result<Option<Vec<PointResult>>, SearchError> {
-    let path = chunk_path(dir, c);
-    if !path.exists() {
-        return Ok(None);
-    }
-    let text = read(&path)?;
-    let mut out = Vec::with_capacity(range.len());
-    for line in text.lines().filter(|l| !l.trim().is_empty()) {
-        let Ok(l) = serde_json::from_str::<ChunkLine>(line) else { return Ok(None) };
-        if l.metrics.len() != METRICS.len() {
-            return Ok(None);
-        }
-        let mut metrics = Vec::with_capacity(METRICS.len());
-        for m in &l.metrics {
-            match m {
-                None => metrics.push(None),
-                Some(s) => match s.parse::<f64>() {
-                    Ok(x) => metrics.push(Some(x)),
-                    Err(_) => return Ok(None),
-                },
-            }
-        }
-        out.push(PointResult {
-            index: l.index,
-            values: l.values,
-            status: l.status,
-            message: l.message,
-            w_positive_definite: l.w_positive_definite,
-            feasible_32: l.feasible_32,
-            metrics,
-            sim_seconds: l.sim_seconds,
-            theory_seconds: l.theory_seconds,
-        });
-    }
-    let ok = out.len() == range.len() && out.iter().zip(range).all(|(p, i)| p.index == i);
-    Ok(ok.then_some(out))
 }
 
 fn csv_field(s: &str) -> String {
