@@ -52,24 +52,39 @@ fn prepare_out(out: &Path, text: &str) -> Result<Found, SearchError> {
             }
             Found::Ours
         } else {
-            let mut entries = std::fs::read_dir(out)
+            // empty, or holding only what a search killed while setting up leaves: temp files
+            // of the manifest's write and an empty chunks/ (the manifest is written first)
+            let entries = std::fs::read_dir(out)
                 .map_err(|e| SearchError::Io { path: out.display().to_string(), detail: e.to_string() })?;
-            if entries.next().is_some() {
-                return Err(mismatch(
-                    out,
-                    "exists, is not empty and is not a wingcheck search directory (no manifest.json); use a new or empty --out",
-                ));
+            for e in entries {
+                let e = e.map_err(|e| SearchError::Io { path: out.display().to_string(), detail: e.to_string() })?;
+                let name = e.file_name().to_string_lossy().to_string();
+                let empty_chunks = name == store::CHUNK_DIR
+                    && std::fs::read_dir(e.path()).is_ok_and(|mut d| {
+                        d.all(|x| x.is_ok_and(|x| store::is_temp(&x.file_name().to_string_lossy())))
+                    });
+                if !(store::is_temp(&name) || empty_chunks) {
+                    return Err(mismatch(
+                        out,
+                        "exists, is not empty and is not a wingcheck search directory (no manifest.json); use a new or empty --out",
+                    ));
+                }
             }
             Found::Empty
         }
     } else {
         Found::Created
     };
+    // the manifest first: a run killed at any moment leaves a directory the next run takes
+    // (no manifest: nothing but our temp files; a manifest: this search, resumed)
     let setup = || -> Result<(), SearchError> {
-        store::mkdir(&out.join(store::CHUNK_DIR))?;
+        store::mkdir(out)?;
+        store::remove_stale_temps(out);
         if found != Found::Ours {
             store::write_atomic(&out.join("manifest.json"), text.as_bytes())?;
         }
+        store::mkdir(&out.join(store::CHUNK_DIR))?;
+        store::remove_stale_temps(&out.join(store::CHUNK_DIR));
         Ok(())
     };
     if let Err(e) = setup() {

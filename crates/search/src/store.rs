@@ -14,10 +14,58 @@ use crate::SearchError;
 /// Directory of the chunk files inside an output directory.
 pub const CHUNK_DIR: &str = "chunks";
 
-/// Write `bytes` to `path` atomically (temp file in the same directory + rename).
+/// Tag of this process's temp files: `.{name}.tmp-{pid}` (one file at a time) and
+/// `.{name}.set-tmp-{pid}` ([`FileSet`]). A run removes the ones of dead processes
+/// ([`remove_stale_temps`]), so a directory resumed after a kill holds exactly the files of an
+/// uninterrupted run.
+const TMP_TAGS: [&str; 2] = [".tmp-", ".set-tmp-"];
+
+/// Write `bytes` to `path` atomically: temp file `.{name}.tmp-{pid}` in the same directory,
+/// fsync, mode 0644, rename over `path`.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), SearchError> {
-    wingcheck_sim::output::write_atomic(path, bytes)
-        .map_err(|e| SearchError::Io { path: path.display().to_string(), detail: e.to_string() })
+    use std::io::Write;
+    let err = |e: std::io::Error| SearchError::Io { path: path.display().to_string(), detail: e.to_string() };
+    let name = path.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
+    let tmp = path.with_file_name(format!(".{name}{}{}", TMP_TAGS[0], std::process::id()));
+    let write = || -> std::io::Result<()> {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(bytes)?;
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            f.set_permissions(std::fs::Permissions::from_mode(0o644))?;
+        }
+        f.sync_all()?;
+        std::fs::rename(&tmp, path)
+    };
+    write().map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        err(e)
+    })
+}
+
+/// Removes the temp files ([`TMP_TAGS`]) in `dir` whose process is no longer alive (a kill
+/// during a write or the final assembly); those of live processes are left alone.
+pub fn remove_stale_temps(dir: &Path) {
+    let Ok(entries) = std::fs::read_dir(dir) else { return };
+    for e in entries.flatten() {
+        let name = e.file_name().to_string_lossy().to_string();
+        if !name.starts_with('.') || !e.file_type().is_ok_and(|t| t.is_file()) {
+            continue;
+        }
+        let pid = TMP_TAGS.iter().find_map(|tag| name.rsplit_once(tag).and_then(|(_, p)| p.parse::<u32>().ok()));
+        if let Some(pid) = pid {
+            if !wingcheck_io::process_alive(pid) {
+                let _ = std::fs::remove_file(e.path());
+            }
+        }
+    }
+}
+
+/// Whether `name` is a temp file of [`write_atomic`] or [`FileSet`].
+pub fn is_temp(name: &str) -> bool {
+    name.starts_with('.')
+        && TMP_TAGS.iter().any(|tag| name.rsplit_once(tag).is_some_and(|(_, p)| p.parse::<u32>().is_ok()))
 }
 
 /// Read a file to a string.
@@ -132,7 +180,12 @@ impl<I: Iterator<Item = Result<PointResult, SearchError>>> Serialize for LazyPoi
 /// `{"axes": [keys], "metrics": [names], "points": [point_json …]}`, pretty-printed by
 /// serde_json with a trailing newline — the same bytes as `serde_json::to_string_pretty` of
 /// the whole document (keys in the order a `json!` map sorts them).
-pub fn write_results_json<I>(out: &mut impl std::io::Write, keys: &[String], points: I) -> Result<(), SearchError>
+pub fn write_results_json<I>(
+    out: &mut impl std::io::Write,
+    path: &str,
+    keys: &[String],
+    points: I,
+) -> Result<(), SearchError>
 where
     I: Iterator<Item = Result<PointResult, SearchError>>,
 {
@@ -145,7 +198,7 @@ where
     }
     let lazy = LazyPoints { keys, points: std::cell::RefCell::new(points), error: std::cell::RefCell::new(None) };
     let doc = Doc { axes: keys, metrics: &METRICS, points: &lazy };
-    let io = |e: String| SearchError::Io { path: "results.json".into(), detail: e };
+    let io = |e: String| SearchError::Io { path: path.to_string(), detail: e };
     let written = serde_json::to_writer_pretty(&mut *out, &doc);
     if let Some(e) = lazy.error.borrow_mut().take() {
         return Err(e);
@@ -270,7 +323,7 @@ impl FileSet {
     }
 
     fn tmp(&self, name: &str) -> PathBuf {
-        self.dir.join(format!(".{name}.set-tmp-{}", std::process::id()))
+        self.dir.join(format!(".{name}{}{}", TMP_TAGS[1], std::process::id()))
     }
 
     /// Write `text` to the temp file of `name`.
@@ -330,6 +383,11 @@ impl Staged {
     pub fn write(&mut self, text: &str) -> Result<(), SearchError> {
         use std::io::Write;
         self.out.write_all(text.as_bytes()).map_err(|e| self.error(e))
+    }
+
+    /// The full path of the file (what its errors name).
+    pub fn path(&self) -> &str {
+        &self.path
     }
 
     /// The underlying writer (errors name the file via [`Staged::error`]).

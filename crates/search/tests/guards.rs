@@ -115,7 +115,8 @@ fn a_failed_write_of_the_final_files_leaves_no_partial_result_set() {
     let blocker = format!(".results.json.set-tmp-{}", std::process::id());
     std::fs::create_dir(dir.join(&blocker)).unwrap();
     let e = wingcheck_search::finalize(&dir).unwrap_err();
-    assert!(e.to_string().contains("results.json"), "{e}");
+    // the error names the full path (it used to name only the file)
+    assert!(e.to_string().contains(&dir.join("results.json").display().to_string()), "{e}");
     assert_eq!(names(&dir), [blocker.as_str(), "chunks", "manifest.json"], "no final file and no temp file left");
     std::fs::remove_dir(dir.join(&blocker)).unwrap();
     assert!(wingcheck_search::finalize(&dir).is_ok());
