@@ -268,3 +268,35 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn messages_name_each_os_error_once_and_abbreviate_long_integers() {
+    // An OS error is printed once (it was "… (os error 17): … (os error 17)").
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("f");
+    std::fs::write(&file, "a file").unwrap();
+    let o = wingcheck(&["certify", "--out", file.join("p").to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.matches("(os error").count() == 1, "{err}");
+    // A refuted exact pivot has hundreds of digits: shown as its first and last digits and
+    // its length, with its value.
+    let p = dir.path().join("p");
+    certify::write_all(&paper_with(&[]), &p).unwrap();
+    // λ = 9 below max W/κ ≈ 9.90 (README): refuted at pivot 24, a 48-digit fraction
+    let name = "w-bounds-upper.json";
+    let mut v = read(&p, name);
+    v["lambda"] = json!("9");
+    let text = serde_json::to_string_pretty(&v).unwrap();
+    std::fs::write(p.join(name), &text).unwrap();
+    let mut index = read(&p, "index.json");
+    for e in index["certificates"].as_array_mut().unwrap() {
+        if e["file"] == name {
+            e["sha256"] = json!(manifest::sha256_hex(text.as_bytes()));
+        }
+    }
+    write_index(&p, &serde_json::to_string_pretty(&index).unwrap());
+    let e = verify_set(&p).unwrap_err().to_string();
+    assert!(e.contains("pivot") && e.contains("digits)") && e.contains("≈"), "{e}");
+    let longest = e.split(|c: char| !c.is_ascii_digit()).map(str::len).max().unwrap_or(0);
+    assert!(longest <= 24, "a {longest}-digit integer in: {e}");
+}
