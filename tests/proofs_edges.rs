@@ -36,6 +36,9 @@ fn snapshot(dir: &Path) -> Vec<(String, Vec<u8>)> {
     v
 }
 
+/// An edit of index.json and what its rejection must mention.
+type Edit = (fn(&mut Value), &'static str);
+
 fn write_index(dir: &Path, text: &str) {
     std::fs::write(dir.join("index.json"), text).unwrap();
 }
@@ -114,7 +117,7 @@ fn duplicate_keys_unknown_and_repeated_claims_and_needs_are_refused() {
     let e = verify_set(&p).unwrap_err().to_string();
     assert!(e.contains("config.control.a occurs twice"), "{e}");
     let original: Value = serde_json::from_str(&text).unwrap();
-    let edits: [(fn(&mut Value), &str); 3] = [
+    let edits: [Edit; 3] = [
         (|v| v["claims"].as_array_mut().unwrap().push(json!({"claim": "made-up", "needs": []})), "unknown claim"),
         (
             |v| {

@@ -287,7 +287,7 @@ pub fn certificate_set(cfg: &Config) -> Result<(Vec<CertificateFile>, Vec<String
         out.push(maker.negative("w-bounds-indefinite", a, b, &tight.argmin, n));
     } else {
         match finer_negative_direction(cfg, &params)? {
-            Finer::Found(file) => out.push(file),
+            Finer::Found(file) => out.push(*file),
             Finer::NotNeeded => {}
             Finer::Why(note) => notes.push(note),
         }
@@ -326,7 +326,7 @@ enum Finer {
     /// a/b is below the converged ω₁ (less its error): W ≻ 0 is what the claim checker finds too.
     NotNeeded,
     /// A negative direction of W at the configured weights on a finer space.
-    Found(CertificateFile),
+    Found(Box<CertificateFile>),
     /// Why the set cannot carry the negative direction the claim checker finds.
     Why(String),
 }
@@ -363,11 +363,11 @@ fn finer_negative_direction(cfg: &Config, params: &LyapunovParams) -> Result<Fin
         }
         if let (x, true) = negative_witness(&p, &t.argmin) {
             let maker = Maker { wing: wing_text(cfg), params: p.clone() };
-            return Ok(Finer::Found(CertificateFile {
+            return Ok(Finer::Found(Box::new(CertificateFile {
                 elements: Some(m),
                 witness: Some(x),
                 ..maker.file("w-bounds-indefinite", FactKind::WNegativeDirection, &p.a, &p.b)
-            }));
+            })));
         }
     }
     Ok(Finer::Why(format!(

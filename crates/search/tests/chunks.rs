@@ -41,6 +41,9 @@ fn tamper(dir: &Path, c: usize, rehash: bool, edit: impl Fn(&mut Value)) {
     std::fs::write(&path, serde_json::to_string(&header).unwrap() + "\n" + &body).unwrap();
 }
 
+/// Whether the forger re-hashes, the edit of every point line, what the refusal must mention.
+type Tamper = (bool, fn(&mut Value), &'static str);
+
 fn refused_merge(dirs: &[PathBuf], out: &Path, mentions: &[&str]) {
     let e = merge(dirs, out).unwrap_err().to_string();
     for m in mentions {
@@ -84,7 +87,7 @@ fn edited_chunks_off_grid_values_and_non_finite_metrics_are_refused() {
     let ours = search(&[]);
     let (a, b) = shards(&ours, root.path());
     let out = root.path().join("merged");
-    let cases: [(bool, fn(&mut Value), &str); 5] = [
+    let cases: [Tamper; 5] = [
         (false, |l| l["status"] = "diverged".into(), "do not hash"),
         (true, |l| l["values"][0] = "3.5".into(), "the grid has"),
         (true, |l| l["metrics"][9] = "NaN".into(), "metric rms_q_tip = \"NaN\" is not a finite number"),
@@ -109,9 +112,7 @@ fn edited_chunks_off_grid_values_and_non_finite_metrics_are_refused() {
 
 fn copy_dir(from: &Path, to: &Path) {
     std::fs::create_dir_all(to.join(store::CHUNK_DIR)).unwrap();
-    for rel in ["manifest.json"] {
-        std::fs::copy(from.join(rel), to.join(rel)).unwrap();
-    }
+    std::fs::copy(from.join("manifest.json"), to.join("manifest.json")).unwrap();
     for e in std::fs::read_dir(from.join(store::CHUNK_DIR)).unwrap() {
         let e = e.unwrap();
         std::fs::copy(e.path(), to.join(store::CHUNK_DIR).join(e.file_name())).unwrap();

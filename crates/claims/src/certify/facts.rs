@@ -174,9 +174,7 @@ fn invalid(field: &str, message: impl Into<String>) -> CertifyError {
 /// Short display of an exact rational: `p/q (≈ 1.234e-5)`, or the integer; integers of more
 /// than 24 digits abbreviated ([`wingcheck_cert::exact::abbreviated`]).
 pub fn show(r: &BigRational) -> String {
-    if r.is_integer() {
-        wingcheck_cert::exact::abbreviated(r)
-    } else if to_fraction_string(r).len() > 2 * wingcheck_cert::exact::SHOWN_DIGITS {
+    if r.is_integer() || to_fraction_string(r).len() > 2 * wingcheck_cert::exact::SHOWN_DIGITS {
         wingcheck_cert::exact::abbreviated(r)
     } else {
         format!("{} (≈ {:.6e})", to_fraction_string(r), to_f64(r))
