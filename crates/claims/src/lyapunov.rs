@@ -176,16 +176,9 @@ pub fn to_dense(m: &RationalMatrix) -> faer::Mat<f64> {
 }
 
 /// Generalised eigenpairs of (A, B), B ≻ 0: eigenvalues ascending and eigenvectors (columns).
-/// Solved for the diagonally scaled pencil (DAD, DBD), D = diag(B)^(−1/2) (same eigenvalues,
-/// eigenvectors D·y): Galerkin forms of wings whose parameters span many decades (stiffness
-/// ∝ h⁻³ beside mass ∝ h, EI 1e-12 beside ρ 1e12) are otherwise too ill-conditioned for the
-/// Cholesky factor of B.
 pub fn generalized_eigen(a: &faer::Mat<f64>, b: &faer::Mat<f64>) -> Result<(Vec<f64>, faer::Mat<f64>), String> {
     use faer::Side;
     let n = a.nrows();
-    let d: Vec<f64> = (0..n).map(|i| if b[(i, i)] > 0.0 { 1.0 / b[(i, i)].sqrt() } else { 1.0 }).collect();
-    let a = &faer::Mat::from_fn(n, n, |i, j| d[i] * a[(i, j)] * d[j]);
-    let b = &faer::Mat::from_fn(n, n, |i, j| d[i] * b[(i, j)] * d[j]);
     let llt = b.llt(Side::Lower).map_err(|e| format!("κ is not positive definite: {e:?}"))?;
     let l = llt.L();
     let c = wingcheck_sim::dense::congruence(l, a);
@@ -197,7 +190,7 @@ pub fn generalized_eigen(a: &faer::Mat<f64>, b: &faer::Mat<f64>) -> Result<(Vec<
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by(|&i, &j| vals[i].total_cmp(&vals[j]));
     let sorted_vals = order.iter().map(|&i| vals[i]).collect();
-    let sorted_vecs = faer::Mat::from_fn(n, n, |r, k| d[r] * vecs[(r, order[k])]);
+    let sorted_vecs = faer::Mat::from_fn(n, n, |r, k| vecs[(r, order[k])]);
     Ok((sorted_vals, sorted_vecs))
 }
 
