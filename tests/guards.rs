@@ -99,3 +99,11 @@ fn config_input_is_bounded_and_strict() {
     }
     refused(&["config", "--set", "control.k1=1e300"], &["control.k1 = 1e300"]);
 }
+
+#[test]
+fn bench_is_guarded_like_the_commands_it_times() {
+    // dt = 2e-8: 1e9 steps per timed run, repeated; t_end = 1e5: 1e8 steps and 13 GB of samples
+    refused(&["bench", "--set", "discretisation.dt=2e-8"], &["bench refused before starting", "--allow-large"]);
+    refused(&["bench", "--set", "horizon.t_end=1e5"], &["bench refused before starting"]);
+    refused(&["bench", "--what", "check", "--set", "horizon.t_end=1e4"], &["bench refused before starting"]);
+}

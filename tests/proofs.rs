@@ -148,7 +148,7 @@ fn edited_values_are_caught_by_the_hash_or_by_the_maths() {
 #[test]
 fn certificates_must_be_for_the_sets_config() {
     for (field, value, mention) in
-        [("a", "0.5", "weights a = 1/2"), ("a", "-1", "must be > 0"), ("b", "2", "config has a = 1, b = 1")]
+        [("a", "0.5", "weights a = 1/2"), ("a", "-1", "must be ≥ 0"), ("b", "2", "config has a = 1, b = 1")]
     {
         let dir = fresh_set();
         let p = dir.path().join("p");

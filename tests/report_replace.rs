@@ -49,3 +49,30 @@ fn out_always_holds_a_complete_report_whenever_report_is_killed() {
         std::fs::read_dir(tmp.path()).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into()).collect();
     assert_eq!(names, ["r"], "stale staging directories left: {names:?}");
 }
+
+#[test]
+fn a_report_directory_is_replaced_only_if_it_holds_nothing_but_files_the_tool_wrote() {
+    let tmp = tempfile::tempdir().unwrap();
+    // A marker of an older version without a `files:` list owns nothing but itself: a user's
+    // CSV next to it is not deleted (the legacy rule owned every top-level csv/json/svg/html).
+    let legacy = tmp.path().join("legacy");
+    std::fs::create_dir(&legacy).unwrap();
+    std::fs::write(legacy.join(".wingcheck-report"), "wingcheck report\n").unwrap();
+    std::fs::write(legacy.join("notes.csv"), "mine").unwrap();
+    let o = report(&legacy).stderr(Stdio::piped()).output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("notes.csv") && err.contains("does not list"), "{err}");
+    assert_eq!(std::fs::read_to_string(legacy.join("notes.csv")).unwrap(), "mine");
+    // An empty subdirectory of the user's inside a complete report: refused, kept.
+    let out = tmp.path().join("r");
+    assert!(report(&out).status().unwrap().success());
+    std::fs::create_dir(out.join("mine")).unwrap();
+    let o = report(&out).stderr(Stdio::piped()).output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("mine/"), "{err}");
+    assert!(out.join("mine").is_dir() && out.join("index.html").is_file());
+    // Without it the report is replaced.
+    std::fs::remove_dir(out.join("mine")).unwrap();
+    assert!(report(&out).status().unwrap().success());
+    assert_complete(&out);
+}

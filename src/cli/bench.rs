@@ -2,7 +2,8 @@
 
 use clap::Args;
 use serde_json::json;
-use wingcheck_model::apply_overrides;
+use wingcheck_model::work::WorkEstimate;
+use wingcheck_model::{apply_overrides, Config};
 use wingcheck_sim::bench::{loglog_slope, time_config, time_error_estimate, time_modes, Timing};
 
 use super::common::ConfigArgs;
@@ -22,10 +23,71 @@ pub struct BenchArgs {
     /// (`report`) or the search (`search`: the 32×32 paper grid with 1 and 2 threads).
     #[arg(long, default_value = "sim", value_parser = ["sim", "check", "report", "search"])]
     what: String,
+    #[command(flatten)]
+    work: super::common::WorkArgs,
+}
+
+/// The work of the whole benchmark, estimated before it starts (every timed run times its
+/// repetitions), so `bench` is guarded like the commands it times. `search` is guarded by the
+/// search's own estimate when it starts.
+fn estimate(cfg: &Config, what: &str, repeats: usize) -> WorkEstimate {
+    let set = |sets: &[String]| apply_overrides(cfg, sets).ok();
+    let mut parts: Vec<(f64, WorkEstimate)> = Vec::new();
+    let sim = |c: &Config| WorkEstimate::simulation(c, false, None);
+    let (r, r3) = (repeats as f64, repeats.min(3) as f64);
+    match what {
+        "check" => parts.push((r, WorkEstimate::check(cfg))),
+        "report" => parts.push((r, WorkEstimate::report(cfg))),
+        "search" => {}
+        _ => {
+            parts.push((r, sim(cfg)));
+            for variant in [
+                vec!["discretisation.stepper=trapezoid".to_string()],
+                vec!["discretisation.stepper=trbdf2".to_string()],
+                vec!["discretisation.basis=nodal".to_string()],
+                vec!["discretisation.basis=modal".to_string()],
+                vec![
+                    "control.kind=ftdo".into(),
+                    "observer.rule=explicit".into(),
+                    "discretisation.stepper=exponential".into(),
+                ],
+                vec![
+                    "control.kind=ftdo".into(),
+                    "observer.rule=explicit".into(),
+                    "discretisation.stepper=trbdf2".into(),
+                ],
+            ] {
+                if let Some(c) = set(&variant) {
+                    parts.push((r, sim(&c)));
+                }
+            }
+            parts.push((r3, WorkEstimate::simulation_with_error(cfg, false, None)));
+            let key = if cfg.discretisation.method == wingcheck_model::Method::Fd { "fd_points" } else { "elements" };
+            for n in [8usize, 16, 32, 64, 128] {
+                if let Some(c) = set(&[format!("discretisation.{key}={n}")]) {
+                    parts.push((r3, sim(&c)));
+                }
+            }
+            for t in [5.0, 10.0, 20.0, 40.0] {
+                if let Some(c) = set(&[format!("horizon.t_end={t}")]) {
+                    parts.push((r3, sim(&c)));
+                }
+            }
+        }
+    }
+    let mut total =
+        WorkEstimate { what: "bench".into(), steps: 0.0, seconds: 0.0, memory_bytes: 0.0, output_bytes: 0.0 };
+    for (times, e) in parts {
+        total.steps += times * e.steps;
+        total.seconds += times * e.seconds;
+        total.memory_bytes = total.memory_bytes.max(e.memory_bytes);
+    }
+    total
 }
 
 pub fn run(a: BenchArgs) -> anyhow::Result<()> {
     let cfg = a.config.load()?;
+    a.work.guard(&estimate(&cfg, &a.what, usize::from(a.repeats)))?;
     match a.what.as_str() {
         "check" => return bench_check(&cfg, usize::from(a.repeats), a.json),
         "report" => return bench_report(&cfg, usize::from(a.repeats), a.json),

@@ -25,14 +25,23 @@ pub struct VerifyArgs {
     /// Directory of a certificate set (index.json and the files it lists).
     #[arg(default_value = "proofs")]
     path: PathBuf,
+    /// Pin the set to a configuration: with `--config FILE` and/or `--set key=value` the set must
+    /// have been made for exactly that configuration (else any self-consistent set of any
+    /// configuration verifies).
+    #[command(flatten)]
+    expected: ConfigArgs,
 }
 
 pub fn certify(a: CertifyArgs) -> anyhow::Result<()> {
     let cfg = a.config.load()?;
     let start = Instant::now();
-    let files = certify::write_all(&cfg, &a.out).with_context(|| format!("certify into {}", a.out.display()))?;
+    let written = certify::write_set(&cfg, &a.out).with_context(|| format!("certify into {}", a.out.display()))?;
+    let files = written.files;
     for f in &files {
         println!("wrote {}", f.display());
+    }
+    for n in &written.notes {
+        println!("note: {n}");
     }
     println!(
         "{} files (certificates and index.json) for config sha256 {} in {:.2} s; re-check with `wingcheck verify {}`",
@@ -52,8 +61,11 @@ pub fn verify(a: VerifyArgs) -> anyhow::Result<()> {
             a.path.display()
         );
     }
+    let pinned = a.expected.config.is_some() || !a.expected.set.is_empty();
+    let expected = if pinned { Some(a.expected.load()?) } else { None };
     let start = Instant::now();
-    let set = certify::verify_set(&a.path).with_context(|| format!("REJECTED {}", a.path.display()))?;
+    let set = certify::verify_set_for(&a.path, expected.as_ref())
+        .with_context(|| format!("REJECTED {}", a.path.display()))?;
     let w = &set.config.wing;
     println!(
         "certificate set {} for config sha256 {}\n  wing: span = {}, rho = {}, rho_xc = {}, ei = {}, gj = {}, ip = {}, xi = {}",
@@ -79,5 +91,13 @@ pub fn verify(a: VerifyArgs) -> anyhow::Result<()> {
         set.certs.len(),
         start.elapsed().as_secs_f64()
     );
+    if pinned {
+        println!("the set was made for the expected configuration (--config/--set; sha256 {})", set.config_sha256);
+    } else {
+        println!(
+            "not pinned: these facts are about the set's own configuration above; pass --config FILE and/or \
+             --set key=value to require it to be yours"
+        );
+    }
     Ok(())
 }

@@ -75,7 +75,12 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
         }
     }
     let json_out = a.out.as_ref().map(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("json")));
-    a.work.guard(&wingcheck_model::work::WorkEstimate::simulation(&cfg, json_out == Some(true), json_out))?;
+    let estimate = if a.error_estimate {
+        wingcheck_model::work::WorkEstimate::simulation_with_error(&cfg, json_out == Some(true), json_out)
+    } else {
+        wingcheck_model::work::WorkEstimate::simulation(&cfg, json_out == Some(true), json_out)
+    };
+    a.work.guard(&estimate)?;
     if let Some(path) = &a.out {
         check_writable(path)?;
     }

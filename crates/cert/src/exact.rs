@@ -80,15 +80,25 @@ pub fn parse_rational_bounded(text: &str, limits: &NumberLimits) -> Result<BigRa
     if let Some(pos) = s.find(['e', 'E']) {
         let exp: i64 = s[pos + 1..].parse().map_err(|_| parse_err(text, "bad exponent"))?;
         let mantissa = &s[..pos];
-        let frac_len = mantissa.split_once('.').map_or(0, |(_, f)| f.len()) as i64;
-        if (exp - frac_len).abs() > limits.max_exponent {
-            return Err(parse_err(
-                text,
-                &format!("decimal exponent {} outside [-{m}, {m}]", exp - frac_len, m = limits.max_exponent),
-            ));
+        let frac_len = mantissa.split_once('.').map_or(0, |(_, f)| f.len());
+        let m = limits.max_exponent;
+        // checked and unsigned: `i64::MIN.abs()` wraps to i64::MIN in release builds, which
+        // would pass any `≤ m` test
+        match decimal_scale(exp, frac_len) {
+            Some(scale) if scale.unsigned_abs() <= m.unsigned_abs() => {}
+            Some(scale) => {
+                return Err(parse_err(text, &format!("decimal exponent {scale} outside [-{m}, {m}]")));
+            }
+            None => return Err(parse_err(text, &format!("decimal exponent outside [-{m}, {m}]"))),
         }
     }
     parse_rational(text)
+}
+
+/// The power of ten of a decimal `d.ddd e exp` with `frac_len` fraction digits: `exp − frac_len`,
+/// or `None` if that is not an `i64` (never wraps).
+fn decimal_scale(exp: i64, frac_len: usize) -> Option<i64> {
+    exp.checked_sub(i64::try_from(frac_len).ok()?)
 }
 
 /// Parses an exact rational from text.
@@ -142,12 +152,38 @@ pub fn parse_rational(text: &str) -> Result<BigRational, ExactError> {
     if negative {
         num = -num;
     }
-    let scale = exponent
-        .checked_sub(frac_part.len() as i64)
-        .filter(|e| e.abs() <= MAX_DECIMAL_EXPONENT)
+    let scale = decimal_scale(exponent, frac_part.len())
+        .filter(|e| e.unsigned_abs() <= MAX_DECIMAL_EXPONENT.unsigned_abs())
         .ok_or_else(|| parse_err(text, "exponent out of range"))?;
-    let ten_pow = num_traits::pow(BigInt::from(10u32), scale.unsigned_abs() as usize);
+    let power = usize::try_from(scale.unsigned_abs()).map_err(|_| parse_err(text, "exponent out of range"))?;
+    let ten_pow = num_traits::pow(BigInt::from(10u32), power);
     Ok(if scale >= 0 { BigRational::from_integer(num * ten_pow) } else { BigRational::new(num, ten_pow) })
+}
+
+/// Digits of an integer that messages show in full ([`abbreviated`]).
+pub const SHOWN_DIGITS: usize = 24;
+
+/// A rational for messages: `p/q` (or `p`) in full when numerator and denominator have at most
+/// [`SHOWN_DIGITS`] digits; longer ones as their first 8 and last 4 digits with their length
+/// (`-18180890…8353 (250 digits)`), followed by the value (`≈ -1.254826e13`). An exact pivot of
+/// a 44 × 44 LDLᵀ has hundreds of digits, which no reader can use.
+pub fn abbreviated(r: &BigRational) -> String {
+    fn int(n: &BigInt) -> String {
+        let s = n.to_string();
+        let digits = s.trim_start_matches('-').len();
+        if digits <= SHOWN_DIGITS {
+            return s;
+        }
+        let sign = if s.starts_with('-') { "-" } else { "" };
+        let d = s.trim_start_matches('-');
+        format!("{sign}{}…{} ({digits} digits)", &d[..8], &d[digits - 4..])
+    }
+    let full = r.numer().to_string().len() <= SHOWN_DIGITS && r.denom().to_string().len() <= SHOWN_DIGITS;
+    match (r.is_integer(), full) {
+        (true, true) => r.numer().to_string(),
+        (true, false) => format!("{} (≈ {:.6e})", int(r.numer()), to_f64(r)),
+        (false, _) => format!("{}/{} (≈ {:.6e})", int(r.numer()), int(r.denom()), to_f64(r)),
+    }
 }
 
 /// Formats a rational as `"p/q"` (reduced, `q ≥ 1`, sign on `p`), e.g. `"-7/20"`,

@@ -9,7 +9,7 @@
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 
-use crate::exact::to_f64;
+use crate::exact::abbreviated;
 use crate::matrix::RationalMatrix;
 
 /// Failure of an exact LP check.
@@ -26,7 +26,7 @@ pub enum LpError {
         found: usize,
     },
     /// An inequality multiplier `y[index] < 0`.
-    #[error("Farkas multiplier y[{index}] = {value} is negative")]
+    #[error("Farkas multiplier y[{index}] = {} is negative", abbreviated(value))]
     NegativeMultiplier {
         /// Index into `y`.
         index: usize,
@@ -34,7 +34,7 @@ pub enum LpError {
         value: BigRational,
     },
     /// `(yᵀA + wᵀA_eq)[column] ≠ 0`.
-    #[error("Farkas combination nonzero at column {column}: {value}")]
+    #[error("Farkas combination nonzero at column {column}: {}", abbreviated(value))]
     CombinationNonzero {
         /// Column (variable) index.
         column: usize,
@@ -42,13 +42,13 @@ pub enum LpError {
         value: BigRational,
     },
     /// `yᵀb + wᵀb_eq ≥ 0`, so nothing is proved.
-    #[error("Farkas right-hand side yᵀb + wᵀb_eq = {value} (≈ {approx:e}) is not negative", approx = to_f64(value))]
+    #[error("Farkas right-hand side yᵀb + wᵀb_eq = {} is not negative", abbreviated(value))]
     RhsNotNegative {
         /// The value of `yᵀb + wᵀb_eq`.
         value: BigRational,
     },
     /// Inequality row violated: `(A x)[row] > b[row]`.
-    #[error("inequality {row} violated: (A x) = {lhs} > b = {rhs}")]
+    #[error("inequality {row} violated: (A x) = {} > b = {}", abbreviated(lhs), abbreviated(rhs))]
     InequalityViolated {
         /// Row index.
         row: usize,
@@ -58,7 +58,7 @@ pub enum LpError {
         rhs: Box<BigRational>,
     },
     /// Equality row violated: `(A_eq x)[row] ≠ b_eq[row]`.
-    #[error("equality {row} violated: (A_eq x) = {lhs} ≠ b_eq = {rhs}")]
+    #[error("equality {row} violated: (A_eq x) = {} ≠ b_eq = {}", abbreviated(lhs), abbreviated(rhs))]
     EqualityViolated {
         /// Row index.
         row: usize,

@@ -18,7 +18,7 @@ use num_integer::Integer;
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
 
-use crate::exact::{denominator_lcm, to_f64};
+use crate::exact::{abbreviated, denominator_lcm};
 use crate::matrix::RationalMatrix;
 
 /// Why a matrix was not accepted as positive (semi)definite.
@@ -41,7 +41,7 @@ pub enum PsdError {
         j: usize,
     },
     /// LDLᵀ pivot `index` (0-based) is `≤ 0`, so `A` is not positive definite.
-    #[error("pivot {index} not positive: {value} (≈ {approx:e})", approx = to_f64(value))]
+    #[error("pivot {index} not positive: {}", abbreviated(value))]
     PivotNotPositive {
         /// 0-based index of the first non-positive pivot.
         index: usize,
@@ -49,7 +49,10 @@ pub enum PsdError {
         value: BigRational,
     },
     /// A zero pivot whose column below is not zero: `A` is indefinite.
-    #[error("not PSD: pivot {index} is zero but entry ({row},{index}) of its Schur complement is {value}")]
+    #[error(
+        "not PSD: pivot {index} is zero but entry ({row},{index}) of its Schur complement is {}",
+        abbreviated(value)
+    )]
     ZeroPivotNonzeroColumn {
         /// 0-based pivot index.
         index: usize,
@@ -69,7 +72,7 @@ pub enum PsdError {
         found: String,
     },
     /// `L` is not unit lower triangular at `(i, j)`.
-    #[error("witness L is not unit lower triangular: L[{i}][{j}] = {value}")]
+    #[error("witness L is not unit lower triangular: L[{i}][{j}] = {}", abbreviated(value))]
     WitnessNotUnitLower {
         /// Row.
         i: usize,
@@ -79,7 +82,7 @@ pub enum PsdError {
         value: BigRational,
     },
     /// `D[index] < 0`.
-    #[error("witness D[{index}] = {value} is negative")]
+    #[error("witness D[{index}] = {} is negative", abbreviated(value))]
     WitnessNegativeD {
         /// Index into `D`.
         index: usize,
@@ -87,7 +90,11 @@ pub enum PsdError {
         value: BigRational,
     },
     /// `(L D Lᵀ)[i][j] ≠ A[i][j]`.
-    #[error("witness does not reproduce A at ({i},{j}): A has {expected}, L·D·Lᵀ has {found}")]
+    #[error(
+        "witness does not reproduce A at ({i},{j}): A has {}, L·D·Lᵀ has {}",
+        abbreviated(expected),
+        abbreviated(found)
+    )]
     WitnessMismatch {
         /// Row.
         i: usize,

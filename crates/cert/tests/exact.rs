@@ -96,3 +96,114 @@ proptest! {
         prop_assert_eq!(to_f64(&parse_rational(&s).unwrap()), s.parse::<f64>().unwrap());
     }
 }
+
+/// An exponent drawn over the whole i64 range, with its extremes (where `abs()` wraps) and the
+/// values near the certificate bound ±32 drawn often.
+fn exponent() -> impl Strategy<Value = i64> {
+    prop_oneof![
+        Just(i64::MIN),
+        Just(i64::MIN + 1),
+        Just(i64::MAX),
+        Just(i64::MAX - 1),
+        any::<i64>(),
+        -40i64..=40,
+        -100_010i64..=-99_990,
+        99_990i64..=100_010,
+    ]
+}
+
+/// A decimal of the parsers' grammar: sign, integer digits, optional `.` and fraction digits,
+/// optional `e`/`E` with an optionally signed exponent; returns the text, its digits and the
+/// power of ten of the last digit (exp − fraction length, in i128 so it never wraps).
+fn decimal() -> impl Strategy<Value = (String, String, i128)> {
+    (
+        prop_oneof![Just(""), Just("-"), Just("+")],
+        "[0-9]{0,12}",
+        proptest::option::of("[0-9]{0,12}"),
+        proptest::option::of((prop_oneof![Just("e"), Just("E")], prop_oneof![Just(""), Just("+")], exponent())),
+    )
+        .prop_filter("at least one digit", |(_, i, f, _)| !i.is_empty() || f.as_ref().is_some_and(|f| !f.is_empty()))
+        .prop_map(|(sign, int, frac, exp)| {
+            let mut text = format!("{sign}{int}");
+            let frac = frac.unwrap_or_default();
+            if !frac.is_empty() {
+                text.push('.');
+                text.push_str(&frac);
+            }
+            let e = match exp {
+                Some((mark, plus, e)) => {
+                    let plus = if e >= 0 { plus } else { "" };
+                    text.push_str(&format!("{mark}{plus}{e}"));
+                    e
+                }
+                None => 0,
+            };
+            let digits = format!("{sign}{int}{frac}").replace('+', "");
+            (text, digits, e as i128 - frac.len() as i128)
+        })
+}
+
+proptest! {
+    /// Over the whole number grammar, exponents across the whole i64 range included: the bounded
+    /// parser accepts exactly the texts within the limits (decided here in i128, where nothing
+    /// wraps) and then returns the exact value — independently, its correctly rounded f64 is what
+    /// std's parser makes of the text; everything else is refused (it never runs away: an
+    /// exponent wrapping past the bound would build a 10^(2^63) integer).
+    #[test]
+    fn bounded_parser_over_the_number_grammar((text, digits, scale) in decimal()) {
+        let limits = NumberLimits::CERTIFICATE;
+        let within = text.len() <= limits.max_chars && scale.abs() <= limits.max_exponent as i128;
+        match parse_rational_bounded(&text, &limits) {
+            Ok(r) => {
+                prop_assert!(within, "{text:?} accepted outside the limits");
+                let ten = BigRational::from_integer(BigInt::from(10));
+                let power = num_traits::pow(ten, scale.unsigned_abs() as usize);
+                let mantissa = BigRational::from_integer(digits.parse::<BigInt>().unwrap());
+                let want = if scale >= 0 { mantissa * power } else { mantissa / power };
+                prop_assert_eq!(&r, &want);
+                prop_assert_eq!(to_f64(&r), text.parse::<f64>().unwrap());
+            }
+            Err(e) => {
+                prop_assert!(!within, "{text:?} refused within the limits: {e}");
+                let m = e.to_string();
+                prop_assert!(m.contains("exponent") || m.contains("characters"), "{m}");
+            }
+        }
+        // the unbounded parser (its own guard |scale| ≤ MAX_DECIMAL_EXPONENT) likewise
+        match parse_rational(&text) {
+            Ok(r) => {
+                prop_assert!(scale.abs() <= MAX_DECIMAL_EXPONENT as i128, "{text:?}");
+                prop_assert_eq!(to_f64(&r), text.parse::<f64>().unwrap());
+            }
+            Err(_) => prop_assert!(scale.abs() > MAX_DECIMAL_EXPONENT as i128, "{text:?} refused"),
+        }
+    }
+
+    /// Fractions p/q over the whole i64 range: exact when q ≠ 0 and the text fits, refused
+    /// otherwise.
+    #[test]
+    fn bounded_parser_over_fractions(p in any::<i64>(), q in prop_oneof![Just(0i64), Just(i64::MIN), any::<i64>()]) {
+        let text = format!("{p}/{q}");
+        let limits = NumberLimits::CERTIFICATE;
+        match parse_rational_bounded(&text, &limits) {
+            Ok(r) => {
+                prop_assert!(q != 0 && text.len() <= limits.max_chars);
+                prop_assert_eq!(r, BigRational::new(BigInt::from(p), BigInt::from(q)));
+            }
+            Err(_) => prop_assert!(q == 0 || text.len() > limits.max_chars, "{text} refused"),
+        }
+    }
+}
+
+#[test]
+fn the_i64_min_exponent_is_refused_at_once() {
+    // The reproduction: 22 characters whose exponent − 0 fraction digits is i64::MIN,
+    // whose abs() wraps to i64::MIN (< 32) in release builds.
+    for text in
+        ["1e-9223372036854775808", "-1e-9223372036854775808", "1.5e-9223372036854775807", "1e9223372036854775807"]
+    {
+        let e = parse_rational_bounded(text, &NumberLimits::CERTIFICATE).unwrap_err().to_string();
+        assert!(e.contains("exponent"), "{text}: {e}");
+        assert!(parse_rational(text).is_err(), "{text}");
+    }
+}

@@ -18,14 +18,14 @@ use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
 use num_rational::BigRational;
-use wingcheck_cert::exact::{parse_rational_bounded, to_f64, NumberLimits};
+use wingcheck_cert::exact::{to_f64, NumberLimits};
 use wingcheck_model::Config;
 
 use crate::lyapunov::{self, Coupling, LyapunovParams};
 use facts::{CertificateFile, FactKind, WeightsText, WingText, FORMAT, VERSION};
 use manifest::{ClaimEntry, FileEntry, Manifest, INDEX, INDEX_FORMAT, INDEX_VERSION};
 
-pub use manifest::{verify_set, VerifiedSet};
+pub use manifest::{verify_set, verify_set_for, VerifiedSet};
 
 /// Elements of the Galerkin space used in certificates (dimension 11·N).
 pub const CERT_ELEMENTS: usize = 4;
@@ -56,6 +56,13 @@ pub enum CertifyError {
     /// The exact check failed: the claimed fact does not follow from the parameters.
     #[error("refuted: {0}")]
     Refuted(String),
+    /// `certify` made a set its own verifier rejects (a number outside the verifier's limits,
+    /// a witness that rounding spoiled): nothing was replaced.
+    #[error(
+        "certify made a set that its own verify rejects, so the previous set is unchanged: {0} (the witnesses \
+         and λ's come from float eigen-solves, which lose accuracy when the wing's parameters span many decades)"
+    )]
+    SelfCheck(String),
     /// The float computation that finds a witness failed (certify only).
     #[error("numerical failure while computing {what}: {detail}")]
     Numerical {
@@ -89,11 +96,75 @@ fn numerical(what: &str) -> impl FnOnce(String) -> CertifyError + '_ {
     move |detail| CertifyError::Numerical { what: what.into(), detail }
 }
 
-/// Rational close to x with denominator 10⁶, rounded down (`down`) or up.
-fn round_rational(x: f64, down: bool) -> BigRational {
-    let scaled = x * 1e6;
-    let k = if down { scaled.floor() } else { scaled.ceil() };
-    BigRational::new((k as i64).into(), 1_000_000.into())
+/// x rounded down (`down`) or up to a decimal k·10^(−places), exactly (x's exact binary value
+/// times a power of ten, then floor or ceiling in big integers: no f64 → i64 cast, which
+/// saturated at 1e12 · 1e6). Six places for |x| in [1e-3, 1e13) (the committed set's λ's and
+/// ratios), at least four significant digits below and at most nineteen above, so the text stays
+/// short for every magnitude a config allows.
+fn round_decimal(x: f64, down: bool) -> Decimal {
+    let e = if x == 0.0 || !x.is_finite() { 0 } else { x.abs().log10().floor() as i64 };
+    let places = if e < -3 {
+        3 - e
+    } else if e > 12 {
+        18 - e
+    } else {
+        6
+    };
+    let exact = wingcheck_cert::exact::from_f64_exact(if x.is_finite() { x } else { 0.0 }).expect("finite");
+    let ten = BigRational::from_integer(10.into());
+    let scale = num_traits::pow(ten, places.unsigned_abs() as usize);
+    let scaled = if places >= 0 { exact * &scale } else { exact / &scale };
+    let k = if down { scaled.floor() } else { scaled.ceil() }.to_integer();
+    Decimal { k, places }
+}
+
+/// The exact decimal k·10^(−places).
+struct Decimal {
+    k: num_bigint::BigInt,
+    places: i64,
+}
+
+impl Decimal {
+    fn value(&self) -> BigRational {
+        let ten = BigRational::from_integer(10.into());
+        let scale = num_traits::pow(ten, self.places.unsigned_abs() as usize);
+        let k = BigRational::from_integer(self.k.clone());
+        if self.places >= 0 {
+            k / scale
+        } else {
+            k * scale
+        }
+    }
+
+    /// As a fraction `p/q` where that fits the verifier's number limits (the committed set's
+    /// form), else as `ke−places`.
+    fn fraction_text(&self) -> String {
+        let f = fraction(&self.value());
+        if f.len() <= NumberLimits::CERTIFICATE.max_chars {
+            f
+        } else {
+            self.scientific()
+        }
+    }
+
+    /// As a plain decimal with `places` digits after the point when 0 ≤ places ≤ 6 (`0.126955`),
+    /// else as `ke−places`.
+    fn decimal_text(&self) -> String {
+        if !(0..=6).contains(&self.places) || self.k.sign() == num_bigint::Sign::Minus {
+            return self.scientific();
+        }
+        let digits = format!("{:0>width$}", self.k, width = self.places as usize + 1);
+        let (int, frac) = digits.split_at(digits.len() - self.places as usize);
+        if frac.is_empty() {
+            int.to_string()
+        } else {
+            format!("{int}.{frac}")
+        }
+    }
+
+    fn scientific(&self) -> String {
+        format!("{}e{}", self.k, -self.places)
+    }
 }
 
 fn fraction(r: &BigRational) -> String {
@@ -120,39 +191,68 @@ impl Maker {
         }
     }
 
-    fn bound(&self, id: &str, fact: FactKind, a: &str, b: &str, lambda: &BigRational) -> CertificateFile {
+    fn bound(&self, id: &str, fact: FactKind, a: &str, b: &str, lambda: &str) -> CertificateFile {
         CertificateFile {
             elements: Some(self.params.elements),
-            lambda: Some(fraction(lambda)),
+            lambda: Some(lambda.into()),
             ..self.file(id, fact, a, b)
         }
     }
 
-    fn negative(&self, id: &str, a: &str, b: &str, argmin: &[f64]) -> CertificateFile {
-        let x = lyapunov::round_vector(argmin).iter().map(fraction).collect();
+    fn negative(&self, id: &str, a: &str, b: &str, argmin: &[f64], elements: usize) -> CertificateFile {
+        let p = LyapunovParams { a: a.into(), b: b.into(), elements, ..self.params.clone() };
+        let (x, _) = negative_witness(&p, argmin);
         CertificateFile {
-            elements: Some(self.params.elements),
+            elements: Some(elements),
             witness: Some(x),
             ..self.file(id, FactKind::WNegativeDirection, a, b)
         }
     }
 }
 
+/// Elements of the finer Galerkin spaces tried for a negative direction of W when W ≻ 0 on the
+/// [`CERT_ELEMENTS`] space although a/b exceeds the converged ω₁: the Galerkin ω₁ of a space is
+/// an upper bound that decreases to ω₁ under refinement, so the negative directions of W for a/b
+/// between ω₁ and the coarse space's ω₁ appear only on finer spaces.
+pub const NEGATIVE_DIRECTION_ELEMENTS: [usize; 3] = [8, 16, 32];
+
+/// The witness of W(x) < 0 from the float extremal state: rounded to multiples of 2⁻²⁰ after
+/// scaling to max-norm 1 (short fractions; the committed set's form), or, where that loses the
+/// small components and W(x) < 0 no longer holds exactly, each component to 7 significant digits
+/// (`1.234567e-15`). Falls back to the first if neither holds (the self-check then refuses);
+/// the flag says whether W(x) < 0 was checked exactly.
+fn negative_witness(p: &LyapunovParams, argmin: &[f64]) -> (Vec<String>, bool) {
+    let coarse: Vec<BigRational> = lyapunov::round_vector(argmin);
+    let texts = |x: &[BigRational]| x.iter().map(fraction).collect::<Vec<String>>();
+    let Ok(forms) = lyapunov::assemble(p) else { return (texts(&coarse), false) };
+    let zero = BigRational::from_integer(0.into());
+    if lyapunov::quadratic_form(&forms.w, &coarse) < zero {
+        return (texts(&coarse), true);
+    }
+    let scale = argmin.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(1e-300);
+    let fine: Vec<String> = argmin.iter().map(|v| format!("{:.6e}", v / scale)).collect();
+    let exact: Option<Vec<BigRational>> = fine
+        .iter()
+        .map(|t| wingcheck_cert::exact::parse_rational_bounded(t, &NumberLimits::CERTIFICATE).ok())
+        .collect();
+    match exact {
+        Some(x) if lyapunov::quadratic_form(&forms.w, &x) < zero => (fine, true),
+        _ => (texts(&coarse), false),
+    }
+}
+
 /// All certificate files for `cfg` (in memory, in manifest order).
 pub fn certificates(cfg: &Config) -> Result<Vec<CertificateFile>, CertifyError> {
+    Ok(certificate_set(cfg)?.0)
+}
+
+/// The certificate files for `cfg` and the notes `certify` prints with them (why a fact the
+/// claim checker finds is not in the set, e.g. a negative direction of W too close to ω₁).
+pub fn certificate_set(cfg: &Config) -> Result<(Vec<CertificateFile>, Vec<String>), CertifyError> {
     let exact = manifest::config_params(cfg)?; // refuses values that cannot be certified
     let n = CERT_ELEMENTS;
-    let w = &cfg.wing;
     let d = format_decimal;
-    let wing = WingText {
-        span: d(w.span),
-        rho: d(w.rho),
-        rho_xc: d(w.rho_xc),
-        ei: d(w.ei),
-        gj: d(w.gj),
-        ip: d(w.ip),
-        xi: d(w.xi),
-    };
+    let wing = wing_text(cfg);
     let params = LyapunovParams {
         rho: wing.rho.clone(),
         rho_xc: wing.rho_xc.clone(),
@@ -170,65 +270,131 @@ pub fn certificates(cfg: &Config) -> Result<Vec<CertificateFile>, CertifyError> 
     let tight = lyapunov::tight_constants(&forms).map_err(numerical("the tight constants of W/κ"))?;
     let (a, b) = (params.a.as_str(), params.b.as_str());
     let mut out = Vec::new();
+    let mut notes = Vec::new();
     let l2 = if tight.lambda2 > 0.0 {
-        round_rational(tight.lambda2 * (1.0 - 1e-3), true)
+        round_decimal(tight.lambda2 * (1.0 - 1e-3), true)
     } else {
-        round_rational(tight.lambda2 - 1e-4 * tight.lambda2.abs().max(1.0), true)
+        round_decimal(tight.lambda2 - 1e-4 * tight.lambda2.abs().max(1.0), true)
     };
-    out.push(maker.bound("w-bounds-lower", FactKind::WLowerBound, a, b, &l2));
-    let l1 = round_rational(tight.lambda1 + 1e-4 * tight.lambda1.abs().max(1.0), false);
-    out.push(maker.bound("w-bounds-upper", FactKind::WUpperBound, a, b, &l1));
-    if to_f64(&l2) <= 0.0 {
+    out.push(maker.bound("w-bounds-lower", FactKind::WLowerBound, a, b, &l2.fraction_text()));
+    let l1 = round_decimal(tight.lambda1 + 1e-4 * tight.lambda1.abs().max(1.0), false);
+    out.push(maker.bound("w-bounds-upper", FactKind::WUpperBound, a, b, &l1.fraction_text()));
+    if to_f64(&l2.value()) <= 0.0 {
         if tight.lambda2 >= 0.0 {
             return Err(CertifyError::Numerical {
                 what: "the lower bound of W/κ".into(),
                 detail: format!("min W/κ = {:.3e} is too close to 0 to certify either sign", tight.lambda2),
             });
         }
-        out.push(maker.negative("w-bounds-indefinite", a, b, &tight.argmin));
+        out.push(maker.negative("w-bounds-indefinite", a, b, &tight.argmin, n));
+    } else {
+        match finer_negative_direction(cfg, &params)? {
+            Finer::Found(file) => out.push(*file),
+            Finer::NotNeeded => {}
+            Finer::Why(note) => notes.push(note),
+        }
     }
     // a/b_max = ω₁: above ω₁·1.05 a negative direction exists; below ω₁·0.95 W ≻ 0 on V_N.
     let ratio = crate::wbounds::a_over_b_max(cfg, Coupling::Corrected, n)
         .map_err(|e| numerical("the largest a/b with W positive definite")(e.to_string()))?;
-    let above = decimal_of(&round_rational(ratio * 1.05, false));
+    let above = round_decimal(ratio * 1.05, false).decimal_text();
     let p = params.with_weights(&above, "1");
     let t = lyapunov::tight_constants(&lyapunov::assemble(&p).map_err(numerical("W at a/b above ω₁"))?)
         .map_err(numerical("W at a/b above ω₁"))?;
-    out.push(maker.negative("w-bounds-ratio-above", &above, "1", &t.argmin));
-    let below = decimal_of(&round_rational(ratio * 0.95, true));
+    out.push(maker.negative("w-bounds-ratio-above", &above, "1", &t.argmin, n));
+    let below = round_decimal(ratio * 0.95, true).decimal_text();
     let p = params.with_weights(&below, "1");
     let t = lyapunov::tight_constants(&lyapunov::assemble(&p).map_err(numerical("W at a/b below ω₁"))?)
         .map_err(numerical("W at a/b below ω₁"))?;
-    let lam = round_rational(t.lambda2 * 0.99, true);
-    out.push(maker.bound("w-bounds-ratio-below", FactKind::WLowerBound, &below, "1", &lam));
+    let lam = round_decimal(t.lambda2 * 0.99, true);
+    out.push(maker.bound("w-bounds-ratio-below", FactKind::WLowerBound, &below, "1", &lam.fraction_text()));
     let (_, c3) = facts::mu3_system(&exact);
     if c3 < BigRational::from_integer(0.into()) {
-        // Farkas multipliers for rows (b, 2aρx_c) ≤ C3, −η1 ≤ 0, −η5 ≤ 0: y = (1, b, 2aρx_c).
+        // Farkas multipliers for rows (b, 2a|ρx_c|) ≤ C3, −η1 ≤ 0, −η5 ≤ 0: y = (1, b, 2a|ρx_c|).
         let [_, _, rho_xc, ..] = &exact.wing;
         let [ea, eb] = &exact.weights;
         let two = BigRational::from_integer(2.into());
-        let y = vec!["1/1".to_string(), fraction(eb), fraction(&(&two * ea * rho_xc))];
+        let y = vec!["1/1".to_string(), fraction(eb), fraction(&(&two * ea * num_traits::Signed::abs(rho_xc)))];
         out.push(CertificateFile {
             witness: Some(y),
             ..maker.file("mu-conditions-infeasible", FactKind::Mu3Infeasible, a, b)
         });
     }
-    Ok(out)
+    Ok((out, notes))
 }
 
-/// Exact decimal text of a rational with denominator 10⁶.
-fn decimal_of(r: &BigRational) -> String {
-    let s = format!("{:.6}", to_f64(r));
-    debug_assert_eq!(parse_rational_bounded(&s, &NumberLimits::CERTIFICATE).ok().as_ref(), Some(r));
-    s
+/// What [`finer_negative_direction`] found.
+enum Finer {
+    /// a/b is below the converged ω₁ (less its error): W ≻ 0 is what the claim checker finds too.
+    NotNeeded,
+    /// A negative direction of W at the configured weights on a finer space.
+    Found(Box<CertificateFile>),
+    /// Why the set cannot carry the negative direction the claim checker finds.
+    Why(String),
+}
+
+/// When W ≻ 0 on the certificate space: if the configured a/b exceeds the converged ω₁ (so the
+/// claim checker finds W indefinite), the first of [`NEGATIVE_DIRECTION_ELEMENTS`] whose rounded
+/// extremal state has W(x) < 0 exactly, or why there is none.
+fn finer_negative_direction(cfg: &Config, params: &LyapunovParams) -> Result<Finer, CertifyError> {
+    let (a, b) = (cfg.control.a, cfg.control.b);
+    if b <= 0.0 {
+        return Ok(Finer::NotNeeded);
+    }
+    let omega = crate::theory::w_threshold(cfg).map_err(|e| numerical("ω₁")(e.to_string()))?;
+    let ratio = a / b;
+    if ratio <= omega.value - omega.error {
+        return Ok(Finer::NotNeeded);
+    }
+    let space = format!("W ≻ 0 is certified on the {CERT_ELEMENTS}-element Galerkin space only");
+    if ratio <= omega.value + omega.error {
+        return Ok(Finer::Why(format!(
+            "a/b = {} is within the error of ω₁ = {:.10} ± {:.1e} rad/s, so whether W is positive definite on the \
+             PDE's state space is undecided (the claim checker says: at the threshold); {space}",
+            format_decimal(ratio),
+            omega.value,
+            omega.error
+        )));
+    }
+    for &m in &NEGATIVE_DIRECTION_ELEMENTS {
+        let p = LyapunovParams { elements: m, ..params.clone() };
+        let forms = lyapunov::assemble(&p).map_err(numerical("the exact forms W, κ on a finer space"))?;
+        let t = lyapunov::tight_constants(&forms).map_err(numerical("the tight constants on a finer space"))?;
+        if t.lambda2 >= 0.0 {
+            continue;
+        }
+        if let (x, true) = negative_witness(&p, &t.argmin) {
+            let maker = Maker { wing: wing_text(cfg), params: p.clone() };
+            return Ok(Finer::Found(Box::new(CertificateFile {
+                elements: Some(m),
+                witness: Some(x),
+                ..maker.file("w-bounds-indefinite", FactKind::WNegativeDirection, &p.a, &p.b)
+            })));
+        }
+    }
+    Ok(Finer::Why(format!(
+        "a/b = {} exceeds ω₁ = {:.10} rad/s, so W is indefinite on the PDE's state space, but no negative \
+         direction shows exactly on Galerkin spaces of up to {} elements (their ω₁ lies above a/b); {space}",
+        format_decimal(ratio),
+        omega.value,
+        NEGATIVE_DIRECTION_ELEMENTS[NEGATIVE_DIRECTION_ELEMENTS.len() - 1]
+    )))
+}
+
+fn wing_text(cfg: &Config) -> WingText {
+    let (w, d) = (&cfg.wing, format_decimal);
+    WingText { span: d(w.span), rho: d(w.rho), rho_xc: d(w.rho_xc), ei: d(w.ei), gj: d(w.gj), ip: d(w.ip), xi: d(w.xi) }
 }
 
 /// The manifest and file texts of the set for `cfg`: `(file name, text)` pairs, index last.
 pub fn render_set(cfg: &Config) -> Result<Vec<(String, String)>, CertifyError> {
-    let certs = certificates(cfg)?;
+    render_files(cfg, &certificates(cfg)?)
+}
+
+fn render_files(cfg: &Config, certs: &[CertificateFile]) -> Result<Vec<(String, String)>, CertifyError> {
     let mut files = Vec::new();
     let mut entries = Vec::new();
-    for c in &certs {
+    for c in certs {
         let text = c.to_text();
         let name = format!("{}.json", c.id);
         entries.push(FileEntry { file: name.clone(), id: c.id.clone(), sha256: manifest::sha256_hex(text.as_bytes()) });
@@ -267,18 +433,36 @@ pub fn render_set(cfg: &Config) -> Result<Vec<(String, String)>, CertifyError> {
     Ok(files)
 }
 
-/// Writes the whole set for `cfg` into `dir`, replacing an earlier set there atomically (the
-/// directory holds the old set or the new one at every instant). An existing `dir` is replaced
-/// only if it holds nothing but a certificate set's files (`index.json` and the files it
-/// lists); anything else is refused and left untouched. Returns the files written.
+/// Writes the whole set for `cfg` into `dir` ([`write_set`]); returns the files written.
 pub fn write_all(cfg: &Config, dir: &Path) -> Result<Vec<PathBuf>, CertifyError> {
-    let files = render_set(cfg)?;
+    Ok(write_set(cfg, dir)?.files)
+}
+
+/// What [`write_set`] wrote.
+#[derive(Debug, Clone)]
+pub struct WrittenSet {
+    /// The files written (in `dir`).
+    pub files: Vec<PathBuf>,
+    /// Why a fact the claim checker finds is not in the set (see [`certificate_set`]).
+    pub notes: Vec<String>,
+}
+
+/// Writes the whole set for `cfg` into `dir`, replacing an earlier set there atomically (the
+/// directory holds the old set or the new one at every instant). The staged set is first
+/// verified by [`verify_set`] itself, pinned to `cfg`: a set its own verifier would reject is
+/// never swapped in ([`CertifyError::SelfCheck`], the previous set unchanged). An existing `dir`
+/// is replaced only if it holds nothing but a certificate set's files (`index.json` and the
+/// files it lists); anything else is refused and left untouched.
+pub fn write_set(cfg: &Config, dir: &Path) -> Result<WrittenSet, CertifyError> {
+    let (certs, notes) = certificate_set(cfg)?;
+    let files = render_files(cfg, &certs)?;
     let staging = wingcheck_io::StagingDir::new(dir)?;
     for (name, text) in &files {
         staging.write(name, text.as_bytes())?;
     }
+    manifest::verify_set_for(staging.path(), Some(cfg)).map_err(|e| CertifyError::SelfCheck(e.to_string()))?;
     staging.commit(|old| wingcheck_io::only_listed_files(old, &files_of_set(old)))?;
-    Ok(files.iter().map(|(n, _)| dir.join(n)).collect())
+    Ok(WrittenSet { files: files.iter().map(|(n, _)| dir.join(n)).collect(), notes })
 }
 
 /// The files an existing set in `dir` owns: `index.json` and what it lists (empty if there is

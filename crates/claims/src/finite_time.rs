@@ -104,7 +104,7 @@ pub fn compute(cfg: &Config, channel: Channel, settings: &CheckSettings) -> Resu
     let other_s0 = sigma0_other(cfg, 1 - ix)?;
     let other_bound = bound_38(other.0.linear, other.0.fractional, other.1, other.2, other_s0)?;
     let t_end = (((bound.max(other_bound).max(fil.reach_s.unwrap_or(0.0)) * 1.25 + 2.0 * window) / 0.01).ceil() * 0.01)
-        .min(cfg.horizon.t_end.max(2.0 * window + 0.01));
+        .min(wingcheck_model::work::finite_time_horizon_max(cfg));
     let reference = reference_period(settings);
     let mut runs: Vec<DigitalRun> = Vec::new();
     for rule in [ObserverRule::Implicit, ObserverRule::Explicit] {

@@ -145,19 +145,87 @@ pub fn lemma3_numeric(phi1: f64, phi2: f64, phi3: f64, q0: f64, psi: &dyn Fn(f64
     f64::NAN
 }
 
+/// Largest exact ω(f)² = f^{2k} written out digit by digit (bits of its numerator and
+/// denominator); beyond it the evidence holds the exact values in closed form (`f^(2k)` …).
+/// k ≈ f²/2 grows with the span: at f = 1000, f^{2k} has three million digits, whose decimal
+/// text alone took minutes.
+pub const EXACT_TEXT_BITS: u64 = 4096;
+
 /// The exact counterexample ω = z^k to the printed Lemma 2 on [0, f] (2k + 1 > f²): ω(f)² =
 /// f^{2k} > f∫_0^f z^{2k} dz = f^{2k+2}/(2k+1), while the corrected right-hand side
-/// f∫ω'² = k² f^{2k}/(2k−1) ≥ f^{2k} (k² ≥ 2k − 1), all exact.
+/// f∫ω'² = k² f^{2k}/(2k−1) ≥ f^{2k} (k² ≥ 2k − 1), all exact (exact rationals as `p` or `p/q`
+/// text, or in closed form `f^(2k)…` beyond [`EXACT_TEXT_BITS`]).
 #[derive(Debug, Clone)]
 pub struct Counterexample {
-    /// The exponent k.
-    pub k: u32,
-    /// ω(f)².
-    pub lhs: num_rational::BigRational,
-    /// f∫ω² (the printed right-hand side).
-    pub rhs_printed: num_rational::BigRational,
-    /// f∫ω'² (the corrected right-hand side).
-    pub rhs_corrected: num_rational::BigRational,
+    /// The function, `z^k`.
+    pub omega: String,
+    /// ω(f)², exact.
+    pub lhs: String,
+    /// f∫ω², exact (the printed right-hand side).
+    pub rhs_printed: String,
+    /// f∫ω'², exact (the corrected right-hand side).
+    pub rhs_corrected: String,
+    /// ω(f)² > f∫ω² (the printed (12) violated), decided exactly.
+    pub printed_violated: bool,
+    /// ω(f)² ≤ f∫ω'², decided exactly.
+    pub corrected_holds: bool,
+}
+
+/// The exact counterexample ω = z^k on [0, f], k = ⌊(f² − 1)/2⌋ + 1 ≥ 1 (so ω(0) = 0 and
+/// 2k + 1 > f²), in big integers whatever the span: ω(f)² > f∫ω² ⟺ 2k + 1 > f² and
+/// ω(f)² ≤ f∫ω'² ⟺ 2k − 1 ≤ k² are decided on those small numbers, f^{2k} itself is formed only
+/// when it has at most [`EXACT_TEXT_BITS`] bits.
+pub fn counterexample(span: f64) -> Result<Counterexample, ClaimsError> {
+    use num_bigint::BigInt;
+    use num_rational::BigRational;
+    use num_traits::{Signed, Zero};
+    let f = wingcheck_cert::exact::parse_rational(&format!("{span}"))
+        .map_err(|e| num_err("lemma2 span", format!("span {span} not a decimal: {e}")))?;
+    if !f.is_positive() {
+        return Err(num_err("lemma2 span", format!("span {span} must be > 0")));
+    }
+    let f2 = &f * &f;
+    let one = BigRational::from_integer(1.into());
+    let two = BigRational::from_integer(2.into());
+    let below = ((&f2 - &one) / &two).floor().to_integer();
+    let k: BigInt = if below.is_negative() { BigInt::zero() } else { below } + 1;
+    let q = |n: &BigInt| BigRational::from_integer(n.clone());
+    let (two_k_plus_1, two_k_minus_1) = (BigInt::from(2) * &k + 1, BigInt::from(2) * &k - 1);
+    let printed_violated = q(&two_k_plus_1) > f2;
+    let corrected_holds = two_k_minus_1 <= &k * &k;
+    let two_k: BigInt = BigInt::from(2) * &k;
+    let bits = (f.numer().bits() + f.denom().bits()).saturating_mul(u64::try_from(&two_k).unwrap_or(u64::MAX));
+    let (lhs, rhs, rhs_corr) = if bits <= EXACT_TEXT_BITS {
+        let f2k = num_traits::Pow::pow(&f, u64::try_from(&two_k).expect("bounded by EXACT_TEXT_BITS"));
+        let rhs = &f2k * &f2 / q(&two_k_plus_1);
+        let rhs_corr = &f2k * q(&(&k * &k)) / q(&two_k_minus_1);
+        (short_exact(&f2k), short_exact(&rhs), short_exact(&rhs_corr))
+    } else {
+        let ft = if f.is_integer() { exact_text(&f) } else { format!("({})", exact_text(&f)) };
+        (
+            format!("{ft}^{two_k}"),
+            format!("{ft}^{}/{two_k_plus_1}", &two_k + 2),
+            format!("{ft}^{two_k}·{}/{two_k_minus_1}", &k * &k),
+        )
+    };
+    Ok(Counterexample {
+        omega: format!("z^{k}"),
+        lhs,
+        rhs_printed: rhs,
+        rhs_corrected: rhs_corr,
+        printed_violated,
+        corrected_holds,
+    })
+}
+
+/// An exact rational's text if short, else its value to 4 significant digits (marked ≈).
+fn short_exact(r: &num_rational::BigRational) -> String {
+    let text = exact_text(r);
+    if text.len() <= 16 {
+        text
+    } else {
+        format!("≈{}", wingcheck_model::quantity::format_value(wingcheck_cert::exact::to_f64(r), None))
+    }
 }
 
 /// Everything the lemmas row computes, before it is put into words.
@@ -197,15 +265,7 @@ pub fn compute(cfg: &Config, settings: &CheckSettings) -> Result<Computed, Claim
         printed.push(lemma2_ratio(span, k, false)?);
         corrected.push(lemma2_ratio(span, k, true)?);
     }
-    let f = wingcheck_cert::exact::parse_rational(&format!("{span}"))
-        .map_err(|e| num_err("lemma2 span", format!("span {span} not a decimal: {e}")))?;
-    let k = ((span * span - 1.0) / 2.0).floor().max(0.0) as u32 + 1;
-    let k = (k..k + 4).find(|&k| num_rational::BigRational::from_integer((2 * k + 1).into()) > &f * &f).unwrap_or(k);
-    let f2k = num_traits::Pow::pow(&f, 2 * k);
-    let lhs = f2k.clone();
-    let rhs = &f2k * &f * &f / num_rational::BigRational::from_integer((2 * k + 1).into());
-    let rhs_corr = &f2k * num_rational::BigRational::from_integer((k * k).into())
-        / num_rational::BigRational::from_integer((2 * k - 1).into());
+    let counterexample = counterexample(span)?;
     // Lemma 3 on a parameter grid: p = a1/a2 of the configured observer, Q0 including σ2(0)²/2.
     let p = cfg.observer.a1 as f64 / cfg.observer.a2 as f64;
     let q0_config = 0.5 * crate::finite_time::sigma0_other(cfg, 1)?.powi(2);
@@ -240,7 +300,7 @@ pub fn compute(cfg: &Config, settings: &CheckSettings) -> Result<Computed, Claim
         span,
         printed,
         corrected,
-        counterexample: Counterexample { k, lhs, rhs_printed: rhs, rhs_corrected: rhs_corr },
+        counterexample,
         p,
         q0_config,
         lemma3_points: xs.into_iter().zip(ys).collect(),

@@ -361,7 +361,13 @@ fn reduce(
 /// clarabel's point for one side: max λ s.t. sign·W − λκ ⪰ 0 in the reduced form, with data
 /// divided by σ, the 4×4 LMI rescaled by β and each P entry scaled by the size of its
 /// coefficients.
-fn solve_side(r: &ReducedPencil, sign: f64, sigma: f64, beta: f64) -> Result<SideSolution, String> {
+fn solve_side(
+    r: &ReducedPencil,
+    sign: f64,
+    sigma: f64,
+    beta: f64,
+    deadline: std::time::Instant,
+) -> Result<SideSolution, String> {
     use wingcheck_lapack::sdp::{PsdConstraint, SdpProblem};
     let err = |e: wingcheck_lapack::sdp::SdpError| e.to_string();
     // The 4×4 LMI in the congruent form diag(1, 1, β, β)·[[A, B], [Bᵀ, P]]·diag(1, 1, β, β).
@@ -405,7 +411,14 @@ fn solve_side(r: &ReducedPencil, sign: f64, sigma: f64, beta: f64) -> Result<Sid
         .map_err(err)?;
     let mut out = None;
     for tol in PENCIL_SOLVER_TOLERANCES {
-        let sol = problem.solve_with(wingcheck_lapack::sdp::prescaled_chordal_settings(tol)).map_err(err)?;
+        let left = deadline.saturating_duration_since(std::time::Instant::now()).as_secs_f64();
+        if left <= 0.0 && out.is_some() {
+            break;
+        }
+        let mut settings = wingcheck_lapack::sdp::prescaled_chordal_settings(tol);
+        // clarabel stops with status MaxTime, which is recorded (not accepted)
+        settings.time_limit = left.max(1e-3);
+        let sol = problem.solve_with(settings).map_err(err)?;
         let lambda = (sol.x.first().is_some_and(|x| x.is_finite())).then(|| sign * sigma * sol.x[0]);
         let solved = sol.status == wingcheck_lapack::sdp::SdpStatus::Solved;
         // P/σ back from the scaled variables (p̃_k = m_k β² P_k/σ)
@@ -450,6 +463,21 @@ pub fn pencil_cross_check(
     n: usize,
     span: f64,
 ) -> PencilSdpRow {
+    let far = std::time::Instant::now() + std::time::Duration::from_secs(86_400);
+    pencil_cross_check_until(w, kappa, c1, c2, n, span, far)
+}
+
+/// [`pencil_cross_check`] with every clarabel solve stopped at `deadline` (status `MaxTime`,
+/// recorded in the row and not accepted).
+pub fn pencil_cross_check_until(
+    w: &Mat<f64>,
+    kappa: &Mat<f64>,
+    c1: &Mat<f64>,
+    c2: &Mat<f64>,
+    n: usize,
+    span: f64,
+    deadline: std::time::Instant,
+) -> PencilSdpRow {
     let start = std::time::Instant::now();
     let dimension = w.nrows();
     let (c, eig) = match congruent_to_identity(w, kappa) {
@@ -458,7 +486,7 @@ pub fn pencil_cross_check(
     };
     let sigma = eig[0].abs().max(eig[dimension - 1].abs()).max(f64::MIN_POSITIVE);
     let reduced = reduce(w, kappa, c1, c2, n, span / n as f64);
-    let side = |sign: f64, lambda_eig: f64| pencil_side(&reduced, &c, sign, sigma, lambda_eig, n);
+    let side = |sign: f64, lambda_eig: f64| pencil_side(&reduced, &c, sign, sigma, lambda_eig, n, deadline);
     let lambda2 = side(1.0, eig[0]);
     let lambda1 = side(-1.0, eig[dimension - 1]);
     PencilSdpRow {
@@ -482,6 +510,7 @@ fn pencil_side(
     sigma: f64,
     lambda_eig: f64,
     n: usize,
+    deadline: std::time::Instant,
 ) -> PencilSide {
     let not_run = |reason: &str| PencilSdpRow::not_run(n, reason).lambda2;
     let delta = SDP_TOLERANCE * sigma;
@@ -491,7 +520,7 @@ fn pencil_side(
     };
     let verify =
         |x: &SideSolution| x.status.is_solved() && x.lambda.is_some_and(|l| pencil_feasible(c, sign, l - sign * delta));
-    let first = match solve_side(r, sign, sigma, 1.0) {
+    let first = match solve_side(r, sign, sigma, 1.0, deadline) {
         Ok(x) => x,
         Err(e) => return PencilSide { lambda_eig: Some(lambda_eig), ..not_run(&format!("SDP: {e}")) },
     };
@@ -504,7 +533,7 @@ fn pencil_side(
         first
     } else {
         let scale = first.p_over_sigma.max(first.b_over_sigma * first.b_over_sigma);
-        match (scale > 0.0).then(|| solve_side(r, sign, sigma, 1.0 / scale.sqrt())) {
+        match (scale > 0.0).then(|| solve_side(r, sign, sigma, 1.0 / scale.sqrt(), deadline)) {
             Some(Ok(second)) => {
                 attempts = 2;
                 second

@@ -135,10 +135,23 @@ fn richardson(c: f64, f: f64) -> f64 {
 /// exactly and the displacements in the hierarchical basis ([`crate::sdp::pencil_cross_check`]),
 /// each answer re-verified and compared with the eigenvalues at the same N. A failure at one N
 /// is recorded in its row, never fatal.
+///
+/// Bounded: the whole cross-check gets [`wingcheck_model::work::CHECK_SDP_SECONDS`] (clarabel
+/// needs ≈ 0.4 s on the paper's wing, but far more iterations on wings whose parameters span
+/// many decades: 29 s measured at span 6e4 m); a solve past that budget stops with status
+/// `MaxTime` and the remaining N are not run, each saying why.
 pub fn sdp_cross_check(cfg: &Config, coupling: Coupling, grids: &[usize]) -> Vec<PencilSdpRow> {
+    let budget = wingcheck_model::work::CHECK_SDP_SECONDS;
+    let deadline = Instant::now() + std::time::Duration::from_secs_f64(budget);
     grids
         .iter()
         .map(|&n| {
+            if Instant::now() >= deadline {
+                return PencilSdpRow::not_run(
+                    n,
+                    &format!("not run: the cross-check's time budget of {budget} s was spent on the smaller N"),
+                );
+            }
             let f = match lyapunov::assemble(&LyapunovParams::from_config(cfg, coupling, n)) {
                 Ok(f) => f,
                 Err(e) => return PencilSdpRow::not_run(n, &format!("assembly: {e}")),
@@ -147,7 +160,7 @@ pub fn sdp_cross_check(cfg: &Config, coupling: Coupling, grids: &[usize]) -> Vec
             let c1 = lyapunov::to_dense(&mesh.mass(Space::DgCubic, Space::Hermite));
             let c2 = lyapunov::to_dense(&mesh.mass(Space::DgCubic, Space::Linear));
             let (w, k) = (lyapunov::to_dense(&f.w), lyapunov::to_dense(&f.kappa));
-            crate::sdp::pencil_cross_check(&w, &k, &c1, &c2, n, cfg.wing.span)
+            crate::sdp::pencil_cross_check_until(&w, &k, &c1, &c2, n, cfg.wing.span, deadline)
         })
         .collect()
 }

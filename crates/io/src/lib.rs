@@ -137,7 +137,7 @@ fn unique_suffix() -> String {
 
 /// Whether process `pid` is alive (Linux: `/proc/PID`; elsewhere assumed alive, so nothing of
 /// another process is ever removed).
-fn process_alive(pid: u32) -> bool {
+pub fn process_alive(pid: u32) -> bool {
     if pid == std::process::id() {
         return true;
     }
@@ -192,17 +192,24 @@ pub fn recover(target: &Path) -> Vec<PathBuf> {
 }
 
 /// Refuses `dir` unless every file in it (recursively, paths relative to `dir` with `/`) is in
-/// `allowed`. A missing `dir` passes.
+/// `allowed`, and every subdirectory holds one of those files (an empty or otherwise unlisted
+/// directory is the user's: it is named with a trailing `/` and refused, never deleted with the
+/// old output). A missing `dir` passes.
 pub fn only_listed_files(dir: &Path, allowed: &BTreeSet<String>) -> Result<(), IoError> {
-    fn walk(root: &Path, dir: &Path, out: &mut Vec<String>) -> Result<(), IoError> {
+    fn walk(root: &Path, dir: &Path, allowed: &BTreeSet<String>, out: &mut Vec<String>) -> Result<(), IoError> {
         for e in std::fs::read_dir(dir).map_err(io("read directory", dir))? {
             let e = e.map_err(io("read directory", dir))?;
             let p = e.path();
             let ty = e.file_type().map_err(io("inspect", &p))?;
+            let rel = p.strip_prefix(root).unwrap_or(&p).to_string_lossy().replace('\\', "/");
             if ty.is_dir() {
-                walk(root, &p, out)?;
+                let prefix = format!("{rel}/");
+                if !allowed.iter().any(|f| f.starts_with(&prefix)) {
+                    out.push(prefix);
+                    continue;
+                }
+                walk(root, &p, allowed, out)?;
             } else {
-                let rel = p.strip_prefix(root).unwrap_or(&p).to_string_lossy().replace('\\', "/");
                 out.push(rel);
             }
         }
@@ -217,7 +224,7 @@ pub fn only_listed_files(dir: &Path, allowed: &BTreeSet<String>) -> Result<(), I
         Ok(_) => {}
     }
     let mut files = Vec::new();
-    walk(dir, dir, &mut files)?;
+    walk(dir, dir, allowed, &mut files)?;
     let foreign: Vec<String> = files.into_iter().filter(|f| !allowed.contains(f)).collect();
     if foreign.is_empty() {
         return Ok(());

@@ -133,7 +133,8 @@ fn foreign_files_are_never_deleted() {
     let s = StagingDir::new(&out).unwrap();
     s.write("a.txt", b"new a.txt").unwrap();
     let e = s.commit(|d| only_listed_files(d, &allowed())).unwrap_err();
-    assert!(matches!(e, IoError::Foreign { .. }) && e.to_string().contains("notes/mine.txt"), "{e}");
+    // the user's directory is named as a whole (no file of the set is in it)
+    assert!(matches!(e, IoError::Foreign { .. }) && e.to_string().contains("notes/"), "{e}");
     assert_eq!(std::fs::read_to_string(out.join("notes/mine.txt")).unwrap(), "keep me");
     assert_eq!(std::fs::read_to_string(out.join("a.txt")).unwrap(), "old a.txt");
     assert_eq!(siblings(tmp.path()), ["out"]);
@@ -169,4 +170,22 @@ fn exchange_is_atomic_where_supported() {
     if supported {
         assert!(b.join("x").is_file() && !a.join("x").exists());
     }
+}
+
+#[test]
+fn empty_user_subdirectories_are_foreign() {
+    // A directory holding only listed files passes; an empty subdirectory (a user's) does not,
+    // and is named with a trailing slash (it used to pass the check and be deleted with the old
+    // output); a subdirectory holding a listed file passes.
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("out");
+    std::fs::create_dir_all(dir.join("figs")).unwrap();
+    std::fs::write(dir.join("index.json"), "{}").unwrap();
+    std::fs::write(dir.join("figs/a.svg"), "<svg/>").unwrap();
+    let allowed: BTreeSet<String> = ["index.json", "figs/a.svg"].iter().map(|s| s.to_string()).collect();
+    only_listed_files(&dir, &allowed).unwrap();
+    std::fs::create_dir(dir.join("mine")).unwrap();
+    let e = only_listed_files(&dir, &allowed).unwrap_err().to_string();
+    assert!(e.contains("mine/") && e.contains("did not write"), "{e}");
+    assert!(dir.join("mine").is_dir());
 }

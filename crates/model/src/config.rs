@@ -371,7 +371,8 @@ impl Discretisation {
 pub struct Horizon {
     /// Final time T (s) (paper: 20).
     pub t_end: f64,
-    /// Output sampling interval (s); rounded to a whole number of observer samples.
+    /// Output sampling interval (s): a whole multiple of `observer.sample_period` (outputs are
+    /// taken at observer samples; other values are refused, naming the nearest allowed ones).
     pub sample_every: f64,
     /// Number of points of the coarse output grid for q(z,t), θ(z,t) (≥ 2).
     pub field_points: usize,
@@ -389,11 +390,27 @@ impl Config {
         if text.len() as u64 > MAX_CONFIG_BYTES {
             return Err(ConfigError::Parse(format!("{} bytes, at most {MAX_CONFIG_BYTES} allowed", text.len())));
         }
+        // one object of sections, never positional (serde would fill the structs from arrays)
+        if let Ok(v) = serde_json::from_str::<serde_json::Value>(text) {
+            crate::json::reject_positional(&v)?;
+        }
+        if let Some((token, x)) = crate::json::underflowing_number(text) {
+            return Err(crate::json::underflow_error(None, &token, x));
+        }
         let de = &mut serde_json::Deserializer::from_str(text);
         let cfg: Config = serde_path_to_error::deserialize(&mut *de).map_err(|e| ConfigError::Parse(describe(&e)))?;
         de.end().map_err(|e| ConfigError::Parse(format!("trailing data after the JSON document: {e}")))?;
+        let cfg = cfg.normalised();
         cfg.validate()?;
         Ok(cfg)
+    }
+
+    /// The same configuration with every −0 replaced by 0, so that equal parameters give equal
+    /// text and hashes.
+    fn normalised(self) -> Config {
+        let mut v = serde_json::to_value(&self).expect("config serialises");
+        crate::json::normalise_zeros(&mut v);
+        serde_json::from_value(v).unwrap_or(self)
     }
 
     /// Reads a config file of at most [`MAX_CONFIG_BYTES`] (never more, so `/dev/zero` fails
@@ -413,7 +430,9 @@ impl Config {
     }
 
     /// Parse a JSON value (after overrides) and validate it.
-    pub fn from_json_value(value: serde_json::Value) -> Result<Config, ConfigError> {
+    pub fn from_json_value(mut value: serde_json::Value) -> Result<Config, ConfigError> {
+        crate::json::reject_positional(&value)?;
+        crate::json::normalise_zeros(&mut value);
         let cfg: Config = serde_path_to_error::deserialize(value).map_err(|e| ConfigError::Parse(describe(&e)))?;
         cfg.validate()?;
         Ok(cfg)

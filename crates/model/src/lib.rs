@@ -11,6 +11,7 @@
 
 mod config;
 mod error;
+mod json;
 mod overrides;
 pub mod quantity;
 mod scheme;

@@ -21,6 +21,10 @@ pub fn apply_override(root: &mut Value, expr: &str) -> Result<(), ConfigError> {
             return Err(ConfigError::NotFinite { field: path.to_string(), value: x });
         }
     }
+    // `1e-400` parses to 0 (and `1e-310` to a subnormal): refused, not silently changed
+    if let Some(x) = crate::json::underflows(raw) {
+        return Err(crate::json::underflow_error(Some(path), raw.trim(), x));
+    }
     let value: Value = serde_json::from_str(raw.trim()).unwrap_or_else(|_| Value::String(raw.trim().to_string()));
     let mut node = root;
     let parts: Vec<&str> = path.split('.').collect();

@@ -131,14 +131,18 @@ impl Config {
     /// [`MODAL_AUTO_UNKNOWNS`] unknowns (there its orthonormality check may still send the run to
     /// the nodal basis, and `auto` then means the cheaper TR-BDF2). For work estimates.
     pub fn expected_time_scheme(&self) -> TimeScheme {
-        let modal = match self.discretisation.basis {
+        self.time_scheme(self.expected_modal())
+    }
+
+    /// Whether a run is expected in the modal basis (see [`Config::expected_time_scheme`]).
+    pub fn expected_modal(&self) -> bool {
+        match self.discretisation.basis {
             StepBasis::Modal => true,
             StepBasis::Nodal => false,
             StepBasis::Auto => {
                 self.discretisation.stepper == TimeScheme::Exponential || self.unknowns() <= MODAL_AUTO_UNKNOWNS
             }
-        };
-        self.time_scheme(modal)
+        }
     }
 
     /// The time scheme a run of this configuration uses when stepped in the modal basis

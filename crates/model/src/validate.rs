@@ -197,6 +197,22 @@ impl Config {
             });
         }
         within("horizon.sample_every", h.sample_every, o.sample_period, h.t_end)?;
+        let per = h.sample_every / o.sample_period;
+        if !whole_multiple(per) {
+            let (lo, hi) = (per.floor().max(1.0) * o.sample_period, per.ceil().max(1.0) * o.sample_period);
+            return Err(ConfigError::Inconsistent {
+                fields: "horizon.sample_every, observer.sample_period".into(),
+                reason: format!(
+                    "horizon.sample_every = {} is not a whole multiple of observer.sample_period = {} \
+                     (outputs are taken at observer samples): allowed k × {}, k = 1, 2, …; the nearest are {} and {}",
+                    format_number(h.sample_every),
+                    format_number(o.sample_period),
+                    format_number(o.sample_period),
+                    format_number(lo),
+                    format_number(hi)
+                ),
+            });
+        }
         if !(2..=2001).contains(&h.field_points) {
             return Err(range("horizon.field_points", h.field_points, "an integer in [2, 2001]"));
         }

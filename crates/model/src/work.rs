@@ -8,9 +8,10 @@
 
 use crate::{format_number, Config, Method};
 
-/// Seconds per integrator step per unknown, measured on one core (a 20-s default run: 20 000
-/// steps of 96 unknowns in ≈ 20 ms ≈ 1e-8 s per unknown-step), doubled for slower machines.
-pub const SECONDS_PER_UNKNOWN_STEP: f64 = 2e-8;
+/// Seconds per integrator step per state (2 × unknowns), measured on one core: ≈ 1e-8 for the
+/// default 20-s run (20 000 steps, 144 states, nodal), rising to 3e-8 CPU seconds at 24 000
+/// states (FE 4000 elements, nodal: the banded factor no longer fits the caches); 4e-8 is used.
+pub const SECONDS_PER_UNKNOWN_STEP: f64 = 4e-8;
 /// Seconds per integrator step per entry of the exponential scheme's (2n)² step operator,
 /// measured ≈ 1.5e-10 s on one core (144 states, 3.1 µs per step), doubled.
 pub const SECONDS_PER_EXPONENTIAL_ENTRY_STEP: f64 = 3e-10;
@@ -25,17 +26,91 @@ pub const SECONDS_PER_EXPONENTIAL_SETUP_CUBE: f64 = 1e-8;
 pub fn exponential_seconds(steps: f64, states: f64) -> f64 {
     steps * states * states * SECONDS_PER_EXPONENTIAL_ENTRY_STEP + states.powi(3) * SECONDS_PER_EXPONENTIAL_SETUP_CUBE
 }
+/// Seconds of a run's modal-basis setup per unknown³ (the dense eigenproblems, once per run):
+/// ≈ 0.3 s at 600 unknowns (1.4e-9), doubled.
+pub const SECONDS_PER_MODAL_SETUP_CUBE: f64 = 3e-9;
 /// Explicit-FTDO simulations `check` runs with the exponential scheme, in units of one run at
 /// the configured dt: one at dt and one at dt/2 (ftdo-vs-dobc's RMS τ error).
 pub const CHECK_EXPLICIT_RUNS: f64 = 3.0;
+/// Time budget of the W-bounds row's SDP cross-check at N = 2 … 32 (s): ≈ 0.4 s on the paper's
+/// wing; clarabel stops at the budget (status `MaxTime`, the remaining N not run), which it
+/// reaches on wings whose parameters span many decades.
+pub const CHECK_SDP_SECONDS: f64 = 3.0;
+/// Work of `check` that does not depend on the configured grid or horizon (s, one core):
+/// [`CHECK_SDP_SECONDS`], plus the Galerkin eigenvalues, ω₁ over uniform meshes up to 2048
+/// elements, the μ SOCPs, Lemma 1–3 and the Filippov integrations (≈ 0.3 s together on the
+/// paper config, up to ≈ 1 s on extreme wings), doubled.
+pub const CHECK_FIXED_SECONDS: f64 = CHECK_SDP_SECONDS + 2.0;
+/// Hold periods T (s) of the finite-time rows' digital-observer study (`check`'s
+/// `finite_time::PERIODS` is this constant).
+pub const FINITE_TIME_PERIODS: [f64; 3] = [1e-2, 1e-3, 1e-4];
+/// Chatter window at the end of each digital run of the finite-time rows (s).
+pub const FINITE_TIME_WINDOW_S: f64 = 0.5;
+/// Evaluations of g_h's time factor φ(t) per second of horizon in `g_hmax` (a 1e-4 s grid).
+pub const G_HMAX_SAMPLES_PER_SECOND: f64 = 1e4;
+/// Seconds per evaluation of φ(t) (a cosine and a sine, ≈ 20 ns), doubled.
+pub const SECONDS_PER_G_HMAX_SAMPLE: f64 = 4e-8;
+/// Seconds of a search point's theory (λ2, λ1, the μ and ε SOCPs): measured ≈ 4 ms; doubled.
+/// Used by the search's estimate and by `report`'s region map, which evaluates search points.
+pub const SECONDS_PER_POINT_THEORY: f64 = 8e-3;
+/// Most points of `report`'s (a, b) region map: at most 14 values of a times 7 of b (half
+/// decades over b0 · 10^±1.5; `crates/report/src/region.rs` refuses more).
+pub const REGION_MAP_MAX_POINTS: usize = 14 * 7;
+
+/// The configuration of one digital FTDO run of the finite-time rows: `cfg` with the given
+/// sampling rule and hold period T (s), integrator step dt = T / ⌈T/dt_cfg⌉ (≤ the configured
+/// dt, a whole fraction of T), horizon `t_end` (s).
+pub fn finite_time_config(cfg: &Config, rule: crate::ObserverRule, period: f64, t_end: f64) -> Config {
+    let mut c = cfg.clone();
+    c.control.kind = crate::ControllerKind::Ftdo;
+    c.observer.rule = rule;
+    c.observer.sample_period = period;
+    c.discretisation.dt = period / (period / cfg.discretisation.dt).ceil().max(1.0);
+    c.horizon.t_end = t_end;
+    c.horizon.sample_every = c.horizon.sample_every.max(period);
+    c
+}
+
+/// The longest horizon of the finite-time rows' digital runs (s): they run long enough for the
+/// reaching-time bounds plus two chatter windows, but never beyond max(t_end, 2·window + 0.01).
+pub fn finite_time_horizon_max(cfg: &Config) -> f64 {
+    cfg.horizon.t_end.max(2.0 * FINITE_TIME_WINDOW_S + 0.01)
+}
+
+/// `cfg` with the grid doubled: the space refinement of `simulate --error-estimate`.
+pub fn refined_in_space(cfg: &Config) -> Config {
+    let mut c = cfg.clone();
+    match c.discretisation.method {
+        Method::Fe => c.discretisation.elements *= 2,
+        Method::Fd => c.discretisation.fd_points *= 2,
+    }
+    c
+}
+
+/// `cfg` with the time step halved: the time refinement of `simulate --error-estimate`.
+pub fn refined_in_time(cfg: &Config) -> Config {
+    let mut c = cfg.clone();
+    c.discretisation.dt *= 0.5;
+    c
+}
+
+/// Seconds of one `g_hmax` evaluation for `cfg` (φ on a 1e-4 s grid over the horizon).
+pub fn g_hmax_seconds(cfg: &Config) -> f64 {
+    cfg.horizon.t_end * G_HMAX_SAMPLES_PER_SECOND * SECONDS_PER_G_HMAX_SAMPLE
+}
 /// Bytes per stored output sample of the time series (16 `f64` columns).
 pub const SERIES_BYTES_PER_SAMPLE: f64 = 16.0 * 8.0;
 /// Bytes per number in pretty JSON output (digits, punctuation and indentation), measured on
 /// run.json files of the default configuration (≈ 30) and rounded up.
 pub const JSON_BYTES_PER_NUMBER: f64 = 32.0;
 /// Full-horizon simulations `check` runs at the configured grid (ftdo-vs-dobc: 3 + 2 × 3
-/// sweep points; mu-conditions: 1; UUB: 2; finite-time: 6 shorter digital runs, counted as 8).
-pub const CHECK_RUNS: f64 = 20.0;
+/// sweep points; mu-conditions: 1; UUB: 2; 11 distinct runs on the paper config, rounded up).
+/// The finite-time rows' digital runs have their own horizon and steps and are counted one by
+/// one ([`WorkEstimate::finite_time`]).
+pub const CHECK_RUNS: f64 = 12.0;
+/// Stepper set-ups `check` makes for σ(0) (the finite-time rows and Lemma 3), each building the
+/// modal basis when the run would be modal.
+pub const CHECK_SIGMA0_SETUPS: f64 = 4.0;
 /// Full-horizon simulations `report` runs besides `check`'s: 3 controllers with fields at the
 /// configured grid, and the accuracy study (FD and FE at 8, 16, 32, 64 elements).
 pub const REPORT_EXTRA_RUNS: f64 = 3.0;
@@ -132,25 +207,76 @@ impl WorkEstimate {
         WorkEstimate {
             what: "simulate".into(),
             steps,
-            seconds: steps * n * SECONDS_PER_UNKNOWN_STEP + exponential,
+            seconds: steps * n * SECONDS_PER_UNKNOWN_STEP + exponential + Self::setup_seconds(cfg),
             memory_bytes: memory,
             output_bytes: output,
         }
     }
 
-    /// `wingcheck check`: [`CHECK_RUNS`] simulations at the configured grid.
+    /// Seconds of one run's set-up beyond its steps: the modal basis's dense eigenproblems
+    /// (O(unknowns³)) when the run is expected in the modal basis.
+    pub fn setup_seconds(cfg: &Config) -> f64 {
+        if cfg.expected_modal() {
+            (cfg.unknowns() as f64).powi(3) * SECONDS_PER_MODAL_SETUP_CUBE
+        } else {
+            0.0
+        }
+    }
+
+    /// `simulate --error-estimate`: the run, the run on the doubled grid and the run at dt/2.
+    pub fn simulation_with_error(cfg: &Config, fields: bool, json_output: Option<bool>) -> WorkEstimate {
+        let base = Self::simulation(cfg, fields, json_output);
+        let space = Self::simulation(&refined_in_space(cfg), false, None);
+        let time = Self::simulation(&refined_in_time(cfg), false, None);
+        WorkEstimate {
+            what: "simulate".into(),
+            steps: base.steps + space.steps + time.steps,
+            seconds: base.seconds + space.seconds + time.seconds,
+            memory_bytes: base.memory_bytes + space.memory_bytes.max(time.memory_bytes),
+            output_bytes: base.output_bytes,
+        }
+    }
+
+    /// The finite-time rows' digital runs: for each of the two rows, the FTDO with both sampling
+    /// rules at each of [`FINITE_TIME_PERIODS`] over (at most) [`finite_time_horizon_max`],
+    /// whatever the configured horizon and sample period; plus the σ(0) set-ups.
+    pub fn finite_time(cfg: &Config) -> WorkEstimate {
+        let horizon = finite_time_horizon_max(cfg);
+        let (mut steps, mut seconds, mut memory) = (0.0, 0.0, 0.0_f64);
+        for rule in [crate::ObserverRule::Implicit, crate::ObserverRule::Explicit] {
+            for &period in &FINITE_TIME_PERIODS {
+                let run = Self::simulation(&finite_time_config(cfg, rule, period, horizon), false, None);
+                steps += 2.0 * run.steps;
+                seconds += 2.0 * run.seconds;
+                // per run: σ_k of both channels at every sample (16 bytes), and the traces
+                memory = memory.max(run.memory_bytes + 48.0 * (horizon / period).ceil());
+            }
+        }
+        seconds += CHECK_SIGMA0_SETUPS * Self::setup_seconds(cfg);
+        WorkEstimate { what: "check".into(), steps, seconds, memory_bytes: memory, output_bytes: 0.0 }
+    }
+
+    /// `wingcheck check`: [`CHECK_RUNS`] simulations at the configured grid, the explicit-FTDO
+    /// runs, the finite-time rows' digital runs, g_hmax, and [`CHECK_FIXED_SECONDS`].
     pub fn check(cfg: &Config) -> WorkEstimate {
         let one = Self::simulation(cfg, false, None);
         let mut explicit = cfg.clone();
         explicit.control.kind = crate::ControllerKind::Ftdo;
         explicit.observer.rule = crate::ObserverRule::Explicit;
         let explicit = Self::simulation(&explicit, false, None);
+        let finite = Self::finite_time(cfg);
         WorkEstimate {
             what: "check".into(),
-            steps: one.steps * CHECK_RUNS,
-            seconds: one.seconds * CHECK_RUNS + explicit.seconds * CHECK_EXPLICIT_RUNS,
-            // UUB keeps one run with fields.
-            memory_bytes: one.memory_bytes * 4.0 + Self::simulation(cfg, true, None).memory_bytes,
+            steps: one.steps * CHECK_RUNS + explicit.steps * CHECK_EXPLICIT_RUNS + finite.steps,
+            seconds: one.seconds * CHECK_RUNS
+                + explicit.seconds * CHECK_EXPLICIT_RUNS
+                + finite.seconds
+                + 2.0 * g_hmax_seconds(cfg)
+                + CHECK_FIXED_SECONDS,
+            // UUB keeps one run with fields; rows run on two threads.
+            memory_bytes: (one.memory_bytes * 4.0 + Self::simulation(cfg, true, None).memory_bytes)
+                .max(finite.memory_bytes)
+                + finite.memory_bytes,
             output_bytes: 0.0,
         }
     }
@@ -160,8 +286,14 @@ impl WorkEstimate {
     pub fn report(cfg: &Config) -> WorkEstimate {
         let check = Self::check(cfg);
         let fields = Self::simulation(cfg, true, Some(false));
-        let mut steps = check.steps + REPORT_EXTRA_RUNS * fields.steps;
-        let mut seconds = check.seconds + REPORT_EXTRA_RUNS * fields.seconds;
+        // the (a, b) region map: one closed loop and one theory evaluation per point
+        let one = Self::simulation(cfg, false, None);
+        let region = REGION_MAP_MAX_POINTS as f64;
+        let mut steps = check.steps + REPORT_EXTRA_RUNS * fields.steps + region * one.steps;
+        let mut seconds = check.seconds
+            + REPORT_EXTRA_RUNS * fields.seconds
+            + region * (one.seconds + SECONDS_PER_POINT_THEORY)
+            + g_hmax_seconds(cfg);
         let mut memory = check.memory_bytes + REPORT_EXTRA_RUNS * fields.memory_bytes;
         for m in [Method::Fd, Method::Fe] {
             for &e in &REPORT_ACCURACY_GRIDS {

@@ -19,9 +19,10 @@ pub const MARKER: &str = ".wingcheck-report";
 /// Line of the marker after which the report's files are listed, one per line.
 const FILES_HEADER: &str = "files:";
 
-/// The files a report directory owns according to its marker (the marker included). Markers
-/// of older versions without a file list own the report's usual top-level files (`*.svg`,
-/// `*.csv`, `*.html`, `*.json`).
+/// The files a report directory owns according to its marker (the marker included). A marker
+/// of an older version without a file list owns only itself: which of the files beside it that
+/// version wrote cannot be told from their names (a user's `notes.csv` looks like a figure's
+/// data), so such a directory is refused naming them, and nothing is deleted.
 fn owned_files(dir: &Path) -> Option<Owned> {
     let text = std::fs::read_to_string(dir.join(MARKER)).ok()?;
     match text.split_once(&format!("\n{FILES_HEADER}\n")) {
@@ -39,20 +40,6 @@ enum Owned {
     Legacy,
 }
 
-fn legacy_allowed(dir: &Path) -> BTreeSet<String> {
-    let mut set = BTreeSet::from([MARKER.to_string()]);
-    if let Ok(entries) = std::fs::read_dir(dir) {
-        for e in entries.filter_map(Result::ok) {
-            let name = e.file_name().to_string_lossy().to_string();
-            let ours = ["svg", "csv", "html", "json"].iter().any(|x| name.ends_with(&format!(".{x}")));
-            if ours && e.file_type().is_ok_and(|t| t.is_file()) {
-                set.insert(name);
-            }
-        }
-    }
-    set
-}
-
 /// `Ok` if `out` may be replaced: missing, an empty directory, or a report holding only its
 /// own files.
 pub fn check_replaceable(out: &Path) -> Result<(), ReportError> {
@@ -62,7 +49,13 @@ pub fn check_replaceable(out: &Path) -> Result<(), ReportError> {
         Ok(m) if !m.is_dir() => Err(ReportError::NotAReport { path: out.to_path_buf(), marker: MARKER }),
         Ok(_) => match owned_files(out) {
             Some(Owned::Listed(set)) => Ok(only_listed_files(out, &set)?),
-            Some(Owned::Legacy) => Ok(only_listed_files(out, &legacy_allowed(out))?),
+            Some(Owned::Legacy) => only_listed_files(out, &BTreeSet::from([MARKER.to_string()])).map_err(|e| match e {
+                wingcheck_io::IoError::Foreign { path, files } => ReportError::Output(wingcheck_io::IoError::Foreign {
+                    path,
+                    files: format!("{files}; its marker, from an older wingcheck, does not list the files it wrote"),
+                }),
+                other => ReportError::Output(other),
+            }),
             None => {
                 let mut entries = std::fs::read_dir(out).map_err(ReportError::io("read directory", out))?;
                 if entries.next().is_none() {

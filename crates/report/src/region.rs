@@ -58,19 +58,30 @@ pub struct RegionMap {
     pub controller: String,
 }
 
-/// Half-decade exponents from `lo` to `hi` (log10), through `center`.
+/// Half-decade exponents from `lo` to `hi` (log10), through `center`; at most 64 on each side
+/// (counts from non-finite or huge spans are clamped, never cast saturating to i32::MAX).
 fn half_decades(center: f64, lo: f64, hi: f64) -> Vec<f64> {
-    let down = ((center - lo) / STEP_DECADES).ceil().max(0.0) as i32;
-    let up = ((hi - center) / STEP_DECADES).ceil().max(0.0) as i32;
+    let steps = |x: f64| if x.is_finite() { (x / STEP_DECADES).ceil().clamp(0.0, 64.0) as i32 } else { 0 };
+    let (down, up) = (steps(center - lo), steps(hi - center));
     (-down..=up).map(|k| center + k as f64 * STEP_DECADES).collect()
 }
 
 /// The search specs of the map for `cfg`, with the closed-form boundaries used to place it.
+/// The grid runs through the configured (a, b) when both are > 0; a weight of 0 has no
+/// logarithm, so then the grid is centred on b = 1 (b = 0) and on a/b at the smaller boundary
+/// (a = 0), and the configured point is drawn only if it lies on the axes.
 fn axes(cfg: &Config, omega1: f64, r_star: f64) -> (Vec<f64>, Vec<f64>) {
-    let (a0, b0) = (cfg.control.a, cfg.control.b);
-    let ratios = [r_star, omega1, a0 / b0];
+    let b0 = if cfg.control.b > 0.0 { cfg.control.b } else { 1.0 };
+    let ratios = [r_star, omega1, cfg.control.a / b0];
     let rmin = ratios.iter().copied().filter(|r| *r > 0.0 && r.is_finite()).fold(f64::INFINITY, f64::min);
     let rmax = ratios.iter().copied().filter(|r| r.is_finite()).fold(0.0, f64::max);
+    let a0 = if cfg.control.a > 0.0 {
+        cfg.control.a
+    } else if rmin.is_finite() {
+        b0 * rmin
+    } else {
+        b0
+    };
     let (la0, lb0) = (a0.log10(), b0.log10());
     let mut la = half_decades(la0, (b0 * rmin / 10.0).log10(), (b0 * rmax * 10.0).log10());
     while la.len() > MAX_A {
@@ -99,6 +110,12 @@ pub fn region_map(
         .map_err(|e| ReportError::Region { detail: e.to_string() })?;
     let (theory, runs) = (TheoryCache::new(SearchOptions::default().lyapunov_elements), RunCache::new());
     let total = search.points();
+    if total > wingcheck_model::work::REGION_MAP_MAX_POINTS {
+        // the work estimate counts at most this many points
+        return Err(ReportError::Region {
+            detail: format!("{total} points, more than the {} counted", wingcheck_model::work::REGION_MAP_MAX_POINTS),
+        });
+    }
     let done = AtomicUsize::new(0);
     let points: Vec<PointResult> = (0..total)
         .into_par_iter()

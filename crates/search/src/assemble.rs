@@ -52,7 +52,7 @@ impl Iterator for ChunkStream<'_> {
                 return None;
             }
             self.next_chunk += 1;
-            match store::read_chunk(self.dir, c, self.search.chunk_range(c)) {
+            match store::read_chunk(self.dir, self.search, c) {
                 Ok(Some(points)) => self.current = points.into_iter(),
                 Ok(None) => {
                     self.next_chunk = self.search.chunks();
@@ -92,7 +92,7 @@ impl Assembly {
     pub fn add(&mut self, p: &PointResult) -> Result<(), SearchError> {
         if p.index != self.verdicts.len() {
             return Err(SearchError::Io {
-                path: "chunks".into(),
+                path: self.csv.path().to_string(),
                 detail: format!("point {} arrived where point {} was expected", p.index, self.verdicts.len()),
             });
         }
@@ -128,6 +128,9 @@ fn has_heatmaps(search: &Search) -> bool {
 /// bounded memory (module doc). Returns the file names written and the number of failed
 /// points (diverged, error).
 pub fn finalize(dir: &Path) -> Result<(Vec<String>, (usize, usize)), SearchError> {
+    // temp files of a run killed during an earlier assembly (or a chunk write)
+    store::remove_stale_temps(dir);
+    store::remove_stale_temps(&dir.join(store::CHUNK_DIR));
     let path = dir.join("manifest.json");
     let manifest: Manifest = serde_json::from_str(&store::read(&path)?)
         .map_err(|e| SearchError::Io { path: path.display().to_string(), detail: e.to_string() })?;
@@ -135,7 +138,7 @@ pub fn finalize(dir: &Path) -> Result<(Vec<String>, (usize, usize)), SearchError
     // every chunk present and complete before anything is written (each read, checked, dropped)
     let mut missing = Vec::new();
     for c in 0..search.chunks() {
-        if store::read_chunk(dir, c, search.chunk_range(c))?.is_none() {
+        if store::read_chunk(dir, &search, c)?.is_none() {
             missing.push(c);
         }
     }
@@ -178,11 +181,12 @@ pub fn assemble(
         timings,
     };
     let stream = points.map(|p| p.and_then(|p| acc.add(&p).map(|()| p)));
-    store::write_results_json(json.writer(), &keys, stream)?;
+    let json_path = json.path().to_string();
+    store::write_results_json(json.writer(), &json_path, &keys, stream)?;
     json.finish()?;
     if acc.verdicts.len() != n {
         return Err(SearchError::Io {
-            path: "chunks".into(),
+            path: dir.join(store::CHUNK_DIR).display().to_string(),
             detail: format!("{} points assembled, the search has {n}", acc.verdicts.len()),
         });
     }

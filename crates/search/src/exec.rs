@@ -52,24 +52,39 @@ fn prepare_out(out: &Path, text: &str) -> Result<Found, SearchError> {
             }
             Found::Ours
         } else {
-            let mut entries = std::fs::read_dir(out)
+            // empty, or holding only what a search killed while setting up leaves: temp files
+            // of the manifest's write and an empty chunks/ (the manifest is written first)
+            let entries = std::fs::read_dir(out)
                 .map_err(|e| SearchError::Io { path: out.display().to_string(), detail: e.to_string() })?;
-            if entries.next().is_some() {
-                return Err(mismatch(
-                    out,
-                    "exists, is not empty and is not a wingcheck search directory (no manifest.json); use a new or empty --out",
-                ));
+            for e in entries {
+                let e = e.map_err(|e| SearchError::Io { path: out.display().to_string(), detail: e.to_string() })?;
+                let name = e.file_name().to_string_lossy().to_string();
+                let empty_chunks = name == store::CHUNK_DIR
+                    && std::fs::read_dir(e.path()).is_ok_and(|mut d| {
+                        d.all(|x| x.is_ok_and(|x| store::is_temp(&x.file_name().to_string_lossy())))
+                    });
+                if !(store::is_temp(&name) || empty_chunks) {
+                    return Err(mismatch(
+                        out,
+                        "exists, is not empty and is not a wingcheck search directory (no manifest.json); use a new or empty --out",
+                    ));
+                }
             }
             Found::Empty
         }
     } else {
         Found::Created
     };
+    // the manifest first: a run killed at any moment leaves a directory the next run takes
+    // (no manifest: nothing but our temp files; a manifest: this search, resumed)
     let setup = || -> Result<(), SearchError> {
-        store::mkdir(&out.join(store::CHUNK_DIR))?;
+        store::mkdir(out)?;
+        store::remove_stale_temps(out);
         if found != Found::Ours {
             store::write_atomic(&out.join("manifest.json"), text.as_bytes())?;
         }
+        store::mkdir(&out.join(store::CHUNK_DIR))?;
+        store::remove_stale_temps(&out.join(store::CHUNK_DIR));
         Ok(())
     };
     if let Err(e) = setup() {
@@ -115,9 +130,12 @@ const CACHE_POINTS: usize = 1024;
 /// chunk of the search is present, write the final files ([`finalize`]). Refused before any
 /// work above the limits ([`limits::check`]) or with a bad thread count.
 pub fn run(search: &Search, out: &Path, ctl: RunControl<'_>) -> Result<RunSummary, SearchError> {
-    limits::check(&search.estimate(), ctl.allow_large)?;
     if let Some(n) = ctl.threads {
         limits::check_threads(n)?;
+    }
+    let threads = ctl.threads.unwrap_or_else(rayon::current_num_threads);
+    limits::check(&search.estimate_with_threads(threads), ctl.allow_large)?;
+    if let Some(n) = ctl.threads {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(n)
             .build()
@@ -136,7 +154,7 @@ fn run_in(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<RunSummar
     let start = Instant::now();
     // Two passes over this shard's chunks (streamed, never collected): count what is done,
     // then evaluate the rest.
-    let is_done = |c: usize| store::read_chunk(out, c, search.chunk_range(c)).map(|p| p.is_some());
+    let is_done = |c: usize| store::read_chunk(out, search, c).map(|p| p.is_some());
     let (mut skipped, mut owned, mut completed, mut total) = (0, 0usize, 0usize, 0usize);
     for c in (0..search.chunks()).filter(|&c| ctl.shard.owns(c)) {
         owned += 1;
@@ -184,7 +202,7 @@ fn run_in(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<RunSummar
                 r
             })
             .collect();
-        store::write_atomic(&store::chunk_path(out, c), store::chunk_text(&points).as_bytes())?;
+        store::write_atomic(&store::chunk_path(out, c), store::chunk_text(search, c, &points).as_bytes())?;
         completed += 1;
         summary.evaluated += points.len();
         summary.failed += points.iter().filter(|p| p.status != Status::Ok).count();
@@ -236,7 +254,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<RunSummary, SearchError> {
     for c in 0..search.chunks() {
         let mut found = None;
         for d in dirs {
-            if store::read_chunk(d, c, search.chunk_range(c))?.is_some() {
+            if store::read_chunk(d, &search, c)?.is_some() {
                 found = Some(d);
                 break;
             }

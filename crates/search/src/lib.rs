@@ -20,6 +20,7 @@
 mod assemble;
 pub mod axis;
 pub mod bench;
+pub mod chunk;
 mod exec;
 mod heatmap;
 pub mod limits;
@@ -64,6 +65,15 @@ pub enum SearchError {
         path: String,
         /// What happened.
         detail: String,
+    },
+    /// A chunk file is not this search's (another search's, another tool version's, edited, or
+    /// holding points that are not this grid's): refused, never merged or recomputed over.
+    #[error("{path}: {reason}; it is not a chunk of this search (move it away to recompute it)")]
+    Chunk {
+        /// The chunk file.
+        path: String,
+        /// What does not match.
+        reason: String,
     },
     /// A directory holds a different search, or shards disagree.
     #[error("{dir}: {reason}")]
@@ -209,6 +219,11 @@ impl Search {
         limits::estimate(&self.base, &self.grid.axes)
     }
 
+    /// The work estimate for `threads` worker threads ([`limits::estimate_with_threads`]).
+    pub fn estimate_with_threads(&self, threads: usize) -> WorkEstimate {
+        limits::estimate_with_threads(&self.base, &self.grid.axes, threads)
+    }
+
     /// Number of points.
     pub fn points(&self) -> usize {
         self.grid.len()
@@ -254,6 +269,12 @@ impl Search {
         serde_json::to_string_pretty(&self.manifest()).expect("manifest serialises") + "\n"
     }
 
+    /// The search's identity in its chunk headers: SHA-256 of [`Search::manifest_text`] (base
+    /// configuration and its hash, axes, options, metrics, scheme).
+    pub fn identity(&self) -> String {
+        chunk::sha256_hex(self.manifest_text().as_bytes())
+    }
+
     fn from_manifest(m: Manifest) -> Result<Search, SearchError> {
         Search::from_axes(m.base_config, m.axes, m.options)
     }
@@ -268,10 +289,8 @@ fn check_window(base: &Config, axes: &[Axis], (t0, t1): (f64, f64)) -> Result<()
     }
     let mut cfgs = vec![base.clone()];
     for a in axes {
-        let idx: Vec<usize> = match &a.spacing {
-            Spacing::List { values } => (0..values.len().min(256)).collect(),
-            _ => vec![0, a.len() - 1],
-        };
+        // every value of a list over the horizon or the sample periods (not the first 256)
+        let idx = limits::estimated_values(a);
         cfgs.extend(idx.into_iter().filter_map(|i| wingcheck_model::apply_overrides(base, &[a.override_expr(i)]).ok()));
     }
     for cfg in &cfgs {

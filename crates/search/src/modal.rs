@@ -20,8 +20,9 @@ use wingcheck_sim::{Sample, SimError, SquareIntegral};
 
 pub use wingcheck_sim::modal::ModalBasis;
 
-/// Entries kept per cache before it is cleared (bounds memory on sweeps over wing keys).
-const CACHE_ENTRIES: usize = 16;
+/// Entries kept per cache before it is cleared (bounds memory on sweeps over wing keys; the
+/// search's memory estimate counts them).
+pub const CACHE_ENTRIES: usize = 16;
 
 /// sup |g(t_k) − ĝ_k| over the output samples of `cfg` (k a multiple of `samples_per_output`,
 /// and k = K), per channel: ζ3 (N), ζ4 (N m) of (32) as

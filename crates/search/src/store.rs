@@ -1,26 +1,71 @@
-//! On-disk formats: the manifest, chunk files (JSON lines, written via temp file + rename),
-//! per-shard progress files, and the final `results.csv`, `results.json`, `best.json`,
-//! `timings.csv`.
-//!
-//! Floats: chunk files store every metric as the text of Rust's shortest round-trip form
-//! (`format!("{x}")`), parsed back with `str::parse::<f64>` (exact), so results read from
-//! chunks equal the computed values bit for bit.
+//! On-disk formats: the manifest, chunk files ([`crate::chunk`]: JSON lines under a header
+//! naming their search, written via temp file + rename), per-shard progress files, and the final
+//! `results.csv`, `results.json`, `best.json`, `timings.csv`.
 
 use std::path::{Path, PathBuf};
 
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 use serde_json::{json, Map, Value};
 
+pub use crate::chunk::{chunk_text, read_chunk};
 use crate::point::{PointResult, Status, METRICS};
 use crate::SearchError;
 
 /// Directory of the chunk files inside an output directory.
 pub const CHUNK_DIR: &str = "chunks";
 
-/// Write `bytes` to `path` atomically (temp file in the same directory + rename).
+/// Tag of this process's temp files: `.{name}.tmp-{pid}` (one file at a time) and
+/// `.{name}.set-tmp-{pid}` ([`FileSet`]). A run removes the ones of dead processes
+/// ([`remove_stale_temps`]), so a directory resumed after a kill holds exactly the files of an
+/// uninterrupted run.
+const TMP_TAGS: [&str; 2] = [".tmp-", ".set-tmp-"];
+
+/// Write `bytes` to `path` atomically: temp file `.{name}.tmp-{pid}` in the same directory,
+/// fsync, mode 0644, rename over `path`.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), SearchError> {
-    wingcheck_sim::output::write_atomic(path, bytes)
-        .map_err(|e| SearchError::Io { path: path.display().to_string(), detail: e.to_string() })
+    use std::io::Write;
+    let err = |e: std::io::Error| SearchError::Io { path: path.display().to_string(), detail: e.to_string() };
+    let name = path.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
+    let tmp = path.with_file_name(format!(".{name}{}{}", TMP_TAGS[0], std::process::id()));
+    let write = || -> std::io::Result<()> {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(bytes)?;
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            f.set_permissions(std::fs::Permissions::from_mode(0o644))?;
+        }
+        f.sync_all()?;
+        std::fs::rename(&tmp, path)
+    };
+    write().map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        err(e)
+    })
+}
+
+/// Removes the temp files ([`TMP_TAGS`]) in `dir` whose process is no longer alive (a kill
+/// during a write or the final assembly); those of live processes are left alone.
+pub fn remove_stale_temps(dir: &Path) {
+    let Ok(entries) = std::fs::read_dir(dir) else { return };
+    for e in entries.flatten() {
+        let name = e.file_name().to_string_lossy().to_string();
+        if !name.starts_with('.') || !e.file_type().is_ok_and(|t| t.is_file()) {
+            continue;
+        }
+        let pid = TMP_TAGS.iter().find_map(|tag| name.rsplit_once(tag).and_then(|(_, p)| p.parse::<u32>().ok()));
+        if let Some(pid) = pid {
+            if !wingcheck_io::process_alive(pid) {
+                let _ = std::fs::remove_file(e.path());
+            }
+        }
+    }
+}
+
+/// Whether `name` is a temp file of [`write_atomic`] or [`FileSet`].
+pub fn is_temp(name: &str) -> bool {
+    name.starts_with('.')
+        && TMP_TAGS.iter().any(|tag| name.rsplit_once(tag).is_some_and(|(_, p)| p.parse::<u32>().is_ok()))
 }
 
 /// Read a file to a string.
@@ -38,85 +83,6 @@ pub fn mkdir(path: &Path) -> Result<(), SearchError> {
 /// Path of chunk c.
 pub fn chunk_path(dir: &Path, c: usize) -> PathBuf {
     dir.join(CHUNK_DIR).join(format!("chunk-{c:05}.jsonl"))
-}
-
-/// One line of a chunk file.
-#[derive(Debug, Serialize, Deserialize)]
-struct ChunkLine {
-    index: usize,
-    values: Vec<String>,
-    status: Status,
-    message: String,
-    w_positive_definite: Option<bool>,
-    feasible_32: Option<bool>,
-    metrics: Vec<Option<String>>,
-    sim_seconds: f64,
-    theory_seconds: f64,
-}
-
-/// Serialise a chunk (one JSON line per point, in index order).
-pub fn chunk_text(points: &[PointResult]) -> String {
-    let mut out = String::new();
-    for p in points {
-        let line = ChunkLine {
-            index: p.index,
-            values: p.values.clone(),
-            status: p.status,
-            message: p.message.clone(),
-            w_positive_definite: p.w_positive_definite,
-            feasible_32: p.feasible_32,
-            metrics: p.metrics.iter().map(|m| m.map(|x| format!("{x}"))).collect(),
-            sim_seconds: p.sim_seconds,
-            theory_seconds: p.theory_seconds,
-        };
-        out.push_str(&serde_json::to_string(&line).expect("chunk line serialises"));
-        out.push('\n');
-    }
-    out
-}
-
-/// Read chunk c if present and complete: exactly the points `range`, in order. A missing or
-/// malformed chunk gives `Ok(None)` (it is recomputed).
-pub fn read_chunk(
-    dir: &Path,
-    c: usize,
-    range: std::ops::Range<usize>,
-) -> Result<Option<Vec<PointResult>>, SearchError> {
-    let path = chunk_path(dir, c);
-    if !path.exists() {
-        return Ok(None);
-    }
-    let text = read(&path)?;
-    let mut out = Vec::with_capacity(range.len());
-    for line in text.lines().filter(|l| !l.trim().is_empty()) {
-        let Ok(l) = serde_json::from_str::<ChunkLine>(line) else { return Ok(None) };
-        if l.metrics.len() != METRICS.len() {
-            return Ok(None);
-        }
-        let mut metrics = Vec::with_capacity(METRICS.len());
-        for m in &l.metrics {
-            match m {
-                None => metrics.push(None),
-                Some(s) => match s.parse::<f64>() {
-                    Ok(x) => metrics.push(Some(x)),
-                    Err(_) => return Ok(None),
-                },
-            }
-        }
-        out.push(PointResult {
-            index: l.index,
-            values: l.values,
-            status: l.status,
-            message: l.message,
-            w_positive_definite: l.w_positive_definite,
-            feasible_32: l.feasible_32,
-            metrics,
-            sim_seconds: l.sim_seconds,
-            theory_seconds: l.theory_seconds,
-        });
-    }
-    let ok = out.len() == range.len() && out.iter().zip(range).all(|(p, i)| p.index == i);
-    Ok(ok.then_some(out))
 }
 
 fn csv_field(s: &str) -> String {
@@ -214,7 +180,12 @@ impl<I: Iterator<Item = Result<PointResult, SearchError>>> Serialize for LazyPoi
 /// `{"axes": [keys], "metrics": [names], "points": [point_json …]}`, pretty-printed by
 /// serde_json with a trailing newline — the same bytes as `serde_json::to_string_pretty` of
 /// the whole document (keys in the order a `json!` map sorts them).
-pub fn write_results_json<I>(out: &mut impl std::io::Write, keys: &[String], points: I) -> Result<(), SearchError>
+pub fn write_results_json<I>(
+    out: &mut impl std::io::Write,
+    path: &str,
+    keys: &[String],
+    points: I,
+) -> Result<(), SearchError>
 where
     I: Iterator<Item = Result<PointResult, SearchError>>,
 {
@@ -227,7 +198,7 @@ where
     }
     let lazy = LazyPoints { keys, points: std::cell::RefCell::new(points), error: std::cell::RefCell::new(None) };
     let doc = Doc { axes: keys, metrics: &METRICS, points: &lazy };
-    let io = |e: String| SearchError::Io { path: "results.json".into(), detail: e };
+    let io = |e: String| SearchError::Io { path: path.to_string(), detail: e };
     let written = serde_json::to_writer_pretty(&mut *out, &doc);
     if let Some(e) = lazy.error.borrow_mut().take() {
         return Err(e);
@@ -352,7 +323,7 @@ impl FileSet {
     }
 
     fn tmp(&self, name: &str) -> PathBuf {
-        self.dir.join(format!(".{name}.set-tmp-{}", std::process::id()))
+        self.dir.join(format!(".{name}{}{}", TMP_TAGS[1], std::process::id()))
     }
 
     /// Write `text` to the temp file of `name`.
@@ -412,6 +383,11 @@ impl Staged {
     pub fn write(&mut self, text: &str) -> Result<(), SearchError> {
         use std::io::Write;
         self.out.write_all(text.as_bytes()).map_err(|e| self.error(e))
+    }
+
+    /// The full path of the file (what its errors name).
+    pub fn path(&self) -> &str {
+        &self.path
     }
 
     /// The underlying writer (errors name the file via [`Staged::error`]).

@@ -71,7 +71,7 @@ fn synthetic_dir(dir: &Path, specs: &[&str]) -> Search {
     store::write_atomic(&dir.join("manifest.json"), s.manifest_text().as_bytes()).unwrap();
     for c in 0..s.chunks() {
         let points: Vec<PointResult> = s.chunk_range(c).map(|p| synthetic(&s, p)).collect();
-        store::write_atomic(&store::chunk_path(dir, c), store::chunk_text(&points).as_bytes()).unwrap();
+        store::write_atomic(&store::chunk_path(dir, c), store::chunk_text(&s, c, &points).as_bytes()).unwrap();
     }
     s
 }

@@ -115,7 +115,8 @@ fn a_failed_write_of_the_final_files_leaves_no_partial_result_set() {
     let blocker = format!(".results.json.set-tmp-{}", std::process::id());
     std::fs::create_dir(dir.join(&blocker)).unwrap();
     let e = wingcheck_search::finalize(&dir).unwrap_err();
-    assert!(e.to_string().contains("results.json"), "{e}");
+    // the error names the full path (it used to name only the file)
+    assert!(e.to_string().contains(&dir.join("results.json").display().to_string()), "{e}");
     assert_eq!(names(&dir), [blocker.as_str(), "chunks", "manifest.json"], "no final file and no temp file left");
     std::fs::remove_dir(dir.join(&blocker)).unwrap();
     assert!(wingcheck_search::finalize(&dir).is_ok());
@@ -140,4 +141,35 @@ fn the_estimate_takes_the_costliest_value_of_each_axis() {
     .unwrap()
     .estimate();
     assert!((w.core_seconds - 4.0 * corner.core_seconds).abs() <= 1e-12 * w.core_seconds, "{w:?} vs {corner:?}");
+}
+
+#[test]
+fn memory_is_estimated_and_every_value_of_a_list_axis_counts() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("s");
+    // t_end = 1e5 s at dt = 1 ms: 1e8 steps, whose observer signal is 3 × 8 bytes per step
+    // (2.4 GB) plus 4 × 8 bytes per sample (3.2 GB), and the point's trace: above the 4 GiB limit, refused before any
+    // work (it used to run and reach 2.2 GB RSS while `simulate` refused the same horizon).
+    let long = apply_overrides(&Config::paper(), &["horizon.t_end=1e5".into()]).unwrap();
+    let s = Search::new(long, &["control.a=1".into()], SearchOptions::default()).unwrap();
+    let w = s.estimate_with_threads(1);
+    assert!(w.memory_bytes > 5.6e9 && w.memory_bytes < 7e9, "{w:?}");
+    let e = run(&s, &out, RunControl::default()).unwrap_err().to_string();
+    assert!(e.contains("GB of memory") && e.contains("--allow-large"), "{e}");
+    assert!(!out.exists());
+    // one costly value listed last in a list of 300: counted (the estimate read only the first
+    // 256 values). 0.05 s is 50 steps; 1e5 s is 1e8.
+    let mut values = vec!["0.05"; 299];
+    values.push("1e5");
+    let spec = format!("horizon.t_end={}", values.join(","));
+    let s = Search::new(base(), &[spec], SearchOptions::default()).unwrap();
+    let w = s.estimate_with_threads(1);
+    assert_eq!(w.steps_per_point, 100_000_000, "{w:?}");
+    let e = run(&s, &out, RunControl::default()).unwrap_err().to_string();
+    assert!(e.contains("--allow-large"), "{e}");
+    assert!(!out.exists());
+    // a list over a key the cost does not depend on is estimated from one value
+    let many: Vec<String> = (1..=300).map(|k| format!("{k}")).collect();
+    let s = Search::new(base(), &[format!("control.a={}", many.join(","))], SearchOptions::default()).unwrap();
+    assert_eq!(s.estimate().steps_per_point, 50);
 }

@@ -99,18 +99,11 @@ impl EstimatedRun {
 }
 
 fn refined_space(cfg: &Config) -> Config {
-    let mut c = cfg.clone();
-    match c.discretisation.method {
-        Method::Fe => c.discretisation.elements *= 2,
-        Method::Fd => c.discretisation.fd_points *= 2,
-    }
-    c
+    wingcheck_model::work::refined_in_space(cfg)
 }
 
 fn refined_time(cfg: &Config) -> Config {
-    let mut c = cfg.clone();
-    c.discretisation.dt *= 0.5;
-    c
+    wingcheck_model::work::refined_in_time(cfg)
 }
 
 fn peak_estimates(base: &Peaks, space: &Peaks, time: &Peaks) -> PeakEstimates {

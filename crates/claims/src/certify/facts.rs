@@ -35,6 +35,11 @@ pub const MAX_FILE_BYTES: u64 = 1 << 20;
 /// exact LDLᵀ grows like N⁴–N⁵ with big-rational entries: ≈ 0.08 s at N = 4, 0.7 s at N = 6,
 /// 2 s at N = 8 with 32-character parameters). `certify` uses [`super::CERT_ELEMENTS`] = 4.
 pub const MAX_ELEMENTS: usize = 4;
+/// Largest Galerkin element count of a negative-direction certificate: its check is one exact
+/// quadratic form xᵀWx (no LDLᵀ), so a finer space costs little; `certify` uses it when W's
+/// negative directions for a/b just above ω₁ show only on finer spaces
+/// ([`super::NEGATIVE_DIRECTION_ELEMENTS`]).
+pub const MAX_NEGATIVE_ELEMENTS: usize = 32;
 
 /// The kinds of fact.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -151,18 +156,29 @@ pub struct CheckedFact {
 }
 
 fn number(field: &str, text: &str) -> Result<BigRational, CertifyError> {
-    parse_rational_bounded(text, &NumberLimits::CERTIFICATE)
+    number_within(field, text, &NumberLimits::CERTIFICATE)
+}
+
+fn number_within(field: &str, text: &str, limits: &NumberLimits) -> Result<BigRational, CertifyError> {
+    parse_rational_bounded(text, limits)
         .map_err(|e| CertifyError::Invalid { field: field.into(), message: e.to_string() })
 }
+
+/// Limits of the three Farkas multipliers of a μ3 certificate: they are products of the
+/// config's decimals (y = (1, b, 2a|ρx_c|), exact, each up to 17 significant digits and
+/// exponent ±28), longer than 32 characters, and enter one 3 × 2 system, so a longer text costs
+/// nothing measurable.
+pub const FARKAS_LIMITS: NumberLimits = NumberLimits { max_chars: 128, max_exponent: 64 };
 
 fn invalid(field: &str, message: impl Into<String>) -> CertifyError {
     CertifyError::Invalid { field: field.into(), message: message.into() }
 }
 
-/// Short display of an exact rational: `p/q (≈ 1.234e-5)`, or the integer.
+/// Short display of an exact rational: `p/q (≈ 1.234e-5)`, or the integer; integers of more
+/// than 24 digits abbreviated ([`wingcheck_cert::exact::abbreviated`]).
 pub fn show(r: &BigRational) -> String {
-    if r.is_integer() {
-        r.numer().to_string()
+    if r.is_integer() || to_fraction_string(r).len() > 2 * wingcheck_cert::exact::SHOWN_DIGITS {
+        wingcheck_cert::exact::abbreviated(r)
     } else {
         format!("{} (≈ {:.6e})", to_fraction_string(r), to_f64(r))
     }
@@ -201,8 +217,10 @@ impl CertificateFile {
         for (k, t) in texts.iter().enumerate() {
             wing[k] = number(&format!("wing.{}", WING_FIELDS[k]), t)?;
         }
+        // the ranges the configuration allows (validate.rs): span, ρ, EI, GJ, I_p > 0; ρx_c of
+        // either sign (the offset's direction); ξ, a, b ≥ 0
         for (k, v) in wing.iter().enumerate().take(6) {
-            if !v.is_positive() {
+            if k != 2 && !v.is_positive() {
                 return Err(invalid(&format!("wing.{}", WING_FIELDS[k]), "must be > 0"));
             }
         }
@@ -210,17 +228,19 @@ impl CertificateFile {
             return Err(invalid("wing.xi", "must be ≥ 0"));
         }
         let weights = [number("weights.a", &self.weights.a)?, number("weights.b", &self.weights.b)?];
-        if !weights[0].is_positive() || !weights[1].is_positive() {
-            return Err(invalid("weights", "a and b must be > 0"));
+        if weights[0].is_negative() || weights[1].is_negative() {
+            return Err(invalid("weights", "a and b must be ≥ 0"));
         }
         Ok(ExactParams { wing, weights })
     }
 
-    /// The element count, checked against [`MAX_ELEMENTS`] (W facts only).
+    /// The element count, checked against [`MAX_ELEMENTS`] ([`MAX_NEGATIVE_ELEMENTS`] for a
+    /// negative direction) (W facts only).
     pub fn require_elements(&self) -> Result<usize, CertifyError> {
+        let max = if self.fact == FactKind::WNegativeDirection { MAX_NEGATIVE_ELEMENTS } else { MAX_ELEMENTS };
         match self.elements {
-            Some(n) if (1..=MAX_ELEMENTS).contains(&n) => Ok(n),
-            Some(n) => Err(invalid("elements", format!("{n} outside [1, {MAX_ELEMENTS}]"))),
+            Some(n) if (1..=max).contains(&n) => Ok(n),
+            Some(n) => Err(invalid("elements", format!("{n} outside [1, {max}]"))),
             None => Err(invalid("elements", format!("missing (required for {})", self.fact.as_str()))),
         }
     }
@@ -233,6 +253,10 @@ impl CertificateFile {
     }
 
     fn require_witness(&self, len: usize) -> Result<Vec<BigRational>, CertifyError> {
+        self.require_witness_within(len, &NumberLimits::CERTIFICATE)
+    }
+
+    fn require_witness_within(&self, len: usize, limits: &NumberLimits) -> Result<Vec<BigRational>, CertifyError> {
         let w = self.witness.as_ref().ok_or_else(|| invalid("witness", "missing"))?;
         if w.len() != len {
             return Err(invalid(
@@ -240,7 +264,7 @@ impl CertificateFile {
                 format!("{} entries, {} required for {}", w.len(), len, self.fact.as_str()),
             ));
         }
-        w.iter().enumerate().map(|(i, t)| number(&format!("witness[{i}]"), t)).collect()
+        w.iter().enumerate().map(|(i, t)| number_within(&format!("witness[{i}]"), t, limits)).collect()
     }
 
     fn forbid(&self, present: bool, field: &str) -> Result<(), CertifyError> {
@@ -309,12 +333,12 @@ impl CertificateFile {
             FactKind::Mu3Infeasible => {
                 self.forbid(self.elements.is_some(), "elements")?;
                 self.forbid(self.lambda.is_some(), "lambda")?;
-                let y = self.require_witness(3)?;
+                let y = self.require_witness_within(3, &FARKAS_LIMITS)?;
                 let (sys, c3) = mu3_system(&params);
                 let value = check_farkas(&sys, &FarkasCertificate { y, w: vec![] })
                     .map_err(|e| CertifyError::Refuted(format!("μ3 system: {e}")))?;
                 let statement = format!(
-                    "with {weights}: μ3 = bξEI/(2s⁴) − η1 b − aρ − 2aρx_c η5 ≥ 0 has no solution η1, η5 ≥ 0 \
+                    "with {weights}: μ3 = bξEI/(2s⁴) − η1 b − aρ − 2a|ρx_c| η5 ≥ 0 has no solution η1, η5 ≥ 0 \
                      (constant term bξEI/(2s⁴) − aρ = {}; Farkas combination yᵀc = {} < 0), so μ1 … μ6 > 0 of (32) cannot all hold",
                     show(&c3),
                     show(&value)
@@ -343,10 +367,11 @@ impl CertificateFile {
 }
 
 /// The μ3 ≥ 0 system of (32) in the variables (η1, η5) ≥ 0, built from the parameters:
-/// rows `b η1 + 2aρx_c η5 ≤ C3`, `−η1 ≤ 0`, `−η5 ≤ 0` with `C3 = bξEI/(2s⁴) − aρ`.
-/// Returns the system and C3.
+/// rows `b η1 + 2a|ρx_c| η5 ≤ C3`, `−η1 ≤ 0`, `−η5 ≤ 0` with `C3 = bξEI/(2s⁴) − aρ` (the cross
+/// term enters (29)–(32) through its magnitude, as in `theory::MuData`). Returns the system and C3.
 pub fn mu3_system(p: &ExactParams) -> (LinearSystem, BigRational) {
     let [s, rho, rho_xc, ei, _gj, _ip, xi] = &p.wing;
+    let rho_xc = &rho_xc.abs();
     let [a, b] = &p.weights;
     let two = BigRational::from_integer(2.into());
     let one = BigRational::from_integer(1.into());

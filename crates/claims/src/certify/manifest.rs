@@ -163,10 +163,21 @@ pub fn config_params(cfg: &Config) -> Result<ExactParams, CertifyError> {
     })
 }
 
-/// Reads at most [`MAX_FILE_BYTES`] of a file as UTF-8.
+/// Reads at most [`MAX_FILE_BYTES`] of a regular file. The type is checked before the file is
+/// opened (opening a FIFO for reading blocks until a writer appears) and again on the open file.
 pub fn read_bounded(path: &Path) -> Result<Vec<u8>, CertifyError> {
     let io = |e| CertifyError::Io { path: path.to_path_buf(), source: e };
+    let not_regular = || CertifyError::Invalid {
+        field: path.display().to_string(),
+        message: "not a regular file (a certificate set holds only regular files)".into(),
+    };
+    if !std::fs::metadata(path).map_err(io)?.is_file() {
+        return Err(not_regular());
+    }
     let f = std::fs::File::open(path).map_err(io)?;
+    if !f.metadata().map_err(io)?.is_file() {
+        return Err(not_regular());
+    }
     let mut bytes = Vec::new();
     f.take(MAX_FILE_BYTES + 1).read_to_end(&mut bytes).map_err(io)?;
     if bytes.len() as u64 > MAX_FILE_BYTES {
@@ -207,8 +218,74 @@ fn bad(field: &str, message: impl Into<String>) -> CertifyError {
     CertifyError::Invalid { field: field.into(), message: message.into() }
 }
 
+/// The first key that occurs twice in one JSON object of `text` (as `path.key`), if any. serde
+/// rejects duplicate fields of typed structs, but the manifest's `config` is read as a JSON value,
+/// where the last of two equal keys would silently win.
+pub fn duplicate_key(text: &[u8]) -> Option<String> {
+    use serde::de::{DeserializeSeed, Deserializer, MapAccess, SeqAccess, Visitor};
+    struct Walk<'a> {
+        path: &'a str,
+        found: &'a std::cell::RefCell<Option<String>>,
+    }
+    impl<'de> DeserializeSeed<'de> for Walk<'_> {
+        type Value = ();
+        fn deserialize<D: Deserializer<'de>>(self, d: D) -> Result<(), D::Error> {
+            d.deserialize_any(self)
+        }
+    }
+    impl<'de> Visitor<'de> for Walk<'_> {
+        type Value = ();
+        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+            f.write_str("any JSON value")
+        }
+        fn visit_bool<E>(self, _: bool) -> Result<(), E> {
+            Ok(())
+        }
+        fn visit_i64<E>(self, _: i64) -> Result<(), E> {
+            Ok(())
+        }
+        fn visit_u64<E>(self, _: u64) -> Result<(), E> {
+            Ok(())
+        }
+        fn visit_f64<E>(self, _: f64) -> Result<(), E> {
+            Ok(())
+        }
+        fn visit_str<E>(self, _: &str) -> Result<(), E> {
+            Ok(())
+        }
+        fn visit_unit<E>(self) -> Result<(), E> {
+            Ok(())
+        }
+        fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<(), A::Error> {
+            let mut i = 0;
+            while seq.next_element_seed(Walk { path: &format!("{}[{i}]", self.path), found: self.found })?.is_some() {
+                i += 1;
+            }
+            Ok(())
+        }
+        fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<(), A::Error> {
+            let mut seen = BTreeSet::new();
+            while let Some(key) = map.next_key::<String>()? {
+                let path = if self.path.is_empty() { key.clone() } else { format!("{}.{key}", self.path) };
+                if !seen.insert(key) && self.found.borrow().is_none() {
+                    *self.found.borrow_mut() = Some(path.clone());
+                }
+                map.next_value_seed(Walk { path: &path, found: self.found })?;
+            }
+            Ok(())
+        }
+    }
+    let found = std::cell::RefCell::new(None);
+    let mut de = serde_json::Deserializer::from_slice(text);
+    let _ = Walk { path: "", found: &found }.deserialize(&mut de);
+    found.into_inner()
+}
+
 /// Parses and checks `index.json` text (no certificate is read).
 pub fn parse_manifest(text: &[u8]) -> Result<(Manifest, Config), CertifyError> {
+    if let Some(key) = duplicate_key(text) {
+        return Err(bad(INDEX, format!("key {key} occurs twice (a JSON object has each key once)")));
+    }
     let m: Manifest =
         serde_json::from_slice(text).map_err(|e| bad(INDEX, format!("not a wingcheck proofs manifest: {e}")))?;
     if m.format != INDEX_FORMAT || m.version != INDEX_VERSION {
@@ -225,9 +302,55 @@ pub fn parse_manifest(text: &[u8]) -> Result<(Manifest, Config), CertifyError> {
     Ok((m, cfg))
 }
 
-/// Verifies the certificate set in `dir` (see the module documentation).
+/// The keys (dotted paths) whose values differ between two configurations, with both values.
+pub fn config_differences(set: &Config, expected: &Config) -> Vec<String> {
+    fn flat(prefix: &str, v: &serde_json::Value, out: &mut Vec<(String, String)>) {
+        match v {
+            serde_json::Value::Object(m) => {
+                for (k, x) in m {
+                    flat(&if prefix.is_empty() { k.clone() } else { format!("{prefix}.{k}") }, x, out);
+                }
+            }
+            other => out.push((prefix.to_string(), other.to_string())),
+        }
+    }
+    let (mut a, mut b) = (Vec::new(), Vec::new());
+    flat("", &serde_json::to_value(set).expect("config serialises"), &mut a);
+    flat("", &serde_json::to_value(expected).expect("config serialises"), &mut b);
+    a.iter()
+        .zip(&b)
+        .filter(|((_, x), (_, y))| x != y)
+        .map(|((k, x), (_, y))| format!("{k} (set: {x}, expected: {y})"))
+        .collect()
+}
+
+/// Verifies the certificate set in `dir` (see the module documentation) for whatever
+/// configuration its manifest names.
 pub fn verify_set(dir: &Path) -> Result<VerifiedSet, CertifyError> {
+    verify_set_for(dir, None)
+}
+
+/// [`verify_set`], and with `expected` the set must have been made for exactly that
+/// configuration (its hash), else it is refused naming the keys that differ: any self-consistent
+/// set of some configuration verifies, so only a pinned verify says the facts are about yours.
+pub fn verify_set_for(dir: &Path, expected: Option<&Config>) -> Result<VerifiedSet, CertifyError> {
     let (manifest, cfg) = parse_manifest(&read_bounded(&dir.join(INDEX))?)?;
+    if let Some(want) = expected {
+        let hash = config_hash(want);
+        if hash != manifest.config_sha256 {
+            let diff = config_differences(&cfg, want);
+            let shown: Vec<&str> = diff.iter().take(6).map(String::as_str).collect();
+            return Err(bad(
+                "index.json config",
+                format!(
+                    "the set was made for config sha256 {}, not the expected configuration (sha256 {hash}): {}{}",
+                    manifest.config_sha256,
+                    shown.join(", "),
+                    if diff.len() > 6 { format!(" and {} more keys differ", diff.len() - 6) } else { String::new() }
+                ),
+            ));
+        }
+    }
     let cfg_params = config_params(&cfg)?;
     // The directory holds exactly index.json and the listed files.
     let listed: BTreeSet<&str> = manifest.certificates.iter().map(|e| e.file.as_str()).collect();
@@ -302,15 +425,23 @@ pub fn verify_set(dir: &Path) -> Result<VerifiedSet, CertifyError> {
         }
         parsed.push((role, file, e.file.as_str()));
     }
+    // The bounds (statements about one Galerkin space) share one discretisation; a negative
+    // direction is a state of the PDE whatever its space, so it may come from a finer one.
     let mut sizes = Vec::new();
     for (role, file, name) in &parsed {
         if file.fact != FactKind::Mu3Infeasible {
-            sizes.push((role.id, file.require_elements().map_err(|err| err.in_file(name))?));
+            let n = file.require_elements().map_err(|err| err.in_file(name))?;
+            if file.fact != FactKind::WNegativeDirection {
+                sizes.push((role.id, n));
+            }
         }
     }
     if let Some(&(first_id, n)) = sizes.first() {
         if let Some(&(id, m)) = sizes.iter().find(|&&(_, m)| m != n) {
-            return Err(bad(id, format!("elements = {m}, but {first_id} uses {n}: one discretisation across the set")));
+            return Err(bad(
+                id,
+                format!("elements = {m}, but {first_id} uses {n}: one discretisation across the set's bounds"),
+            ));
         }
     }
     // Pass 2: the exact checks.
@@ -381,6 +512,20 @@ fn conclusions(
         }
     }
     let mut used = BTreeSet::new();
+    let known: BTreeSet<&str> = ROLES.iter().map(|r| r.claim).collect();
+    let mut claims_seen = BTreeSet::new();
+    for c in &manifest.claims {
+        if !known.contains(c.claim.as_str()) {
+            return Err(bad(INDEX, format!("unknown claim {:?} (the verifier knows {known:?})", c.claim)));
+        }
+        if !claims_seen.insert(c.claim.as_str()) {
+            return Err(bad(INDEX, format!("claim {:?} is listed twice", c.claim)));
+        }
+        let mut needs = BTreeSet::new();
+        if let Some(id) = c.needs.iter().find(|id| !needs.insert(id.as_str())) {
+            return Err(bad(INDEX, format!("claim {:?} lists {id} twice in its needs", c.claim)));
+        }
+    }
     for (claim, ids) in required(cfg_params, lower.as_ref()) {
         let entry = manifest
             .claims
@@ -414,10 +559,17 @@ fn conclusions(
         let l = lower.expect("required above");
         let u = find(certs, "w-bounds-upper").and_then(|f| f.lambda.clone()).expect("required above");
         let n = find(certs, "w-bounds-lower").and_then(|f| f.elements).unwrap_or(0);
-        let definite = if l.is_positive() {
-            "W is positive definite on that space".to_string()
-        } else {
-            "W is not positive definite (exact negative direction), so the printed λ2 > 0 cannot exist".to_string()
+        let negative = find(certs, "w-bounds-indefinite").and_then(|f| f.elements);
+        let definite = match (l.is_positive(), negative) {
+            (true, None) => "W is positive definite on that space".to_string(),
+            (true, Some(m)) => format!(
+                "yet a state on the {m}-element space has W(x) < 0 exactly, so W is not positive definite on the \
+                 PDE's state space (its positivity on the {n}-element space does not carry over) and the printed \
+                 λ2 > 0 cannot exist"
+            ),
+            (false, _) => {
+                "W is not positive definite (exact negative direction), so the printed λ2 > 0 cannot exist".to_string()
+            }
         };
         let above = find(certs, "w-bounds-ratio-above").map(|f| show(&f.params.weights[0])).expect("required");
         let below = find(certs, "w-bounds-ratio-below").map(|f| show(&f.params.weights[0])).expect("required");

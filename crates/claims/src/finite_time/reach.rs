@@ -3,7 +3,7 @@
 //! simulator (explicit and implicit sampling) across hold periods T.
 
 use wingcheck_control::ObserverGain;
-use wingcheck_model::{Config, ControllerKind, ObserverRule, TipDisturbance};
+use wingcheck_model::{Config, ObserverRule, TipDisturbance};
 use wingcheck_sim::Stepper;
 
 use crate::ClaimsError;
@@ -224,15 +224,9 @@ pub struct DigitalRun {
 
 /// The configuration of a digital FTDO run: `cfg` with the given rule and hold period T (s),
 /// integrator step dt = T / ⌈T/dt_cfg⌉ (≤ the configured dt, a whole fraction of T), horizon `t_end`.
+/// ([`wingcheck_model::work::finite_time_config`], the run the work estimate counts).
 pub fn digital_config(cfg: &Config, rule: ObserverRule, period: f64, t_end: f64) -> Config {
-    let mut c = cfg.clone();
-    c.control.kind = ControllerKind::Ftdo;
-    c.observer.rule = rule;
-    c.observer.sample_period = period;
-    c.discretisation.dt = period / (period / cfg.discretisation.dt).ceil().max(1.0);
-    c.horizon.t_end = t_end;
-    c.horizon.sample_every = c.horizon.sample_every.max(period);
-    c
+    wingcheck_model::work::finite_time_config(cfg, rule, period, t_end)
 }
 
 /// Run the closed loop (FTDO, `rule`, hold `period`) over [0, `t_end`] sample by sample and

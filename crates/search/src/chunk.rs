@@ -1,0 +1,205 @@
+//! Chunk files: one header line naming the search they belong to, then one JSON line per point.
+//!
+//! The header carries the search's identity — the SHA-256 of its `manifest.json` text (the base
+//! configuration and its hash, the axes, the options) and the tool version — the chunk number,
+//! its first point and point count, and the SHA-256 of the point lines that follow. A chunk is
+//! accepted for resuming, merging and assembling only if all of that matches and every line is
+//! a point of this grid: its index in the chunk's range, its values exactly the grid's values
+//! there, every metric finite or absent, the message empty exactly when the status is `ok`.
+//! Anything else is refused naming the file (a chunk of another search, an edited one, one of
+//! another tool version) — never merged, never silently recomputed over.
+//!
+//! Floats: every metric is stored as the text of Rust's shortest round-trip form
+//! (`format!("{x}")`), parsed back with `str::parse::<f64>` (exact), so results read from
+//! chunks equal the computed values bit for bit.
+
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+use sha2::{Digest, Sha256};
+
+use crate::point::{PointResult, Status, METRICS};
+use crate::store::{chunk_path, read};
+use crate::{Search, SearchError};
+
+/// Value of a chunk header's `format`.
+pub const CHUNK_FORMAT: &str = "wingcheck-search-chunk";
+
+/// The tool version written into chunk headers; chunks of another version are refused (their
+/// points may have been computed differently).
+pub const TOOL: &str = concat!("wingcheck ", env!("CARGO_PKG_VERSION"));
+
+/// Lowercase hex SHA-256.
+pub fn sha256_hex(bytes: &[u8]) -> String {
+    Sha256::digest(bytes).iter().map(|b| format!("{b:02x}")).collect()
+}
+
+/// The first line of a chunk file.
+#[derive(Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Header {
+    format: String,
+    tool: String,
+    /// SHA-256 of the search's manifest.json text.
+    search: String,
+    chunk: usize,
+    first: usize,
+    points: usize,
+    /// SHA-256 of the point lines (everything after the header line).
+    sha256: String,
+}
+
+/// One point line of a chunk file.
+#[derive(Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ChunkLine {
+    index: usize,
+    values: Vec<String>,
+    status: Status,
+    message: String,
+    w_positive_definite: Option<bool>,
+    feasible_32: Option<bool>,
+    metrics: Vec<Option<String>>,
+    sim_seconds: f64,
+    theory_seconds: f64,
+}
+
+/// Serialise chunk `c` of `search` (its points, in index order): the header line, then one JSON
+/// line per point. A metric that is not finite is written as absent (no NaN or ∞ reaches the
+/// result files).
+pub fn chunk_text(search: &Search, c: usize, points: &[PointResult]) -> String {
+    let mut body = String::new();
+    for p in points {
+        let line = ChunkLine {
+            index: p.index,
+            values: p.values.clone(),
+            status: p.status,
+            message: p.message.clone(),
+            w_positive_definite: p.w_positive_definite,
+            feasible_32: p.feasible_32,
+            metrics: p.metrics.iter().map(|m| m.filter(|x| x.is_finite()).map(|x| format!("{x}"))).collect(),
+            sim_seconds: finite_or_zero(p.sim_seconds),
+            theory_seconds: finite_or_zero(p.theory_seconds),
+        };
+        body.push_str(&serde_json::to_string(&line).expect("chunk line serialises"));
+        body.push('\n');
+    }
+    let header = Header {
+        format: CHUNK_FORMAT.into(),
+        tool: TOOL.into(),
+        search: search.identity(),
+        chunk: c,
+        first: search.chunk_range(c).start,
+        points: points.len(),
+        sha256: sha256_hex(body.as_bytes()),
+    };
+    serde_json::to_string(&header).expect("chunk header serialises") + "\n" + &body
+}
+
+fn finite_or_zero(x: f64) -> f64 {
+    if x.is_finite() && x >= 0.0 {
+        x
+    } else {
+        0.0
+    }
+}
+
+/// Read chunk `c` of `search` from `dir`: `Ok(None)` if the file does not exist, the points if
+/// it is this search's complete chunk (see the module documentation), else
+/// [`SearchError::Chunk`] naming the file and what is wrong.
+pub fn read_chunk(dir: &Path, search: &Search, c: usize) -> Result<Option<Vec<PointResult>>, SearchError> {
+    let path = chunk_path(dir, c);
+    match std::fs::symlink_metadata(&path) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(e) => return Err(SearchError::Io { path: path.display().to_string(), detail: e.to_string() }),
+        Ok(m) if !m.is_file() => return Err(foreign(&path, "not a regular file".into())),
+        Ok(_) => {}
+    }
+    let text = read(&path)?;
+    parse_chunk(&text, search, c).map(Some).map_err(|reason| foreign(&path, reason))
+}
+
+fn foreign(path: &Path, reason: String) -> SearchError {
+    SearchError::Chunk { path: path.display().to_string(), reason }
+}
+
+/// The points of chunk text, checked against the search (the reason when it is not its chunk).
+fn parse_chunk(text: &str, search: &Search, c: usize) -> Result<Vec<PointResult>, String> {
+    let (head, body) = text.split_once('\n').ok_or("no header line")?;
+    let h: Header = serde_json::from_str(head).map_err(|e| format!("no valid chunk header ({e})"))?;
+    if h.format != CHUNK_FORMAT {
+        return Err(format!("format {:?}, expected {CHUNK_FORMAT:?}", h.format));
+    }
+    if h.tool != TOOL {
+        return Err(format!("written by {}, this is {TOOL}", h.tool));
+    }
+    if h.search != search.identity() {
+        return Err("written for another search (its manifest — base config, axes or options — differs)".into());
+    }
+    let range = search.chunk_range(c);
+    if h.chunk != c || h.first != range.start || h.points != range.len() {
+        return Err(format!(
+            "header says chunk {} with points {}..{}, expected chunk {c} with points {}..{}",
+            h.chunk,
+            h.first,
+            h.first + h.points,
+            range.start,
+            range.end
+        ));
+    }
+    if sha256_hex(body.as_bytes()) != h.sha256 {
+        return Err("its points do not hash to the header's sha256 (edited or truncated)".into());
+    }
+    let mut out = Vec::with_capacity(range.len());
+    for (line, index) in body.lines().zip(range.clone()) {
+        let l: ChunkLine = serde_json::from_str(line).map_err(|e| format!("point {index}: {e}"))?;
+        out.push(point(l, search, index).map_err(|e| format!("point {index}: {e}"))?);
+    }
+    if out.len() != range.len() || body.lines().count() != range.len() {
+        return Err(format!("{} point lines, expected {}", body.lines().count(), range.len()));
+    }
+    Ok(out)
+}
+
+/// A point line checked against the grid.
+fn point(l: ChunkLine, search: &Search, index: usize) -> Result<PointResult, String> {
+    if l.index != index {
+        return Err(format!("index {} where {index} belongs", l.index));
+    }
+    let want = search.grid.texts(index);
+    if l.values != want {
+        return Err(format!("values {:?}, the grid has {want:?} there", l.values));
+    }
+    if l.metrics.len() != METRICS.len() {
+        return Err(format!("{} metrics, expected {}", l.metrics.len(), METRICS.len()));
+    }
+    let mut metrics = Vec::with_capacity(METRICS.len());
+    for (name, m) in METRICS.iter().zip(&l.metrics) {
+        metrics.push(match m {
+            None => None,
+            Some(s) => match s.parse::<f64>() {
+                Ok(x) if x.is_finite() => Some(x),
+                _ => return Err(format!("metric {name} = {s:?} is not a finite number")),
+            },
+        });
+    }
+    if (l.status == Status::Ok) != l.message.is_empty() {
+        return Err(format!("status {} with message {:?}", l.status.name(), l.message));
+    }
+    for (name, x) in [("sim_seconds", l.sim_seconds), ("theory_seconds", l.theory_seconds)] {
+        if !(x.is_finite() && x >= 0.0) {
+            return Err(format!("{name} = {x} is not a finite time"));
+        }
+    }
+    Ok(PointResult {
+        index: l.index,
+        values: l.values,
+        status: l.status,
+        message: l.message,
+        w_positive_definite: l.w_positive_definite,
+        feasible_32: l.feasible_32,
+        metrics,
+        sim_seconds: l.sim_seconds,
+        theory_seconds: l.theory_seconds,
+    })
+}
