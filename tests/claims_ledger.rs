@@ -297,3 +297,24 @@ fn documented_ledger_shape_is_the_produced_one() {
         assert!(doc.contains(&format!("`{}`", b.name())), "basis {} undocumented", b.name());
     }
 }
+
+/// The work estimate's run plan is the runs `check` makes: at the paper's point, with the
+/// explicit rule and at a point where (32) holds, the study simulates exactly the planned
+/// configurations (each once).
+#[test]
+fn the_run_plan_is_what_check_simulates() {
+    use wingcheck_claims::plan::check_runs;
+    for extra in [vec![], vec!["observer.rule=explicit"], vec!["control.a=1e-4"]] {
+        let cfg = short(&extra);
+        let settings = CheckSettings::default();
+        let study = Study::new();
+        wingcheck_claims::check_all_with(&cfg, &study, &settings).unwrap();
+        let mut simulated = study.keys();
+        simulated.sort();
+        let mut planned: Vec<String> =
+            check_runs(&cfg, &settings).iter().map(wingcheck_claims::config_sha256).collect();
+        planned.sort();
+        assert_eq!(simulated, planned, "{extra:?}");
+        assert_eq!(study.simulations_run(), planned.len());
+    }
+}

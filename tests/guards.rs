@@ -78,9 +78,11 @@ fn default_work_is_far_inside_the_limits() {
             "discretisation.elements=64",
         ]),
     ] {
-        for est in
-            [WorkEstimate::simulation(&cfg, true, Some(true)), WorkEstimate::check(&cfg), WorkEstimate::report(&cfg)]
-        {
+        for est in [
+            WorkEstimate::simulation(&cfg, true, Some(true)),
+            wingcheck_claims::plan::check_estimate(&cfg, &Default::default()),
+            wingcheck_report::report_estimate(&cfg),
+        ] {
             assert!(est.within(&DEFAULT_LIMITS).is_ok(), "{est:?}");
         }
     }

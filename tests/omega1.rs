@@ -170,3 +170,27 @@ fn the_w_bounds_verdict_rests_on_the_enclosure_outside_it_and_says_so_inside() {
         assert!(s.contains("lies inside the certified enclosure"), "{s}");
     }
 }
+
+/// The ledger decides with the coarsest enclosure of the ladder that decides, and certify writes
+/// the tightest: wherever the coarse one decides, the tightest (the certificate a referee
+/// re-checks) decides the same, and its bounds are within the coarse ones.
+#[test]
+fn the_ledgers_coarse_enclosure_agrees_with_the_certificate_it_cites() {
+    use wingcheck_claims::certify::omega1::EnclosureSummary;
+    for sets in [vec![], SI_WING.to_vec()] {
+        let omega = {
+            let c = omega1::compute(&paper_with(&sets)).unwrap();
+            0.5 * (c.1.lower_f64() + c.1.upper_f64())
+        };
+        for factor in [0.5, 0.9, 0.999, 1.001, 1.1, 8.0] {
+            let a_set = format!("control.a={}", factor * omega);
+            let mut s = sets.clone();
+            s.extend(["control.b=1", a_set.as_str()]);
+            let cfg = paper_with(&s);
+            let (coarse, tight) = (EnclosureSummary::deciding(&cfg), EnclosureSummary::of(&cfg));
+            assert_eq!(coarse.position(), tight.position(), "{factor}: {coarse:?} vs {tight:?}");
+            let ((cl, cu), (tl, tu)) = (coarse.bounds().unwrap(), tight.bounds().unwrap());
+            assert!(cl <= tl && tu <= cu, "{factor}: [{cl}, {cu}] does not contain [{tl}, {tu}]");
+        }
+    }
+}

@@ -75,8 +75,8 @@ fn run_timed(mut cmd: Command, wall_limit: Duration) -> Outcome {
 fn estimate(command: &str, cfg: &Config) -> WorkEstimate {
     match command {
         "simulate" => WorkEstimate::simulation(cfg, false, None),
-        "check" => WorkEstimate::check(cfg),
-        "report" => WorkEstimate::report(cfg),
+        "check" => wingcheck_claims::plan::check_estimate(cfg, &Default::default()),
+        "report" => wingcheck_report::report_estimate(cfg),
         other => panic!("{other}"),
     }
 }

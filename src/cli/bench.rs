@@ -36,8 +36,10 @@ fn estimate(cfg: &Config, what: &str, repeats: usize) -> WorkEstimate {
     let sim = |c: &Config| WorkEstimate::simulation(c, false, None);
     let (r, r3) = (repeats as f64, repeats.min(3) as f64);
     match what {
-        "check" => parts.push((r, WorkEstimate::check(cfg))),
-        "report" => parts.push((r, WorkEstimate::report(cfg))),
+        "check" => {
+            parts.push((r, wingcheck_claims::plan::check_estimate(cfg, &wingcheck_claims::CheckSettings::default())))
+        }
+        "report" => parts.push((r, wingcheck_report::report_estimate(cfg))),
         "search" => {}
         _ => {
             parts.push((r, sim(cfg)));

@@ -19,7 +19,7 @@ pub struct CheckArgs {
 
 pub fn run(a: CheckArgs) -> anyhow::Result<()> {
     let cfg = a.config.load()?;
-    a.work.guard(&wingcheck_model::work::WorkEstimate::check(&cfg))?;
+    a.work.guard(&wingcheck_claims::plan::check_estimate(&cfg, &wingcheck_claims::CheckSettings::default()))?;
     let ledger = check_all(&cfg)?;
     if a.json {
         println!("{}", serde_json::to_string_pretty(&ledger)?);

@@ -21,7 +21,7 @@ pub struct ReportArgs {
 
 pub fn run(a: ReportArgs) -> anyhow::Result<()> {
     let cfg = a.config.load()?;
-    a.work.guard(&wingcheck_model::work::WorkEstimate::report(&cfg))?;
+    a.work.guard(&wingcheck_report::report_estimate(&cfg))?;
     // One bar over the whole report (per mille of the overall fraction): it never restarts.
     let bar = progress_bar(1000, "report");
     let on_progress = |p: Overall| {

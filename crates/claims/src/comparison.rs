@@ -191,6 +191,59 @@ pub fn other_rule(rule: ObserverRule) -> ObserverRule {
     }
 }
 
+/// The configurations the comparison simulates, in the order [`compute`] asks for them:
+/// the FTDO with the configured rule, with the other rule, DOBC (all at the configured gains),
+/// the explicit-rule FTDO at dt/2 (its time-step error), then the sweep's FTDO and DOBC pairs.
+pub struct Runs {
+    /// FTDO, configured rule.
+    pub ftdo: Config,
+    /// FTDO, the other rule.
+    pub other: Config,
+    /// DOBC.
+    pub dobc: Config,
+    /// The explicit-rule FTDO at dt/2.
+    pub explicit_half: Config,
+    /// (a, b, FTDO, DOBC) per sweep point.
+    pub sweep: Vec<(f64, f64, Config, Config)>,
+}
+
+impl Runs {
+    /// The comparison's runs for `cfg`.
+    pub fn of(cfg: &Config, settings: &CheckSettings) -> Runs {
+        let (a0, b0) = (cfg.control.a, cfg.control.b);
+        let rule = cfg.observer.rule;
+        let mut half_dt = cfg.clone();
+        half_dt.discretisation.dt = 0.5 * cfg.discretisation.dt;
+        let f = settings.sweep_factor;
+        Runs {
+            ftdo: variant(cfg, ControllerKind::Ftdo, rule, a0, b0),
+            other: variant(cfg, ControllerKind::Ftdo, other_rule(rule), a0, b0),
+            dobc: variant(cfg, ControllerKind::Dobc, rule, a0, b0),
+            explicit_half: variant(&half_dt, ControllerKind::Ftdo, ObserverRule::Explicit, a0, b0),
+            sweep: [(a0 / f, b0), (a0 * f, b0), (a0, b0 / f), (a0, b0 * f)]
+                .into_iter()
+                .map(|(a, b)| {
+                    (
+                        a,
+                        b,
+                        variant(cfg, ControllerKind::Ftdo, rule, a, b),
+                        variant(cfg, ControllerKind::Dobc, rule, a, b),
+                    )
+                })
+                .collect(),
+        }
+    }
+
+    /// Every configuration, in order.
+    pub fn all(&self) -> Vec<&Config> {
+        let mut v = vec![&self.ftdo, &self.other, &self.dobc, &self.explicit_half];
+        for (_, _, f, d) in &self.sweep {
+            v.extend([f, d]);
+        }
+        v
+    }
+}
+
 /// The runs (through the study) and their metrics. Returns the facts and the two full outputs
 /// behind the plots (FTDO with the configured rule, DOBC).
 pub fn compute(
@@ -198,28 +251,24 @@ pub fn compute(
     study: &Study,
     settings: &CheckSettings,
 ) -> Result<(Computed, std::sync::Arc<SimOutput>, std::sync::Arc<SimOutput>), ClaimsError> {
-    let (a0, b0) = (cfg.control.a, cfg.control.b);
     let rule = cfg.observer.rule;
-    let run = |kind, rule, a, b| study.simulate(&variant(cfg, kind, rule, a, b));
-    let ftdo = run(ControllerKind::Ftdo, rule, a0, b0)?;
-    let other = run(ControllerKind::Ftdo, other_rule(rule), a0, b0)?;
-    let dobc = run(ControllerKind::Dobc, rule, a0, b0)?;
+    let plan = Runs::of(cfg, settings);
+    let ftdo = study.simulate(&plan.ftdo)?;
+    let other = study.simulate(&plan.other)?;
+    let dobc = study.simulate(&plan.dobc)?;
     let explicit = if rule == ObserverRule::Explicit { &ftdo } else { &other };
-    let mut half_dt = cfg.clone();
-    half_dt.discretisation.dt = 0.5 * cfg.discretisation.dt;
-    let explicit_half = study.simulate(&variant(&half_dt, ControllerKind::Ftdo, ObserverRule::Explicit, a0, b0))?;
+    let explicit_half = study.simulate(&plan.explicit_half)?;
     let whole = Window::whole(&explicit.series.t);
     let rms_tau = |o: &SimOutput, c| metrics::tau_rms_in(&o.series, c, whole).unwrap_or(0.0);
     let explicit_rms_tau = [0, 1].map(|c| {
         let v = rms_tau(explicit, c);
         (v, wingcheck_sim::RICHARDSON_2 * (v - rms_tau(&explicit_half, c)).abs())
     });
-    let f = settings.sweep_factor;
     let mut sweep = Vec::new();
-    for (a, b) in [(a0 / f, b0), (a0 * f, b0), (a0, b0 / f), (a0, b0 * f)] {
-        let fm = metrics(&*run(ControllerKind::Ftdo, rule, a, b)?, settings);
-        let dm = metrics(&*run(ControllerKind::Dobc, rule, a, b)?, settings);
-        sweep.push(SweepPoint { a, b, rel: rel(&fm, &dm), gtilde_ratio: gtilde_ratio(&fm, &dm) });
+    for (a, b, f_cfg, d_cfg) in &plan.sweep {
+        let fm = metrics(&*study.simulate(f_cfg)?, settings);
+        let dm = metrics(&*study.simulate(d_cfg)?, settings);
+        sweep.push(SweepPoint { a: *a, b: *b, rel: rel(&fm, &dm), gtilde_ratio: gtilde_ratio(&fm, &dm) });
     }
     let d = &cfg.disturbance;
     let computed = Computed {

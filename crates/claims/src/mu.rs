@@ -93,6 +93,21 @@ pub struct Computed {
     pub epsilon_socp: Option<CrossCheck>,
 }
 
+/// The weights (a, b) where the row evaluates the ε/λ-optimal point (and the UUB row its bound):
+/// the configured ones when (32) holds there, else a/b = r*/2 with the configured b; None when
+/// no a/b satisfies (32).
+pub fn operating_point(cfg: &Config) -> Option<(f64, f64)> {
+    let (a, b, k1, k2) = (cfg.control.a, cfg.control.b, cfg.control.k1, cfg.control.k2);
+    let r_star = ratio_boundary(cfg);
+    if MuData::new(cfg, a, b).obstruction_exact(k1, k2).is_none() {
+        Some((a, b))
+    } else if r_star > 0.0 && b > 0.0 && k1 > 0.0 && k2 > 0.0 {
+        Some((0.5 * r_star * b, b))
+    } else {
+        None
+    }
+}
+
 /// Compute the row's facts.
 pub fn compute(cfg: &Config, study: &Study, settings: &CheckSettings) -> Result<Computed, ClaimsError> {
     let (a, b, k1, k2) = (cfg.control.a, cfg.control.b, cfg.control.k1, cfg.control.k2);
@@ -113,14 +128,7 @@ pub fn compute(cfg: &Config, study: &Study, settings: &CheckSettings) -> Result<
             }
         }
     }
-    let at = if obstruction.is_none() {
-        Some((a, b))
-    } else if r_star > 0.0 && b > 0.0 && k1 > 0.0 && k2 > 0.0 {
-        Some((0.5 * r_star * b, b))
-    } else {
-        None
-    };
-    let best = match at {
+    let best = match operating_point(cfg) {
         Some((aa, bb)) => {
             let l1 = lambda1_on(cfg, aa, bb, settings.mu_lambda1_elements)?;
             theory::best_point(&MuData::new(cfg, aa, bb), l1, &bounds, k1, k2)

@@ -48,6 +48,11 @@ impl Study {
         self.simulate(&c)
     }
 
+    /// The configuration hashes of every run asked for (in any order).
+    pub fn keys(&self) -> Vec<String> {
+        self.runs.lock().expect("study lock").keys().cloned().collect()
+    }
+
     /// Number of simulations actually run (cache misses).
     pub fn simulations_run(&self) -> usize {
         *self.performed.lock().expect("study lock")

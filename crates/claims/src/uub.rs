@@ -199,6 +199,15 @@ fn no_operating_point(cfg: &Config, m: &MuResult) -> ClaimRow {
     row
 }
 
+/// The FTDO run at the operating point (a, b) whose envelope the bound is compared with.
+pub fn operating_run(cfg: &Config, a: f64, b: f64) -> Config {
+    let mut c = cfg.clone();
+    c.control.a = a;
+    c.control.b = b;
+    c.control.kind = ControllerKind::Ftdo;
+    c
+}
+
 /// The facts of the bound at the operating point, before they are put into words.
 struct Computed {
     /// The operating point (configured gains, or the mu row's fallback).
@@ -227,11 +236,7 @@ fn compute(
     study: &Study,
     settings: &CheckSettings,
 ) -> Result<Computed, ClaimsError> {
-    let mut sim_cfg = cfg.clone();
-    sim_cfg.control.a = best.a;
-    sim_cfg.control.b = best.b;
-    sim_cfg.control.kind = ControllerKind::Ftdo;
-    let out = study.simulate(&sim_cfg)?;
+    let out = study.simulate(&operating_run(cfg, best.a, best.b))?;
     let fields = out.fields.as_ref().ok_or_else(|| num("the UUB envelope")("the run recorded no fields".into()))?;
     let envelope = |f: &[Vec<f64>]| f.iter().map(|r| r.iter().fold(0.0f64, |a, v| a.max(v.abs()))).collect::<Vec<_>>();
     let w0s = settings.uub_w0_elements.map(|n| (n, w_initial(cfg, best.b, n)));

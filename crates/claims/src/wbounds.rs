@@ -245,7 +245,7 @@ pub fn compute(cfg: &Config, settings: &CheckSettings) -> Result<Computed, Claim
         });
         let enclosure = scope.spawn(|| {
             let start = Instant::now();
-            (EnclosureSummary::of(cfg), start.elapsed().as_secs_f64())
+            (EnclosureSummary::deciding(cfg), start.elapsed().as_secs_f64())
         });
         let (a, b) = (cfg.control.a, cfg.control.b);
         let (mut neg, mut cond, mut total) = (0usize, 0usize, 0usize);

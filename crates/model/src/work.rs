@@ -29,18 +29,20 @@ pub fn exponential_seconds(steps: f64, states: f64) -> f64 {
 /// Seconds of a run's modal-basis setup per unknown³ (the dense eigenproblems, once per run):
 /// ≈ 0.3 s at 600 unknowns (1.4e-9), doubled.
 pub const SECONDS_PER_MODAL_SETUP_CUBE: f64 = 3e-9;
-/// Explicit-FTDO simulations `check` runs with the exponential scheme, in units of one run at
-/// the configured dt: one at dt and one at dt/2 (ftdo-vs-dobc's RMS τ error).
-pub const CHECK_EXPLICIT_RUNS: f64 = 3.0;
 /// Time budget of the W-bounds row's SDP cross-check at N = 2 … 32 (s): ≈ 0.4 s on the paper's
 /// wing; clarabel stops at the budget (status `MaxTime`, the remaining N not run), which it
 /// reaches on wings whose parameters span many decades.
 pub const CHECK_SDP_SECONDS: f64 = 3.0;
+/// Worst-case seconds of the W-bounds row's certified ω₁ enclosure: the ledger tries coarse
+/// plans first (≈ 0.01–0.1 s), and needs the tightest one only when a/b lies within ~1e-6 of ω₁,
+/// measured at 0.77 s on the paper's wing and 5.1 s on a wing whose span has 16 significant
+/// digits (exact integers grow with the decimals' length), doubled.
+pub const CHECK_ENCLOSURE_SECONDS: f64 = 10.0;
 /// Work of `check` that does not depend on the configured grid or horizon (s, one core):
-/// [`CHECK_SDP_SECONDS`], plus the Galerkin eigenvalues, ω₁ over uniform meshes up to 2048
-/// elements, the μ SOCPs, Lemma 1–3 and the Filippov integrations (≈ 0.3 s together on the
-/// paper config, up to ≈ 1 s on extreme wings), doubled.
-pub const CHECK_FIXED_SECONDS: f64 = CHECK_SDP_SECONDS + 2.0;
+/// [`CHECK_SDP_SECONDS`], [`CHECK_ENCLOSURE_SECONDS`], plus the Galerkin eigenvalues, ω₁ over
+/// uniform meshes up to 2048 elements, the μ SOCPs, Lemma 1–3 and the Filippov integrations
+/// (≈ 0.3 s together on the paper config, up to ≈ 1 s on extreme wings), doubled.
+pub const CHECK_FIXED_SECONDS: f64 = CHECK_SDP_SECONDS + CHECK_ENCLOSURE_SECONDS + 2.0;
 /// Hold periods T (s) of the finite-time rows' digital-observer study (`check`'s
 /// `finite_time::PERIODS` is this constant).
 pub const FINITE_TIME_PERIODS: [f64; 3] = [1e-2, 1e-3, 1e-4];
@@ -103,17 +105,9 @@ pub const SERIES_BYTES_PER_SAMPLE: f64 = 16.0 * 8.0;
 /// Bytes per number in pretty JSON output (digits, punctuation and indentation), measured on
 /// run.json files of the default configuration (≈ 30) and rounded up.
 pub const JSON_BYTES_PER_NUMBER: f64 = 32.0;
-/// Full-horizon simulations `check` runs at the configured grid (ftdo-vs-dobc: 3 + 2 × 3
-/// sweep points; mu-conditions: 1; UUB: 2; 11 distinct runs on the paper config, rounded up).
-/// The finite-time rows' digital runs have their own horizon and steps and are counted one by
-/// one ([`WorkEstimate::finite_time`]).
-pub const CHECK_RUNS: f64 = 12.0;
 /// Stepper set-ups `check` makes for σ(0) (the finite-time rows and Lemma 3), each building the
 /// modal basis when the run would be modal.
 pub const CHECK_SIGMA0_SETUPS: f64 = 4.0;
-/// Full-horizon simulations `report` runs besides `check`'s: 3 controllers with fields at the
-/// configured grid, and the accuracy study (FD and FE at 8, 16, 32, 64 elements).
-pub const REPORT_EXTRA_RUNS: f64 = 3.0;
 /// Element counts of the report's accuracy study.
 pub const REPORT_ACCURACY_GRIDS: [usize; 4] = [8, 16, 32, 64];
 
@@ -254,66 +248,6 @@ impl WorkEstimate {
         }
         seconds += CHECK_SIGMA0_SETUPS * Self::setup_seconds(cfg);
         WorkEstimate { what: "check".into(), steps, seconds, memory_bytes: memory, output_bytes: 0.0 }
-    }
-
-    /// `wingcheck check`: [`CHECK_RUNS`] simulations at the configured grid, the explicit-FTDO
-    /// runs, the finite-time rows' digital runs, g_hmax, and [`CHECK_FIXED_SECONDS`].
-    pub fn check(cfg: &Config) -> WorkEstimate {
-        let one = Self::simulation(cfg, false, None);
-        let mut explicit = cfg.clone();
-        explicit.control.kind = crate::ControllerKind::Ftdo;
-        explicit.observer.rule = crate::ObserverRule::Explicit;
-        let explicit = Self::simulation(&explicit, false, None);
-        let finite = Self::finite_time(cfg);
-        WorkEstimate {
-            what: "check".into(),
-            steps: one.steps * CHECK_RUNS + explicit.steps * CHECK_EXPLICIT_RUNS + finite.steps,
-            seconds: one.seconds * CHECK_RUNS
-                + explicit.seconds * CHECK_EXPLICIT_RUNS
-                + finite.seconds
-                + 2.0 * g_hmax_seconds(cfg)
-                + CHECK_FIXED_SECONDS,
-            // UUB keeps one run with fields; rows run on two threads.
-            memory_bytes: (one.memory_bytes * 4.0 + Self::simulation(cfg, true, None).memory_bytes)
-                .max(finite.memory_bytes)
-                + finite.memory_bytes,
-            output_bytes: 0.0,
-        }
-    }
-
-    /// `wingcheck report`: `check`, three runs with fields and the accuracy study; the report
-    /// holds CSV of the series of the three runs.
-    pub fn report(cfg: &Config) -> WorkEstimate {
-        let check = Self::check(cfg);
-        let fields = Self::simulation(cfg, true, Some(false));
-        // the (a, b) region map: one closed loop and one theory evaluation per point
-        let one = Self::simulation(cfg, false, None);
-        let region = REGION_MAP_MAX_POINTS as f64;
-        let mut steps = check.steps + REPORT_EXTRA_RUNS * fields.steps + region * one.steps;
-        let mut seconds = check.seconds
-            + REPORT_EXTRA_RUNS * fields.seconds
-            + region * (one.seconds + SECONDS_PER_POINT_THEORY)
-            + g_hmax_seconds(cfg);
-        let mut memory = check.memory_bytes + REPORT_EXTRA_RUNS * fields.memory_bytes;
-        for m in [Method::Fd, Method::Fe] {
-            for &e in &REPORT_ACCURACY_GRIDS {
-                let mut c = cfg.clone();
-                c.discretisation.method = m;
-                c.discretisation.elements = e;
-                c.discretisation.fd_points = e;
-                let r = Self::simulation(&c, false, None);
-                steps += r.steps;
-                seconds += r.seconds;
-                memory += r.memory_bytes;
-            }
-        }
-        WorkEstimate {
-            what: "report".into(),
-            steps,
-            seconds,
-            memory_bytes: memory,
-            output_bytes: REPORT_EXTRA_RUNS * fields.output_bytes * 2.0,
-        }
     }
 
     /// `Ok` within `limits`, else [`WorkRefused`] naming every exceeded quantity.

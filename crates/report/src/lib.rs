@@ -20,6 +20,7 @@ pub mod atomic;
 use wingcheck_chart as chart;
 mod context;
 mod error;
+mod estimate;
 mod figure;
 mod paper;
 mod provenance;
@@ -36,6 +37,7 @@ use wingcheck_model::Config;
 
 pub use atomic::MARKER;
 pub use error::ReportError;
+pub use estimate::report_estimate;
 pub use runs::GRIDS;
 pub use stats::fmt_num;
 

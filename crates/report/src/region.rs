@@ -135,7 +135,7 @@ pub fn region_map(
         .ok()
         .and_then(|v| v.as_str().map(str::to_uppercase))
         .unwrap_or_else(|| "configured".into());
-    let omega1_certified = EnclosureSummary::of(cfg);
+    let omega1_certified = EnclosureSummary::deciding(cfg);
     Ok(RegionMap {
         a,
         b,

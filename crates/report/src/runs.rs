@@ -49,8 +49,9 @@ pub fn accuracy_variant(cfg: &Config, method: Method, elements: usize) -> Config
     c
 }
 
-/// Run everything (in parallel) through `study`, reporting each finished run to `progress`.
-pub fn run_all(cfg: &Config, study: &Study, progress: Option<&(dyn Fn(Progress) + Sync)>) -> Result<Runs, ReportError> {
+/// The runs of the figures, named, in the order of [`Runs`]: the three controllers, then the
+/// accuracy study (the report's work estimate counts these, [`crate::estimate`]).
+fn jobs(cfg: &Config) -> Vec<(String, Config)> {
     let mut jobs: Vec<(String, Config)> = Vec::new();
     for kind in [ControllerKind::None, ControllerKind::Ftdo, ControllerKind::Dobc] {
         jobs.push((kind.name().to_string(), controller(cfg, kind)));
@@ -60,6 +61,17 @@ pub fn run_all(cfg: &Config, study: &Study, progress: Option<&(dyn Fn(Progress) 
             jobs.push((format!("{}-{n}", m.name()), accuracy_variant(cfg, m, n)));
         }
     }
+    jobs
+}
+
+/// The configurations the figures simulate.
+pub fn plan(cfg: &Config) -> Vec<Config> {
+    jobs(cfg).into_iter().map(|(_, c)| c).collect()
+}
+
+/// Run everything (in parallel) through `study`, reporting each finished run to `progress`.
+pub fn run_all(cfg: &Config, study: &Study, progress: Option<&(dyn Fn(Progress) + Sync)>) -> Result<Runs, ReportError> {
+    let jobs = jobs(cfg);
     let done = AtomicUsize::new(0);
     let total = jobs.len();
     let mut outs: Vec<Arc<SimOutput>> = jobs

@@ -49,8 +49,21 @@ pub struct Plan {
     pub rayleigh_elements: usize,
 }
 
-/// What `certify` and the ledger use.
+/// What `certify` writes (and the search's refined boundary uses): the tightest enclosure.
 pub const PLAN: Plan = Plan { modes: 36, inertia_elements: 24, rayleigh_elements: 64 };
+/// The plans the ledger tries, coarse to fine, using the first whose enclosure decides where
+/// the configured a/b lies ([`EnclosureSummary::deciding`]). Measured on the paper's wing
+/// (2026-12-02, 2-core VM): relative widths 5.3e-6, 3.8e-7, 4.1e-8, 2.7e-9 in 0.011, 0.021,
+/// 0.076, 0.77 s; on a wing with a 16-digit span 3.1e-6 … 1.3e-9 in 0.016 … 5.1 s. A coarser
+/// plan's bounds are never tighter (more modes subtracted in the trace bound and a finer
+/// inertia mesh raise the lower bound; a finer test mesh lowers the Rayleigh quotient), so a
+/// position it decides is the one [`PLAN`]'s certificate decides too.
+pub const LADDER: [Plan; 4] = [
+    Plan { modes: 4, inertia_elements: 4, rayleigh_elements: 8 },
+    Plan { modes: 8, inertia_elements: 8, rayleigh_elements: 16 },
+    Plan { modes: 16, inertia_elements: 12, rayleigh_elements: 32 },
+    PLAN,
+];
 /// Relative margin of each shift above its float Galerkin eigenvalue.
 pub const SHIFT_MARGIN: f64 = 1e-9;
 /// Significant digits of the shifts (rounded up).
@@ -149,9 +162,27 @@ pub enum EnclosureSummary {
 }
 
 impl EnclosureSummary {
-    /// The enclosure of `cfg`'s wing ([`compute`]) and where the configured a/b lies.
+    /// The enclosure of `cfg`'s wing ([`compute`], the tightest plan) and where the configured
+    /// a/b lies.
     pub fn of(cfg: &Config) -> Self {
-        let r = compute(cfg).and_then(|c| Ok((c, config_ratio(cfg)?)));
+        Self::with_plan(cfg, &PLAN)
+    }
+
+    /// The coarsest enclosure of [`LADDER`] that decides where the configured a/b lies (below
+    /// or above ω₁), or [`PLAN`]'s when none does (a/b inside even the tightest, or b = 0).
+    pub fn deciding(cfg: &Config) -> Self {
+        for plan in &LADDER[..LADDER.len() - 1] {
+            let e = Self::with_plan(cfg, plan);
+            if matches!(e.position(), Some(Position::Below | Position::Above)) {
+                return e;
+            }
+        }
+        Self::of(cfg)
+    }
+
+    /// The enclosure with `plan` and where the configured a/b lies.
+    pub fn with_plan(cfg: &Config, plan: &Plan) -> Self {
+        let r = compute_with(cfg, plan).and_then(|c| Ok((c, config_ratio(cfg)?)));
         match r {
             Ok((c, ratio)) => {
                 let e = &c.1;

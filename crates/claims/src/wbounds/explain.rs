@@ -125,6 +125,12 @@ pub struct EnclosureEvidence {
     /// Modes k subtracted in the trace bound.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub modes: Option<Quantity>,
+    /// Elements of the mesh on which the shifts are certified.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub inertia_elements: Option<Quantity>,
+    /// Elements of the test vector's mesh.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rayleigh_elements: Option<Quantity>,
     /// Where the configured a/b lies against the enclosure (`below`, `inside`, `above`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub position: Option<Fact<Position>>,
@@ -143,8 +149,9 @@ impl EnclosureEvidence {
                 upper_exact,
                 relative_width,
                 modes,
+                inertia_elements,
+                rayleigh_elements,
                 position,
-                ..
             } => EnclosureEvidence {
                 certified: Flag::new("ω₁ enclosed by an exact certificate (continuous model)", true),
                 lower: Some(Quantity::based(
@@ -167,6 +174,8 @@ impl EnclosureEvidence {
                     ValueBasis::Derived,
                 )),
                 modes: Some(Quantity::count("modes k subtracted in the trace bound", *modes)),
+                inertia_elements: Some(Quantity::count("elements of the shifts' inertia mesh", *inertia_elements)),
+                rayleigh_elements: Some(Quantity::count("elements of the test vector's mesh", *rayleigh_elements)),
                 position: position.map(|p| Fact::new("configured a/b against the enclosure", p)),
                 reason: None,
             },
@@ -177,6 +186,8 @@ impl EnclosureEvidence {
                 exact: None,
                 relative_width: None,
                 modes: None,
+                inertia_elements: None,
+                rayleigh_elements: None,
                 position: None,
                 reason: Some(Text::text("why ω₁ is not certified", reason.clone())),
             },
