@@ -416,7 +416,7 @@ fn render_files(cfg: &Config, certs: &[CertificateFile]) -> Result<Vec<(String, 
         let claim = manifest::role(id).expect("certify writes known roles").claim;
         match claims.iter_mut().find(|e| e.claim == claim) {
             Some(e) => e.needs.push(id.into()),
-            None => claims.push(ClaimEntry { claim: claim.into(), needs: vec![id.into()] }),
+            None => claims.push(ClaimEntry { claim, needs: vec![id.into()] }),
         }
     }
     let index = Manifest {

@@ -130,7 +130,7 @@ fn certificate_files(cfg: &Config) -> Result<Vec<(ClaimId, String)>, String> {
     Ok(files
         .iter()
         .filter_map(|f| {
-            let id = spec::CLAIMS.iter().find(|s| s.certificates.contains(&f.id.as_str()))?.id;
+            let id = certify::manifest::role(&f.id)?.claim;
             Some((id, format!("{}.json", f.id)))
         })
         .collect())
@@ -165,7 +165,7 @@ pub fn check_all_with(cfg: &Config, study: &Study, settings: &CheckSettings) -> 
             Ok(files) => {
                 row.certificates = files.iter().filter(|(id, _)| *id == row.id).map(|(_, f)| f.clone()).collect()
             }
-            Err(why) if !row.id.spec().certificates.is_empty() => {
+            Err(why) if !row.id.certificates().is_empty() => {
                 row.assumptions.push(format!("no certificate: certify cannot write one for this configuration ({why})"))
             }
             Err(_) => {}

@@ -1,12 +1,12 @@
 //! The claim table: one spec per claim of the paper (its id, the paper's equations and theorem,
-//! the claim in words, the certificates it can rest on). Every place that names a claim — the
+//! the claim in words; the certificates it can rest on come from the verifier's roles). Every place that names a claim — the
 //! ledger rows, the report, `certify`/`verify`'s manifest, an inconclusive row, docs/ledger.md —
 //! reads it from here.
 
-use serde::{Deserialize, Serialize};
+use serde::{Deserialize, Deserializer, Serialize};
 
 /// The claims of the paper, in the paper's order.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize)]
 pub enum ClaimId {
     /// Theorem 1, (22)–(28).
     #[serde(rename = "W-bounds")]
@@ -31,6 +31,18 @@ pub enum ClaimId {
     FtdoVsDobc,
 }
 
+impl<'de> Deserialize<'de> for ClaimId {
+    /// Reads a claim by its printed name; an unknown name is refused as an unknown claim,
+    /// listing the known ones (from [`CLAIMS`]).
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let name = String::deserialize(deserializer)?;
+        ClaimId::from_name(&name).ok_or_else(|| {
+            let known: Vec<&str> = CLAIMS.iter().map(|spec| spec.name).collect();
+            serde::de::Error::custom(format!("unknown claim `{name}` (the claims are {})", known.join(", ")))
+        })
+    }
+}
+
 /// What the ledger knows about one claim before checking it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ClaimSpec {
@@ -44,9 +56,6 @@ pub struct ClaimSpec {
     pub theorem: &'static str,
     /// The claim in words.
     pub claim: &'static str,
-    /// Ids of the certificates (`<id>.json` in a proofs directory) the claim can rest on; which
-    /// of them `certify` writes depends on the configuration.
-    pub certificates: &'static [&'static str],
 }
 
 /// Every claim, in the paper's order.
@@ -57,14 +66,6 @@ pub const CLAIMS: [ClaimSpec; 7] = [
         equations: "(22)–(28)",
         theorem: "Theorem 1",
         claim: "0 ≤ λ2 κ ≤ W ≤ λ1 κ with the printed λ1, λ2, y1–y3",
-        certificates: &[
-            "w-bounds-lower",
-            "w-bounds-upper",
-            "w-bounds-indefinite",
-            "w-bounds-ratio-above",
-            "w-bounds-ratio-below",
-            "omega1-enclosure",
-        ],
     },
     ClaimSpec {
         id: ClaimId::MuConditions,
@@ -72,7 +73,6 @@ pub const CLAIMS: [ClaimSpec; 7] = [
         equations: "(29)–(32)",
         theorem: "Theorem 2's conditions",
         claim: "conditions on the gains and the η's make Ẇ ≤ −λW + ε with the printed λ, ε",
-        certificates: &["mu-conditions-infeasible"],
     },
     ClaimSpec {
         id: ClaimId::Uub,
@@ -80,7 +80,6 @@ pub const CLAIMS: [ClaimSpec; 7] = [
         equations: "(33)–(37)",
         theorem: "Theorem 2",
         claim: "q, θ are uniformly ultimately bounded, with the printed bound",
-        certificates: &[],
     },
     ClaimSpec {
         id: ClaimId::FiniteTime1,
@@ -88,7 +87,6 @@ pub const CLAIMS: [ClaimSpec; 7] = [
         equations: "(38)",
         theorem: "Theorem 3",
         claim: "g̃1 reaches 0 no later than t_f1, if κ2 ≥ ζ1",
-        certificates: &[],
     },
     ClaimSpec {
         id: ClaimId::FiniteTime2,
@@ -96,7 +94,6 @@ pub const CLAIMS: [ClaimSpec; 7] = [
         equations: "(39)",
         theorem: "Theorem 4",
         claim: "g̃2 reaches 0 no later than t_f2, if κ5 ≥ ζ2",
-        certificates: &[],
     },
     ClaimSpec {
         id: ClaimId::Lemmas,
@@ -104,7 +101,6 @@ pub const CLAIMS: [ClaimSpec; 7] = [
         equations: "(11)–(14)",
         theorem: "Lemmas 1–3",
         claim: "the inequalities used in the proofs",
-        certificates: &[],
     },
     ClaimSpec {
         id: ClaimId::FtdoVsDobc,
@@ -112,7 +108,6 @@ pub const CLAIMS: [ClaimSpec; 7] = [
         equations: "(57)",
         theorem: "Section 4, Figs 3–20",
         claim: "the proposed FTDO controller suppresses vibration better than DOBC",
-        certificates: &[],
     },
 ];
 
@@ -144,6 +139,13 @@ impl ClaimId {
         format!("{}, {}", s.equations, s.theorem)
     }
 
+    /// Ids of the certificates (`<id>.json` in a proofs directory) the claim can rest on: the
+    /// verifier's own roles for it ([`crate::certify::manifest::ROLES`]); which of them
+    /// `certify` writes depends on the configuration.
+    pub fn certificates(self) -> Vec<&'static str> {
+        crate::certify::manifest::ROLES.iter().filter(|r| r.claim == self).map(|r| r.id).collect()
+    }
+
     /// The claim by its printed id.
     pub fn from_name(name: &str) -> Option<ClaimId> {
         CLAIMS.iter().find(|s| s.name == name).map(|s| s.id)
@@ -167,6 +169,7 @@ mod tests {
             // the serialised id is the printed name
             assert_eq!(serde_json::to_value(id).unwrap(), spec.name);
             assert_eq!(ClaimId::from_name(spec.name), Some(id));
+            assert_eq!(serde_json::from_value::<ClaimId>(serde_json::json!(spec.name)).unwrap(), id);
         }
     }
 }

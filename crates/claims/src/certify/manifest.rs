@@ -24,6 +24,7 @@ use wingcheck_model::Config;
 use super::facts::{mu3_system, show, CertificateFile, CheckedFact, ExactParams, FactKind, MAX_FILE_BYTES};
 use super::omega1::{self, Omega1Certificate, Omega1Enclosure, Position};
 use super::{format_decimal, CertifyError};
+use crate::spec::ClaimId;
 
 /// File name of the manifest.
 pub const INDEX: &str = "index.json";
@@ -48,18 +49,16 @@ pub enum WeightsRule {
 pub struct Role {
     /// Certificate id (the file is `<id>.json`).
     pub id: &'static str,
-    /// The paper's claim.
-    pub claim: &'static str,
+    /// The paper's claim (from the claim table, [`crate::spec`]).
+    pub claim: ClaimId,
     /// The fact the certificate must prove.
     pub fact: FactKind,
     /// Which weights it must carry.
     pub weights: WeightsRule,
 }
 
-/// Claim W-bounds (Theorem 1, (22)–(28)).
-pub const W_BOUNDS: &str = "W-bounds (Theorem 1)";
-/// Claim mu-conditions ((29)–(32)).
-pub const MU_CONDITIONS: &str = "mu-conditions (32)";
+const W_BOUNDS: ClaimId = ClaimId::WBounds;
+const MU_CONDITIONS: ClaimId = ClaimId::MuConditions;
 
 /// Every role the verifier knows.
 pub const ROLES: [Role; 7] = [
@@ -96,8 +95,8 @@ pub fn role(id: &str) -> Option<&'static Role> {
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ClaimEntry {
-    /// Claim name (one of the [`ROLES`] claims).
-    pub claim: String,
+    /// The claim (one of the [`ROLES`] claims), by its id (`W-bounds`).
+    pub claim: ClaimId,
     /// Certificate ids.
     pub needs: Vec<String>,
 }
@@ -483,10 +482,7 @@ fn find<'a>(certs: &'a [VerifiedCert], id: &str) -> Option<&'a CheckedFact> {
 }
 
 /// The ids the verifier requires for each claim, given the facts present and the config.
-pub fn required(
-    cfg_params: &ExactParams,
-    lower_lambda: Option<&BigRational>,
-) -> Vec<(&'static str, Vec<&'static str>)> {
+pub fn required(cfg_params: &ExactParams, lower_lambda: Option<&BigRational>) -> Vec<(ClaimId, Vec<&'static str>)> {
     let mut w = vec!["w-bounds-lower", "w-bounds-upper", "w-bounds-ratio-above", "w-bounds-ratio-below", omega1::ID];
     if lower_lambda.is_none_or(|l| !l.is_positive()) {
         w.push("w-bounds-indefinite");
@@ -512,18 +508,25 @@ fn conclusions(
         }
     }
     let mut used = BTreeSet::new();
-    let known: BTreeSet<&str> = ROLES.iter().map(|r| r.claim).collect();
+    let known: BTreeSet<ClaimId> = ROLES.iter().map(|r| r.claim).collect();
     let mut claims_seen = BTreeSet::new();
     for c in &manifest.claims {
-        if !known.contains(c.claim.as_str()) {
-            return Err(bad(INDEX, format!("unknown claim {:?} (the verifier knows {known:?})", c.claim)));
+        if !known.contains(&c.claim) {
+            return Err(bad(
+                INDEX,
+                format!(
+                    "unknown claim {} (the verifier knows {})",
+                    c.claim,
+                    known.iter().map(|c| c.name()).collect::<Vec<_>>().join(", ")
+                ),
+            ));
         }
-        if !claims_seen.insert(c.claim.as_str()) {
-            return Err(bad(INDEX, format!("claim {:?} is listed twice", c.claim)));
+        if !claims_seen.insert(c.claim) {
+            return Err(bad(INDEX, format!("claim {} is listed twice", c.claim)));
         }
         let mut needs = BTreeSet::new();
         if let Some(id) = c.needs.iter().find(|id| !needs.insert(id.as_str())) {
-            return Err(bad(INDEX, format!("claim {:?} lists {id} twice in its needs", c.claim)));
+            return Err(bad(INDEX, format!("claim {} lists {id} twice in its needs", c.claim)));
         }
     }
     for (claim, ids) in required(cfg_params, lower.as_ref()) {
@@ -531,10 +534,10 @@ fn conclusions(
             .claims
             .iter()
             .find(|c| c.claim == claim)
-            .ok_or_else(|| bad(INDEX, format!("claim {claim:?} is missing")))?;
+            .ok_or_else(|| bad(INDEX, format!("claim {claim} is missing")))?;
         for id in ids {
             if !entry.needs.iter().any(|n| n == id) {
-                return Err(bad(INDEX, format!("claim {claim:?} does not list {id}, which the verifier requires")));
+                return Err(bad(INDEX, format!("claim {claim} does not list {id}, which the verifier requires")));
             }
         }
     }
@@ -542,10 +545,10 @@ fn conclusions(
         for id in &c.needs {
             let r = role(id).ok_or_else(|| bad(INDEX, format!("unknown certificate id {id:?}")))?;
             if r.claim != c.claim {
-                return Err(bad(INDEX, format!("{id} supports {:?}, not {:?}", r.claim, c.claim)));
+                return Err(bad(INDEX, format!("{id} supports {}, not {}", r.claim, c.claim)));
             }
             if find(certs, id).is_none() {
-                return Err(bad(INDEX, format!("claim {:?} needs {id}, which is not in the set", c.claim)));
+                return Err(bad(INDEX, format!("claim {} needs {id}, which is not in the set", c.claim)));
             }
             used.insert(id.as_str());
         }
@@ -585,13 +588,16 @@ fn conclusions(
         }
         text
     };
-    out.push((W_BOUNDS.to_string(), w_text));
+    out.push((W_BOUNDS.name().to_string(), w_text));
     if find(certs, "mu-conditions-infeasible").is_some() {
-        out.push((MU_CONDITIONS.to_string(), format!("at {weights}: μ3 ≥ 0 is infeasible, so (32) cannot hold")));
+        out.push((
+            MU_CONDITIONS.name().to_string(),
+            format!("at {weights}: μ3 ≥ 0 is infeasible, so (32) cannot hold"),
+        ));
     } else {
         let (_, c3) = mu3_system(cfg_params);
         out.push((
-            MU_CONDITIONS.to_string(),
+            MU_CONDITIONS.name().to_string(),
             format!(
                 "no certificate: at {weights} the constant term bξEI/(2s⁴) − aρ = {} of μ3 is ≥ 0, so μ3 alone does not refute (32)",
                 show(&c3)
