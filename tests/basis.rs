@@ -14,7 +14,7 @@ mod common;
 
 use common::paper_with;
 use wingcheck_model::{Config, StepBasis};
-use wingcheck_sim::{resolved_basis, simulate, Discretisation, Peak, RunOptions, SimOutput};
+use wingcheck_sim::{resolved_basis, simulate, Discretisation, Peak, RunOptions, SimError, SimOutput};
 
 fn run(cfg: &Config, basis: StepBasis) -> SimOutput {
     let mut c = cfg.clone();
@@ -110,11 +110,15 @@ fn auto_basis_is_modal_up_to_the_limit_and_nodal_above() {
     // defect 2.3e-4 > 1e-6) is refused with the reason when asked for
     let mut forced = paper_with(&["discretisation.elements=192", "horizon.t_end=0.01"]);
     forced.discretisation.basis = StepBasis::Modal;
-    let err = simulate(&forced, RunOptions::default()).unwrap_err().to_string();
+    let err = simulate(&forced, RunOptions::default()).unwrap_err();
+    assert!(matches!(err, SimError::NoModalBasis { .. }), "a typed refusal, not a numerical failure: {err}");
+    let err = err.to_string();
     assert!(err.contains("orthonormal"), "{err}");
     // a modal basis above the hard limit is refused with the reason, not attempted
     let forced = paper_with(&["discretisation.elements=256", "discretisation.basis=modal", "horizon.t_end=0.01"]);
-    let err = simulate(&forced, RunOptions::default()).unwrap_err().to_string();
+    let err = simulate(&forced, RunOptions::default()).unwrap_err();
+    assert!(matches!(err, SimError::NoModalBasis { .. }), "{err}");
+    let err = err.to_string();
     assert!(err.contains("unknowns") && err.contains("modal"), "{err}");
 }
 

@@ -186,3 +186,37 @@ fn documented_sdp_table_shape_is_the_produced_one() {
     let l2 = produced["lambda2_sdp"]["value"].as_f64().unwrap();
     assert!((example["lambda2_sdp"]["value"].as_f64().unwrap() - l2).abs() < 1e-7 * 9.9);
 }
+
+#[test]
+fn the_work_bound_is_an_iteration_budget_not_a_clock() {
+    // The same solve with a budget too small to finish stops at MaxIterations, reports no λ
+    // (an interrupted point means nothing), says why, and spends exactly its budget; with the
+    // full budget it is accepted. Iterations, not wall time, so the row is the same under any
+    // load (a clock-based budget made `check --json` differ between two runs at a = 1, b = 3000).
+    let cfg = paper_with(&[]);
+    let n = 8;
+    let f = lyapunov::assemble(&LyapunovParams::from_config(&cfg, Coupling::Corrected, n)).unwrap();
+    let mesh = ClampedMesh::new(wingcheck_cert::exact::parse_rational(&format!("{}", cfg.wing.span)).unwrap(), n);
+    let c1 = lyapunov::to_dense(&mesh.mass(Space::DgCubic, Space::Hermite));
+    let c2 = lyapunov::to_dense(&mesh.mass(Space::DgCubic, Space::Linear));
+    let (w, k) = (lyapunov::to_dense(&f.w), lyapunov::to_dense(&f.kappa));
+    let run = |budget: u32| {
+        let mut left = budget;
+        let row = sdp::pencil_cross_check_within(&w, &k, &c1, &c2, n, cfg.wing.span, &mut left);
+        (row, left)
+    };
+    let (starved, left) = run(3);
+    assert_eq!(left, 0, "a starved check spends its whole budget");
+    assert!(!starved.accepted);
+    for side in [&starved.lambda2, &starved.lambda1] {
+        assert!(side.lambda_sdp.is_none(), "no λ from an interrupted solve: {side:?}");
+        assert!(side.reason.as_deref().is_some_and(|r| r.contains("status")), "{side:?}");
+    }
+    let (full, left) = run(sdp::SDP_ITERATION_BUDGET);
+    assert!(full.accepted, "{full:?}");
+    assert!(left < sdp::SDP_ITERATION_BUDGET);
+    assert_eq!(
+        format!("{:?}", run(sdp::SDP_ITERATION_BUDGET).0.lambda2.lambda_sdp),
+        format!("{:?}", full.lambda2.lambda_sdp)
+    );
+}

@@ -26,7 +26,7 @@ pub struct SearchArgs {
     refine: Option<f64>,
     /// Metric ranking best.json (minimised; prefix `-` to maximise), e.g. rms_q_tip, -lambda.
     #[arg(long, default_value = "rms_q_tip", allow_hyphen_values = true)]
-    best: String,
+    best: wingcheck_search::Ranking,
     /// Metric window `t0,t1` in s (default: the second half of the horizon).
     #[arg(long, value_name = "T0,T1", value_parser = parse_window)]
     window: Option<(f64, f64)>,
@@ -63,7 +63,7 @@ pub fn run_search(a: SearchArgs) -> anyhow::Result<()> {
         window: a.window,
         chunk_size: a.chunk_size,
         refine: a.refine,
-        best_metric: a.best.clone(),
+        best: a.best,
         ..Default::default()
     };
     let search = Search::new(base, &a.over, options)?;

@@ -10,6 +10,7 @@
 //! by `index.json` ([`manifest`]). A passing verify proves that the printed facts follow from
 //! the printed parameters; it says nothing about who made the files.
 
+mod conclude;
 pub mod facts;
 pub mod manifest;
 pub mod omega1;

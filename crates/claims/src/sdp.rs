@@ -90,6 +90,20 @@ pub const SDP_GRIDS: [usize; 5] = [2, 4, 8, 16, 32];
 /// stop AlmostSolved at 1e-9 and Solved at 1e-8).
 pub const PENCIL_SOLVER_TOLERANCES: [f64; 2] = [1e-9, 1e-8];
 
+/// Interior-point iterations the whole SDP cross-check of one ledger may spend (every N, both
+/// sides, every attempt): a deterministic work bound, so the same input gives the same rows on
+/// any machine and under any load. Measured: 16–20 iterations per N at the paper's point and at
+/// a = 1, b = 3000 (both sides, two formulations); wings whose parameters span many decades
+/// need hundreds per solve and stop at the budget (status `MaxIterations`, not accepted; the
+/// larger N then not run).
+pub const SDP_ITERATION_BUDGET: u32 = 600;
+
+/// Wall-clock guard of one clarabel solve (s), far above what the iteration budget allows on
+/// any machine this tool runs on (≈ 0.05 s per iteration at N = 32): a solve stopped by it is
+/// recorded as `MaxTime` and not accepted. It exists only against a machine stalled for
+/// minutes; the iteration budget is what bounds the work.
+pub const SDP_SOLVE_GUARD_SECONDS: f64 = 120.0;
+
 /// One side of the pencil SDP at one N: λ2 = max λ s.t. W − λκ ⪰ 0, or λ1 = −max μ s.t.
 /// −W − μκ ⪰ 0 (units of W/κ).
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -361,13 +375,7 @@ fn reduce(
 /// clarabel's point for one side: max λ s.t. sign·W − λκ ⪰ 0 in the reduced form, with data
 /// divided by σ, the 4×4 LMI rescaled by β and each P entry scaled by the size of its
 /// coefficients.
-fn solve_side(
-    r: &ReducedPencil,
-    sign: f64,
-    sigma: f64,
-    beta: f64,
-    deadline: std::time::Instant,
-) -> Result<SideSolution, String> {
+fn solve_side(r: &ReducedPencil, sign: f64, sigma: f64, beta: f64, budget: &mut u32) -> Result<SideSolution, String> {
     use wingcheck_lapack::sdp::{PsdConstraint, SdpProblem};
     let err = |e: wingcheck_lapack::sdp::SdpError| e.to_string();
     // The 4×4 LMI in the congruent form diag(1, 1, β, β)·[[A, B], [Bᵀ, P]]·diag(1, 1, β, β).
@@ -411,16 +419,20 @@ fn solve_side(
         .map_err(err)?;
     let mut out = None;
     for tol in PENCIL_SOLVER_TOLERANCES {
-        let left = deadline.saturating_duration_since(std::time::Instant::now()).as_secs_f64();
-        if left <= 0.0 && out.is_some() {
+        if *budget == 0 && out.is_some() {
             break;
         }
         let mut settings = wingcheck_lapack::sdp::prescaled_chordal_settings(tol);
-        // clarabel stops with status MaxTime, which is recorded (not accepted)
-        settings.time_limit = left.max(1e-3);
+        // clarabel stops with status MaxIterations at the budget (recorded, not accepted)
+        settings.max_iter = (*budget).max(1);
+        settings.time_limit = SDP_SOLVE_GUARD_SECONDS;
         let sol = problem.solve_with(settings).map_err(err)?;
-        let lambda = (sol.x.first().is_some_and(|x| x.is_finite())).then(|| sign * sigma * sol.x[0]);
-        let solved = sol.status == wingcheck_lapack::sdp::SdpStatus::Solved;
+        *budget = budget.saturating_sub(sol.iterations.max(1));
+        use wingcheck_lapack::sdp::SdpStatus;
+        // λ only from a point clarabel calls optimal (an interrupted solve's point means nothing)
+        let optimal = matches!(sol.status, SdpStatus::Solved | SdpStatus::AlmostSolved);
+        let lambda = (optimal && sol.x.first().is_some_and(|x| x.is_finite())).then(|| sign * sigma * sol.x[0]);
+        let solved = sol.status == SdpStatus::Solved;
         // P/σ back from the scaled variables (p̃_k = m_k β² P_k/σ)
         let p_over_sigma =
             (1..4).map(|k| sol.x.get(k).copied().unwrap_or(0.0) / (m[k - 1] * b2)).fold(0.0f64, |a, v| a.max(v.abs()));
@@ -463,20 +475,21 @@ pub fn pencil_cross_check(
     n: usize,
     span: f64,
 ) -> PencilSdpRow {
-    let far = std::time::Instant::now() + std::time::Duration::from_secs(86_400);
-    pencil_cross_check_until(w, kappa, c1, c2, n, span, far)
+    let mut budget = SDP_ITERATION_BUDGET;
+    pencil_cross_check_within(w, kappa, c1, c2, n, span, &mut budget)
 }
 
-/// [`pencil_cross_check`] with every clarabel solve stopped at `deadline` (status `MaxTime`,
-/// recorded in the row and not accepted).
-pub fn pencil_cross_check_until(
+/// [`pencil_cross_check`] spending at most `budget` interior-point iterations (decremented by
+/// what the solves use); a solve stopped by it ends `MaxIterations`, recorded in the row and
+/// not accepted.
+pub fn pencil_cross_check_within(
     w: &Mat<f64>,
     kappa: &Mat<f64>,
     c1: &Mat<f64>,
     c2: &Mat<f64>,
     n: usize,
     span: f64,
-    deadline: std::time::Instant,
+    budget: &mut u32,
 ) -> PencilSdpRow {
     let start = std::time::Instant::now();
     let dimension = w.nrows();
@@ -486,9 +499,8 @@ pub fn pencil_cross_check_until(
     };
     let sigma = eig[0].abs().max(eig[dimension - 1].abs()).max(f64::MIN_POSITIVE);
     let reduced = reduce(w, kappa, c1, c2, n, span / n as f64);
-    let side = |sign: f64, lambda_eig: f64| pencil_side(&reduced, &c, sign, sigma, lambda_eig, n, deadline);
-    let lambda2 = side(1.0, eig[0]);
-    let lambda1 = side(-1.0, eig[dimension - 1]);
+    let lambda2 = pencil_side(&reduced, &c, 1.0, sigma, eig[0], n, budget);
+    let lambda1 = pencil_side(&reduced, &c, -1.0, sigma, eig[dimension - 1], n, budget);
     PencilSdpRow {
         elements: n,
         dimension,
@@ -510,7 +522,7 @@ fn pencil_side(
     sigma: f64,
     lambda_eig: f64,
     n: usize,
-    deadline: std::time::Instant,
+    budget: &mut u32,
 ) -> PencilSide {
     let not_run = |reason: &str| PencilSdpRow::not_run(n, reason).lambda2;
     let delta = SDP_TOLERANCE * sigma;
@@ -520,7 +532,7 @@ fn pencil_side(
     };
     let verify =
         |x: &SideSolution| x.status.is_solved() && x.lambda.is_some_and(|l| pencil_feasible(c, sign, l - sign * delta));
-    let first = match solve_side(r, sign, sigma, 1.0, deadline) {
+    let first = match solve_side(r, sign, sigma, 1.0, budget) {
         Ok(x) => x,
         Err(e) => return PencilSide { lambda_eig: Some(lambda_eig), ..not_run(&format!("SDP: {e}")) },
     };
@@ -533,7 +545,7 @@ fn pencil_side(
         first
     } else {
         let scale = first.p_over_sigma.max(first.b_over_sigma * first.b_over_sigma);
-        match (scale > 0.0).then(|| solve_side(r, sign, sigma, 1.0 / scale.sqrt(), deadline)) {
+        match (scale > 0.0 && *budget > 0).then(|| solve_side(r, sign, sigma, 1.0 / scale.sqrt(), budget)) {
             Some(Ok(second)) => {
                 attempts = 2;
                 second

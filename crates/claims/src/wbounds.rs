@@ -136,20 +136,23 @@ fn richardson(c: f64, f: f64) -> f64 {
 /// each answer re-verified and compared with the eigenvalues at the same N. A failure at one N
 /// is recorded in its row, never fatal.
 ///
-/// Bounded: the whole cross-check gets [`wingcheck_model::work::CHECK_SDP_SECONDS`] (clarabel
-/// needs ≈ 0.4 s on the paper's wing, but far more iterations on wings whose parameters span
-/// many decades: 29 s measured at span 6e4 m); a solve past that budget stops with status
-/// `MaxTime` and the remaining N are not run, each saying why.
+/// Bounded, deterministically: the whole cross-check spends at most
+/// [`crate::sdp::SDP_ITERATION_BUDGET`] interior-point iterations (16–20 per N on the paper's
+/// wing, far more on wings whose parameters span many decades); a solve at the budget stops
+/// with status `MaxIterations` and the remaining N are not run, each saying why. The same
+/// input gives the same rows whatever the machine's speed or load.
 pub fn sdp_cross_check(cfg: &Config, coupling: Coupling, grids: &[usize]) -> Vec<PencilSdpRow> {
-    let budget = wingcheck_model::work::CHECK_SDP_SECONDS;
-    let deadline = Instant::now() + std::time::Duration::from_secs_f64(budget);
+    let mut budget = crate::sdp::SDP_ITERATION_BUDGET;
     grids
         .iter()
         .map(|&n| {
-            if Instant::now() >= deadline {
+            if budget == 0 {
                 return PencilSdpRow::not_run(
                     n,
-                    &format!("not run: the cross-check's time budget of {budget} s was spent on the smaller N"),
+                    &format!(
+                        "not run: the cross-check's budget of {} solver iterations was spent on the smaller N",
+                        crate::sdp::SDP_ITERATION_BUDGET
+                    ),
                 );
             }
             let f = match lyapunov::assemble(&LyapunovParams::from_config(cfg, coupling, n)) {
@@ -160,7 +163,7 @@ pub fn sdp_cross_check(cfg: &Config, coupling: Coupling, grids: &[usize]) -> Vec
             let c1 = lyapunov::to_dense(&mesh.mass(Space::DgCubic, Space::Hermite));
             let c2 = lyapunov::to_dense(&mesh.mass(Space::DgCubic, Space::Linear));
             let (w, k) = (lyapunov::to_dense(&f.w), lyapunov::to_dense(&f.kappa));
-            crate::sdp::pencil_cross_check_until(&w, &k, &c1, &c2, n, cfg.wing.span, deadline)
+            crate::sdp::pencil_cross_check_within(&w, &k, &c1, &c2, n, cfg.wing.span, &mut budget)
         })
         .collect()
 }

@@ -29,9 +29,9 @@ pub fn exponential_seconds(steps: f64, states: f64) -> f64 {
 /// Seconds of a run's modal-basis setup per unknown³ (the dense eigenproblems, once per run):
 /// ≈ 0.3 s at 600 unknowns (1.4e-9), doubled.
 pub const SECONDS_PER_MODAL_SETUP_CUBE: f64 = 3e-9;
-/// Time budget of the W-bounds row's SDP cross-check at N = 2 … 32 (s): ≈ 0.4 s on the paper's
-/// wing; clarabel stops at the budget (status `MaxTime`, the remaining N not run), which it
-/// reaches on wings whose parameters span many decades.
+/// Worst-case seconds of the W-bounds row's SDP cross-check at N = 2 … 32: it is bounded by an
+/// iteration budget (600 interior-point iterations, claims' `SDP_ITERATION_BUDGET`), ≈ 0.4 s on
+/// the paper's wing and ≈ 3 s at the budget.
 pub const CHECK_SDP_SECONDS: f64 = 3.0;
 /// Worst-case seconds of the W-bounds row's certified ω₁ enclosure: the ledger tries coarse
 /// plans first (≈ 0.01–0.1 s), and needs the tightest one only when a/b lies within ~1e-6 of ω₁,

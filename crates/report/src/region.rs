@@ -33,7 +33,7 @@ pub const B_DECADES: f64 = 1.5;
 /// At most this many values of a (the a range is clipped symmetrically around the boundaries).
 const MAX_A: usize = 14;
 /// The performance metric shown.
-pub const METRIC: &str = "rms_q_tip";
+pub const METRIC: wingcheck_search::Metric = wingcheck_search::Metric::RmsQTip;
 
 /// The map's data.
 #[derive(Debug, Clone)]

@@ -15,13 +15,15 @@
 
 use std::path::Path;
 
-use crate::point::{metric_index, PointResult, PointVerdicts, Status};
+use crate::metric::Metric;
+use crate::point::{PointResult, PointVerdicts, Status};
 use crate::refine::{boundaries, boundary_csv};
 use crate::store::{self, BestPoints, FileSet};
 use crate::{heatmap_svg, Manifest, Search, SearchError, TheoryCache};
 
 /// Metrics drawn as heatmaps on 2-D searches, with whether their colour scale is logarithmic.
-pub const HEATMAPS: [(&str, bool); 3] = [("rms_q_tip", true), ("rms_theta_tip", true), ("settling_time", false)];
+pub const HEATMAPS: [(Metric, bool); 3] =
+    [(Metric::RmsQTip, true), (Metric::RmsThetaTip, true), (Metric::SettlingTime, false)];
 
 /// The points of a complete directory, read chunk by chunk in index order: at most one chunk's
 /// points are in memory. A chunk missing or malformed (it was checked before) is an error.
@@ -104,7 +106,7 @@ impl Assembly {
         self.verdicts.push(p.verdicts());
         if let Some(heat) = &mut self.heat {
             for (values, (metric, _)) in heat.iter_mut().zip(HEATMAPS) {
-                values.push(p.metrics[metric_index(metric).expect("heatmap metric")]);
+                values.push(p.metric(metric));
             }
         }
         self.best.add(p);
@@ -174,7 +176,7 @@ pub fn assemble(
     let mut acc = Assembly {
         verdicts: Vec::with_capacity(n),
         heat: has_heatmaps(search).then(|| std::array::from_fn(|_| Vec::with_capacity(n))),
-        best: BestPoints::new(&o.best_metric, o.best_count)?,
+        best: BestPoints::new(o.best, o.best_count),
         failed: (0, 0),
         csv,
         failures,

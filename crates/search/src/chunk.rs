@@ -18,7 +18,8 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 
-use crate::point::{PointResult, Status, METRICS};
+use crate::metric::METRICS;
+use crate::point::{PointResult, Status};
 use crate::store::{chunk_path, read};
 use crate::{Search, SearchError};
 

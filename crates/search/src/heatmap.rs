@@ -3,6 +3,7 @@
 
 use wingcheck_chart::{grid_heatmap_svg, GridAxis, GridHeatmap, Mark, MarkShape, RGBColor};
 
+use crate::metric::Metric;
 use crate::point::PointVerdicts;
 use crate::refine::{BoundaryRow, KINDS};
 use crate::{Axis, Search, SearchError};
@@ -50,18 +51,22 @@ fn grid_axis(a: &Axis) -> GridAxis {
 }
 
 /// Quantity, unit and the reason a cell has no value, per heatmap metric.
-fn metric_text(metric: &str, window: (f64, f64)) -> (String, String, String) {
+fn metric_text(metric: Metric, window: (f64, f64)) -> (String, String, String) {
     let w = format!("[{}, {}] s", window.0, window.1);
     let failed = "no value: the point failed or diverged (failures.csv)".to_string();
+    let unit = metric.unit().symbol();
     match metric {
-        "rms_q_tip" => (format!("Tip displacement RMS over {w}"), "RMS q(s,t) (m)".into(), failed),
-        "rms_theta_tip" => (format!("Tip twist RMS over {w}"), "RMS θ(s,t) (rad)".into(), failed),
-        "settling_time" => (
-            "Settling time (|q|, |θ| within 5 % of their initial values)".into(),
-            "settling time (s)".into(),
-            "no value: not settled by T, or the point failed".into(),
+        Metric::RmsQTip => (format!("Tip displacement RMS over {w}"), format!("RMS q(s,t) ({unit})"), failed),
+        Metric::RmsThetaTip => (format!("Tip twist RMS over {w}"), format!("RMS θ(s,t) ({unit})"), failed),
+        Metric::SettlingTime => (
+            format!(
+                "Settling time (|q|, |θ| within {} % of their initial values)",
+                100.0 * wingcheck_sim::metrics::SETTLE_FRACTION
+            ),
+            format!("settling time ({unit})"),
+            "no value: not settled by t_end, or the point failed".into(),
         ),
-        other => (other.to_string(), other.to_string(), failed),
+        other => (other.name().to_string(), format!("{other} ({unit})"), failed),
     }
 }
 
@@ -73,7 +78,7 @@ pub fn heatmap_svg(
     search: &Search,
     values: Vec<Option<f64>>,
     verdicts: &[PointVerdicts],
-    metric: &str,
+    metric: Metric,
     log: bool,
     boundary: &[BoundaryRow],
 ) -> Result<String, SearchError> {

@@ -24,6 +24,7 @@ pub mod chunk;
 mod exec;
 mod heatmap;
 pub mod limits;
+pub mod metric;
 pub mod modal;
 pub mod point;
 mod refine;
@@ -40,7 +41,8 @@ pub use axis::{parse_axes, validate_axes, Axis, Grid, Spacing};
 pub use exec::{merge, run};
 pub use heatmap::heatmap_svg;
 pub use limits::{WorkEstimate, MAX_CORE_SECONDS, MAX_POINTS, MAX_POINTS_OVERRIDE};
-pub use point::{PointResult, PointVerdicts, Status, METRICS};
+pub use metric::{Metric, Ranking, METRICS};
+pub use point::{PointResult, PointVerdicts, Status};
 pub use refine::{boundaries, boundary_csv, BoundaryRow};
 pub use theory::{Theory, TheoryCache, Verdicts};
 
@@ -116,8 +118,8 @@ pub struct SearchOptions {
     /// Boundary refinement tolerance: relative (hi/lo − 1) on log axes, a fraction of the axis
     /// span on lin axes. None: report the coarse brackets only.
     pub refine: Option<f64>,
-    /// Metric ranking `best.json` (minimised; prefix `-` to maximise).
-    pub best_metric: String,
+    /// How `best.json` ranks the points.
+    pub best: Ranking,
     /// Points listed in `best.json`.
     pub best_count: usize,
     /// Elements N of the Galerkin space of W and κ.
@@ -130,7 +132,7 @@ impl Default for SearchOptions {
             window: None,
             chunk_size: 32,
             refine: None,
-            best_metric: "rms_q_tip".into(),
+            best: Ranking::default(),
             best_count: 10,
             lyapunov_elements: 8,
         }
@@ -210,7 +212,6 @@ impl Search {
         if !(1..=64).contains(&o.lyapunov_elements) {
             return Err(SearchError::Options("lyapunov elements must lie in [1, 64]".into()));
         }
-        store::BestPoints::new(&o.best_metric, 0)?;
         Ok(Search { base, grid: Grid::new(axes), options })
     }
 

@@ -5,57 +5,12 @@ use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 use wingcheck_model::{apply_overrides, Config, ControllerKind};
-use wingcheck_sim::{simulate, RunOptions, SimError};
+use wingcheck_sim::{metrics, simulate, RunOptions, SimError};
 
 use crate::axis::Grid;
+use crate::metric::Metric;
 use crate::modal::{RunCache, TipTrace};
 use crate::theory::{Theory, TheoryCache};
-
-/// Metric columns, in output order. Units: λ's of W/κ dimensionless-by-construction
-/// (units of W/κ), λ in 1/s, bounds and q in m, θ in rad, t in s, τ1/g1 in N, τ2/g2 in N m,
-/// energy in J.
-///
-/// - `lambda2`, `lambda1`: tight min/max of W/κ on the Galerkin space (N = 8);
-/// - `lambda3_max`: max over the η's of min μ3..μ6 ((32) feasible iff > 0);
-/// - `lambda`, `epsilon`: decay rate λ = λ3/λ1 (1/s) and ε of (32) at the η's minimising ε/λ;
-/// - `uub_bound_q`: √(s³/λ2 · ε/λ) (m), Theorem 2's ultimate bound on |q|;
-/// - `g_hmax` (N/m), `zeta3` (N), `zeta4` (N m): disturbance bounds used for ε (ζ = sup|g̃| of
-///   the point's FTDO run);
-/// - `rms_*`, `max_*`: RMS and max of |q(s,t)|, |θ(s,t)| over the metric window;
-/// - `settling_time`: the first output sample time after which |q(s,t)| ≤ 5 % |q(s,0)| and
-///   |θ(s,t)| ≤ 5 % |θ(s,0)| for the rest of the horizon (a channel starting at 0 is ignored);
-///   empty if not settled by T;
-/// - `tau*_peak`, `tau*_rms`: max |τ| and RMS τ over [0, T], both at full rate (every
-///   integrator step and both sides of each sample's jump, not the output samples);
-/// - `g*_tilde_rms`: RMS of g̃ = g − ĝ over the window; `energy_t_end`: E(T).
-pub const METRICS: [&str; 21] = [
-    "lambda2",
-    "lambda1",
-    "lambda3_max",
-    "lambda",
-    "epsilon",
-    "uub_bound_q",
-    "g_hmax",
-    "zeta3",
-    "zeta4",
-    "rms_q_tip",
-    "max_q_tip",
-    "rms_theta_tip",
-    "max_theta_tip",
-    "settling_time",
-    "tau1_peak",
-    "tau1_rms",
-    "tau2_peak",
-    "tau2_rms",
-    "g1_tilde_rms",
-    "g2_tilde_rms",
-    "energy_t_end",
-];
-
-/// Index of a metric column by name.
-pub fn metric_index(name: &str) -> Option<usize> {
-    METRICS.iter().position(|m| *m == name)
-}
 
 /// Outcome of a point.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -95,7 +50,7 @@ pub struct PointResult {
     pub w_positive_definite: Option<bool>,
     /// (29)–(32) satisfiable.
     pub feasible_32: Option<bool>,
-    /// Values of [`METRICS`], same order; None where not available.
+    /// Values of [`Metric::ALL`], same order; None where not available.
     pub metrics: Vec<Option<f64>>,
     /// Wall time in simulation (s) — not deterministic, kept out of the result files.
     pub sim_seconds: f64,
@@ -130,9 +85,9 @@ impl PointResult {
         PointVerdicts { w_positive_definite: self.w_positive_definite, feasible_32: self.feasible_32 }
     }
 
-    /// A metric by name.
-    pub fn metric(&self, name: &str) -> Option<f64> {
-        metric_index(name).and_then(|i| self.metrics[i])
+    /// A metric's value (None where not available).
+    pub fn metric(&self, metric: Metric) -> Option<f64> {
+        self.metrics[metric.index()]
     }
 }
 
@@ -142,35 +97,9 @@ pub fn window(cfg: &Config, w: Option<(f64, f64)>) -> (f64, f64) {
     w.unwrap_or((0.5 * cfg.horizon.t_end, cfg.horizon.t_end))
 }
 
-fn rms(v: impl Iterator<Item = f64>) -> Option<f64> {
-    let (mut s, mut n) = (0.0, 0usize);
-    for x in v {
-        s += x * x;
-        n += 1;
-    }
-    (n > 0).then(|| (s / n as f64).sqrt())
-}
-
-fn max_abs(v: impl Iterator<Item = f64>) -> Option<f64> {
-    v.map(f64::abs).reduce(f64::max)
-}
-
-/// Settling time (see [`METRICS`]).
+/// Joint 5 % settling time of the tip ([`metrics::joint_tip_settle_time`], [`Metric::SettlingTime`]).
 pub fn settling_time(s: &TipTrace) -> Option<f64> {
-    let n = s.t.len();
-    if n == 0 {
-        return None;
-    }
-    let (tq, tt) = (0.05 * s.q_tip[0].abs(), 0.05 * s.theta_tip[0].abs());
-    if tq == 0.0 && tt == 0.0 {
-        return None;
-    }
-    let outside = |k: usize| (tq > 0.0 && s.q_tip[k].abs() > tq) || (tt > 0.0 && s.theta_tip[k].abs() > tt);
-    match (0..n).rev().find(|&k| outside(k)) {
-        None => Some(s.t[0]),
-        Some(k) if k + 1 == n => None,
-        Some(k) => Some(s.t[k + 1]),
-    }
+    metrics::joint_tip_settle_time(&s.t, &s.q_tip, &s.theta_tip)
 }
 
 /// RMS of τ(t) over the whole run at full rate ([`wingcheck_sim::windowed_rms`]).
@@ -179,24 +108,22 @@ fn full_rate_rms(s: &TipTrace, interval_rms: &[f64]) -> Option<f64> {
     wingcheck_sim::windowed_rms(&s.t, interval_rms, 0.0, t_end).or_else(|| interval_rms.first().copied())
 }
 
-/// The simulation metrics (positions 9.. of [`METRICS`]).
+/// The simulation metrics ([`Metric::SIMULATION`], in order).
 fn sim_metrics(s: &TipTrace, win: (f64, f64)) -> [Option<f64>; 12] {
-    let tol = 1e-9 * (1.0 + win.1.abs());
-    let idx: Vec<usize> = (0..s.t.len()).filter(|&k| s.t[k] >= win.0 - tol && s.t[k] <= win.1 + tol).collect();
-    let w = |c: &[f64]| idx.iter().map(|&k| c[k]).collect::<Vec<f64>>();
-    let (q, th) = (w(&s.q_tip), w(&s.theta_tip));
+    let w = metrics::window_indices(&s.t, metrics::Window { t0: win.0, t1: win.1 });
+    let (q, th) = (&s.q_tip[w.clone()], &s.theta_tip[w.clone()]);
     [
-        rms(q.iter().copied()),
-        max_abs(q.iter().copied()),
-        rms(th.iter().copied()),
-        max_abs(th.iter().copied()),
+        metrics::rms(q),
+        metrics::max_abs(q),
+        metrics::rms(th),
+        metrics::max_abs(th),
         settling_time(s),
         (!s.t.is_empty()).then_some(s.tau_peak[0]),
         full_rate_rms(s, &s.tau1_rms),
         (!s.t.is_empty()).then_some(s.tau_peak[1]),
         full_rate_rms(s, &s.tau2_rms),
-        rms(w(&s.g1_tilde).into_iter()),
-        rms(w(&s.g2_tilde).into_iter()),
+        metrics::rms(&s.g1_tilde[w.clone()]),
+        metrics::rms(&s.g2_tilde[w]),
         (!s.t.is_empty()).then_some(s.energy_end),
     ]
 }
@@ -233,7 +160,7 @@ pub fn evaluate(
         message: String::new(),
         w_positive_definite: None,
         feasible_32: None,
-        metrics: vec![None; METRICS.len()],
+        metrics: vec![None; Metric::ALL.len()],
         sim_seconds: 0.0,
         theory_seconds: 0.0,
     };
@@ -247,7 +174,7 @@ pub fn evaluate(
     };
     let start = Instant::now();
     match closed_loop(&cfg, runs) {
-        Ok(trace) => r.metrics[9..].copy_from_slice(&sim_metrics(&trace, window(&cfg, win))),
+        Ok(trace) => r.metrics[Metric::SIMULATION].copy_from_slice(&sim_metrics(&trace, window(&cfg, win))),
         Err(e) => (r.status, r.message) = sim_message(&e),
     }
     // ζ3, ζ4 are sup |g̃| of the FTDO run; g̃ does not depend on the plant, so they come from
@@ -299,7 +226,7 @@ fn fill_theory(r: &mut PointResult, t: &Theory, g_hmax: f64, zetas: Option<(f64,
         zetas.map(|z| z.0),
         zetas.map(|z| z.1),
     ];
-    r.metrics[..9].copy_from_slice(&th);
+    r.metrics[Metric::THEORY].copy_from_slice(&th);
 }
 
 #[cfg(test)]

@@ -8,7 +8,8 @@ use serde::Serialize;
 use serde_json::{json, Map, Value};
 
 pub use crate::chunk::{chunk_text, read_chunk};
-use crate::point::{PointResult, Status, METRICS};
+use crate::metric::{Ranking, METRICS};
+use crate::point::{PointResult, Status};
 use crate::SearchError;
 
 /// Directory of the chunk files inside an output directory.
@@ -207,30 +208,20 @@ where
     out.write_all(b"\n").map_err(|e| io(e.to_string()))
 }
 
-/// The `count` best `ok` points by a metric (a name of [`METRICS`], minimised; prefix `-` to
-/// maximise), overall and among the theorem-feasible ones; ties by index. Fed the points in
+/// The `count` best `ok` points by a [`Ranking`], overall and among the theorem-feasible ones; ties by index. Fed the points in
 /// index order, it keeps at most `2 × count` of them.
 #[derive(Debug)]
 pub struct BestPoints {
-    name: &'static str,
-    column: usize,
-    maximise: bool,
+    ranking: Ranking,
     count: usize,
     overall: Vec<(f64, PointResult)>,
     feasible: Vec<(f64, PointResult)>,
 }
 
 impl BestPoints {
-    /// Ranking by `metric`; an unknown metric is an error naming the allowed ones.
-    pub fn new(metric: &str, count: usize) -> Result<BestPoints, SearchError> {
-        let (name, maximise) = match metric.strip_prefix('-') {
-            Some(n) => (n, true),
-            None => (metric, false),
-        };
-        let column = crate::point::metric_index(name).ok_or_else(|| {
-            SearchError::Options(format!("unknown metric `{name}`: use one of {}", METRICS.join(", ")))
-        })?;
-        Ok(BestPoints { name: METRICS[column], column, maximise, count, overall: vec![], feasible: vec![] })
+    /// The `count` best points by `ranking`.
+    pub fn new(ranking: Ranking, count: usize) -> BestPoints {
+        BestPoints { ranking, count, overall: vec![], feasible: vec![] }
     }
 
     fn insert(list: &mut Vec<(f64, PointResult)>, x: f64, p: &PointResult, maximise: bool, count: usize) {
@@ -248,10 +239,10 @@ impl BestPoints {
         if p.status != Status::Ok {
             return;
         }
-        let Some(x) = p.metrics[self.column].filter(|x| x.is_finite()) else { return };
-        Self::insert(&mut self.overall, x, p, self.maximise, self.count);
+        let Some(x) = p.metric(self.ranking.metric).filter(|x| x.is_finite()) else { return };
+        Self::insert(&mut self.overall, x, p, self.ranking.maximise, self.count);
         if p.theorem_feasible() == Some(true) {
-            Self::insert(&mut self.feasible, x, p, self.maximise, self.count);
+            Self::insert(&mut self.feasible, x, p, self.ranking.maximise, self.count);
         }
     }
 
@@ -259,8 +250,8 @@ impl BestPoints {
     pub fn json(&self, keys: &[String]) -> String {
         let list = |l: &[(f64, PointResult)]| l.iter().map(|(_, p)| point_json(keys, p)).collect::<Vec<Value>>();
         let doc = json!({
-            "metric": self.name,
-            "order": if self.maximise { "descending" } else { "ascending" },
+            "metric": self.ranking.metric.name(),
+            "order": if self.ranking.maximise { "descending" } else { "ascending" },
             "best": list(&self.overall),
             "best_theorem_feasible": list(&self.feasible),
         });

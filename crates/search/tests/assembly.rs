@@ -12,7 +12,7 @@ use std::sync::Mutex;
 use serde_json::{json, Value};
 use wingcheck_model::Config;
 use wingcheck_search::store::{self, point_json};
-use wingcheck_search::{finalize, PointResult, Search, SearchOptions, Status, METRICS};
+use wingcheck_search::{finalize, Metric, PointResult, Search, SearchOptions, Status, METRICS};
 
 struct Counting;
 
@@ -146,7 +146,7 @@ fn streamed_files_equal_a_whole_document_rendering() {
     // best.json: sort every ok point by rms_q_tip (ties by index), take best_count = 4
     let mut ok: Vec<&PointResult> = points.iter().filter(|p| p.status == Status::Ok).collect();
     ok.sort_by(|a, b| {
-        a.metric("rms_q_tip").unwrap().total_cmp(&b.metric("rms_q_tip").unwrap()).then(a.index.cmp(&b.index))
+        a.metric(Metric::RmsQTip).unwrap().total_cmp(&b.metric(Metric::RmsQTip).unwrap()).then(a.index.cmp(&b.index))
     });
     let best: Value = serde_json::from_str(&read("best.json")).unwrap();
     let got: Vec<u64> = best["best"].as_array().unwrap().iter().map(|p| p["index"].as_u64().unwrap()).collect();

@@ -1,7 +1,7 @@
 //! A diverging simulation is a recorded outcome of its point, not a crash.
 
 use wingcheck_model::{apply_overrides, Config};
-use wingcheck_search::{modal::RunCache, Search, SearchOptions, Status, TheoryCache};
+use wingcheck_search::{modal::RunCache, Metric, Search, SearchOptions, Status, TheoryCache};
 
 #[test]
 fn diverging_points_are_recorded() {
@@ -16,9 +16,9 @@ fn diverging_points_are_recorded() {
     let bad = s.evaluate(1, &cache, &runs);
     assert_eq!(bad.status, Status::Diverged);
     assert!(bad.message.contains("diverged"), "{}", bad.message);
-    assert_eq!(bad.metric("rms_q_tip"), None);
+    assert_eq!(bad.metric(Metric::RmsQTip), None);
     // the theory does not depend on κ1 and is still reported
-    assert_eq!(bad.metric("lambda2"), ok.metric("lambda2"));
+    assert_eq!(bad.metric(Metric::Lambda2), ok.metric(Metric::Lambda2));
     assert_eq!(bad.w_positive_definite, ok.w_positive_definite);
 }
 

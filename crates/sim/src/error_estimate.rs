@@ -163,7 +163,7 @@ pub fn simulate_with_error(cfg: &Config, opts: RunOptions<'_>) -> Result<Estimat
     space_cfg.discretisation.stepper = scheme;
     time_cfg.discretisation.stepper = scheme;
     let space = simulate(&space_cfg, RunOptions::default()).map_err(|e| match e {
-        SimError::Numerical(reason) => SimError::Numerical(format!(
+        SimError::Numerical(reason) | SimError::NoModalBasis { reason } => SimError::Numerical(format!(
             "the spatial refinement ({} {}) cannot run the base run's {} scheme: {reason}; \
              set discretisation.stepper=trbdf2 to estimate with TR-BDF2, or use a coarser grid",
             space_cfg.discretisation.grid_size(),

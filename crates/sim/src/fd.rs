@@ -9,7 +9,7 @@
 
 use wingcheck_model::Config;
 
-use crate::disc::{builders, finish, initial_q, initial_theta, output_grid, Interpolation, RawAssembly};
+use crate::assembly::{builders, finish, initial_q, initial_theta, output_grid, Interpolation, RawAssembly};
 use crate::strain::StrainRow;
 
 fn qd(i: usize) -> usize {

@@ -5,7 +5,7 @@
 
 use wingcheck_model::Config;
 
-use crate::disc::{builders, finish, initial_q, initial_theta, output_grid, Interpolation, RawAssembly};
+use crate::assembly::{builders, finish, initial_q, initial_theta, output_grid, Interpolation, RawAssembly};
 use crate::strain::StrainRow;
 
 /// 4-point Gauss–Legendre nodes and weights on [0, 1].

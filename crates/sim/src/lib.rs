@@ -10,6 +10,7 @@
 //! - [`modes`]: natural frequencies of the undamped, uncontrolled wing, and the analytic
 //!   uncoupled ones.
 
+mod assembly;
 pub mod banded;
 pub mod bench;
 pub mod cpu;
@@ -45,6 +46,14 @@ pub enum SimError {
     /// A linear-algebra step failed (e.g. a matrix that should be positive definite is not).
     #[error("numerical failure: {0}")]
     Numerical(String),
+    /// The modal basis of the discretisation cannot be built, or fails its orthonormality
+    /// check (too many unknowns, a failed eigen-solve): the `auto` basis then steps in the nodal
+    /// basis instead; an explicit `modal` or the exponential scheme reports it.
+    #[error("no modal basis: {reason}")]
+    NoModalBasis {
+        /// Why not.
+        reason: String,
+    },
     /// The simulation diverged.
     #[error("simulation diverged at t = {t:.4} s: {reason}")]
     Diverged {

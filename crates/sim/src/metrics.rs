@@ -86,10 +86,22 @@ pub fn tip_settle_time(t: &[f64], x: &[f64]) -> Option<f64> {
     settle_time(t, x, SETTLE_FRACTION * x.first().map_or(0.0, |v| v.abs()))
 }
 
-/// Joint settling time of the tip: the later of q(s,t)'s and θ(s,t)'s [`tip_settle_time`]
-/// (None if either has not settled by the end).
+/// Joint settling time of the tip: the first sample time after which |q(s,t)| ≤
+/// [`SETTLE_FRACTION`]·|q(s,0)| and |θ(s,t)| ≤ [`SETTLE_FRACTION`]·|θ(s,0)| for the rest of the
+/// run, i.e. the later of the two channels' [`tip_settle_time`]. A channel that starts at 0 has
+/// no band and is left out; None if both start at 0, or a channel has not settled by the end.
+pub fn joint_tip_settle_time(t: &[f64], q_tip: &[f64], theta_tip: &[f64]) -> Option<f64> {
+    let starts_nonzero = |x: &[f64]| x.first().is_some_and(|v| *v != 0.0);
+    let channels: Vec<&[f64]> = [q_tip, theta_tip].into_iter().filter(|x| starts_nonzero(x)).collect();
+    if channels.is_empty() {
+        return None;
+    }
+    channels.into_iter().try_fold(f64::NEG_INFINITY, |later, x| Some(later.max(tip_settle_time(t, x)?)))
+}
+
+/// [`joint_tip_settle_time`] of a run's output samples.
 pub fn joint_settle_time(s: &Series) -> Option<f64> {
-    Some(tip_settle_time(&s.t, &s.q_tip)?.max(tip_settle_time(&s.t, &s.theta_tip)?))
+    joint_tip_settle_time(&s.t, &s.q_tip, &s.theta_tip)
 }
 
 /// Full-rate RMS of τ over the window ([`windowed_rms`]: ∫τ² dt over every integrator step);

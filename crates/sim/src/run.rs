@@ -236,7 +236,7 @@ pub fn resolved_basis(cfg: &Config, disc: &Discretisation) -> Result<(StepBasis,
     let needs_modal = cfg.discretisation.stepper == wingcheck_model::TimeScheme::Exponential;
     let modal = || {
         ModalBasis::of(disc).map_err(|e| match e {
-            SimError::Numerical(reason) if needs_modal => SimError::Numerical(format!(
+            SimError::NoModalBasis { reason } if needs_modal => SimError::Numerical(format!(
                 "discretisation.stepper = exponential needs the modal basis: {reason}; \
                  use discretisation.stepper=trbdf2 (or auto) or a coarser grid"
             )),
@@ -250,7 +250,7 @@ pub fn resolved_basis(cfg: &Config, disc: &Discretisation) -> Result<(StepBasis,
         StepBasis::Auto if disc.dim() > MODAL_AUTO_UNKNOWNS => Ok((StepBasis::Nodal, None)),
         StepBasis::Auto => match ModalBasis::of(disc) {
             Ok(basis) => Ok((StepBasis::Modal, Some(basis))),
-            Err(SimError::Numerical(_)) => Ok((StepBasis::Nodal, None)),
+            Err(SimError::NoModalBasis { .. }) => Ok((StepBasis::Nodal, None)),
             Err(e) => Err(e),
         },
     }

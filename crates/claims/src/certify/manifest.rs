@@ -15,14 +15,14 @@ use std::io::Read;
 use std::path::Path;
 
 use num_rational::BigRational;
-use num_traits::{One, Signed};
+use num_traits::One;
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 use wingcheck_cert::exact::{parse_rational_bounded, NumberLimits};
 use wingcheck_model::Config;
 
-use super::facts::{mu3_system, show, CertificateFile, CheckedFact, ExactParams, FactKind, MAX_FILE_BYTES};
-use super::omega1::{self, Omega1Certificate, Omega1Enclosure, Position};
+use super::facts::{show, CertificateFile, CheckedFact, ExactParams, FactKind, MAX_FILE_BYTES};
+use super::omega1::{self, Omega1Certificate, Omega1Enclosure};
 use super::{format_decimal, CertifyError};
 use crate::spec::ClaimId;
 
@@ -213,7 +213,7 @@ pub struct VerifiedSet {
     pub omega1: Option<Omega1Enclosure>,
 }
 
-fn bad(field: &str, message: impl Into<String>) -> CertifyError {
+pub(super) fn bad(field: &str, message: impl Into<String>) -> CertifyError {
     CertifyError::Invalid { field: field.into(), message: message.into() }
 }
 
@@ -335,23 +335,50 @@ pub fn verify_set(dir: &Path) -> Result<VerifiedSet, CertifyError> {
 pub fn verify_set_for(dir: &Path, expected: Option<&Config>) -> Result<VerifiedSet, CertifyError> {
     let (manifest, cfg) = parse_manifest(&read_bounded(&dir.join(INDEX))?)?;
     if let Some(want) = expected {
-        let hash = config_hash(want);
-        if hash != manifest.config_sha256 {
-            let diff = config_differences(&cfg, want);
-            let shown: Vec<&str> = diff.iter().take(6).map(String::as_str).collect();
-            return Err(bad(
-                "index.json config",
-                format!(
-                    "the set was made for config sha256 {}, not the expected configuration (sha256 {hash}): {}{}",
-                    manifest.config_sha256,
-                    shown.join(", "),
-                    if diff.len() > 6 { format!(" and {} more keys differ", diff.len() - 6) } else { String::new() }
-                ),
-            ));
-        }
+        check_pinned(&manifest, &cfg, want)?;
     }
     let cfg_params = config_params(&cfg)?;
-    // The directory holds exactly index.json and the listed files.
+    check_listing(dir, &manifest)?;
+    let (parsed, enclosure) = parse_certificates(dir, &manifest, &cfg_params)?;
+    check_one_discretisation(&parsed)?;
+    // Pass 2: the exact checks.
+    let mut certs: Vec<VerifiedCert> = Vec::new();
+    for (role, file, name) in parsed {
+        let fact = file.check().map_err(|err| err.in_file(name))?;
+        certs.push(VerifiedCert { role, fact });
+    }
+    let mut omega1 = None;
+    if let Some((role, file, name)) = enclosure {
+        let (fact, e) = file.check(&cfg_params.weights).map_err(|err| err.in_file(name))?;
+        certs.push(VerifiedCert { role, fact });
+        omega1 = Some(e);
+    }
+    let conclusions = super::conclude::conclusions(&manifest, &cfg_params, &certs, omega1.as_ref())?;
+    Ok(VerifiedSet { config: cfg, config_sha256: manifest.config_sha256, certs, conclusions, omega1 })
+}
+
+/// A pinned verify: the set must have been made for exactly `want` (its hash), else refused
+/// naming the keys that differ.
+fn check_pinned(manifest: &Manifest, cfg: &Config, want: &Config) -> Result<(), CertifyError> {
+    let hash = config_hash(want);
+    if hash != manifest.config_sha256 {
+        let diff = config_differences(cfg, want);
+        let shown: Vec<&str> = diff.iter().take(6).map(String::as_str).collect();
+        return Err(bad(
+            "index.json config",
+            format!(
+                "the set was made for config sha256 {}, not the expected configuration (sha256 {hash}): {}{}",
+                manifest.config_sha256,
+                shown.join(", "),
+                if diff.len() > 6 { format!(" and {} more keys differ", diff.len() - 6) } else { String::new() }
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The directory holds exactly index.json and the listed files, each listed once.
+fn check_listing(dir: &Path, manifest: &Manifest) -> Result<(), CertifyError> {
     let listed: BTreeSet<&str> = manifest.certificates.iter().map(|e| e.file.as_str()).collect();
     if listed.len() != manifest.certificates.len() {
         return Err(bad(INDEX, "a file is listed twice"));
@@ -364,10 +391,22 @@ pub fn verify_set_for(dir: &Path, expected: Option<&Config>) -> Result<VerifiedS
             return Err(bad(&name, "not listed in index.json (a set holds only the files its manifest lists)"));
         }
     }
-    // Pass 1, no arithmetic beyond bounded parsing: names, hashes, ids, roles, the set's
-    // config and one discretisation across the set.
-    let mut parsed: Vec<(&'static Role, CertificateFile, &str)> = Vec::new();
-    let mut enclosure: Option<(&'static Role, Omega1Certificate, &str)> = None;
+    Ok(())
+}
+
+/// A listed certificate parsed and matched to its role, not yet checked.
+type Parsed<'a, F> = (&'static Role, F, &'a str);
+
+/// Pass 1, no arithmetic beyond bounded parsing: names, hashes, ids, roles, the set's wing and
+/// the weights each role asks for. The ω₁ enclosure is returned apart (its own file format).
+#[allow(clippy::type_complexity)]
+fn parse_certificates<'a>(
+    dir: &Path,
+    manifest: &'a Manifest,
+    cfg_params: &ExactParams,
+) -> Result<(Vec<Parsed<'a, CertificateFile>>, Option<Parsed<'a, Omega1Certificate>>), CertifyError> {
+    let mut parsed: Vec<Parsed<'a, CertificateFile>> = Vec::new();
+    let mut enclosure: Option<Parsed<'a, Omega1Certificate>> = None;
     for e in &manifest.certificates {
         let role = role(&e.id).ok_or_else(|| bad(&e.file, format!("unknown certificate id {:?}", e.id)))?;
         if e.file != format!("{}.json", e.id) {
@@ -424,10 +463,14 @@ pub fn verify_set_for(dir: &Path, expected: Option<&Config>) -> Result<VerifiedS
         }
         parsed.push((role, file, e.file.as_str()));
     }
-    // The bounds (statements about one Galerkin space) share one discretisation; a negative
-    // direction is a state of the PDE whatever its space, so it may come from a finer one.
+    Ok((parsed, enclosure))
+}
+
+/// The bounds (statements about one Galerkin space) share one discretisation; a negative
+/// direction is a state of the PDE whatever its space, so it may come from a finer one.
+fn check_one_discretisation(parsed: &[Parsed<'_, CertificateFile>]) -> Result<(), CertifyError> {
     let mut sizes = Vec::new();
-    for (role, file, name) in &parsed {
+    for (role, file, name) in parsed {
         if file.fact != FactKind::Mu3Infeasible {
             let n = file.require_elements().map_err(|err| err.in_file(name))?;
             if file.fact != FactKind::WNegativeDirection {
@@ -443,20 +486,7 @@ pub fn verify_set_for(dir: &Path, expected: Option<&Config>) -> Result<VerifiedS
             ));
         }
     }
-    // Pass 2: the exact checks.
-    let mut certs: Vec<VerifiedCert> = Vec::new();
-    for (role, file, name) in parsed {
-        let fact = file.check().map_err(|err| err.in_file(name))?;
-        certs.push(VerifiedCert { role, fact });
-    }
-    let mut omega1 = None;
-    if let Some((role, file, name)) = enclosure {
-        let (fact, e) = file.check(&cfg_params.weights).map_err(|err| err.in_file(name))?;
-        certs.push(VerifiedCert { role, fact });
-        omega1 = Some(e);
-    }
-    let conclusions = conclusions(&manifest, &cfg_params, &certs, omega1.as_ref())?;
-    Ok(VerifiedSet { config: cfg, config_sha256: manifest.config_sha256, certs, conclusions, omega1 })
+    Ok(())
 }
 
 /// A certificate's wing decimals must be the set's config's, exactly.
@@ -475,160 +505,4 @@ fn same_wing(file: &str, have: &[BigRational; 7], want: &[BigRational; 7]) -> Re
         }
     }
     Ok(())
-}
-
-fn find<'a>(certs: &'a [VerifiedCert], id: &str) -> Option<&'a CheckedFact> {
-    certs.iter().find(|c| c.role.id == id).map(|c| &c.fact)
-}
-
-/// The ids the verifier requires for each claim, given the facts present and the config.
-pub fn required(cfg_params: &ExactParams, lower_lambda: Option<&BigRational>) -> Vec<(ClaimId, Vec<&'static str>)> {
-    let mut w = vec!["w-bounds-lower", "w-bounds-upper", "w-bounds-ratio-above", "w-bounds-ratio-below", omega1::ID];
-    if lower_lambda.is_none_or(|l| !l.is_positive()) {
-        w.push("w-bounds-indefinite");
-    }
-    let mut out = vec![(W_BOUNDS, w)];
-    let (_, c3) = mu3_system(cfg_params);
-    if c3.is_negative() {
-        out.push((MU_CONDITIONS, vec!["mu-conditions-infeasible"]));
-    }
-    out
-}
-
-fn conclusions(
-    manifest: &Manifest,
-    cfg_params: &ExactParams,
-    certs: &[VerifiedCert],
-    omega1: Option<&Omega1Enclosure>,
-) -> Result<Vec<(String, String)>, CertifyError> {
-    let lower = find(certs, "w-bounds-lower").and_then(|f| f.lambda.clone());
-    if let Some(f) = find(certs, "w-bounds-ratio-below") {
-        if !f.lambda.as_ref().is_some_and(|l| l.is_positive()) {
-            return Err(bad("w-bounds-ratio-below.json", "λ must be > 0 (it certifies W positive definite)"));
-        }
-    }
-    let mut used = BTreeSet::new();
-    let known: BTreeSet<ClaimId> = ROLES.iter().map(|r| r.claim).collect();
-    let mut claims_seen = BTreeSet::new();
-    for c in &manifest.claims {
-        if !known.contains(&c.claim) {
-            return Err(bad(
-                INDEX,
-                format!(
-                    "unknown claim {} (the verifier knows {})",
-                    c.claim,
-                    known.iter().map(|c| c.name()).collect::<Vec<_>>().join(", ")
-                ),
-            ));
-        }
-        if !claims_seen.insert(c.claim) {
-            return Err(bad(INDEX, format!("claim {} is listed twice", c.claim)));
-        }
-        let mut needs = BTreeSet::new();
-        if let Some(id) = c.needs.iter().find(|id| !needs.insert(id.as_str())) {
-            return Err(bad(INDEX, format!("claim {} lists {id} twice in its needs", c.claim)));
-        }
-    }
-    for (claim, ids) in required(cfg_params, lower.as_ref()) {
-        let entry = manifest
-            .claims
-            .iter()
-            .find(|c| c.claim == claim)
-            .ok_or_else(|| bad(INDEX, format!("claim {claim} is missing")))?;
-        for id in ids {
-            if !entry.needs.iter().any(|n| n == id) {
-                return Err(bad(INDEX, format!("claim {claim} does not list {id}, which the verifier requires")));
-            }
-        }
-    }
-    for c in &manifest.claims {
-        for id in &c.needs {
-            let r = role(id).ok_or_else(|| bad(INDEX, format!("unknown certificate id {id:?}")))?;
-            if r.claim != c.claim {
-                return Err(bad(INDEX, format!("{id} supports {}, not {}", r.claim, c.claim)));
-            }
-            if find(certs, id).is_none() {
-                return Err(bad(INDEX, format!("claim {} needs {id}, which is not in the set", c.claim)));
-            }
-            used.insert(id.as_str());
-        }
-    }
-    if let Some(c) = certs.iter().find(|c| !used.contains(c.role.id)) {
-        return Err(bad(INDEX, format!("{} is not needed by any claim", c.role.id)));
-    }
-    let mut out = Vec::new();
-    let weights = format!("a = {}, b = {}", show(&cfg_params.weights[0]), show(&cfg_params.weights[1]));
-    let w_text = {
-        let l = lower.expect("required above");
-        let u = find(certs, "w-bounds-upper").and_then(|f| f.lambda.clone()).expect("required above");
-        let n = find(certs, "w-bounds-lower").and_then(|f| f.elements).unwrap_or(0);
-        let negative = find(certs, "w-bounds-indefinite").and_then(|f| f.elements);
-        let definite = match (l.is_positive(), negative) {
-            (true, None) => "W is positive definite on that space".to_string(),
-            (true, Some(m)) => format!(
-                "yet a state on the {m}-element space has W(x) < 0 exactly, so W is not positive definite on the \
-                 PDE's state space (its positivity on the {n}-element space does not carry over) and the printed \
-                 λ2 > 0 cannot exist"
-            ),
-            (false, _) => {
-                "W is not positive definite (exact negative direction), so the printed λ2 > 0 cannot exist".to_string()
-            }
-        };
-        let above = find(certs, "w-bounds-ratio-above").map(|f| show(&f.params.weights[0])).expect("required");
-        let below = find(certs, "w-bounds-ratio-below").map(|f| show(&f.params.weights[0])).expect("required");
-        let mut text = format!(
-            "at {weights}: {} < min W/κ and max W/κ < {} on the {n}-element Galerkin space; {definite}; \
-             W is indefinite for a/b = {above} and positive definite on the Galerkin space for a/b = {below}",
-            show(&l),
-            show(&u)
-        );
-        if let Some(e) = omega1 {
-            text.push_str("; ");
-            text.push_str(&enclosure_conclusion(e, cfg_params));
-        }
-        text
-    };
-    out.push((W_BOUNDS.name().to_string(), w_text));
-    if find(certs, "mu-conditions-infeasible").is_some() {
-        out.push((
-            MU_CONDITIONS.name().to_string(),
-            format!("at {weights}: μ3 ≥ 0 is infeasible, so (32) cannot hold"),
-        ));
-    } else {
-        let (_, c3) = mu3_system(cfg_params);
-        out.push((
-            MU_CONDITIONS.name().to_string(),
-            format!(
-                "no certificate: at {weights} the constant term bξEI/(2s⁴) − aρ = {} of μ3 is ≥ 0, so μ3 alone does not refute (32)",
-                show(&c3)
-            ),
-        ));
-    }
-    Ok(out)
-}
-
-/// What the enclosure decides at the set's a/b, for the continuous model (W ≻ 0 iff a/b < ω₁,
-/// docs/model.md "W ≻ 0 iff a/b < ω₁").
-fn enclosure_conclusion(e: &Omega1Enclosure, p: &ExactParams) -> String {
-    let [a, b] = &p.weights;
-    let ratio = a / b;
-    let head = format!(
-        "{} ≤ ω₁ ≤ {} rad/s for the continuous wing, so ",
-        omega1::exact_decimal(&e.lower),
-        omega1::exact_decimal(&e.upper)
-    );
-    match e.position(&ratio) {
-        Position::Below => {
-            format!("{head}a/b = {} < ω̲₁: W is positive definite for the continuous model", show(&ratio))
-        }
-        Position::Above => format!(
-            "{head}a/b = {} > ω̄₁: W is not positive definite for the continuous model (W(v, −(a/b)v) < 0 for the \
-             certificate's test state v)",
-            show(&ratio)
-        ),
-        Position::Inside => format!(
-            "{head}a/b = {} lies inside the certified interval: the certificates do not decide W ≻ 0 there",
-            show(&ratio)
-        ),
-    }
 }

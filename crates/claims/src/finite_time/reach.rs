@@ -4,6 +4,7 @@
 
 use wingcheck_control::ObserverGain;
 use wingcheck_model::{Config, ObserverRule, TipDisturbance};
+use wingcheck_sim::metrics::max_abs;
 use wingcheck_sim::Stepper;
 
 use crate::ClaimsError;
@@ -302,6 +303,21 @@ pub fn digital_run(
             st.advance_sample();
         }
     }
+    reach_and_overshoot(&mut out, rule, period, &first_out, &sig_hist, n);
+    Ok(DigitalRun { rule, period, window: (w0, t_end), channels: out })
+}
+
+/// Each channel's reach time (implicit: the sample after the last one outside the band T·k_sw;
+/// explicit: the first sign change of σ) and max |σ_k| after it (over the whole run if the band
+/// was never reached). `first_out` holds the deciding sample of each channel, `sig_hist` σ_k.
+fn reach_and_overshoot(
+    out: &mut [DigitalChannel; 2],
+    rule: ObserverRule,
+    period: f64,
+    first_out: &[Option<usize>; 2],
+    sig_hist: &[Vec<f64>; 2],
+    n: usize,
+) {
     for i in 0..2 {
         let ch = &mut out[i];
         let start = match rule {
@@ -316,14 +332,13 @@ pub fn digital_run(
             ch.reach_s = Some(k0 as f64 * period);
             // Implicit: strictly after the entry sample (the entry itself may be anywhere in the band).
             let from = if rule == ObserverRule::Implicit { k0 + 1 } else { k0 };
-            ch.sigma_after_max = sig_hist[i].get(from..).unwrap_or(&[]).iter().fold(0.0, |m, x| m.max(x.abs()));
+            ch.sigma_after_max = max_abs(sig_hist[i].get(from..).unwrap_or(&[])).unwrap_or(0.0);
         } else {
             ch.reach_s = None;
             // never reached: the band was never entered, report max |σ_k| over the whole run
-            ch.sigma_after_max = sig_hist[i].iter().fold(0.0, |m, x| m.max(x.abs()));
+            ch.sigma_after_max = max_abs(&sig_hist[i]).unwrap_or(0.0);
         }
     }
-    Ok(DigitalRun { rule, period, window: (w0, t_end), channels: out })
 }
 
 /// A [`ClaimsError::Numerical`].

@@ -82,17 +82,22 @@ impl ModalBasis {
     }
 
     /// Modal basis of a given discretisation.
+    /// Every failure is a [`SimError::NoModalBasis`] naming its reason.
     pub fn of(disc: &Discretisation) -> Result<ModalBasis, SimError> {
+        let no_basis = |reason: String| SimError::NoModalBasis { reason };
         let n = disc.dim();
         if n > MODAL_MAX_UNKNOWNS {
-            return Err(SimError::Numerical(format!(
+            return Err(no_basis(format!(
                 "{n} unknowns: above the modal basis's {MODAL_MAX_UNKNOWNS} (dense eigenproblem)"
             )));
         }
-        let (omega2, phi) = modes(disc)?;
+        let (omega2, phi) = modes(disc).map_err(|e| match e {
+            SimError::Numerical(reason) => no_basis(reason),
+            other => other,
+        })?;
         let (mass, stiffness) = orthonormality_defect(disc, &omega2, &phi);
         if !(mass <= MASS_TOLERANCE && stiffness <= STIFFNESS_TOLERANCE) {
-            return Err(SimError::Numerical(format!(
+            return Err(no_basis(format!(
                 "modal basis of {n} unknowns is orthonormal only to {mass:.1e} in M (tolerance \
                  {MASS_TOLERANCE:.0e}) and {stiffness:.1e} in K (tolerance {STIFFNESS_TOLERANCE:.0e})"
             )));
