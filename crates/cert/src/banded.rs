@@ -119,15 +119,7 @@ pub fn inertia(a: &SymBand) -> Result<Inertia, ZeroLeadingMinor> {
     // minors[k] = Δ_k of c·A (Δ_0 = 1); upto[i] = s: row i holds its values after step s − 1.
     let mut minors: Vec<BigInt> = vec![BigInt::one()];
     let mut upto = vec![0usize; n];
-    let bring = |row: &mut Vec<BigInt>, upto: &mut usize, k: usize, minors: &[BigInt]| {
-        if *upto < k {
-            let (num, den) = (&minors[k], &minors[*upto]);
-            for e in row.iter_mut().filter(|e| !e.is_zero()) {
-                *e = &*e * num / den;
-            }
-            *upto = k;
-        }
-    };
+    let bring = crate::psd::bring_row;
     let mut negative = 0;
     for k in 0..n {
         let (head, tail) = rows.split_at_mut(k + 1);

@@ -151,6 +151,20 @@ fn integer_upper(a: &RationalMatrix) -> (Vec<Vec<BigInt>>, BigInt) {
     (rows, c)
 }
 
+/// The deferred rescaling of fraction-free LDLᵀ (Bareiss): row `row`, last updated by step
+/// `*upto` − 1, is brought to step `k` by multiplying its nonzero entries by Δ_k/Δ_upto (exact:
+/// the division is exact by Sylvester's identity). Shared by [`check_positive_definite`] and the
+/// banded inertia ([`crate::banded::inertia`]).
+pub(crate) fn bring_row(row: &mut [BigInt], upto: &mut usize, k: usize, minors: &[BigInt]) {
+    if *upto < k {
+        let (num, den) = (&minors[k], &minors[*upto]);
+        for e in row.iter_mut().filter(|e| !e.is_zero()) {
+            *e = &*e * num / den;
+        }
+        *upto = k;
+    }
+}
+
 /// Exact positive-definiteness test (Sylvester via fraction-free LDLᵀ).
 ///
 /// Returns all LDLᵀ pivots on success; otherwise the first pivot that is not
@@ -164,15 +178,7 @@ pub fn check_positive_definite(a: &RationalMatrix) -> Result<PdReport, PsdError>
     let mut minors: Vec<BigInt> = vec![BigInt::one()];
     // upto[i] = s means row i currently holds M^(s) (updated by steps < s).
     let mut upto = vec![0usize; n];
-    let bring = |row: &mut Vec<BigInt>, upto: &mut usize, k: usize, minors: &[BigInt]| {
-        if *upto < k {
-            let (num, den) = (&minors[k], &minors[*upto]);
-            for e in row.iter_mut().filter(|e| !e.is_zero()) {
-                *e = &*e * num / den;
-            }
-            *upto = k;
-        }
-    };
+    let bring = bring_row;
     let mut pivots = Vec::with_capacity(n);
     for k in 0..n {
         let (head, tail) = rows.split_at_mut(k + 1);

@@ -192,15 +192,7 @@ pub fn evaluate(
         Err(e) => {
             // keep what the theory did decide (W ≻ 0, (32)) when only λ, ε failed
             if let Ok(v) = cache.verdicts(&cfg) {
-                let partial = Theory {
-                    lambda2: Some(v.lambda2),
-                    lambda1: Some(v.lambda1),
-                    w_pd: v.w_pd.as_bool(),
-                    lambda3_max: v.lambda3_max,
-                    feasible_32: v.feasible_32(),
-                    ..Default::default()
-                };
-                fill_theory(&mut r, &partial, g_hmax, zetas);
+                fill_theory(&mut r, &Theory::decided(&v), g_hmax, zetas);
             }
             if r.status == Status::Ok {
                 r.status = Status::Error;

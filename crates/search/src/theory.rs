@@ -68,6 +68,20 @@ pub struct Theory {
     pub uub_bound_q: Option<f64>,
 }
 
+impl Theory {
+    /// What the verdicts alone decide (λ2, λ1, W ≻ 0, max min μ, (32)); λ, ε and the bound unset.
+    pub fn decided(v: &Verdicts) -> Theory {
+        Theory {
+            lambda2: Some(v.lambda2),
+            lambda1: Some(v.lambda1),
+            w_pd: v.w_pd.as_bool(),
+            lambda3_max: v.lambda3_max,
+            feasible_32: v.feasible_32(),
+            ..Default::default()
+        }
+    }
+}
+
 /// (wing JSON, a, b, k1, k2 bits): everything the theory verdicts depend on.
 type VerdictKey = (String, u64, u64, u64, u64);
 
@@ -149,14 +163,7 @@ impl TheoryCache {
     /// (None if that run failed: then λ, ε and the ultimate bound are not available).
     pub fn evaluate(&self, cfg: &Config, bounds: Option<(f64, f64, f64)>) -> Result<Theory, SearchError> {
         let v = self.verdicts(cfg)?;
-        let mut t = Theory {
-            lambda2: Some(v.lambda2),
-            lambda1: Some(v.lambda1),
-            w_pd: v.w_pd.as_bool(),
-            lambda3_max: v.lambda3_max,
-            feasible_32: v.feasible_32(),
-            ..Default::default()
-        };
+        let mut t = Theory::decided(&v);
         if let (true, Some(bounds)) = (v.satisfiable, bounds) {
             let c = &cfg.control;
             let d = MuData::new(cfg, c.a, c.b);
