@@ -130,6 +130,7 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
                 "theta": sample_times.iter().map(|&t| s.at(&s.theta_tip, t)).collect::<Vec<_>>(),
             },
             "peaks": out.peaks,
+            "initial_layer": out.initial_layer,
         });
         let mut summary = summary;
         if let Some(p) = &a.out {
@@ -204,7 +205,28 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
                     p.q_tip.abs_max.value, p.q_tip.abs_max.error,
                     p.theta_tip.abs_max.value, p.theta_tip.abs_max.error
                 );
+                println!(
+                    "tip-rate peaks: |q̇| {:.4e} ± {:.1e} m/s at {:.3e} s{}, |θ̇| {:.4e} ± {:.1e} rad/s at {:.3e} s{}",
+                    p.q_tip_rate.abs_max.value,
+                    p.q_tip_rate.abs_max.error,
+                    p.q_tip_rate.t,
+                    if p.q_tip_rate.grid_converged { "" } else { " (not converged in the grid)" },
+                    p.theta_tip_rate.abs_max.value,
+                    p.theta_tip_rate.abs_max.error,
+                    p.theta_tip_rate.t,
+                    if p.theta_tip_rate.grid_converged { "" } else { " (not converged in the grid)" },
+                );
             }
+        }
+        if let Some(l) = &out.initial_layer {
+            println!(
+                "initial layer [0, {}] s re-run {} time(s) down to dt = {:e} s: {}{}",
+                l.t_end,
+                l.runs,
+                l.finest_dt,
+                if l.converged { "peaks converged" } else { "peaks NOT converged within the work budget" },
+                if l.raised { "; a sub-step transient raised a peak above the base run's" } else { "" }
+            );
         }
         if let Some(p) = &a.out {
             println!("wrote {}", p.display());

@@ -26,6 +26,30 @@ pub const SECONDS_PER_EXPONENTIAL_SETUP_CUBE: f64 = 1e-8;
 pub fn exponential_seconds(steps: f64, states: f64) -> f64 {
     steps * states * states * SECONDS_PER_EXPONENTIAL_ENTRY_STEP + states.powi(3) * SECONDS_PER_EXPONENTIAL_SETUP_CUBE
 }
+/// Observer sample periods at the start of a run that `simulate` re-runs at finer steps to
+/// resolve a sub-step transient (the initial layer; sim's `layer` module).
+pub const LAYER_SAMPLES: usize = 2;
+/// At most this many layer runs (dt, dt/10, …, dt/10⁵).
+pub const LAYER_RUNS_MAX: usize = 6;
+/// The layer runs together take at most this many × the base run's steps, or
+/// [`LAYER_STEPS_FLOOR`] steps if that is more (the first two layer runs, at dt and dt/10, are
+/// always made).
+pub const LAYER_WORK_FRACTION: f64 = 2.0;
+/// Steps the layer runs may always take (≈ 0.2 s in the modal basis at the default grid; enough
+/// for dt/10⁴ over the layer at dt = T_s).
+pub const LAYER_STEPS_FLOOR: f64 = 250_000.0;
+
+/// Steps of the layer run at `dt` (the first one).
+pub fn layer_first_steps(cfg: &Config) -> f64 {
+    LAYER_SAMPLES.min(cfg.total_samples().max(1)) as f64 * cfg.steps_per_sample() as f64
+}
+
+/// The most steps the initial-layer runs of one `simulate` of `cfg` may take.
+pub fn layer_steps_max(cfg: &Config) -> f64 {
+    let base_steps = (cfg.horizon.t_end / cfg.discretisation.dt).ceil();
+    (11.0 * layer_first_steps(cfg)).max(LAYER_WORK_FRACTION * base_steps).max(LAYER_STEPS_FLOOR)
+}
+
 /// Seconds of a run's modal-basis setup per unknown³ (the dense eigenproblems, once per run):
 /// ≈ 0.3 s at 600 unknowns (1.4e-9), doubled.
 pub const SECONDS_PER_MODAL_SETUP_CUBE: f64 = 3e-9;
@@ -181,7 +205,8 @@ impl WorkEstimate {
     /// One simulation of `cfg` (at its grid), storing fields if `fields`, writing JSON
     /// (`json_output`) or CSV.
     pub fn simulation(cfg: &Config, fields: bool, json_output: Option<bool>) -> WorkEstimate {
-        let steps = (cfg.horizon.t_end / cfg.discretisation.dt).ceil();
+        let base_steps = (cfg.horizon.t_end / cfg.discretisation.dt).ceil();
+        let steps = base_steps + layer_steps_max(cfg);
         let samples = (cfg.horizon.t_end / cfg.horizon.sample_every).floor() + 1.0;
         let n = 2.0 * cfg.unknowns() as f64;
         let field_values = if fields { 2.0 * cfg.horizon.field_points as f64 } else { 0.0 };
@@ -201,7 +226,9 @@ impl WorkEstimate {
         WorkEstimate {
             what: "simulate".into(),
             steps,
-            seconds: steps * n * SECONDS_PER_UNKNOWN_STEP + exponential + Self::setup_seconds(cfg),
+            seconds: steps * n * SECONDS_PER_UNKNOWN_STEP
+                + exponential
+                + (1.0 + LAYER_RUNS_MAX as f64) * Self::setup_seconds(cfg),
             memory_bytes: memory,
             output_bytes: output,
         }

@@ -20,11 +20,12 @@ pub mod error_estimate;
 pub mod estimate;
 pub mod fd;
 pub mod fe;
+pub mod layer;
 pub mod metrics;
 pub mod modal;
 pub mod modes;
 pub mod output;
-mod run;
+pub mod run;
 pub mod sparse;
 mod stepper;
 pub mod strain;
@@ -32,7 +33,10 @@ pub mod strain;
 pub use disc::{mass_determinant, Discretisation, Interpolation, Parts};
 pub use error_estimate::{simulate_with_error, EstimatedRun, PeakEstimate, PeakEstimates, RICHARDSON_2, TIP_TOLERANCE};
 pub use estimate::Estimate;
-pub use run::{check_sample, resolved_basis, simulate, windowed_rms, Fields, RunOptions, RunStats, Series, SimOutput};
+pub use run::{
+    check_sample, resolved_basis, simulate, simulate_base, windowed_rms, Fields, RunOptions, RunStats, Series,
+    SimOutput,
+};
 pub use stepper::{initial_tip_states, trbdf2, Channel, EnergyLedger, Peak, Peaks, Sample, SquareIntegral, Stepper};
 
 use thiserror::Error;

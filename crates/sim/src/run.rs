@@ -216,8 +216,14 @@ pub struct SimOutput {
     /// Fields on the output grid, if requested.
     pub fields: Option<Fields>,
     /// Full-rate extremes over the whole run (every integrator step, both sides of every
-    /// sample's jump): use these for peaks, never the output samples.
+    /// sample's jump), with the initial layer resolved ([`crate::layer`]): use these for
+    /// peaks, never the output samples.
     pub peaks: Peaks,
+    /// The base run's full-rate extremes after the initial layer (internal to the merge).
+    #[serde(skip)]
+    pub peaks_after_layer: Peaks,
+    /// How the initial layer was resolved (None for a run that did not resolve it).
+    pub initial_layer: Option<crate::layer::InitialLayer>,
     /// Cost statistics (wall times vary; everything else is deterministic).
     pub stats: RunStats,
 }
@@ -260,6 +266,14 @@ pub fn resolved_basis(cfg: &Config, disc: &Discretisation) -> Result<(StepBasis,
 /// same discrete equations either way: the results agree to round-off; `stats.basis` says
 /// which).
 pub fn simulate(cfg: &Config, opts: RunOptions<'_>) -> Result<SimOutput, SimError> {
+    let mut out = simulate_base(cfg, opts)?;
+    let layer = crate::layer::resolve(cfg, &mut out, |c| simulate_base(c, RunOptions::default()))?;
+    out.initial_layer = Some(layer);
+    Ok(out)
+}
+
+/// [`simulate`] without resolving the initial layer: the run at the configured step only.
+pub fn simulate_base(cfg: &Config, opts: RunOptions<'_>) -> Result<SimOutput, SimError> {
     cfg.validate().map_err(SimError::Config)?;
     let start = Instant::now();
     let disc = Discretisation::new(cfg);
@@ -312,6 +326,8 @@ fn simulate_nodal(
         series,
         fields,
         peaks: *stepper.peaks(),
+        peaks_after_layer: *stepper.peaks_after_layer(),
+        initial_layer: None,
         stats: RunStats {
             unknowns,
             factor_nnz,

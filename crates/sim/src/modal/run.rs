@@ -80,7 +80,7 @@ pub fn simulate_modal(
         total,
         series: Series::default(),
         fields: opts.fields.then(|| Fields { z: basis.field_z.clone(), ..Default::default() }),
-        full_rate: FullRate::default(),
+        full_rate: FullRate::new(crate::layer::layer_end(cfg)),
         progress: opts.progress,
     };
     drive(cfg, basis, &lp, &mut st, &mut signal, &mut rec)?;
@@ -88,6 +88,8 @@ pub fn simulate_modal(
         series: rec.series,
         fields: rec.fields,
         peaks: rec.full_rate.peaks,
+        peaks_after_layer: rec.full_rate.after_layer,
+        initial_layer: None,
         stats: RunStats {
             unknowns: basis.len(),
             factor_nnz: 0,

@@ -195,7 +195,7 @@ impl Stepper {
             alpha,
             x_stage: vec![0.0; n],
             v_stage: vec![0.0; n],
-            full_rate: FullRate::default(),
+            full_rate: FullRate::new(crate::layer::layer_end(cfg)),
             steps_per_sample: cfg.steps_per_sample(),
             k: 0,
             v: vec![0.0; n],
@@ -219,6 +219,11 @@ impl Stepper {
     /// step so far (full rate, both sides of each sample's jump), not only at output samples.
     pub fn peaks(&self) -> &Peaks {
         &self.full_rate.peaks
+    }
+
+    /// Full-rate extremes after the initial layer ([`crate::layer::layer_end`]).
+    pub fn peaks_after_layer(&self) -> &Peaks {
+        &self.full_rate.after_layer
     }
 
     /// The energy ledger so far.

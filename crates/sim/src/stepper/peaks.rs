@@ -114,10 +114,18 @@ impl SquareIntegral {
 pub(crate) struct FullRate {
     /// The extremes.
     pub(crate) peaks: Peaks,
+    /// The extremes after the initial layer (t > `layer_end`, [`crate::layer`]).
+    pub(crate) after_layer: Peaks,
+    layer_end: f64,
     squares: SquareIntegral,
 }
 
 impl FullRate {
+    /// Tracking from t = 0, with the peaks after `layer_end` (s) kept apart.
+    pub(crate) fn new(layer_end: f64) -> FullRate {
+        FullRate { layer_end, ..Default::default() }
+    }
+
     /// Fold in the values at time t.
     pub(crate) fn update(&mut self, t: f64, v: &[f64; 8]) {
         self.update_step(t, v, None);
@@ -127,6 +135,9 @@ impl FullRate {
     /// ([`SquareIntegral::update_step`]).
     pub(crate) fn update_step(&mut self, t: f64, v: &[f64; 8], exact: Option<[f64; 2]>) {
         self.peaks.update(t, v);
+        if t > self.layer_end {
+            self.after_layer.update(t, v);
+        }
         self.squares.update_step(t, [v[4], v[5]], exact);
     }
 
