@@ -4,16 +4,16 @@
 use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
-use wingcheck_model::{apply_overrides, Config, ControllerKind};
+use wingcheck_model::{apply_overrides, Config, ControllerKind, Unit};
 use wingcheck_sim::{simulate, RunOptions, SimError};
 
 use crate::axis::Grid;
 use crate::modal::{RunCache, TipTrace};
 use crate::theory::{Theory, TheoryCache};
 
-/// Metric columns, in output order. Units: λ's of W/κ dimensionless-by-construction
-/// (units of W/κ), λ in 1/s, bounds and q in m, θ in rad, t in s, τ1/g1 in N, τ2/g2 in N m,
-/// energy in J.
+/// Metric columns, in output order; units in [`METRIC_UNITS`] (λ1, λ2, λ3*, ε in W units, λ
+/// in 1/s, bounds and q in m, θ in rad, t in s, τ1/g1/ζ3 in N, τ2/g2/ζ4 in N m, g_h in N/m,
+/// energy in J), every column in docs/outputs.md.
 ///
 /// - `lambda2`, `lambda1`: tight min/max of W/κ on the Galerkin space (N = 8);
 /// - `lambda3_max`: max over the η's of min μ3..μ6 ((32) feasible iff > 0);
@@ -24,7 +24,7 @@ use crate::theory::{Theory, TheoryCache};
 /// - `rms_*`, `max_*`: RMS and max of |q(s,t)|, |θ(s,t)| over the metric window;
 /// - `settling_time`: the first output sample time after which |q(s,t)| ≤ 5 % |q(s,0)| and
 ///   |θ(s,t)| ≤ 5 % |θ(s,0)| for the rest of the horizon (a channel starting at 0 is ignored);
-///   empty if not settled by T;
+///   none if not settled by T (results.csv: `settled` false, the cell empty);
 /// - `tau*_peak`, `tau*_rms`: max |τ| and RMS τ over [0, T], both at full rate (every
 ///   integrator step and both sides of each sample's jump, not the output samples);
 /// - `g*_tilde_rms`: RMS of g̃ = g − ĝ over the window; `energy_t_end`: E(T).
@@ -52,13 +52,39 @@ pub const METRICS: [&str; 21] = [
     "energy_t_end",
 ];
 
+/// The unit of each metric of [`METRICS`] (same order): results.csv suffixes its column with
+/// it, results.json lists it under `units`.
+pub const METRIC_UNITS: [Unit; 21] = [
+    Unit::LyapunovUnits,
+    Unit::LyapunovUnits,
+    Unit::LyapunovUnits,
+    Unit::PerSecond,
+    Unit::LyapunovUnits,
+    Unit::Metre,
+    Unit::NewtonPerMetre,
+    Unit::Newton,
+    Unit::NewtonMetre,
+    Unit::Metre,
+    Unit::Metre,
+    Unit::Radian,
+    Unit::Radian,
+    Unit::Second,
+    Unit::Newton,
+    Unit::Newton,
+    Unit::NewtonMetre,
+    Unit::NewtonMetre,
+    Unit::Newton,
+    Unit::NewtonMetre,
+    Unit::Joule,
+];
+
 /// Index of a metric column by name.
 pub fn metric_index(name: &str) -> Option<usize> {
     METRICS.iter().position(|m| *m == name)
 }
 
 /// Outcome of a point.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Status {
     /// Simulation and theory completed.

@@ -11,7 +11,7 @@ use crate::sparse::SymMatrix;
 use crate::{simulate, Discretisation, RunOptions, SimError};
 
 /// One timed configuration.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, schemars::JsonSchema)]
 pub struct Timing {
     /// Elements / intervals.
     pub elements: usize,
@@ -105,7 +105,7 @@ pub fn loglog_slope(x: &[f64], y: &[f64]) -> f64 {
 }
 
 /// Cost of `wingcheck modes` at its defaults: converged frequencies with error estimates.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, schemars::JsonSchema)]
 pub struct ModesTiming {
     /// Number of frequencies.
     pub count: usize,
