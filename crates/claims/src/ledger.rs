@@ -226,6 +226,9 @@ pub struct WallTime {
 /// The whole ledger.
 #[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct Ledger {
+    /// Layout version of the document ([`wingcheck_io::SCHEMA_VERSION`]; the JSON Schema is
+    /// docs/schema/check.schema.json).
+    pub schema_version: u32,
     /// Tool name and version.
     pub tool: String,
     /// SHA-256 of the configuration's canonical JSON.

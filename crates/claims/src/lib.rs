@@ -172,6 +172,7 @@ pub fn check_all_with(cfg: &Config, study: &Study, settings: &CheckSettings) -> 
     }
     wall_seconds.extend(extra);
     let mut ledger = Ledger {
+        schema_version: wingcheck_io::SCHEMA_VERSION,
         tool: format!("wingcheck {}", env!("CARGO_PKG_VERSION")),
         config_sha256: config_sha256(cfg),
         settings: settings.clone(),
