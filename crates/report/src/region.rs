@@ -176,14 +176,7 @@ pub struct RegionStats {
     pub failed: usize,
 }
 
-fn median(mut v: Vec<f64>) -> Option<f64> {
-    if v.is_empty() {
-        return None;
-    }
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    Some(if n % 2 == 1 { v[n / 2] } else { 0.5 * (v[n / 2 - 1] + v[n / 2]) })
-}
+use wingcheck_sim::metrics::median;
 
 impl RegionMap {
     fn cell(&self, i: usize, j: usize) -> &PointResult {

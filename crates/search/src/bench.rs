@@ -92,10 +92,7 @@ pub struct RuleTiming {
     pub cpu_seconds_per_point: Option<f64>,
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
+use wingcheck_sim::bench::median;
 
 /// One timed whole search of `axes` on `base` with `threads` threads in a new directory under
 /// `tmp`: (wall s, CPU s, summary).

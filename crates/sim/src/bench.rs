@@ -34,9 +34,10 @@ pub struct Timing {
 }
 
 /// Median of repeated measurements.
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(|a, b| a.total_cmp(b));
-    v[v.len() / 2]
+/// The median of timings taken at least once (`--repeats` ≥ 1, so never empty):
+/// [`crate::metrics::median`], for every benchmark (simulator, check, report, search).
+pub fn median(v: Vec<f64>) -> f64 {
+    crate::metrics::median(v).expect("at least one timing")
 }
 
 /// Time one configuration: median of `repeats` full runs, plus the median cost of one solve.
