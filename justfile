@@ -23,6 +23,11 @@ report:
 check:
     cargo run --release -- check
 
+# Regenerate the JSON Schemas of the config and every JSON output (docs/schema/; tests/outputs.rs
+# checks the committed ones are current).
+schema:
+    cargo run --release -- schema --out docs/schema
+
 # Screenshots of the report (top of the page and every section) with headless Chromium, into
 # target/screenshots/, for a person to look at. Works without just: scripts/screenshot.sh.
 screenshot report="reports/paper" out="target/screenshots":

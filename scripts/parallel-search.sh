@@ -24,6 +24,8 @@ source "$(dirname "${BASH_SOURCE[0]}")/find-wingcheck.sh"
 mkdir -p "$out"
 log="$out/parallel-joblog.txt"
 # Every shard runs to its end (--halt never); their statuses are read from the job log below.
+# The shards are merged below: tell them so (they then do not ask a person to merge).
+export WINGCHECK_MERGED_BY=scripts/parallel-search.sh
 parallel --quote --halt never --joblog "$log" -j "${JOBS:-$n}" \
     "$wingcheck" search "$@" --threads 1 --shard "{}/$n" --out "$out/shard-{}" ::: $(seq "$n") || true
 # Exitval is column 7 of the job log; 3 = the shard is complete with some failed points.

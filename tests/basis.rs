@@ -36,7 +36,7 @@ fn rel(x: &[f64], y: &[f64], floor: f64) -> f64 {
 fn difference(modal: &SimOutput, nodal: &SimOutput) -> f64 {
     assert_eq!(modal.series.t, nodal.series.t, "same sample times");
     let mut worst = 0.0f64;
-    for (name, (a, b)) in
+    for ((name, _), (a, b)) in
         wingcheck_sim::Series::COLUMNS.iter().zip(modal.series.columns().into_iter().zip(nodal.series.columns()))
     {
         let d = rel(a, b, 1e-6);

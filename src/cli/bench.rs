@@ -240,10 +240,7 @@ pub fn run(a: BenchArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(|a, b| a.total_cmp(b));
-    v[v.len() / 2]
-}
+use wingcheck_sim::bench::median;
 
 /// Whole `wingcheck check` wall time (median of `repeats`) with the per-row breakdown and the
 /// exact re-verification of the certificates.

@@ -6,6 +6,7 @@ mod common;
 mod modes;
 mod proofs;
 mod report;
+mod schema;
 mod search;
 mod simulate;
 
@@ -48,8 +49,40 @@ enum Command {
     Verify(proofs::VerifyArgs),
     /// Measure performance: simulator (time per step vs one sparse solve, scaling), check, report.
     Bench(bench::BenchArgs),
-    /// Print the effective configuration (embedded default or --config, with --set applied).
-    Config(ConfigArgs),
+    /// Print the effective configuration (the embedded default, a --config file merged over it,
+    /// then --set); `--diff`: only what differs from the default.
+    Config(ConfigCmdArgs),
+    /// Write the JSON Schemas of the configuration and of every JSON output (docs/schema/).
+    Schema(schema::SchemaArgs),
+}
+
+/// Arguments of `wingcheck config`.
+#[derive(Debug, clap::Args)]
+pub struct ConfigCmdArgs {
+    #[command(flatten)]
+    config: ConfigArgs,
+    /// Print only the keys whose values differ from the embedded default (configs/paper.json),
+    /// each with the default value and the effective one.
+    #[arg(long)]
+    diff: bool,
+}
+
+impl ConfigCmdArgs {
+    fn run(&self) -> anyhow::Result<()> {
+        let cfg = self.config.load()?;
+        if !self.diff {
+            println!("{}", cfg.to_json_pretty());
+            return Ok(());
+        }
+        let changes = wingcheck_model::Config::paper().diff(&cfg);
+        if changes.is_empty() {
+            println!("the effective configuration is the default (configs/paper.json)");
+        }
+        for (key, default, value) in changes {
+            println!("{key}: {value} (default {default})");
+        }
+        Ok(())
+    }
 }
 
 /// Dispatch a parsed command line.
@@ -64,9 +97,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Merge(a) => search::run_merge(a),
         Command::Certify(a) => proofs::certify(a),
         Command::Verify(a) => proofs::verify(a),
-        Command::Config(a) => {
-            println!("{}", a.load()?.to_json_pretty());
-            Ok(())
-        }
+        Command::Config(a) => a.run(),
+        Command::Schema(a) => schema::run(a),
     }
 }

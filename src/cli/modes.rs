@@ -19,34 +19,52 @@ pub struct ModesArgs {
     #[arg(long)]
     method: Option<Method>,
     /// Relative tolerance on every frequency's error estimate (>= 1e-13).
-    #[arg(long, default_value_t = modes::DEFAULT_MODE_TOLERANCE)]
-    tol: f64,
+    #[arg(long, default_value_t = Tolerance(modes::DEFAULT_MODE_TOLERANCE))]
+    tol: Tolerance,
     /// Print JSON.
     #[arg(long)]
     json: bool,
 }
 
+/// A relative tolerance, shown in `--help` in exponent form (`1e-9`, not `0.000000001`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tolerance(pub f64);
+
+impl std::fmt::Display for Tolerance {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{:e}", self.0)
+    }
+}
+
+impl std::str::FromStr for Tolerance {
+    type Err = std::num::ParseFloatError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        s.trim().parse().map(Tolerance)
+    }
+}
+
 pub fn run(a: ModesArgs) -> anyhow::Result<()> {
+    let tol = a.tol.0;
     let cfg = a.config.load()?;
     let method = a.method.unwrap_or(cfg.discretisation.method);
     if !(1..=50).contains(&a.count) {
         anyhow::bail!("--count {}: use an integer in [1, 50]", a.count);
     }
-    if !(a.tol.is_finite() && a.tol >= 1e-13) {
-        anyhow::bail!("--tol {}: use a relative tolerance >= 1e-13", a.tol);
+    if !(tol.is_finite() && tol >= 1e-13) {
+        anyhow::bail!("--tol {}: use a relative tolerance >= 1e-13", tol);
     }
     let count = a.count;
-    let conv = modes::converged_frequencies(&cfg, method, count, a.tol)?;
+    let conv = modes::converged_frequencies(&cfg, method, count, tol)?;
     let w = &cfg.wing;
     let bending = modes::bending_frequencies(w.span, w.ei, w.rho, count);
     let torsion = modes::torsion_frequencies(w.span, w.gj, w.ip, count);
     let uncoupled = modes::uncoupled_frequencies(w.span, w.ei, w.rho, w.gj, w.ip, count);
     let status = if conv.converged {
-        format!("every estimate ≤ {:e} relative", a.tol)
+        format!("every estimate ≤ {:e} relative", tol)
     } else {
         format!(
             "NOT converged to {:e}: the finest mesh ({}) was reached; the estimates below are what was achieved",
-            a.tol,
+            tol,
             conv.meshes.last().copied().unwrap_or(0)
         )
     };
@@ -54,7 +72,7 @@ pub fn run(a: ModesArgs) -> anyhow::Result<()> {
         let doc = json!({
             "method": method.name(),
             "meshes": conv.meshes,
-            "tolerance": a.tol,
+            "tolerance": tol,
             "converged": conv.converged,
             "coupled_rad_s": conv.modes.iter().map(|m| m.omega).collect::<Vec<_>>(),
             "coupled_error_rad_s": conv.modes.iter().map(|m| m.error).collect::<Vec<_>>(),

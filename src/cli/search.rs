@@ -18,7 +18,8 @@ pub struct SearchArgs {
     /// Output directory (a killed run restarted with the same arguments resumes).
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
-    /// Evaluate shard K of N (chunks c with c mod N = K − 1); combine with `wingcheck merge`.
+    /// Evaluate shard K of N (chunks c with c mod N = K − 1); combine the shards with `wingcheck merge`
+    /// (scripts/parallel-search.sh merges them itself).
     #[arg(long, value_name = "K/N", default_value = "1/1")]
     shard: Shard,
     /// Bisect the W ≻ 0 and (32) boundaries to this tolerance (relative on log axes).
@@ -106,14 +107,25 @@ pub fn run_search(a: SearchArgs) -> anyhow::Result<()> {
     if s.complete {
         println!("results in {}: {}", s.out_dir.display(), s.files.join(", "));
     } else {
-        println!(
-            "shard {}/{} done; combine the shard directories with `wingcheck merge DIR... --out DIR`",
-            a.shard.k, a.shard.n
-        );
+        match std::env::var(MERGED_BY) {
+            // A driver script merges the shards itself: nothing for a person to do.
+            Ok(by) if !by.trim().is_empty() => {
+                println!("shard {}/{} done; {} merges the shards", a.shard.k, a.shard.n, by.trim())
+            }
+            _ => println!(
+                "shard {}/{} done; combine the shard directories with `wingcheck merge DIR... --out DIR`",
+                a.shard.k, a.shard.n
+            ),
+        }
     }
     exit_on_failures(&s);
     Ok(())
 }
+
+/// Environment variable a driver script sets (to its own name) when it merges the shards itself
+/// (`scripts/parallel-search.sh`; under Slurm a person submits the merge job, so the hint stays): a shard then says who merges
+/// instead of telling a person to run `wingcheck merge`.
+pub const MERGED_BY: &str = "WINGCHECK_MERGED_BY";
 
 /// Exit status of `search` and `merge` when the run finished (the search, or this shard) but
 /// some points failed (diverged or error; listed in failures.csv): its own status, distinct

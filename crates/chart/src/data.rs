@@ -4,7 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 /// One line of a plot: y against x.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Line {
     /// Legend label.
     pub label: String,
@@ -18,7 +18,7 @@ pub struct Line {
 }
 
 /// The data behind one evidence figure, ready to plot or export as CSV.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct PlotData {
     /// File-name-safe identifier, unique within the ledger (e.g. `finite-time-sigma1`).
     pub name: String,
@@ -39,22 +39,18 @@ pub struct PlotData {
 }
 
 impl PlotData {
-    /// The data as CSV: one block per line (`label,x,y`).
+    /// The data as CSV in long form, `series,x,y` (one row per point, the line's legend label
+    /// in `series`); x and y are in the units of the axis labels [`Self::x_label`] and
+    /// [`Self::y_label`], which the report's `provenance.json` lists for every figure file.
     pub fn to_csv(&self) -> String {
-        let mut out = format!("line,{},{}\n", csv_field(&self.x_label), csv_field(&self.y_label));
-        for l in &self.lines {
-            for (x, y) in l.x.iter().zip(&l.y) {
-                out.push_str(&format!("{},{x},{y}\n", csv_field(&l.label)));
-            }
-        }
-        out
+        let rows = self.lines.iter().flat_map(|l| {
+            l.x.iter().zip(&l.y).map(|(x, y)| [l.label.clone(), wingcheck_io::number(*x), wingcheck_io::number(*y)])
+        });
+        wingcheck_io::csv_text(["series", "x", "y"], rows)
     }
-}
 
-fn csv_field(s: &str) -> String {
-    if s.contains([',', '"', '\n']) {
-        format!("\"{}\"", s.replace('"', "\"\""))
-    } else {
-        s.to_string()
+    /// What the CSV holds, for the provenance record: the axes' labels with their units.
+    pub fn csv_contents(&self) -> String {
+        format!("{}: series = line label, x = {}, y = {}", self.title, self.x_label, self.y_label)
     }
 }

@@ -33,21 +33,25 @@ pub struct Heatmap {
 }
 
 impl Heatmap {
-    /// The data as CSV: one row per sample time, one column per grid point.
+    /// The data as CSV in long form, `t_s,z_m,value` (one row per sample time and grid point,
+    /// t outer); `value` is in the unit of [`Self::value_label`], which the report's
+    /// `provenance.json` lists for every figure file.
     pub fn to_csv(&self) -> String {
-        let mut out = String::from("t_s");
-        for z in &self.z {
-            out.push_str(&format!(",z={z}"));
-        }
-        out.push('\n');
-        for (t, row) in self.t.iter().zip(&self.values) {
-            out.push_str(&t.to_string());
-            for v in row {
-                out.push_str(&format!(",{v}"));
-            }
-            out.push('\n');
-        }
-        out
+        let rows = self.t.iter().zip(&self.values).flat_map(|(t, row)| {
+            self.z
+                .iter()
+                .zip(row)
+                .map(|(z, v)| [wingcheck_io::number(*t), wingcheck_io::number(*z), wingcheck_io::number(*v)])
+        });
+        wingcheck_io::csv_text(["t_s", "z_m", "value"], rows)
+    }
+
+    /// What the CSV holds, for the provenance record.
+    pub fn csv_contents(&self) -> String {
+        format!(
+            "field v(z,t) in long form: t_s = time (s), z_m = position along the span (m), value = {}",
+            self.value_label
+        )
     }
 
     /// Half-width of the colour scale: max |v| over t ≥ `scale_from` (1 if that is 0).

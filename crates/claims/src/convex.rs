@@ -23,7 +23,7 @@ use crate::theory::{Etas, MuData};
 pub const ROW_TOLERANCE: f64 = 1e-7;
 
 /// The outcome of one cross-check.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct CrossCheck {
     /// Clarabel's status.
     pub status: crate::status::SolveStatus,

@@ -11,7 +11,7 @@ use wingcheck_model::{Quantity, Unit};
 
 /// A labelled fact that is not a number: a yes/no ([`Flag`]), a text ([`Text`], e.g. an exact
 /// rational or a function), or a typed decision (serialised as its name).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Fact<T> {
     /// What it is, in words.
     pub label: String,
@@ -47,7 +47,7 @@ pub const NEVER_SETTLED: &str = "never within the horizon";
 
 /// A number that may not exist (a reaching or settling time never reached, a ratio whose
 /// denominator vanishes): the quantity, or a labelled text saying why not.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(untagged)]
 pub enum Maybe {
     /// The number.
@@ -83,7 +83,7 @@ impl Maybe {
 }
 
 /// Records of leaves, shown as a table (one row per record, one column per field).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Table<T> {
     /// What the table shows.
     pub label: String,
@@ -99,7 +99,7 @@ impl<T> Table<T> {
 }
 
 /// A column of a displayed table.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct Column {
     /// The field's label.
     pub label: String,
@@ -108,7 +108,7 @@ pub struct Column {
 }
 
 /// A formatted cell: the value and its error or basis.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct Cell {
     /// The value (numbers with digits matched to their error; no unit: it is in the column).
     pub value: String,
@@ -117,7 +117,7 @@ pub struct Cell {
 }
 
 /// One displayed piece of evidence.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 #[serde(tag = "kind", rename_all = "kebab-case")]
 pub enum Node {
     /// A number.
@@ -251,13 +251,13 @@ mod tests {
     use super::*;
     use wingcheck_model::ValueBasis;
 
-    #[derive(Serialize)]
+    #[derive(Serialize, schemars::JsonSchema)]
     struct Row {
         n: Quantity,
         ok: Flag,
     }
 
-    #[derive(Serialize)]
+    #[derive(Serialize, schemars::JsonSchema)]
     struct Evidence {
         lambda: Quantity,
         holds: Flag,
@@ -289,7 +289,7 @@ mod tests {
             other => panic!("{other:?}"),
         }
         // a bare number is refused, naming its path
-        #[derive(Serialize)]
+        #[derive(Serialize, schemars::JsonSchema)]
         struct Bad {
             x: f64,
         }

@@ -36,7 +36,7 @@ pub trait Explain {
 }
 
 /// A row's evidence, one variant per claim (serialised as the claim's own struct).
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 #[serde(untagged)]
 pub enum Evidence {
     /// W-bounds.

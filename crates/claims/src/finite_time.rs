@@ -25,7 +25,7 @@ use reach::{bound_38, bound_38_literal, digital_run, filippov_reach, zeta, Digit
 pub use explain::{check, DigitalRecord, FiniteTimeEvidence};
 
 /// Which observer channel.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 pub enum Channel {
     /// σ1, g̃1, bound (38), Theorem 3.
     Bending,

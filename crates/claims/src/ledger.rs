@@ -12,7 +12,7 @@ use crate::evidence::{Evidence, Explain};
 use crate::settings::CheckSettings;
 
 /// What the check concluded. Never overclaims: see [`Basis`] for what it rests on.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum Verdict {
     /// The claim holds as printed.
@@ -72,7 +72,7 @@ impl Verdict {
 }
 
 /// What a verdict rests on.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum Basis {
     /// A certificate re-checked in exact rational arithmetic (proof, for the stated statement).
@@ -118,7 +118,7 @@ impl Basis {
 }
 
 /// One claim's row.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct ClaimRow {
     /// Claim id.
     pub id: ClaimId,
@@ -215,7 +215,7 @@ impl ClaimRow {
 }
 
 /// A wall time (not reproducible content): what took how long.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct WallTime {
     /// What was timed (`W-bounds`, `W-bounds SDP cross-check N = 32`).
     pub what: String,
@@ -224,8 +224,11 @@ pub struct WallTime {
 }
 
 /// The whole ledger.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct Ledger {
+    /// Layout version of the document ([`wingcheck_io::SCHEMA_VERSION`]; the JSON Schema is
+    /// docs/schema/check.schema.json).
+    pub schema_version: u32,
     /// Tool name and version.
     pub tool: String,
     /// SHA-256 of the configuration's canonical JSON.

@@ -38,7 +38,6 @@ pub use ledger::{Basis, ClaimId, ClaimRow, Ledger, Line, PlotData, Verdict, Wall
 pub use settings::CheckSettings;
 pub use study::Study;
 
-use sha2::{Digest, Sha256};
 use wingcheck_model::Config;
 
 /// Errors of the claim checker (a failed claim is a verdict, not an error).
@@ -65,9 +64,7 @@ impl From<wingcheck_sim::SimError> for ClaimsError {
 
 /// SHA-256 (hex) of the configuration's JSON (struct field order, so stable).
 pub fn config_sha256(cfg: &Config) -> String {
-    let mut h = Sha256::new();
-    h.update(serde_json::to_string(cfg).expect("config serialises").as_bytes());
-    h.finalize().iter().map(|b| format!("{b:02x}")).collect()
+    cfg.sha256()
 }
 
 /// Run every check on `cfg` and assemble the ledger, in the paper's order, with a fresh
@@ -175,6 +172,7 @@ pub fn check_all_with(cfg: &Config, study: &Study, settings: &CheckSettings) -> 
     }
     wall_seconds.extend(extra);
     let mut ledger = Ledger {
+        schema_version: wingcheck_io::SCHEMA_VERSION,
         tool: format!("wingcheck {}", env!("CARGO_PKG_VERSION")),
         config_sha256: config_sha256(cfg),
         settings: settings.clone(),

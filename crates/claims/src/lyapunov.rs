@@ -24,7 +24,7 @@ use wingcheck_model::Config;
 
 /// Which cross term −c ∫q̇θ̇ the function carries: the paper prints b·x_c (x_c = ρx_c/ρ);
 /// the kinetic energy and the bound (27) have b·ρx_c.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Coupling {
     /// −b x_c ∫q̇θ̇ as printed in (23), x_c = ρx_c/ρ.
@@ -34,7 +34,7 @@ pub enum Coupling {
 }
 
 /// The exact parameters W and κ depend on (rationals parsed from the config's decimals).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct LyapunovParams {
     /// ρ, ρx_c, EI, GJ, I_p, s as decimal strings.
     pub rho: String,

@@ -27,10 +27,11 @@ use serde::Serialize;
 pub const SDP_TOLERANCE: f64 = 1e-7;
 
 /// Outcome of one SDP cross-check.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct SdpCheck {
     /// clarabel's status (simplified).
     #[serde(serialize_with = "debug_name")]
+    #[schemars(with = "String")]
     pub status: wingcheck_lapack::sdp::SdpStatus,
     /// The SDP's λ (0 when not accepted).
     pub lambda_sdp: f64,
@@ -106,7 +107,7 @@ pub const SDP_SOLVE_GUARD_SECONDS: f64 = 120.0;
 
 /// One side of the pencil SDP at one N: λ2 = max λ s.t. W − λκ ⪰ 0, or λ1 = −max μ s.t.
 /// −W − μκ ⪰ 0 (units of W/κ).
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct PencilSide {
     /// clarabel's status (`not run` when the problem could not be posed).
     pub status: crate::status::SolveStatus,
@@ -136,7 +137,7 @@ pub struct PencilSide {
 }
 
 /// The SDP cross-check at one element count N.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct PencilSdpRow {
     /// Elements N.
     pub elements: usize,

@@ -5,7 +5,7 @@ use serde::Serialize;
 
 /// Numerical settings of the claim checker (not part of the configuration: they choose how
 /// hard the checker looks, not what is checked).
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct CheckSettings {
     /// Uniform Galerkin element counts of the W/κ refinement study (W-bounds); the last two
     /// are Richardson-extrapolated.

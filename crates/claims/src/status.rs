@@ -41,3 +41,15 @@ impl Serialize for SolveStatus {
         s.serialize_str(&self.name())
     }
 }
+
+impl schemars::JsonSchema for SolveStatus {
+    fn schema_name() -> std::borrow::Cow<'static, str> {
+        "SolveStatus".into()
+    }
+    fn json_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+        schemars::json_schema!({
+            "type": "string",
+            "description": "clarabel's status name (Solved, AlmostSolved, MaxTime, …) or `not run`"
+        })
+    }
+}

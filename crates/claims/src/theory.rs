@@ -28,7 +28,7 @@ use wingcheck_model::Config;
 pub use wingcheck_model::Estimate;
 
 /// A yes/no fact that may be undecided when an error estimate straddles the threshold.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum Decision {
     /// Decided true.
@@ -100,7 +100,7 @@ pub fn g_hmax(cfg: &Config) -> f64 {
 }
 
 /// The data of (29)–(32) at weights (a, b) (SI units of the config).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct MuData {
     /// Weight a.
     pub a: f64,
@@ -125,7 +125,7 @@ pub struct MuData {
 }
 
 /// Which condition of (29)–(32) fails, for the texts.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum Obstruction {
     /// k1 = 0: μ2 = k1 − 1/η8 > 0 is impossible.
@@ -165,7 +165,7 @@ impl Obstruction {
 }
 
 /// The η's of a point of (29)–(32) (η8 = 1/k1, η9 = 1/k2 are implied).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Etas(pub [f64; 7]);
 
 impl MuData {
@@ -401,7 +401,7 @@ pub fn epsilon(d: &MuData, t: f64, bounds: &DisturbanceBounds, k1: f64, k2: f64)
 }
 
 /// The bounds on the disturbances assumed in (29)–(32).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct DisturbanceBounds {
     /// g_hmax (N/m), see [`g_hmax`].
     pub g_hmax: f64,
@@ -412,7 +412,7 @@ pub struct DisturbanceBounds {
 }
 
 /// The operating point of (32) that minimises ε/λ (hence Theorem 2's ultimate bound).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct BestPoint {
     /// a.
     pub a: f64,

@@ -35,7 +35,7 @@ pub fn w_initial(cfg: &Config, b: f64, elements: usize) -> f64 {
 }
 
 /// W(0) on one mesh.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct W0Record {
     /// Uniform FE elements.
     pub elements: Quantity,
@@ -53,7 +53,7 @@ impl W0Record {
 }
 
 /// The evidence of the `UUB` row (present when a point satisfying (32) exists).
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct UubEvidence {
     /// λ2 > 0 and (32) hold at the configured gains.
     pub hypotheses_hold_at_config: Flag,

@@ -13,9 +13,20 @@
 //! * An existing target is replaced only after the caller's ownership check (the tool never
 //!   deletes files it did not write; see [`only_listed_files`]). Staging and set-aside
 //!   directories of dead processes for the same target are removed (or restored) by
-//!   [`StagingDir::new`].
+//!   [`StagingDir::new`]. A staging directory's writer is alive while it holds its lock in the
+//!   parent directory ([`DirLock`], a file lock: no `/proc` look-up, no reused-pid confusion).
 
 #![warn(missing_docs)]
+
+mod lock;
+mod provenance;
+mod table;
+
+pub use lock::{lock_name, lock_owner, owner_alive, remove_stale_locks, DirLock};
+pub use provenance::{
+    build, set_build, sha256_hex, sidecar_path, BuildInfo, FileRecord, Provenance, TreeState, SCHEMA_VERSION,
+};
+pub use table::{column_name, csv_record, csv_text, is_column_name, key_column, number, CsvWriter};
 
 use std::collections::BTreeSet;
 use std::io::Write;
@@ -135,19 +146,6 @@ fn unique_suffix() -> String {
     format!("{}-{nanos}", std::process::id())
 }
 
-/// Whether process `pid` is alive (Linux: `/proc/PID`; elsewhere assumed alive, so nothing of
-/// another process is ever removed).
-pub fn process_alive(pid: u32) -> bool {
-    if pid == std::process::id() {
-        return true;
-    }
-    let proc_root = Path::new("/proc");
-    if !proc_root.join("self").exists() {
-        return true;
-    }
-    proc_root.join(pid.to_string()).exists()
-}
-
 /// Hidden sibling names of `target` carrying `tag`, with the pid that made them.
 fn own_siblings(target: &Path, tag: &str) -> Vec<(PathBuf, u32)> {
     let Some(name) = target.file_name().map(|n| n.to_string_lossy().to_string()) else { return vec![] };
@@ -171,6 +169,8 @@ fn own_siblings(target: &Path, tag: &str) -> Vec<(PathBuf, u32)> {
 /// puts it back. Returns the paths removed or restored.
 pub fn recover(target: &Path) -> Vec<PathBuf> {
     let mut touched = Vec::new();
+    let parent = parent_of(target);
+    let process_alive = |pid: u32| owner_alive(&parent, pid);
     for (p, pid) in own_siblings(target, STAGING_TAG) {
         if !process_alive(pid) && std::fs::remove_dir_all(&p).is_ok() {
             touched.push(p);
@@ -188,6 +188,7 @@ pub fn recover(target: &Path) -> Vec<PathBuf> {
             touched.push(p);
         }
     }
+    remove_stale_locks(&parent);
     touched
 }
 
@@ -242,6 +243,8 @@ pub struct StagingDir {
     dir: PathBuf,
     target: PathBuf,
     committed: bool,
+    // Held while the staging (and any set-aside old) directory exists; dropped after them.
+    _lock: DirLock,
 }
 
 impl StagingDir {
@@ -254,9 +257,10 @@ impl StagingDir {
         let parent = parent_of(target);
         std::fs::create_dir_all(&parent).map_err(io("create directory", &parent))?;
         recover(target);
+        let lock = DirLock::acquire(&parent).map_err(io("lock", &parent))?;
         let dir = parent.join(format!(".{}.{STAGING_TAG}-{}", name.to_string_lossy(), unique_suffix()));
         std::fs::create_dir(&dir).map_err(io("create directory", &dir))?;
-        Ok(StagingDir { dir, target: target.to_path_buf(), committed: false })
+        Ok(StagingDir { dir, target: target.to_path_buf(), committed: false, _lock: lock })
     }
 
     /// The staging directory.

@@ -5,7 +5,7 @@ use serde::{Deserialize, Serialize};
 use crate::{ConfigError, StepBasis, TimeScheme};
 
 /// The whole run configuration.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Config {
     /// Structural parameters of the wing (paper Section 4).
@@ -25,7 +25,7 @@ pub struct Config {
 }
 
 /// Wing parameters (paper Section 4, notation of `docs/model.md`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Wing {
     /// Span s (m).
@@ -47,7 +47,7 @@ pub struct Wing {
 }
 
 /// Which boundary controller acts at the tip.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum ControllerKind {
     /// τ1 = τ2 = 0 (paper Figs 3–4).
@@ -86,7 +86,7 @@ impl std::str::FromStr for ControllerKind {
 }
 
 /// Boundary control law (15): τ1 = −k1(a q(s) + b q̇(s)) − ĝ1, τ2 = −k2(a θ(s) + b θ̇(s)) − ĝ2.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Control {
     /// Controller kind.
@@ -102,7 +102,7 @@ pub struct Control {
 }
 
 /// How the digital observer evaluates the discontinuous ĝ(σ) at a sample.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum ObserverRule {
     /// Set-valued implicit (Acary–Brogliato) step: solve σ̃ + T ĝ(σ̃) ∋ σ_k, ĝ_k = (σ_k − σ̃)/T.
@@ -133,7 +133,7 @@ impl std::str::FromStr for ObserverRule {
 }
 
 /// Finite-time disturbance observer (16)–(21), sampled with period `sample_period`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Observer {
     /// Evaluation rule of the digital observer.
@@ -178,7 +178,7 @@ impl Observer {
 }
 
 /// Disturbances (56), generalised only in their coefficients.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Disturbance {
     /// Distributed load g_h(z,t) = (mean + cos_amp cos(cos_freq t) + sin_amp sin(sin_freq t)) · slope · z.
@@ -190,7 +190,7 @@ pub struct Disturbance {
 }
 
 /// Distributed disturbance g_h(z,t) = φ(t)·slope·z with φ(t) = mean + cos_amp cos(cos_freq t) + sin_amp sin(sin_freq t) (N/m).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Distributed {
     /// Constant part of φ (paper: 1).
@@ -237,7 +237,7 @@ fn sinc(x: f64) -> f64 {
 }
 
 /// Tip disturbance mean + amp·sin(freq·t).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct TipDisturbance {
     /// Constant part.
@@ -269,7 +269,7 @@ impl TipDisturbance {
 }
 
 /// Shape of the initial displacement.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum InitialShape {
     /// The paper's q(z,0) = q_tip z/s, θ(z,0) = θ_tip z/s, with the clamp imposed at the root
@@ -280,7 +280,7 @@ pub enum InitialShape {
 }
 
 /// Initial condition; velocities are zero (paper Section 4).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Initial {
     /// Shape of q(z,0).
@@ -292,7 +292,7 @@ pub struct Initial {
 }
 
 /// Spatial discretisation method.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Method {
     /// The paper's finite differences with ghost points, lumped mass, tip loads as point loads.
@@ -323,7 +323,7 @@ impl std::str::FromStr for Method {
 }
 
 /// Discretisation settings.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Discretisation {
     /// FD or FE.
@@ -366,7 +366,7 @@ impl Discretisation {
 }
 
 /// Horizon and output sampling.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Horizon {
     /// Final time T (s) (paper: 20).
@@ -381,28 +381,67 @@ pub struct Horizon {
 impl Config {
     /// The paper's configuration, embedded from `configs/paper.json`.
     pub fn paper() -> Config {
-        Self::from_json_str(crate::PAPER_JSON).expect("embedded configs/paper.json is valid")
+        Self::parse_complete(crate::PAPER_JSON).expect("embedded configs/paper.json is valid")
     }
 
-    /// Parse and validate a JSON document of at most [`MAX_CONFIG_BYTES`]. Unknown keys and
-    /// anything after the document (other than whitespace) are rejected.
+    /// Parse and validate a JSON document of at most [`MAX_CONFIG_BYTES`]: a complete
+    /// configuration or only some of its keys, merged over the embedded default
+    /// ([`Config::paper`]; objects merged key by key, a value replacing the default's). Unknown
+    /// keys, a key given twice and anything after the document (other than whitespace) are
+    /// rejected, naming the key.
     pub fn from_json_str(text: &str) -> Result<Config, ConfigError> {
+        let partial = Self::read_document(text)?;
+        let mut merged = serde_json::to_value(Self::paper()).expect("config serialises");
+        merge(&mut merged, partial);
+        Self::from_json_value(merged)
+    }
+
+    /// The embedded default, parsed strictly (every key present).
+    fn parse_complete(text: &str) -> Result<Config, ConfigError> {
+        let value = Self::read_document(text)?;
+        let cfg: Config = serde_path_to_error::deserialize(value).map_err(|e| ConfigError::Parse(describe(&e)))?;
+        let cfg = cfg.normalised();
+        cfg.validate()?;
+        Ok(cfg)
+    }
+
+    /// One JSON object of sections, checked before any merging: size, trailing data, arrays,
+    /// underflowing numbers, duplicate keys.
+    fn read_document(text: &str) -> Result<serde_json::Value, ConfigError> {
+        use serde::Deserialize as _;
         if text.len() as u64 > MAX_CONFIG_BYTES {
             return Err(ConfigError::Parse(format!("{} bytes, at most {MAX_CONFIG_BYTES} allowed", text.len())));
-        }
-        // one object of sections, never positional (serde would fill the structs from arrays)
-        if let Ok(v) = serde_json::from_str::<serde_json::Value>(text) {
-            crate::json::reject_positional(&v)?;
         }
         if let Some((token, x)) = crate::json::underflowing_number(text) {
             return Err(crate::json::underflow_error(None, &token, x));
         }
         let de = &mut serde_json::Deserializer::from_str(text);
-        let cfg: Config = serde_path_to_error::deserialize(&mut *de).map_err(|e| ConfigError::Parse(describe(&e)))?;
+        let value = serde_json::Value::deserialize(&mut *de).map_err(|e| ConfigError::Parse(e.to_string()))?;
         de.end().map_err(|e| ConfigError::Parse(format!("trailing data after the JSON document: {e}")))?;
-        let cfg = cfg.normalised();
-        cfg.validate()?;
-        Ok(cfg)
+        // one object of sections, never positional (serde would fill the structs from arrays)
+        crate::json::reject_positional(&value)?;
+        if let Some(key) = crate::json::duplicate_key(text.as_bytes()) {
+            return Err(ConfigError::Parse(format!("{key}: the key occurs twice (each key once)")));
+        }
+        Ok(value)
+    }
+
+    /// SHA-256 (hex) of the configuration's compact JSON (struct field order, so stable): the
+    /// one configuration hash of every output, study cache and certificate set.
+    pub fn sha256(&self) -> String {
+        wingcheck_io::sha256_hex(serde_json::to_string(self).expect("config serialises").as_bytes())
+    }
+
+    /// Every key whose value differs between `self` and `other`, in the config's key order:
+    /// (`section.key`, value here, value there) — what `wingcheck config --diff` prints.
+    pub fn diff(&self, other: &Config) -> Vec<(String, serde_json::Value, serde_json::Value)> {
+        let (a, b) = (
+            serde_json::to_value(self).expect("config serialises"),
+            serde_json::to_value(other).expect("config serialises"),
+        );
+        let mut out = Vec::new();
+        diff_values("", &a, &b, &mut out);
+        out
     }
 
     /// The same configuration with every −0 replaced by 0, so that equal parameters give equal
@@ -480,6 +519,45 @@ pub fn format_number(x: f64) -> String {
 }
 
 /// "field.path: message" for a deserialisation error (the path is omitted at the top level).
+/// Merges `over` into `base`: objects key by key (recursively), anything else replaces.
+/// Keys the default does not have are inserted, so deserialising names them as unknown.
+fn merge(base: &mut serde_json::Value, over: serde_json::Value) {
+    match (base, over) {
+        (serde_json::Value::Object(b), serde_json::Value::Object(o)) => {
+            for (k, v) in o {
+                match b.get_mut(&k) {
+                    Some(slot) if slot.is_object() && v.is_object() => merge(slot, v),
+                    _ => {
+                        b.insert(k, v);
+                    }
+                }
+            }
+        }
+        (b, o) => *b = o,
+    }
+}
+
+fn diff_values(
+    path: &str,
+    a: &serde_json::Value,
+    b: &serde_json::Value,
+    out: &mut Vec<(String, serde_json::Value, serde_json::Value)>,
+) {
+    match (a, b) {
+        (serde_json::Value::Object(x), serde_json::Value::Object(y)) => {
+            for (k, va) in x {
+                let p = if path.is_empty() { k.clone() } else { format!("{path}.{k}") };
+                match y.get(k) {
+                    Some(vb) => diff_values(&p, va, vb, out),
+                    None => out.push((p, va.clone(), serde_json::Value::Null)),
+                }
+            }
+        }
+        _ if a != b => out.push((path.to_string(), a.clone(), b.clone())),
+        _ => {}
+    }
+}
+
 fn describe(e: &serde_path_to_error::Error<serde_json::Error>) -> String {
     let path = e.path().to_string();
     if path == "." || path.is_empty() {

@@ -11,7 +11,7 @@
 
 mod config;
 mod error;
-mod json;
+pub mod json;
 mod overrides;
 pub mod quantity;
 mod scheme;

@@ -13,7 +13,7 @@
 use serde::{Deserialize, Serialize};
 
 /// A value with an estimated bound on its absolute error (same units as the value).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Estimate {
     /// The value.
     pub value: f64,
@@ -38,7 +38,7 @@ impl Estimate {
 }
 
 /// The unit of a reported number. Serialised as its symbol (`"1"` for dimensionless).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, schemars::JsonSchema)]
 pub enum Unit {
     /// A pure number (ratios, relative differences, exponents).
     #[serde(rename = "1")]
@@ -85,6 +85,12 @@ pub enum Unit {
     /// Joule (the wing's energy).
     #[serde(rename = "J")]
     Joule,
+    /// 1/m² (the tip shear term q'''(s,t) of the boundary condition).
+    #[serde(rename = "1/m²")]
+    PerSquareMetre,
+    /// rad/m (the tip twist slope θ'(s,t)).
+    #[serde(rename = "rad/m")]
+    RadianPerMetre,
     /// The units of the Lyapunov function W and its constants (λ1, λ2, λ3, ε, W(0)): the paper
     /// mixes kinetic, elastic and cross terms weighted by a and b, so these carry no single
     /// physical unit; they are stated "in W units".
@@ -114,8 +120,36 @@ impl Unit {
             Unit::NewtonMetrePerSecond => "N m/s",
             Unit::NewtonPerMetre => "N/m",
             Unit::Joule => "J",
+            Unit::PerSquareMetre => "1/m²",
+            Unit::RadianPerMetre => "rad/m",
             Unit::LyapunovUnits => "W units",
             Unit::MixedSi => "(SI, mixed)",
+        }
+    }
+
+    /// The suffix of a CSV column in this unit (`q_tip_m`, `tau2_N_m`; "" for a dimensionless
+    /// column): letters, digits and `_` only, so numpy's structured loaders keep the name.
+    /// Listed with every column in docs/outputs.md.
+    pub fn column_suffix(self) -> &'static str {
+        match self {
+            Unit::Dimensionless | Unit::Count => "",
+            Unit::Percent => "pct",
+            Unit::Metre => "m",
+            Unit::Radian => "rad",
+            Unit::Second => "s",
+            Unit::PerSecond => "per_s",
+            Unit::RadianPerSecond => "rad_per_s",
+            Unit::MetrePerSecond => "m_per_s",
+            Unit::Newton => "N",
+            Unit::NewtonMetre => "N_m",
+            Unit::NewtonPerSecond => "N_per_s",
+            Unit::NewtonMetrePerSecond => "N_m_per_s",
+            Unit::NewtonPerMetre => "N_per_m",
+            Unit::Joule => "J",
+            Unit::PerSquareMetre => "per_m2",
+            Unit::RadianPerMetre => "rad_per_m",
+            Unit::LyapunovUnits => "Wu",
+            Unit::MixedSi => "si_mixed",
         }
     }
 
@@ -126,7 +160,7 @@ impl Unit {
 }
 
 /// What an error estimate covers.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum ErrorSource {
     /// The spatial grid (h-refinement).
@@ -146,7 +180,7 @@ pub enum ErrorSource {
 }
 
 /// What a number without an error estimate rests on.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum ValueBasis {
     /// Exact: rational arithmetic, an integer count, or a definition.
@@ -187,7 +221,7 @@ impl ValueBasis {
 }
 
 /// The error of a number, or the basis it rests on.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(untagged)]
 pub enum Accuracy {
     /// ± `error` (absolute, ≥ 0, in the value's unit), covering the listed sources.
@@ -207,7 +241,7 @@ pub enum Accuracy {
 /// A labelled number with its unit and its error or basis: the leaf of every reported
 /// evidence table (serialised `{"label", "value", "unit", "error", "covers"}` or
 /// `{"label", "value", "unit", "basis"}`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Quantity {
     /// What the number is, in words (symbols defined in the report's notation box).
     pub label: String,

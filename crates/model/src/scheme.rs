@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 use crate::{Config, ControllerKind, Method, ObserverRule};
 
 /// Time integrator of the closed loop.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum TimeScheme {
     /// `exponential` for the explicit FTDO stepped in the modal basis (its estimate alternates
@@ -61,7 +61,7 @@ impl std::str::FromStr for TimeScheme {
 
 /// Basis in which the semi-discrete closed loop is stepped (the same discrete equations and
 /// scheme either way, so the two agree to round-off).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum StepBasis {
     /// `modal` up to [`MODAL_AUTO_UNKNOWNS`] unknowns if the modal basis passes its

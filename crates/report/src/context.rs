@@ -56,6 +56,8 @@ pub struct Page {
 pub struct Build {
     /// Git commit of the checkout the tool was built from, or `unknown`.
     pub git_commit: String,
+    /// Whether that tree was clean, dirty (uncommitted changes) or unknown (no git checkout).
+    pub tree: String,
     /// rustc version.
     pub rustc: String,
     /// UTC date of the run (volatile).

@@ -78,16 +78,22 @@ pub struct Rendered {
     pub svg: String,
     /// CSV of the data behind it.
     pub csv: String,
+    /// What the CSV's columns hold, with units (the report's provenance.json lists it).
+    pub contents: String,
 }
 
 impl Figure {
     /// Draw the SVG and write the CSV.
     pub fn render(&self) -> Result<Rendered, ReportError> {
         Ok(match &self.chart {
-            Chart::Line(c) => Rendered { svg: line_svg(c)?, csv: c.data.to_csv() },
-            Chart::Heat(h) => Rendered { svg: heatmap_svg(h)?, csv: h.to_csv() },
-            Chart::Surface(s) => Rendered { svg: surface_svg(s)?, csv: s.to_csv() },
-            Chart::Grid { map, csv } => Rendered { svg: crate::chart::grid_heatmap_svg(map)?, csv: csv.clone() },
+            Chart::Line(c) => Rendered { svg: line_svg(c)?, csv: c.data.to_csv(), contents: c.data.csv_contents() },
+            Chart::Heat(h) => Rendered { svg: heatmap_svg(h)?, csv: h.to_csv(), contents: h.csv_contents() },
+            Chart::Surface(s) => Rendered { svg: surface_svg(s)?, csv: s.to_csv(), contents: s.csv_contents() },
+            Chart::Grid { map, csv } => Rendered {
+                svg: crate::chart::grid_heatmap_svg(map)?,
+                csv: csv.clone(),
+                contents: "the (a, b) region map: one row per cell (docs/outputs.md, region map)".into(),
+            },
         })
     }
 }

@@ -196,7 +196,7 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
         .chain(region_fig.iter())
         .chain(row_figs.iter().flatten())
         .collect();
-    let mut files = render_charts(&all, &staging, progress)?;
+    let (mut files, csv_records) = render_charts(&all, &staging, progress)?;
     timings.push(StageTiming { name: "charts".into(), seconds: t.elapsed().as_secs_f64() });
 
     // The page.
@@ -225,6 +225,9 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     files.push(
         staging.write("ledger.json", serde_json::to_string_pretty(&ledger).expect("ledger serialises").as_bytes())?,
     );
+    // Where the data came from, and what each CSV's columns hold (docs/outputs.md).
+    let provenance = wingcheck_io::Provenance::new(&page.config_sha256, csv_records);
+    files.push(staging.write("provenance.json", provenance.to_json().as_bytes())?);
     timings.push(StageTiming { name: "html".into(), seconds: t.elapsed().as_secs_f64() });
     report(progress, "html", 1, 1);
 
@@ -270,12 +273,12 @@ fn timed<T>(f: impl FnOnce() -> T) -> (T, f64) {
 }
 
 /// The SVG and CSV of every figure, written into the staging directory in parallel; the file
-/// names written.
+/// names written and each CSV's record for provenance.json (sorted by file).
 fn render_charts(
     all: &[&Figure],
     staging: &atomic::Staging,
     progress: Option<&(dyn Fn(Progress) + Sync)>,
-) -> Result<Vec<String>, ReportError> {
+) -> Result<(Vec<String>, Vec<wingcheck_io::FileRecord>), ReportError> {
     let total = all.len();
     let done = std::sync::atomic::AtomicUsize::new(0);
     Ok(all
@@ -286,12 +289,16 @@ fn render_charts(
             let csv = staging.write(&format!("{}.csv", f.file), r.csv.as_bytes())?;
             let k = done.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
             report(progress, "charts", k, total);
-            Ok::<_, ReportError>([svg, csv])
+            let record = wingcheck_io::FileRecord { file: csv.clone(), contents: r.contents };
+            Ok::<_, ReportError>(([svg, csv], record))
         })
         .collect::<Result<Vec<_>, _>>()?
         .into_iter()
-        .flatten()
-        .collect())
+        .unzip::<_, _, Vec<_>, Vec<_>>())
+    .map(|(names, mut records)| {
+        records.sort_by(|a, b| a.file.cmp(&b.file));
+        (names.into_iter().flatten().collect(), records)
+    })
 }
 
 /// The figures a page shows, by section.
@@ -308,9 +315,14 @@ fn page(cfg: &Config, opts: &ReportOptions, ledger: &Ledger, figs: PageFigures) 
     Ok(Page {
         tool: ledger.tool.clone(),
         build: Build {
-            git_commit: provenance::GIT_COMMIT.into(),
-            rustc: provenance::RUSTC_VERSION.into(),
-            date: provenance::utc_string(std::time::SystemTime::now()),
+            git_commit: wingcheck_io::build().commit.clone(),
+            tree: match wingcheck_io::build().tree {
+                wingcheck_io::TreeState::Clean => "clean (the commit as it is)".into(),
+                wingcheck_io::TreeState::Dirty => "dirty (built with uncommitted changes to tracked files)".into(),
+                wingcheck_io::TreeState::Unknown => "unknown (not built from a git checkout)".into(),
+            },
+            rustc: wingcheck_io::build().rustc.clone(),
+            date: provenance::utc_string(jiff::Timestamp::now()),
             command_line: opts.command_line.unwrap_or("(library call)").into(),
             total_seconds: String::new(),
         },

@@ -176,14 +176,7 @@ pub struct RegionStats {
     pub failed: usize,
 }
 
-fn median(mut v: Vec<f64>) -> Option<f64> {
-    if v.is_empty() {
-        return None;
-    }
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    Some(if n % 2 == 1 { v[n / 2] } else { 0.5 * (v[n / 2 - 1] + v[n / 2]) })
-}
+use wingcheck_sim::metrics::median;
 
 impl RegionMap {
     fn cell(&self, i: usize, j: usize) -> &PointResult {
@@ -250,23 +243,41 @@ impl RegionMap {
         }
     }
 
-    /// The map as CSV: a, b, status, verdicts, the metric.
+    /// The map as CSV (docs/outputs.md, region-map.csv): the two axis keys, the status columns
+    /// of the search's results.csv, and the metric with its unit; its cell is empty exactly when
+    /// `rms_available` is false.
     pub fn to_csv(&self) -> String {
-        let mut out = format!("a,b,status,w_positive_definite,feasible_32,{METRIC}_m\n");
-        let o = |v: Option<bool>| v.map_or(String::new(), |b| b.to_string());
+        let header = [
+            "control__a".to_string(),
+            "control__b".to_string(),
+            "status".to_string(),
+            "w_decided".to_string(),
+            "w_positive_definite".to_string(),
+            "feasible_32_decided".to_string(),
+            "feasible_32".to_string(),
+            "rms_available".to_string(),
+            wingcheck_io::column_name(METRIC.name(), METRIC.unit().column_suffix()),
+        ];
+        let flag = |b: bool| if b { "true" } else { "false" }.to_string();
+        let mut rows = Vec::with_capacity(self.a.len() * self.b.len());
         for (i, a) in self.a.iter().enumerate() {
             for (j, b) in self.b.iter().enumerate() {
                 let p = self.cell(i, j);
-                let m = p.metric(METRIC).map_or(String::new(), |v| v.to_string());
-                out.push_str(&format!(
-                    "{a},{b},{},{},{},{m}\n",
-                    p.status.name(),
-                    o(p.w_positive_definite),
-                    o(p.feasible_32)
-                ));
+                let m = p.metric(METRIC);
+                rows.push([
+                    wingcheck_io::number(*a),
+                    wingcheck_io::number(*b),
+                    p.status.name().to_string(),
+                    flag(p.w_positive_definite.is_some()),
+                    flag(p.w_positive_definite == Some(true)),
+                    flag(p.feasible_32.is_some()),
+                    flag(p.feasible_32 == Some(true)),
+                    flag(m.is_some()),
+                    m.map(wingcheck_io::number).unwrap_or_default(),
+                ]);
             }
         }
-        out
+        wingcheck_io::csv_text(header, rows)
     }
 
     /// The map as a report figure.

@@ -164,14 +164,14 @@ pub fn assemble(
 ) -> Result<(Vec<String>, (usize, usize)), SearchError> {
     let keys: Vec<String> = search.grid.axes.iter().map(|a| a.key.clone()).collect();
     let o = &search.options;
-    let mut set = FileSet::new(dir);
+    let mut set = FileSet::new(dir)?;
     let mut csv = set.open("results.csv")?;
     csv.write(&store::results_csv_header(&keys))?;
     let mut json = set.open("results.json")?;
     let mut failures = set.open("failures.csv")?;
     failures.write(&store::failures_header(&keys))?;
     let mut timings = set.open("timings.csv")?;
-    timings.write(store::TIMINGS_HEADER)?;
+    timings.write(&store::timings_header())?;
     let n = search.points();
     let mut acc = Assembly {
         verdicts: Vec::with_capacity(n),
@@ -184,7 +184,8 @@ pub fn assemble(
     };
     let stream = points.map(|p| p.and_then(|p| acc.add(&p).map(|()| p)));
     let json_path = json.path().to_string();
-    store::write_results_json(json.writer(), &json_path, &keys, stream)?;
+    let provenance = crate::records::provenance(search);
+    store::write_results_json(json.writer(), &json_path, &keys, &provenance, stream)?;
     json.finish()?;
     if acc.verdicts.len() != n {
         return Err(SearchError::Io {
@@ -197,11 +198,12 @@ pub fn assemble(
         f.finish()?;
     }
     set.stage("best.json", &best.json(&keys))?;
+    set.stage("provenance.json", &provenance.to_json())?;
     drop(best);
     let cache = TheoryCache::new(o.lyapunov_elements);
     let rows = boundaries(search, &verdicts, &cache, o.refine);
     set.stage("boundary.csv", &boundary_csv(&search.grid, &rows))?;
-    let mut names = vec!["results.csv", "results.json", "best.json", "failures.csv", "boundary.csv"]
+    let mut names = vec!["results.csv", "results.json", "best.json", "provenance.json", "failures.csv", "boundary.csv"]
         .into_iter()
         .map(String::from)
         .collect::<Vec<_>>();

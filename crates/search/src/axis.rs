@@ -7,7 +7,7 @@ use wingcheck_model::{apply_overrides, Config};
 use crate::SearchError;
 
 /// How an axis' values are spaced.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(tag = "kind", rename_all = "lowercase")]
 pub enum Spacing {
     /// `n` values lo·(hi/lo)^(i/(n−1)), i = 0..n−1 (endpoints exact); lo, hi > 0.
@@ -36,7 +36,7 @@ pub enum Spacing {
 }
 
 /// One search axis: a config key and its values.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Axis {
     /// Dotted config key, e.g. `control.a`.
     pub key: String,

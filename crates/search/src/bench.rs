@@ -14,7 +14,7 @@ use crate::{finalize, run, RunControl, Search, SearchError, SearchOptions};
 use wingcheck_sim::modal::RecordedSignal;
 
 /// One timed run of the whole search.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, schemars::JsonSchema)]
 pub struct ThreadTiming {
     /// Worker threads.
     pub threads: usize,
@@ -45,7 +45,7 @@ fn process_cpu_seconds() -> Option<f64> {
 }
 
 /// The benchmark's result.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, schemars::JsonSchema)]
 pub struct SearchBench {
     /// Axes (command-line form).
     pub axes: Vec<String>,
@@ -78,7 +78,7 @@ pub struct SearchBench {
 
 /// A search with one observer rule (`observer.rule`), on the 8 × 8 grid of the same axes with
 /// the most threads: its cost per point.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, schemars::JsonSchema)]
 pub struct RuleTiming {
     /// `implicit` or `explicit`.
     pub rule: String,
@@ -92,10 +92,7 @@ pub struct RuleTiming {
     pub cpu_seconds_per_point: Option<f64>,
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
+use wingcheck_sim::bench::median;
 
 /// One timed whole search of `axes` on `base` with `threads` threads in a new directory under
 /// `tmp`: (wall s, CPU s, summary).

@@ -16,7 +16,6 @@
 use std::path::Path;
 
 use serde::{Deserialize, Serialize};
-use sha2::{Digest, Sha256};
 
 use crate::metric::METRICS;
 use crate::point::{PointResult, Status};
@@ -30,13 +29,10 @@ pub const CHUNK_FORMAT: &str = "wingcheck-search-chunk";
 /// points may have been computed differently).
 pub const TOOL: &str = concat!("wingcheck ", env!("CARGO_PKG_VERSION"));
 
-/// Lowercase hex SHA-256.
-pub fn sha256_hex(bytes: &[u8]) -> String {
-    Sha256::digest(bytes).iter().map(|b| format!("{b:02x}")).collect()
-}
+pub use wingcheck_io::sha256_hex;
 
 /// The first line of a chunk file.
-#[derive(Debug, Serialize, Deserialize)]
+#[derive(Debug, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct Header {
     format: String,
@@ -51,7 +47,7 @@ struct Header {
 }
 
 /// One point line of a chunk file.
-#[derive(Debug, Serialize, Deserialize)]
+#[derive(Debug, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct ChunkLine {
     index: usize,

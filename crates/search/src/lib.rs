@@ -27,6 +27,7 @@ pub mod limits;
 pub mod metric;
 pub mod modal;
 pub mod point;
+pub mod records;
 mod refine;
 pub mod store;
 pub mod theory;
@@ -41,7 +42,7 @@ pub use axis::{parse_axes, validate_axes, Axis, Grid, Spacing};
 pub use exec::{merge, run};
 pub use heatmap::heatmap_svg;
 pub use limits::{WorkEstimate, MAX_CORE_SECONDS, MAX_POINTS, MAX_POINTS_OVERRIDE};
-pub use metric::{Metric, Ranking, METRICS};
+pub use metric::{Metric, Ranking, METRICS, METRIC_UNITS};
 pub use point::{PointResult, PointVerdicts, Status};
 pub use refine::{boundaries, boundary_csv, BoundaryRow};
 pub use theory::{Theory, TheoryCache, Verdicts};
@@ -109,14 +110,16 @@ pub enum SearchError {
 }
 
 /// Options that change results (all recorded in the manifest).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct SearchOptions {
-    /// Metric window [t0, t1] (s); None: the second half of the horizon.
+    /// Metric window [t0, t1] (s); absent: the second half of the horizon.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub window: Option<(f64, f64)>,
     /// Points per chunk (≥ 1).
     pub chunk_size: usize,
     /// Boundary refinement tolerance: relative (hi/lo − 1) on log axes, a fraction of the axis
-    /// span on lin axes. None: report the coarse brackets only.
+    /// span on lin axes. Absent: report the coarse brackets only.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub refine: Option<f64>,
     /// How `best.json` ranks the points.
     pub best: Ranking,
@@ -140,8 +143,11 @@ impl Default for SearchOptions {
 }
 
 /// `manifest.json`: everything that defines a search's results.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Manifest {
+    /// Layout version of this file ([`wingcheck_io::SCHEMA_VERSION`]; docs/schema/).
+    #[serde(default)]
+    pub schema_version: u32,
     /// Format of the directory.
     pub format: u32,
     /// The base configuration.
@@ -249,6 +255,7 @@ impl Search {
     /// The manifest.
     pub fn manifest(&self) -> Manifest {
         Manifest {
+            schema_version: wingcheck_io::SCHEMA_VERSION,
             format: 1,
             base_config: self.base.clone(),
             base_config_sha256: wingcheck_claims::config_sha256(&self.base),
@@ -371,7 +378,7 @@ pub struct RunControl<'a> {
 }
 
 /// What a run or merge did.
-#[derive(Debug, Clone, Default, Serialize)]
+#[derive(Debug, Clone, Default, Serialize, schemars::JsonSchema)]
 pub struct RunSummary {
     /// Output directory.
     pub out_dir: PathBuf,

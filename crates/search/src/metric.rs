@@ -186,6 +186,22 @@ impl serde::Serialize for Ranking {
     }
 }
 
+impl schemars::JsonSchema for Ranking {
+    fn schema_name() -> std::borrow::Cow<'static, str> {
+        "Ranking".into()
+    }
+
+    /// A metric name, optionally prefixed `-` (maximised).
+    fn json_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+        let names: Vec<String> = METRICS.iter().flat_map(|m| [m.to_string(), format!("-{m}")]).collect();
+        schemars::json_schema!({
+            "type": "string",
+            "description": "a metric name (minimised) or -name (maximised)",
+            "enum": names,
+        })
+    }
+}
+
 impl<'de> serde::Deserialize<'de> for Ranking {
     fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
         String::deserialize(deserializer)?.parse().map_err(serde::de::Error::custom)
@@ -201,6 +217,18 @@ pub const METRICS: [&str; 21] = {
         i += 1;
     }
     names
+};
+
+/// The unit of each metric, in output order (the units of [`Metric::ALL`]): results.csv suffixes
+/// its column with it, results.json lists it under `units`.
+pub const METRIC_UNITS: [Unit; 21] = {
+    let mut units = [Unit::Dimensionless; 21];
+    let mut i = 0;
+    while i < units.len() {
+        units[i] = Metric::ALL[i].unit();
+        i += 1;
+    }
+    units
 };
 
 #[cfg(test)]

@@ -41,7 +41,7 @@ pub fn sup_tilde(signal: &RecordedSignal, cfg: &Config) -> (f64, f64) {
 
 /// What the metrics need of a run, at the output samples: t (s), q(s,t) (m), θ(s,t) (rad),
 /// τ1 (N), τ2 (N m), g̃ = g − ĝ per channel, and E(T) (J).
-#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct TipTrace {
     /// Sample times (s).
     pub t: Vec<f64>,

@@ -13,7 +13,7 @@ use crate::modal::{RunCache, TipTrace};
 use crate::theory::{Theory, TheoryCache};
 
 /// Outcome of a point.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Status {
     /// Simulation and theory completed.

@@ -190,29 +190,28 @@ fn bisect(
     }
 }
 
-/// `boundary.csv`: `kind,axis,<axis keys…>,lo,hi,estimate,verdict_at_lo,bisections,note`;
-/// the axis-key columns hold the lower neighbour's values, with the bisected axis' column
-/// set to the estimate.
+/// `boundary.csv`: `kind,axis,<axis key columns…>,lo,hi,estimate,verdict_at_lo,bisections,note`
+/// (docs/outputs.md); the axis-key columns hold the lower neighbour's values, with the
+/// bisected axis' column set to the estimate; `lo`, `hi`, `estimate` are in the unit of the
+/// key named in `axis`.
 pub fn boundary_csv(grid: &Grid, rows: &[BoundaryRow]) -> String {
-    let keys: Vec<&str> = grid.axes.iter().map(|a| a.key.as_str()).collect();
-    let mut out = format!("kind,axis,{},lo,hi,estimate,verdict_at_lo,bisections,note\n", keys.join(","));
-    for r in rows {
+    let mut header = vec!["kind".to_string(), "axis".to_string()];
+    header.extend(grid.axes.iter().map(|a| wingcheck_io::key_column(&a.key)));
+    header.extend(["lo", "hi", "estimate", "verdict_at_lo", "bisections", "note"].map(String::from));
+    let records = rows.iter().map(|r| {
         let mut vals = grid.texts(r.point);
-        vals[r.axis] = format!("{}", r.estimate);
-        let vals: Vec<String> =
-            vals.iter().map(|v| if v.contains(',') { format!("\"{v}\"") } else { v.clone() }).collect();
-        out.push_str(&format!(
-            "{},{},{},{},{},{},{},{},{}\n",
-            r.kind,
-            keys[r.axis],
-            vals.join(","),
-            r.lo,
-            r.hi,
-            r.estimate,
-            r.verdict_at_lo,
-            r.bisections,
-            r.note.replace(',', ";")
-        ));
-    }
-    out
+        vals[r.axis] = wingcheck_io::number(r.estimate);
+        let mut row = vec![r.kind.to_string(), grid.axes[r.axis].key.clone()];
+        row.extend(vals);
+        row.extend([
+            wingcheck_io::number(r.lo),
+            wingcheck_io::number(r.hi),
+            wingcheck_io::number(r.estimate),
+            r.verdict_at_lo.to_string(),
+            r.bisections.to_string(),
+            if r.note.is_empty() { "none".to_string() } else { r.note.clone() },
+        ]);
+        row
+    });
+    wingcheck_io::csv_text(header, records)
 }

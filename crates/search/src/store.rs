@@ -5,10 +5,12 @@
 use std::path::{Path, PathBuf};
 
 use serde::Serialize;
-use serde_json::{json, Map, Value};
+use serde_json::{Map, Value};
+
+use crate::records::{BestDocument, PointRecord};
 
 pub use crate::chunk::{chunk_text, read_chunk};
-use crate::metric::{Ranking, METRICS};
+use crate::metric::{Metric, Ranking, METRICS, METRIC_UNITS};
 use crate::point::{PointResult, Status};
 use crate::SearchError;
 
@@ -16,9 +18,10 @@ use crate::SearchError;
 pub const CHUNK_DIR: &str = "chunks";
 
 /// Tag of this process's temp files: `.{name}.tmp-{pid}` (one file at a time) and
-/// `.{name}.set-tmp-{pid}` ([`FileSet`]). A run removes the ones of dead processes
-/// ([`remove_stale_temps`]), so a directory resumed after a kill holds exactly the files of an
-/// uninterrupted run.
+/// `.{name}.set-tmp-{pid}` ([`FileSet`]). While they exist the process holds its lock
+/// `.wingcheck-{pid}.lock` in the same directory ([`wingcheck_io::DirLock`]); a run removes the
+/// temp files whose writer no longer holds it ([`remove_stale_temps`]), so a directory resumed
+/// after a kill holds exactly the files of an uninterrupted run.
 const TMP_TAGS: [&str; 2] = [".tmp-", ".set-tmp-"];
 
 /// Write `bytes` to `path` atomically: temp file `.{name}.tmp-{pid}` in the same directory,
@@ -28,6 +31,8 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), SearchError> {
     let err = |e: std::io::Error| SearchError::Io { path: path.display().to_string(), detail: e.to_string() };
     let name = path.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
     let tmp = path.with_file_name(format!(".{name}{}{}", TMP_TAGS[0], std::process::id()));
+    let dir = path.parent().unwrap_or(Path::new("."));
+    let _lock = wingcheck_io::DirLock::acquire(dir).map_err(err)?;
     let write = || -> std::io::Result<()> {
         let mut f = std::fs::File::create(&tmp)?;
         f.write_all(bytes)?;
@@ -45,8 +50,9 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), SearchError> {
     })
 }
 
-/// Removes the temp files ([`TMP_TAGS`]) in `dir` whose process is no longer alive (a kill
-/// during a write or the final assembly); those of live processes are left alone.
+/// Removes the temp files ([`TMP_TAGS`]) in `dir` whose writer no longer holds its lock there
+/// (killed during a write or the final assembly), and such writers' lock files; those of live
+/// processes are left alone.
 pub fn remove_stale_temps(dir: &Path) {
     let Ok(entries) = std::fs::read_dir(dir) else { return };
     for e in entries.flatten() {
@@ -56,17 +62,20 @@ pub fn remove_stale_temps(dir: &Path) {
         }
         let pid = TMP_TAGS.iter().find_map(|tag| name.rsplit_once(tag).and_then(|(_, p)| p.parse::<u32>().ok()));
         if let Some(pid) = pid {
-            if !wingcheck_io::process_alive(pid) {
+            if !wingcheck_io::owner_alive(dir, pid) {
                 let _ = std::fs::remove_file(e.path());
             }
         }
     }
+    wingcheck_io::remove_stale_locks(dir);
 }
 
-/// Whether `name` is a temp file of [`write_atomic`] or [`FileSet`].
+/// Whether `name` is a temp file of [`write_atomic`] or [`FileSet`], or the lock file of their
+/// writer.
 pub fn is_temp(name: &str) -> bool {
     name.starts_with('.')
-        && TMP_TAGS.iter().any(|tag| name.rsplit_once(tag).is_some_and(|(_, p)| p.parse::<u32>().is_ok()))
+        && (TMP_TAGS.iter().any(|tag| name.rsplit_once(tag).is_some_and(|(_, p)| p.parse::<u32>().is_ok()))
+            || wingcheck_io::lock_owner(name).is_some())
 }
 
 /// Read a file to a string.
@@ -86,68 +95,92 @@ pub fn chunk_path(dir: &Path, c: usize) -> PathBuf {
     dir.join(CHUNK_DIR).join(format!("chunk-{c:05}.jsonl"))
 }
 
-fn csv_field(s: &str) -> String {
-    if s.contains([',', '"', '\n', '\r']) {
-        format!("\"{}\"", s.replace('"', "\"\""))
+/// A verdict as written in results.csv: `true`/`false`, with `false` also when undecided (the
+/// `*_decided` column says which).
+fn verdict(b: Option<bool>) -> &'static str {
+    if b == Some(true) {
+        "true"
     } else {
-        s.to_string()
+        "false"
     }
 }
 
-fn opt_bool(b: Option<bool>) -> String {
-    b.map(|b| b.to_string()).unwrap_or_default()
+fn decided(b: Option<bool>) -> &'static str {
+    if b.is_some() {
+        "true"
+    } else {
+        "false"
+    }
 }
 
-/// Header line of `results.csv`: `index,<axis keys>,status,w_positive_definite,feasible_32,
-/// theorem_feasible,<METRICS>,message`.
+/// A text cell: the text, or `none` (no cell is left empty but a metric without a value,
+/// which `missing_metrics` names).
+fn text_cell(s: &str) -> &str {
+    if s.is_empty() {
+        "none"
+    } else {
+        s
+    }
+}
+
+/// The status columns of results.csv, between the axis values and the metrics.
+pub const RESULT_STATUS_COLUMNS: [&str; 8] = [
+    "status",
+    "w_decided",
+    "w_positive_definite",
+    "feasible_32_decided",
+    "feasible_32",
+    "theorem_feasible",
+    "settled",
+    "missing_metrics",
+];
+
+/// Header of `results.csv`: `index`, the axis keys as columns (`control.a` → `control__a`),
+/// [`RESULT_STATUS_COLUMNS`], the metrics with their unit suffixes ([`metric_columns`]),
+/// `message` (docs/outputs.md).
 pub fn results_csv_header(keys: &[String]) -> String {
     let mut head = vec!["index".to_string()];
-    head.extend(keys.iter().map(|k| csv_field(k)));
-    head.extend(["status", "w_positive_definite", "feasible_32", "theorem_feasible"].map(String::from));
-    head.extend(METRICS.iter().map(|m| m.to_string()));
+    head.extend(keys.iter().map(|k| wingcheck_io::key_column(k)));
+    head.extend(RESULT_STATUS_COLUMNS.map(String::from));
+    head.extend(metric_columns());
     head.push("message".into());
-    head.join(",") + "\n"
+    wingcheck_io::csv_record(head)
 }
 
-/// One row of `results.csv` (points in index order; f64 in Rust's shortest round-trip form;
-/// missing values empty).
+/// The metric columns' names: each metric with its unit suffix (`rms_q_tip_m`, `lambda_per_s`).
+pub fn metric_columns() -> Vec<String> {
+    METRICS.iter().zip(METRIC_UNITS).map(|(m, u)| wingcheck_io::column_name(m, u.column_suffix())).collect()
+}
+
+/// One row of `results.csv` (points in index order; f64 in Rust's shortest round-trip form).
+/// A metric cell is empty exactly when the metric has no value, and `missing_metrics` then
+/// names it (`settling_time` also sets `settled` to false).
 pub fn results_csv_row(p: &PointResult) -> String {
     let mut row = vec![p.index.to_string()];
-    row.extend(p.values.iter().map(|v| csv_field(v)));
-    row.push(p.status.name().into());
-    row.push(opt_bool(p.w_positive_definite));
-    row.push(opt_bool(p.feasible_32));
-    row.push(opt_bool(p.theorem_feasible()));
-    row.extend(p.metrics.iter().map(|m| m.map(|x| format!("{x}")).unwrap_or_default()));
-    row.push(csv_field(&p.message));
-    row.join(",") + "\n"
+    row.extend(p.values.iter().cloned());
+    let settling = p.metric(Metric::SettlingTime);
+    let missing: Vec<&str> = METRICS.iter().zip(&p.metrics).filter(|(_, m)| m.is_none()).map(|(n, _)| *n).collect();
+    row.extend(
+        [
+            p.status.name(),
+            decided(p.w_positive_definite),
+            verdict(p.w_positive_definite),
+            decided(p.feasible_32),
+            verdict(p.feasible_32),
+            verdict(p.theorem_feasible()),
+            if settling.is_some() { "true" } else { "false" },
+        ]
+        .map(String::from),
+    );
+    row.push(if missing.is_empty() { "none".into() } else { missing.join(";") });
+    row.extend(p.metrics.iter().map(|m| m.map(wingcheck_io::number).unwrap_or_default()));
+    row.push(text_cell(&p.message).to_string());
+    wingcheck_io::csv_record(row)
 }
 
-/// A swept value as JSON: the number or literal it parses as, else a string.
-fn value_json(text: &str) -> Value {
-    serde_json::from_str(text).unwrap_or_else(|_| Value::String(text.to_string()))
-}
-
-/// One point as a JSON object (metrics keyed by name; missing → null).
-pub fn point_json(keys: &[String], p: &PointResult) -> Value {
-    let mut values = Map::new();
-    for (k, v) in keys.iter().zip(&p.values) {
-        values.insert(k.clone(), value_json(v));
-    }
-    let mut metrics = Map::new();
-    for (name, m) in METRICS.iter().zip(&p.metrics) {
-        metrics.insert(name.to_string(), m.map_or(Value::Null, |x| json!(x)));
-    }
-    json!({
-        "index": p.index,
-        "values": values,
-        "status": p.status,
-        "message": p.message,
-        "w_positive_definite": p.w_positive_definite,
-        "feasible_32": p.feasible_32,
-        "theorem_feasible": p.theorem_feasible(),
-        "metrics": metrics,
-    })
+/// One point as a JSON object ([`PointRecord`]).
+pub fn point_json(keys: &[String], p: &PointResult) -> PointRecord {
+    PointRecord::new(keys, p)
 }
 
 /// The points of `results.json`, pulled one at a time from a stream while serde_json writes
@@ -177,14 +210,14 @@ impl<I: Iterator<Item = Result<PointResult, SearchError>>> Serialize for LazyPoi
     }
 }
 
-/// Write `results.json` to `out`, consuming `points` (index order) lazily:
-/// `{"axes": [keys], "metrics": [names], "points": [point_json …]}`, pretty-printed by
-/// serde_json with a trailing newline — the same bytes as `serde_json::to_string_pretty` of
-/// the whole document (keys in the order a `json!` map sorts them).
+/// Write `results.json` to `out`, consuming `points` (index order) lazily: the fields of
+/// [`crate::records::ResultsDocument`] in its order, pretty-printed by serde_json with a
+/// trailing newline — the same bytes as `serde_json::to_string_pretty` of the whole document.
 pub fn write_results_json<I>(
     out: &mut impl std::io::Write,
     path: &str,
     keys: &[String],
+    provenance: &wingcheck_io::Provenance,
     points: I,
 ) -> Result<(), SearchError>
 where
@@ -193,12 +226,22 @@ where
     #[derive(Serialize)]
     #[serde(bound = "")]
     struct Doc<'a, I: Iterator<Item = Result<PointResult, SearchError>>> {
+        schema_version: u32,
+        provenance: &'a wingcheck_io::Provenance,
         axes: &'a [String],
         metrics: &'a [&'a str],
+        units: Map<String, Value>,
         points: &'a LazyPoints<'a, I>,
     }
     let lazy = LazyPoints { keys, points: std::cell::RefCell::new(points), error: std::cell::RefCell::new(None) };
-    let doc = Doc { axes: keys, metrics: &METRICS, points: &lazy };
+    let doc = Doc {
+        schema_version: wingcheck_io::SCHEMA_VERSION,
+        provenance,
+        axes: keys,
+        metrics: &METRICS,
+        units: crate::records::metric_units(),
+        points: &lazy,
+    };
     let io = |e: String| SearchError::Io { path: path.to_string(), detail: e };
     let written = serde_json::to_writer_pretty(&mut *out, &doc);
     if let Some(e) = lazy.error.borrow_mut().take() {
@@ -246,37 +289,42 @@ impl BestPoints {
         }
     }
 
-    /// `best.json`: `{"best": […], "best_theorem_feasible": […], "metric", "order"}`.
+    /// `best.json` ([`BestDocument`]).
     pub fn json(&self, keys: &[String]) -> String {
-        let list = |l: &[(f64, PointResult)]| l.iter().map(|(_, p)| point_json(keys, p)).collect::<Vec<Value>>();
-        let doc = json!({
-            "metric": self.ranking.metric.name(),
-            "order": if self.ranking.maximise { "descending" } else { "ascending" },
-            "best": list(&self.overall),
-            "best_theorem_feasible": list(&self.feasible),
-        });
+        let list = |l: &[(f64, PointResult)]| l.iter().map(|(_, p)| point_json(keys, p)).collect::<Vec<PointRecord>>();
+        let doc = BestDocument {
+            schema_version: wingcheck_io::SCHEMA_VERSION,
+            metric: self.ranking.metric.name().to_string(),
+            order: if self.ranking.maximise { "descending" } else { "ascending" }.to_string(),
+            unit: BestDocument::unit_of(self.ranking.metric),
+            best: list(&self.overall),
+            best_theorem_feasible: list(&self.feasible),
+        };
         serde_json::to_string_pretty(&doc).expect("best serialises") + "\n"
     }
 }
 
 /// Header of `timings.csv` (index, simulation and theory wall time in s; not deterministic).
-pub const TIMINGS_HEADER: &str = "index,sim_seconds,theory_seconds\n";
+pub fn timings_header() -> String {
+    wingcheck_io::csv_record(["index", "sim_wall_s", "theory_wall_s"])
+}
 
 /// One row of `timings.csv`.
 pub fn timings_row(p: &PointResult) -> String {
-    format!("{},{},{}\n", p.index, p.sim_seconds, p.theory_seconds)
+    wingcheck_io::csv_record([
+        p.index.to_string(),
+        wingcheck_io::number(p.sim_seconds),
+        wingcheck_io::number(p.theory_seconds),
+    ])
 }
 
-/// Header of `failures.csv`: `index,<axis keys>,status,message` (the whole file when every
-/// point succeeded).
+/// Header of `failures.csv`: `index,<axis key columns>,status,message` (the whole file when
+/// every point succeeded).
 pub fn failures_header(keys: &[String]) -> String {
-    let mut out = String::from("index,");
-    for k in keys {
-        out.push_str(&csv_field(k));
-        out.push(',');
-    }
-    out.push_str("status,message\n");
-    out
+    let mut head = vec!["index".to_string()];
+    head.extend(keys.iter().map(|k| wingcheck_io::key_column(k)));
+    head.extend(["status".to_string(), "message".to_string()]);
+    wingcheck_io::csv_record(head)
 }
 
 /// The row of `failures.csv` of a point whose status is not `ok` (None for an `ok` point).
@@ -284,17 +332,11 @@ pub fn failures_row(p: &PointResult) -> Option<String> {
     if p.status == Status::Ok {
         return None;
     }
-    let mut out = p.index.to_string();
-    out.push(',');
-    for v in &p.values {
-        out.push_str(&csv_field(v));
-        out.push(',');
-    }
-    out.push_str(p.status.name());
-    out.push(',');
-    out.push_str(&csv_field(&p.message));
-    out.push('\n');
-    Some(out)
+    let mut row = vec![p.index.to_string()];
+    row.extend(p.values.iter().cloned());
+    row.push(p.status.name().to_string());
+    row.push(text_cell(&p.message).to_string());
+    Some(wingcheck_io::csv_record(row))
 }
 
 /// Writes a set of files into a directory all or nothing: [`FileSet::stage`] writes each file
@@ -305,12 +347,16 @@ pub struct FileSet {
     dir: PathBuf,
     staged: Vec<String>,
     committed: bool,
+    // Held while temp files of the set may exist (dropped after `Drop` removed them).
+    _lock: wingcheck_io::DirLock,
 }
 
 impl FileSet {
-    /// An empty set for `dir`.
-    pub fn new(dir: &Path) -> FileSet {
-        FileSet { dir: dir.to_path_buf(), staged: Vec::new(), committed: false }
+    /// An empty set for `dir` (taking this process's lock there).
+    pub fn new(dir: &Path) -> Result<FileSet, SearchError> {
+        let lock = wingcheck_io::DirLock::acquire(dir)
+            .map_err(|e| SearchError::Io { path: dir.display().to_string(), detail: format!("cannot lock: {e}") })?;
+        Ok(FileSet { dir: dir.to_path_buf(), staged: Vec::new(), committed: false, _lock: lock })
     }
 
     fn tmp(&self, name: &str) -> PathBuf {

@@ -21,7 +21,7 @@ use wingcheck_model::Config;
 use crate::SearchError;
 
 /// Verdicts and constants that depend only on the wing and (a, b).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Verdicts {
     /// Tight λ2 = min W/κ on V_N (> 0 up to a/b = ω₁(V_N), slightly above the converged ω₁).
     pub lambda2: f64,

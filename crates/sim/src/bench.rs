@@ -11,7 +11,7 @@ use crate::sparse::SymMatrix;
 use crate::{simulate, Discretisation, RunOptions, SimError};
 
 /// One timed configuration.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, schemars::JsonSchema)]
 pub struct Timing {
     /// Elements / intervals.
     pub elements: usize,
@@ -34,9 +34,10 @@ pub struct Timing {
 }
 
 /// Median of repeated measurements.
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(|a, b| a.total_cmp(b));
-    v[v.len() / 2]
+/// The median of timings taken at least once (`--repeats` ≥ 1, so never empty):
+/// [`crate::metrics::median`], for every benchmark (simulator, check, report, search).
+pub fn median(v: Vec<f64>) -> f64 {
+    crate::metrics::median(v).expect("at least one timing")
 }
 
 /// Time one configuration: median of `repeats` full runs, plus the median cost of one solve.
@@ -105,7 +106,7 @@ pub fn loglog_slope(x: &[f64], y: &[f64]) -> f64 {
 }
 
 /// Cost of `wingcheck modes` at its defaults: converged frequencies with error estimates.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, schemars::JsonSchema)]
 pub struct ModesTiming {
     /// Number of frequencies.
     pub count: usize,

@@ -23,7 +23,7 @@ pub const TIP_TOLERANCE: f64 = 2e-4;
 pub const RICHARDSON_2: f64 = 1.25 * 4.0 / 3.0;
 
 /// A full-rate peak with its estimated error.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct PeakEstimate {
     /// max |value| over the horizon at full rate, with its error.
     pub abs_max: Estimate,
@@ -39,7 +39,7 @@ pub struct PeakEstimate {
 }
 
 /// Full-rate peaks with errors.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct PeakEstimates {
     /// |q(s,t)| (m).
     pub q_tip: PeakEstimate,
@@ -60,7 +60,7 @@ pub struct PeakEstimates {
 }
 
 /// A run with its discretisation-error estimates.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, schemars::JsonSchema)]
 pub struct EstimatedRun {
     /// The base run (the configuration as given).
     pub output: SimOutput,

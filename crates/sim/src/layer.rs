@@ -40,7 +40,7 @@ pub const LAYER_TOLERANCE: f64 = 1e-4;
 pub const PEAK_ROUND_OFF: f64 = 256.0 * f64::EPSILON;
 
 /// How the initial layer was resolved.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct InitialLayer {
     /// End of the layer (s): [`LAYER_SAMPLES`] observer sample periods.
     pub t_end: f64,

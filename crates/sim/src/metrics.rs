@@ -162,3 +162,26 @@ mod tests {
         assert_eq!(settle_time(&t, &[0.0; 5], 0.1), Some(0.0));
     }
 }
+
+/// The median of `v` (the mean of the two middle values for an even count; NaNs sort last by
+/// `total_cmp`), or `None` for no values: the one median of wingcheck (the report's region-map
+/// statistics, every benchmark's timings).
+pub fn median(mut v: Vec<f64>) -> Option<f64> {
+    if v.is_empty() {
+        return None;
+    }
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    Some(if n % 2 == 1 { v[n / 2] } else { 0.5 * (v[n / 2 - 1] + v[n / 2]) })
+}
+
+#[cfg(test)]
+mod median_tests {
+    #[test]
+    fn median_of_odd_even_and_empty() {
+        // by hand: sorted [1, 2, 9] → 2; [1, 2, 3, 10] → (2 + 3)/2
+        assert_eq!(super::median(vec![9.0, 1.0, 2.0]), Some(2.0));
+        assert_eq!(super::median(vec![10.0, 3.0, 1.0, 2.0]), Some(2.5));
+        assert_eq!(super::median(vec![]), None);
+    }
+}

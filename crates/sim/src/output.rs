@@ -1,4 +1,5 @@
-//! Writing results: atomic file writes (temp file + rename) and the CSV/JSON forms of a run.
+//! Writing results: atomic file writes (temp file + rename) and the CSV/JSON forms of a run,
+//! each with its provenance (a CSV's in its sidecar `FILE.provenance.json`).
 
 use std::path::Path;
 
@@ -35,25 +36,24 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
     })
 }
 
-/// The series as CSV with a header line; numbers in Rust's shortest round-trip form, so the
+/// The series as CSV: the header names each column with its unit suffix
+/// ([`Series::csv_header`], docs/outputs.md), numbers in Rust's shortest round-trip form, so the
 /// file is bit-reproducible and re-reads to the same f64 values.
 pub fn series_csv(series: &Series) -> String {
-    let mut out = Series::COLUMNS.join(",");
-    out.push('\n');
     let cols = series.columns();
-    for i in 0..series.len() {
-        let row: Vec<String> = cols.iter().map(|c| format!("{}", c[i])).collect();
-        out.push_str(&row.join(","));
-        out.push('\n');
-    }
-    out
+    let rows = (0..series.len()).map(|i| cols.iter().map(|c| wingcheck_io::number(c[i])).collect::<Vec<_>>());
+    wingcheck_io::csv_text(Series::csv_header(), rows)
 }
 
-/// The full JSON document of a run: config, series, fields, statistics.
-#[derive(Serialize)]
+/// The full JSON document of a run (`run.json`): config, series, fields, statistics.
+#[derive(Serialize, schemars::JsonSchema)]
 pub struct RunDocument<'a> {
+    /// Layout version ([`wingcheck_io::SCHEMA_VERSION`]).
+    pub schema_version: u32,
     /// Tool name and version.
     pub tool: String,
+    /// Tool build and the configuration's SHA-256.
+    pub provenance: wingcheck_io::Provenance,
     /// The configuration used (after overrides).
     pub config: &'a Config,
     /// The run.
@@ -63,17 +63,39 @@ pub struct RunDocument<'a> {
 
 /// Serialise a run to pretty JSON.
 pub fn run_json(cfg: &Config, output: &SimOutput) -> String {
-    let doc = RunDocument { tool: format!("wingcheck {}", env!("CARGO_PKG_VERSION")), config: cfg, output };
+    let doc = RunDocument {
+        schema_version: wingcheck_io::SCHEMA_VERSION,
+        tool: format!("wingcheck {}", env!("CARGO_PKG_VERSION")),
+        provenance: wingcheck_io::Provenance::new(&cfg.sha256(), vec![]),
+        config: cfg,
+        output,
+    };
     serde_json::to_string_pretty(&doc).expect("run serialises")
 }
 
-/// Write a run to `path` (`.csv`: the series; `.json`: [`run_json`]), atomically.
+/// The provenance sidecar of a run.csv (`run.csv.provenance.json`, [`wingcheck_io::sidecar_path`]).
+pub fn csv_provenance(path: &Path, cfg: &Config) -> String {
+    let file = path.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
+    wingcheck_io::Provenance::new(
+        &cfg.sha256(),
+        vec![wingcheck_io::FileRecord {
+            file,
+            contents: "simulate's time series: one row per output sample, columns with unit-suffixed names (docs/outputs.md, run.csv)".into(),
+        }],
+    )
+    .to_json()
+}
+
+/// Write a run to `path` (`.csv`: the series, and its provenance sidecar beside it; `.json`:
+/// [`run_json`], provenance inside), each file atomically.
 pub fn write_run(path: &Path, cfg: &Config, output: &SimOutput) -> Result<(), OutputError> {
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
-    let text = match ext.as_str() {
-        "csv" => series_csv(&output.series),
-        "json" => run_json(cfg, output),
-        _ => return Err(OutputError::Format(path.display().to_string())),
-    };
-    write_atomic(path, text.as_bytes())
+    match ext.as_str() {
+        "csv" => {
+            write_atomic(path, series_csv(&output.series).as_bytes())?;
+            write_atomic(&wingcheck_io::sidecar_path(path), csv_provenance(path, cfg).as_bytes())
+        }
+        "json" => write_atomic(path, run_json(cfg, output).as_bytes()),
+        _ => Err(OutputError::Format(path.display().to_string())),
+    }
 }

@@ -5,14 +5,14 @@
 use std::time::Instant;
 
 use serde::Serialize;
-use wingcheck_model::{Config, StepBasis, TimeScheme, MODAL_AUTO_UNKNOWNS};
+use wingcheck_model::{Config, StepBasis, TimeScheme, Unit, MODAL_AUTO_UNKNOWNS};
 
 use crate::modal::ModalBasis;
 use crate::stepper::{Peaks, Sample, Stepper};
 use crate::{Discretisation, Interpolation, SimError};
 
 /// Sampled time series of the closed loop (column-oriented; all columns have equal length).
-#[derive(Debug, Clone, Default, Serialize, PartialEq)]
+#[derive(Debug, Clone, Default, Serialize, PartialEq, schemars::JsonSchema)]
 pub struct Series {
     /// t (s).
     pub t: Vec<f64>,
@@ -44,7 +44,7 @@ pub struct Series {
     pub energy: Vec<f64>,
     /// q'''(s,t) (1/m²), from the boundary condition.
     pub q_tip_shear: Vec<f64>,
-    /// θ'(s,t) (1/m), from the boundary condition.
+    /// θ'(s,t) (rad/m), from the boundary condition.
     pub theta_tip_slope: Vec<f64>,
     /// RMS of τ1(t) (N) over the output interval ending at t_k, at full rate (every
     /// integrator step, both sides of every jump; [`crate::SquareIntegral`]); |τ1(0)| at t = 0.
@@ -54,27 +54,33 @@ pub struct Series {
 }
 
 impl Series {
-    /// Column names in output order.
-    pub const COLUMNS: [&'static str; 18] = [
-        "t",
-        "q_tip",
-        "theta_tip",
-        "q_tip_rate",
-        "theta_tip_rate",
-        "tau1",
-        "tau2",
-        "g1",
-        "g2",
-        "g1_hat",
-        "g2_hat",
-        "sigma1",
-        "sigma2",
-        "energy",
-        "q_tip_shear",
-        "theta_tip_slope",
-        "tau1_rms",
-        "tau2_rms",
+    /// Column names and units in output order (run.csv writes `name_unitsuffix`,
+    /// [`Series::csv_header`]).
+    pub const COLUMNS: [(&'static str, Unit); 18] = [
+        ("t", Unit::Second),
+        ("q_tip", Unit::Metre),
+        ("theta_tip", Unit::Radian),
+        ("q_tip_rate", Unit::MetrePerSecond),
+        ("theta_tip_rate", Unit::RadianPerSecond),
+        ("tau1", Unit::Newton),
+        ("tau2", Unit::NewtonMetre),
+        ("g1", Unit::Newton),
+        ("g2", Unit::NewtonMetre),
+        ("g1_hat", Unit::Newton),
+        ("g2_hat", Unit::NewtonMetre),
+        ("sigma1", Unit::Newton),
+        ("sigma2", Unit::NewtonMetre),
+        ("energy", Unit::Joule),
+        ("q_tip_shear", Unit::PerSquareMetre),
+        ("theta_tip_slope", Unit::RadianPerMetre),
+        ("tau1_rms", Unit::Newton),
+        ("tau2_rms", Unit::NewtonMetre),
     ];
+
+    /// The header of run.csv: each column's name with its unit suffix (`t_s`, `q_tip_m`, …).
+    pub fn csv_header() -> Vec<String> {
+        Self::COLUMNS.iter().map(|(n, u)| wingcheck_io::column_name(n, u.column_suffix())).collect()
+    }
 
     /// Columns in the order of [`Series::COLUMNS`].
     pub fn columns(&self) -> [&Vec<f64>; 18] {
@@ -167,7 +173,7 @@ pub fn windowed_rms(t: &[f64], interval_rms: &[f64], t0: f64, t1: f64) -> Option
 }
 
 /// q(z,t) and θ(z,t) on the coarse output grid at the sample times.
-#[derive(Debug, Clone, Default, Serialize, PartialEq)]
+#[derive(Debug, Clone, Default, Serialize, PartialEq, schemars::JsonSchema)]
 pub struct Fields {
     /// Grid points z_j (m).
     pub z: Vec<f64>,
@@ -187,7 +193,7 @@ pub struct RunOptions<'a> {
 }
 
 /// Cost statistics of a run.
-#[derive(Debug, Clone, Serialize, PartialEq)]
+#[derive(Debug, Clone, Serialize, PartialEq, schemars::JsonSchema)]
 pub struct RunStats {
     /// Unknowns of the semi-discrete system.
     pub unknowns: usize,
@@ -209,7 +215,7 @@ pub struct RunStats {
 }
 
 /// Result of [`simulate`].
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, schemars::JsonSchema)]
 pub struct SimOutput {
     /// Sampled time series.
     pub series: Series,

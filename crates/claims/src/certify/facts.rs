@@ -42,7 +42,7 @@ pub const MAX_ELEMENTS: usize = 4;
 pub const MAX_NEGATIVE_ELEMENTS: usize = 32;
 
 /// The kinds of fact.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum FactKind {
     /// W − λκ ≻ 0 on the Galerkin space V_N: min W/κ > λ there.
@@ -72,7 +72,7 @@ impl FactKind {
 
 /// The wing parameters a certificate depends on, as exact decimals (config units: m, kg/m,
 /// kg, N m², N m², kg m, s).
-#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct WingText {
     /// Span s.
@@ -92,7 +92,7 @@ pub struct WingText {
 }
 
 /// Weights a, b of (15)/(23) as exact decimals or fractions.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct WeightsText {
     /// a.
@@ -102,7 +102,7 @@ pub struct WeightsText {
 }
 
 /// A certificate file (version 2), field for field.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CertificateFile {
     /// Always [`FORMAT`].

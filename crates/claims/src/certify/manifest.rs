@@ -17,7 +17,6 @@ use std::path::Path;
 use num_rational::BigRational;
 use num_traits::One;
 use serde::{Deserialize, Serialize};
-use sha2::{Digest, Sha256};
 use wingcheck_cert::exact::{parse_rational_bounded, NumberLimits};
 use wingcheck_model::Config;
 
@@ -92,7 +91,7 @@ pub fn role(id: &str) -> Option<&'static Role> {
 }
 
 /// A claim and the certificate ids it needs.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ClaimEntry {
     /// The claim (one of the [`ROLES`] claims), by its id (`W-bounds`).
@@ -102,7 +101,7 @@ pub struct ClaimEntry {
 }
 
 /// One certificate file in the manifest.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct FileEntry {
     /// File name, `<id>.json`.
@@ -114,7 +113,7 @@ pub struct FileEntry {
 }
 
 /// `index.json`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Manifest {
     /// Always [`INDEX_FORMAT`].
@@ -131,14 +130,11 @@ pub struct Manifest {
     pub certificates: Vec<FileEntry>,
 }
 
-/// Lowercase hex SHA-256 of bytes.
-pub fn sha256_hex(bytes: &[u8]) -> String {
-    Sha256::digest(bytes).iter().map(|b| format!("{b:02x}")).collect()
-}
+pub use wingcheck_io::sha256_hex;
 
 /// SHA-256 of a configuration (its compact JSON, fields in declaration order).
 pub fn config_hash(cfg: &Config) -> String {
-    sha256_hex(serde_json::to_string(cfg).expect("config serialises").as_bytes())
+    cfg.sha256()
 }
 
 /// The exact parameters a configuration gives (its decimals as the user wrote them).
@@ -217,68 +213,7 @@ pub(super) fn bad(field: &str, message: impl Into<String>) -> CertifyError {
     CertifyError::Invalid { field: field.into(), message: message.into() }
 }
 
-/// The first key that occurs twice in one JSON object of `text` (as `path.key`), if any. serde
-/// rejects duplicate fields of typed structs, but the manifest's `config` is read as a JSON value,
-/// where the last of two equal keys would silently win.
-pub fn duplicate_key(text: &[u8]) -> Option<String> {
-    use serde::de::{DeserializeSeed, Deserializer, MapAccess, SeqAccess, Visitor};
-    struct Walk<'a> {
-        path: &'a str,
-        found: &'a std::cell::RefCell<Option<String>>,
-    }
-    impl<'de> DeserializeSeed<'de> for Walk<'_> {
-        type Value = ();
-        fn deserialize<D: Deserializer<'de>>(self, d: D) -> Result<(), D::Error> {
-            d.deserialize_any(self)
-        }
-    }
-    impl<'de> Visitor<'de> for Walk<'_> {
-        type Value = ();
-        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
-            f.write_str("any JSON value")
-        }
-        fn visit_bool<E>(self, _: bool) -> Result<(), E> {
-            Ok(())
-        }
-        fn visit_i64<E>(self, _: i64) -> Result<(), E> {
-            Ok(())
-        }
-        fn visit_u64<E>(self, _: u64) -> Result<(), E> {
-            Ok(())
-        }
-        fn visit_f64<E>(self, _: f64) -> Result<(), E> {
-            Ok(())
-        }
-        fn visit_str<E>(self, _: &str) -> Result<(), E> {
-            Ok(())
-        }
-        fn visit_unit<E>(self) -> Result<(), E> {
-            Ok(())
-        }
-        fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<(), A::Error> {
-            let mut i = 0;
-            while seq.next_element_seed(Walk { path: &format!("{}[{i}]", self.path), found: self.found })?.is_some() {
-                i += 1;
-            }
-            Ok(())
-        }
-        fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<(), A::Error> {
-            let mut seen = BTreeSet::new();
-            while let Some(key) = map.next_key::<String>()? {
-                let path = if self.path.is_empty() { key.clone() } else { format!("{}.{key}", self.path) };
-                if !seen.insert(key) && self.found.borrow().is_none() {
-                    *self.found.borrow_mut() = Some(path.clone());
-                }
-                map.next_value_seed(Walk { path: &path, found: self.found })?;
-            }
-            Ok(())
-        }
-    }
-    let found = std::cell::RefCell::new(None);
-    let mut de = serde_json::Deserializer::from_slice(text);
-    let _ = Walk { path: "", found: &found }.deserialize(&mut de);
-    found.into_inner()
-}
+pub use wingcheck_model::json::duplicate_key;
 
 /// Parses and checks `index.json` text (no certificate is read).
 pub fn parse_manifest(text: &[u8]) -> Result<(Manifest, Config), CertifyError> {

@@ -39,7 +39,7 @@ mod float;
 /// Certificate id (the file is `omega1-enclosure.json`).
 pub const ID: &str = "omega1-enclosure";
 /// The sizes of an enclosure: k and the two meshes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Plan {
     /// Modes k of the trace bound (shifts Λ₂ … Λ_k).
     pub modes: usize,
@@ -74,7 +74,7 @@ pub const VECTOR_DIGITS: usize = 10;
 pub const LIMITS: Limits = Limits { max_modes: 40, max_inertia_elements: 28, max_rayleigh_elements: 128 };
 
 /// The certificate file, field for field.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Omega1Certificate {
     /// Always [`FORMAT`].
@@ -117,7 +117,7 @@ pub struct Omega1Enclosure {
 }
 
 /// Where a ratio a/b lies relative to the enclosure.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum Position {
     /// a/b < ω̲₁ ≤ ω₁.
@@ -129,7 +129,7 @@ pub enum Position {
 }
 
 /// The enclosure as the W-bounds row records it (typed evidence).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(tag = "status", rename_all = "kebab-case", deny_unknown_fields)]
 pub enum EnclosureSummary {
     /// Certified: ω̲₁ ≤ ω₁ ≤ ω̄₁, re-checked in exact arithmetic.

@@ -11,7 +11,7 @@ use crate::study::Study;
 use crate::{Basis, ClaimId, ClaimRow, ClaimsError, Line, PlotData, Verdict};
 
 /// One run at the configured gains.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct RunRecord {
     /// Which controller and rule.
     pub run: Text,
@@ -80,7 +80,7 @@ impl RunRecord {
 }
 
 /// One point of the (a, b) sweep.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct SweepRecord {
     /// a.
     pub a: Quantity,
@@ -99,7 +99,7 @@ fn pct(label: &str, v: f64) -> Quantity {
 }
 
 /// (DOBC − FTDO)/FTDO of the four tip RMS metrics of one pair of runs.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct TipDifferences {
     /// RMS q over [0, t_end].
     pub rel_diff_rms_q_full: Quantity,
@@ -127,7 +127,7 @@ fn gratio(v: Option<f64>) -> Option<Quantity> {
 }
 
 /// The evidence of the `ftdo-vs-dobc` row.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct ComparisonEvidence {
     /// The FTDO's sampling rule (the configured one).
     pub rule: Text,

@@ -9,7 +9,7 @@ use crate::settings::CheckSettings;
 use crate::{Basis, ClaimId, ClaimRow, ClaimsError, Verdict};
 
 /// One digital run of the observer (rule × hold period).
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct DigitalRecord {
     /// The sampling rule.
     pub rule: Text,
@@ -28,7 +28,7 @@ pub struct DigitalRecord {
 }
 
 /// The evidence of the `finite-time-1` / `finite-time-2` rows.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct FiniteTimeEvidence {
     /// σ(0) of the channel.
     pub sigma0: Quantity,

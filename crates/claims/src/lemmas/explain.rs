@@ -9,7 +9,7 @@ use crate::settings::CheckSettings;
 use crate::{Basis, ClaimId, ClaimRow, ClaimsError, Line, PlotData, Verdict};
 
 /// One polynomial degree of the Lemma 2 search.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct DegreeRecord {
     /// Largest degree K of ω = Σ c_k z^k.
     pub degree: Quantity,
@@ -20,7 +20,7 @@ pub struct DegreeRecord {
 }
 
 /// The exact counterexample to the printed Lemma 2 on the configured span.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct Lemma2Counterexample {
     /// The span f.
     pub f: Quantity,
@@ -39,7 +39,7 @@ pub struct Lemma2Counterexample {
 }
 
 /// The evidence of the `lemmas` row.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct LemmasEvidence {
     /// max ab/(a²/p + p b²) found.
     pub lemma1_max_ratio: Quantity,

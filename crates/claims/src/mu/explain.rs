@@ -30,7 +30,7 @@ impl MuResult {
 }
 
 /// One clarabel cross-check of a closed form.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct CrossCheckRecord {
     /// Which quantity.
     pub quantity: Text,
@@ -70,7 +70,7 @@ impl CrossCheckRecord {
 }
 
 /// The ε/λ-optimal point of (32).
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct BestPointEvidence {
     /// a there.
     pub a: Quantity,
@@ -115,7 +115,7 @@ impl BestPointEvidence {
 }
 
 /// The evidence of the `mu-conditions` row.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct MuEvidence {
     /// Configured a.
     pub a: Quantity,

@@ -24,7 +24,7 @@ pub struct WBounds {
 }
 
 /// One element count of the W/κ refinement study.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct GalerkinRecord {
     /// N.
     pub elements: Quantity,
@@ -35,7 +35,7 @@ pub struct GalerkinRecord {
 }
 
 /// One element count of the SDP cross-check.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct SdpRecord {
     /// N.
     pub elements: Quantity,
@@ -106,7 +106,7 @@ impl SdpRecord {
 }
 
 /// The certified enclosure ω̲₁ ≤ ω₁ ≤ ω̄₁ of the continuous model (`omega1-enclosure.json`).
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct EnclosureEvidence {
     /// Whether the wing's ω₁ is certified.
     pub certified: Flag,
@@ -210,7 +210,7 @@ impl EnclosureEvidence {
 }
 
 /// The evidence of the `W-bounds` row.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct WBoundsEvidence {
     /// a of (15).
     pub a: Quantity,

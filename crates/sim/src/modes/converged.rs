@@ -23,7 +23,7 @@ const FINEST: usize = 2048;
 const WINDOW: usize = 4;
 
 /// One converged frequency.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct ModeEstimate {
     /// ω (rad/s), extrapolated.
     pub omega: f64,
@@ -45,7 +45,7 @@ impl ModeEstimate {
 }
 
 /// Result of [`converged_frequencies`].
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct ConvergedModes {
     /// Discretisation used (FD or FE, uniform meshes).
     pub method: Method,

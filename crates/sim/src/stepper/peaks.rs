@@ -5,7 +5,7 @@
 use serde::Serialize;
 
 /// The largest |value| of one signal and when it occurred.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct Peak {
     /// max |value| (units of the signal).
     pub abs_max: f64,
@@ -24,7 +24,7 @@ impl Peak {
 }
 
 /// Full-rate extremes over the run so far.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, schemars::JsonSchema)]
 pub struct Peaks {
     /// q(s,t) (m).
     pub q_tip: Peak,

@@ -1,0 +1,105 @@
+//! Whether the writer of a temp or staging file is still running: an advisory file lock
+//! (`fs4`, `flock` on Unix, `LockFileEx` on Windows) instead of looking the writer's pid up in
+//! `/proc`. A process that leaves files named with its pid in a directory holds the lock on
+//! `.wingcheck-{pid}.lock` in that directory while they exist ([`DirLock`]); the OS drops the
+//! lock when the process ends however it ends, so [`owner_alive`] is true exactly while the
+//! writer lives — on every platform fs4 supports, and without being fooled by a reused pid.
+
+use std::collections::HashMap;
+use std::fs::File;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+use fs4::FileExt;
+
+/// Name of the lock file of process `pid`.
+pub fn lock_name(pid: u32) -> String {
+    format!(".wingcheck-{pid}.lock")
+}
+
+/// The pid a lock file name belongs to (`.wingcheck-{pid}.lock`).
+pub fn lock_owner(name: &str) -> Option<u32> {
+    name.strip_prefix(".wingcheck-")?.strip_suffix(".lock")?.parse().ok()
+}
+
+/// Locks held by this process, by directory, with how many holders share each.
+static HELD: Mutex<Option<HashMap<PathBuf, (File, usize)>>> = Mutex::new(None);
+
+/// This process's lock in one directory, shared by every holder in the process (threads
+/// writing chunks side by side); the last one dropped unlocks and removes the lock file.
+#[derive(Debug)]
+pub struct DirLock {
+    dir: PathBuf,
+}
+
+impl DirLock {
+    /// Takes (or shares) this process's lock in `dir`.
+    pub fn acquire(dir: &Path) -> std::io::Result<DirLock> {
+        let dir = if dir.as_os_str().is_empty() { PathBuf::from(".") } else { dir.to_path_buf() };
+        let mut held = HELD.lock().unwrap_or_else(|p| p.into_inner());
+        let map = held.get_or_insert_with(HashMap::new);
+        if let Some((_, n)) = map.get_mut(&dir) {
+            *n += 1;
+            return Ok(DirLock { dir });
+        }
+        // Lock under a temporary name, then rename: whoever sees the final name sees it locked.
+        let tmp = tempfile::Builder::new().prefix(".wingcheck-lock-").tempfile_in(&dir)?;
+        FileExt::lock(tmp.as_file())?;
+        let file = tmp.persist(dir.join(lock_name(std::process::id()))).map_err(|e| e.error)?;
+        map.insert(dir.clone(), (file, 1));
+        Ok(DirLock { dir })
+    }
+}
+
+impl Drop for DirLock {
+    fn drop(&mut self) {
+        let mut held = HELD.lock().unwrap_or_else(|p| p.into_inner());
+        let Some(map) = held.as_mut() else { return };
+        let last = match map.get_mut(&self.dir) {
+            Some((_, n)) if *n > 1 => {
+                *n -= 1;
+                false
+            }
+            Some(_) => true,
+            None => false,
+        };
+        if last {
+            if let Some((file, _)) = map.remove(&self.dir) {
+                let _ = std::fs::remove_file(self.dir.join(lock_name(std::process::id())));
+                let _ = FileExt::unlock(&file);
+            }
+        }
+    }
+}
+
+/// Whether process `pid`, which named files in `dir` after itself, is still running: it is
+/// while it holds its lock there. This process is always alive; a lock file that is missing or
+/// that can be locked belongs to a writer that has ended.
+pub fn owner_alive(dir: &Path, pid: u32) -> bool {
+    if pid == std::process::id() {
+        return true;
+    }
+    let Ok(file) = File::open(dir.join(lock_name(pid))) else { return false };
+    match FileExt::try_lock(&file) {
+        Ok(()) => {
+            let _ = FileExt::unlock(&file);
+            false
+        }
+        Err(fs4::TryLockError::WouldBlock) => true,
+        // A file system without locks: assume alive, so nothing of another process is removed.
+        Err(fs4::TryLockError::Error(_)) => true,
+    }
+}
+
+/// Removes the lock files in `dir` of processes that have ended (left by a kill).
+pub fn remove_stale_locks(dir: &Path) {
+    let Ok(entries) = std::fs::read_dir(dir) else { return };
+    for e in entries.flatten() {
+        let name = e.file_name().to_string_lossy().to_string();
+        if let Some(pid) = lock_owner(&name) {
+            if !owner_alive(dir, pid) {
+                let _ = std::fs::remove_file(e.path());
+            }
+        }
+    }
+}
