@@ -9,7 +9,7 @@ use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
-use serde_json::{json, Value};
+use serde_json::Value;
 use wingcheck_model::Config;
 use wingcheck_search::store::{self, point_json};
 use wingcheck_search::{finalize, PointResult, Search, SearchOptions, Status, METRICS};
@@ -129,12 +129,16 @@ fn streamed_files_equal_a_whole_document_rendering() {
     let points: Vec<PointResult> = (0..s.points()).map(|p| synthetic(&s, p)).collect();
     let keys: Vec<String> = vec!["control.a".into(), "control.b".into()];
     let read = |f: &str| std::fs::read_to_string(dir.join(f)).unwrap();
-    // reference: the whole document as one serde_json tree (json! sorts the keys)
-    let doc = json!({
-        "axes": keys,
-        "metrics": METRICS,
-        "points": points.iter().map(|p| point_json(&keys, p)).collect::<Vec<Value>>(),
-    });
+    // reference: the whole document built at once as the typed ResultsDocument (whose schema is
+    // docs/schema/results.schema.json), so the streamed file is exactly that type's serialisation
+    let doc = wingcheck_search::records::ResultsDocument {
+        schema_version: wingcheck_io::SCHEMA_VERSION,
+        provenance: wingcheck_search::records::provenance(&s),
+        axes: keys.clone(),
+        metrics: METRICS.iter().map(|m| m.to_string()).collect(),
+        units: wingcheck_search::records::metric_units(),
+        points: points.iter().map(|p| point_json(&keys, p)).collect(),
+    };
     assert_eq!(read("results.json"), serde_json::to_string_pretty(&doc).unwrap() + "\n");
     let csv: String =
         std::iter::once(store::results_csv_header(&keys)).chain(points.iter().map(store::results_csv_row)).collect();
