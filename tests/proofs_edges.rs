@@ -364,3 +364,19 @@ fn the_slowest_set_is_decided_in_well_under_a_second() {
     eprintln!("slowest set decided in {cpu:.2} s of CPU");
     assert!(cpu < 1.0, "{cpu} s");
 }
+
+#[test]
+fn verify_prints_each_os_error_once() {
+    // issue 24: verify printed its OS error twice. A set without index.json, and a set whose
+    // listed certificate is missing: each message names the OS error exactly once.
+    let dir = tempfile::tempdir().unwrap();
+    let o = wingcheck(&["verify", dir.path().to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.matches("(os error").count() == 1, "{err}");
+    let p = dir.path().join("p");
+    certify::write_all(&paper_with(&[]), &p).unwrap();
+    std::fs::remove_file(p.join("w-bounds-upper.json")).unwrap();
+    let o = wingcheck(&["verify", p.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.matches("(os error").count() == 1, "{err}");
+}

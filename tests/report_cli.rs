@@ -56,8 +56,28 @@ fn ledger_table_equals_check_json_and_provenance_names_the_run() {
 
     // The command line (as typed) and the commit are in the provenance section.
     assert!(html.contains("report --set horizon.t_end=4 --out"), "command line in the provenance");
+    // The binary's build script embeds the checkout's commit (reference: git itself), or
+    // `unknown` outside a checkout; the tree state is git's own answer (`git status`).
     let commit = doc.descendants().find(|n| n.attribute("id") == Some("git-commit")).map(text).unwrap();
-    assert!(commit == "unknown" || (commit.len() == 40 && commit.chars().all(|c| c.is_ascii_hexdigit())), "{commit}");
+    let git = |args: &[&str]| {
+        std::process::Command::new("git")
+            .args(args)
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .output()
+            .ok()
+            .filter(|o| o.status.success())
+            .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
+    };
+    let tree = doc.descendants().find(|n| n.attribute("id") == Some("git-tree")).map(text).unwrap();
+    match git(&["rev-parse", "HEAD"]) {
+        Some(h) => {
+            assert_eq!(commit, h, "provenance commit vs git rev-parse HEAD");
+            let dirty = !git(&["status", "--porcelain", "--untracked-files=no"]).unwrap_or_default().is_empty();
+            assert_eq!(tree.starts_with("dirty"), dirty, "tree state {tree:?} vs git status");
+        }
+        None => assert!(commit == "unknown" && tree.starts_with("unknown"), "{commit} {tree}"),
+    }
+    assert!(html.contains("rustc "), "compiler version in the provenance");
 }
 
 #[test]

@@ -319,7 +319,9 @@ fn page(cfg: &Config, opts: &ReportOptions, ledger: &Ledger, figs: PageFigures) 
             tree: match wingcheck_io::build().tree {
                 wingcheck_io::TreeState::Clean => "clean (the commit as it is)".into(),
                 wingcheck_io::TreeState::Dirty => "dirty (built with uncommitted changes to tracked files)".into(),
-                wingcheck_io::TreeState::Unknown => "unknown (not built from a git checkout)".into(),
+                wingcheck_io::TreeState::Unknown => {
+                    "unknown (not built from a git checkout, or the library used without the wingcheck binary)".into()
+                }
             },
             rustc: wingcheck_io::build().rustc.clone(),
             date: provenance::utc_string(jiff::Timestamp::now()),

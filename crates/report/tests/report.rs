@@ -390,20 +390,10 @@ fn ledger_digest_charts_sizes_links_and_provenance() {
         read(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/model.md").as_path())
     );
 
-    // Provenance holds the commit of the checkout (reference: git itself), or `unknown`.
+    // The library on its own has no build facts (the wingcheck binary registers them; its test
+    // tests/report_cli.rs checks the commit against git): the provenance says `unknown`.
     let commit = doc.descendants().find(|n| n.attribute("id") == Some("git-commit")).map(text).unwrap();
-    let head = std::process::Command::new("git")
-        .args(["rev-parse", "HEAD"])
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .ok()
-        .filter(|o| o.status.success())
-        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string());
-    match head {
-        Some(h) => assert_eq!(commit, h, "provenance commit vs git rev-parse HEAD"),
-        None => assert_eq!(commit, "unknown"),
-    }
-    assert!(html.contains("rustc "), "compiler version in the provenance");
+    assert_eq!(commit, "unknown");
 }
 
 #[test]

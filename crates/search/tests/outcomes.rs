@@ -34,7 +34,8 @@ fn failed_points_are_counted_and_listed() {
     let failures = std::fs::read_to_string(dir.path().join("failures.csv")).unwrap();
     let lines: Vec<&str> = failures.lines().collect();
     assert_eq!(lines.len(), 2, "{failures}");
-    assert_eq!(lines[0], "index,observer.kappa1,status,message");
+    // the swept key as a numpy-safe column (docs/outputs.md: `observer.kappa1` → `observer__kappa1`)
+    assert_eq!(lines[0], "index,observer__kappa1,status,message");
     assert!(lines[1].starts_with("1,1e5,diverged,") && lines[1].contains("diverged at t ="), "{}", lines[1]);
 }
 
@@ -50,7 +51,7 @@ fn the_32_by_32_paper_grid_has_no_failed_point() {
     let sum = wingcheck_search::run(&s, dir.path(), Default::default()).unwrap();
     assert_eq!((sum.evaluated, sum.failed, sum.failed_total), (1024, 0, Some((0, 0))));
     let failures = std::fs::read_to_string(dir.path().join("failures.csv")).unwrap();
-    assert_eq!(failures, "index,control.a,control.b,status,message\n", "header only");
+    assert_eq!(failures, "index,control__a,control__b,status,message\n", "header only");
     let results: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("results.json")).unwrap()).unwrap();
     let points = results["points"].as_array().unwrap();
@@ -58,6 +59,7 @@ fn the_32_by_32_paper_grid_has_no_failed_point() {
     for p in points {
         assert_eq!(p["status"], "ok", "{p}");
         assert!(p["w_positive_definite"].is_boolean() && p["feasible_32"].is_boolean(), "{p}");
+        assert!(p["w_decided"] == true && p["feasible_32_decided"] == true, "both verdicts decided: {p}");
         for m in ["lambda2", "lambda1", "lambda3_max", "rms_q_tip", "rms_theta_tip", "tau1_peak", "energy_t_end"] {
             assert!(p["metrics"][m].as_f64().is_some_and(f64::is_finite), "{m} missing: {p}");
         }

@@ -115,16 +115,22 @@ fn result_files_have_the_documented_shape() {
     let csv = std::fs::read_to_string(dir.path().join("results.csv")).unwrap();
     let mut lines = csv.lines();
     let head = lines.next().unwrap();
+    // docs/outputs.md: axis keys as `section__key`, status columns, unit-suffixed metrics
     assert!(
-        head.starts_with("index,control.a,control.b,status,w_positive_definite,feasible_32,theorem_feasible,lambda2,")
+        head.starts_with(
+            "index,control__a,control__b,status,w_decided,w_positive_definite,feasible_32_decided,feasible_32,\
+             theorem_feasible,settled,missing_metrics,lambda2_Wu,"
+        ),
+        "{head}"
     );
-    assert!(head.ends_with(",energy_t_end,message"));
+    assert!(head.ends_with(",energy_t_end_J,message"));
     let rows: Vec<&str> = lines.collect();
     assert_eq!(rows.len(), 12);
     // point 5 = (a index 1, b index 1): a = √(1e-4·1) = 0.01 up to rounding, b = 1
     assert!(rows[5].starts_with("5,0.01"), "{}", rows[5]);
     let cols = head.split(',').count();
     assert!(rows.iter().all(|r| r.split(',').count() == cols), "no commas inside ok rows' fields");
+    assert!(rows.iter().all(|r| !r.ends_with(',')), "an ok point's message is `none`, not empty");
 
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("results.json")).unwrap()).unwrap();
