@@ -31,7 +31,9 @@ pub mod strain;
 pub use disc::{mass_determinant, Discretisation, Interpolation, Parts};
 pub use error_estimate::{simulate_with_error, EstimatedRun, PeakEstimate, PeakEstimates, RICHARDSON_2, TIP_TOLERANCE};
 pub use estimate::Estimate;
-pub use run::{check_sample, resolved_basis, simulate, windowed_rms, Fields, RunOptions, RunStats, Series, SimOutput};
+pub use run::{
+    check_sample, resolved_basis, simulate, windowed_rms, Envelope, Fields, RunOptions, RunStats, Series, SimOutput,
+};
 pub use stepper::{initial_tip_states, trbdf2, Channel, EnergyLedger, Peak, Peaks, Sample, SquareIntegral, Stepper};
 
 use thiserror::Error;
