@@ -57,6 +57,19 @@ impl Verdict {
         }
     }
 
+    /// What the verdict means in a few words (the one-line legend at the top of the report).
+    pub fn short(self) -> &'static str {
+        match self {
+            Verdict::Holds => "as printed",
+            Verdict::Fails => "false as printed",
+            Verdict::HoldsAfterCorrection => "only after the stated correction",
+            Verdict::Vacuous => "valid but uninformative",
+            Verdict::TriviallyTrue => "true only because the hypothesis is trivial",
+            Verdict::PartlyReproduced => "part reproduced, part not",
+            Verdict::Inconclusive => "not decided (the row says why)",
+        }
+    }
+
     /// One line of the legend: what the verdict means.
     pub fn meaning(self) -> &'static str {
         match self {

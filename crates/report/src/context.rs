@@ -8,6 +8,7 @@ use wingcheck_model::{Config, Quantity};
 
 use crate::accuracy::AccuracyRow;
 use crate::figure::{Figure, Part};
+use crate::top::{pieces, Piece};
 use crate::ReportError;
 
 /// Root of the template context.
@@ -47,8 +48,14 @@ pub struct Page {
     pub timings: Vec<Timing>,
     /// Each verdict with its meaning (from the claims crate's vocabulary).
     pub verdict_legend: Vec<(&'static str, &'static str)>,
+    /// Each verdict with its meaning in a few words (the one-line legend at the top).
+    pub verdict_short: Vec<(&'static str, &'static str)>,
     /// Each basis with its meaning.
     pub basis_legend: Vec<(&'static str, &'static str)>,
+    /// The keys that differ from the embedded default `configs/paper.json`.
+    pub changes: Vec<crate::top::ConfigChange>,
+    /// The notation of the text (symbols and their meaning, with this run's values).
+    pub notation: Vec<wingcheck_claims::display::Symbol>,
 }
 
 /// Build and run provenance.
@@ -188,14 +195,14 @@ pub struct RowCtx {
     pub verdict: String,
     /// Basis name.
     pub basis: String,
-    /// The finding: short sentences.
-    pub finding: Vec<String>,
+    /// The finding: short sentences, as text and number pieces.
+    pub finding: Vec<Vec<Piece>>,
     /// The decisive numbers.
     pub decisive: Vec<NumberCtx>,
     /// Further sentences.
-    pub details: Vec<String>,
+    pub details: Vec<Vec<Piece>>,
     /// Correction, if any.
-    pub correction: Option<String>,
+    pub correction: Option<Vec<Piece>>,
     /// The evidence's single values (numbers, yes/no facts, texts), in field order.
     pub evidence: Vec<NumberCtx>,
     /// The evidence's tables.
@@ -271,10 +278,10 @@ pub fn row_ctx(r: &ClaimRow, figures: &[Figure]) -> Result<RowCtx, ReportError> 
         claim: r.claim.clone(),
         verdict: r.verdict.name().into(),
         basis: r.basis.name().into(),
-        finding: r.finding.clone(),
+        finding: r.finding.iter().map(|s| pieces(s)).collect(),
         decisive: r.decisive.iter().map(NumberCtx::from).collect(),
-        details: r.details.clone(),
-        correction: r.correction.clone(),
+        details: r.details.iter().map(|s| pieces(s)).collect(),
+        correction: r.correction.as_deref().map(pieces),
         evidence,
         tables,
         lead_figure,
@@ -297,7 +304,7 @@ pub fn assumptions(cfg: &Config) -> Vec<Assumption> {
         ),
         a(
             "observer sampling (digital observer, zero-order hold)",
-            format!("period {} s, {} rule", o.sample_period, o.rule.name()),
+            format!("T_s = {} s, {} rule", o.sample_period, o.rule.name()),
             "observer.sample_period, observer.rule",
         ),
         a("analogue part −k(a·tip + b·tip rate) of (15)", "continuous (inside the implicit step)".into(), "—"),
@@ -340,7 +347,7 @@ pub fn assumptions(cfg: &Config) -> Vec<Assumption> {
         a(
             "horizon and output sampling",
             format!(
-                "T = {} s, every {} s, {} field points",
+                "t_end = {} s, output every {} s, {} field points",
                 cfg.horizon.t_end, cfg.horizon.sample_every, cfg.horizon.field_points
             ),
             "horizon.*",

@@ -27,6 +27,7 @@ mod provenance;
 mod region;
 mod runs;
 mod stats;
+mod top;
 
 use std::path::Path;
 use std::time::Instant;
@@ -40,6 +41,7 @@ pub use error::ReportError;
 pub use estimate::report_estimate;
 pub use runs::GRIDS;
 pub use stats::fmt_num;
+pub use top::command_text;
 
 use crate::context::{assumptions, claim_anchor, row_assumptions, row_ctx, Build, FigCtx, GroupCtx, Page, Timing};
 use crate::figure::{safe_name, Caption, Chart, Figure};
@@ -342,7 +344,10 @@ fn page(cfg: &Config, opts: &ReportOptions, ledger: &Ledger, figs: PageFigures) 
         row_assumptions: row_assumptions(ledger),
         timings: Vec::new(),
         verdict_legend: wingcheck_claims::Verdict::ALL.iter().map(|v| (v.name(), v.meaning())).collect(),
+        verdict_short: wingcheck_claims::Verdict::ALL.iter().map(|v| (v.name(), v.short())).collect(),
         basis_legend: wingcheck_claims::Basis::ALL.iter().map(|b| (b.name(), b.meaning())).collect(),
+        changes: top::config_changes(cfg),
+        notation: wingcheck_claims::display::notation(cfg),
     })
 }
 

@@ -370,7 +370,7 @@ pub fn comparison_figures(cfg: &Config, runs: &Runs) -> Vec<Figure> {
         let cap = scale_caption(cap, format!("{key}.scale"), &h, u);
         figs.push(Figure {
             file: format!("cmp-d{}", if i == 0 { "q" } else { "theta" }),
-            label: format!("Evidence E{}", i + 1),
+            label: format!("Difference {}", if i == 0 { "Δq" } else { "Δθ" }),
             title: format!("Δ{s}(z,t) = DOBC − FTDO"),
             caption: cap.0,
             chart: Chart::Heat(h),
@@ -393,12 +393,12 @@ pub fn period_note(cfg: &Config) -> String {
             let period = 2.0 * std::f64::consts::PI / w;
             if period > t_end {
                 format!(
-                    "The fundamental period 2π/ω1 = {} s (ω1 = {} rad/s) exceeds the horizon T = {} s: the wing completes {} of its slowest oscillation, so the uncontrolled \"vibration\" is a slow drift of the initial deflection, not an oscillation.",
+                    "The fundamental period 2π/ω₁ = {} s (ω₁ = {} rad/s) exceeds the horizon t_end = {} s: the wing completes {} of its slowest oscillation, so the uncontrolled \"vibration\" is a slow drift of the initial deflection, not an oscillation.",
                     fmt_num(period), fmt_num(w), crate::chart::tick(t_end), fmt_num(t_end / period)
                 )
             } else {
                 format!(
-                    "The fundamental period 2π/ω1 = {} s (ω1 = {} rad/s); the horizon T = {} s spans {} periods.",
+                    "The fundamental period 2π/ω₁ = {} s (ω₁ = {} rad/s); the horizon t_end = {} s spans {} periods.",
                     fmt_num(period),
                     fmt_num(w),
                     crate::chart::tick(t_end),

@@ -282,17 +282,17 @@ impl RegionMap {
                 self.a.len(),
                 self.b.len()
             ))
-            .t("open circles: W ≻ 0 (tight λ2 > 0, Theorem 1's hypothesis); red dots: (29)–(32) feasible (best λ3 > 0). Closed-form boundaries: W ≻ 0 iff a/b < ω1 = ")
+            .t("open circles: W ≻ 0 (tight λ2 > 0, Theorem 1's hypothesis); red dots: (29)–(32) feasible (best λ3 > 0). Closed-form boundaries: W ≻ 0 iff a/b < ω₁ = ")
             .n("region.omega1", self.omega1)
             .t(match &self.omega1_certified {
                 EnclosureSummary::Certified { lower_exact, upper_exact, relative_width, .. } => format!(
-                    " rad/s, certified for the continuous model as {lower_exact} ≤ ω1 ≤ {upper_exact} rad/s (exact certificate, relative width {relative_width:.1e}; white lines at both bounds, indistinguishable at this scale)"
+                    " 1/s, certified for the continuous model as {lower_exact} ≤ ω₁ ≤ {upper_exact} 1/s (exact certificate, relative width {relative_width:.1e}; white lines at both bounds, indistinguishable at this scale)"
                 ),
-                EnclosureSummary::NotCertified { reason } => format!(" rad/s (white line; no certified enclosure: {reason})"),
+                EnclosureSummary::NotCertified { reason } => format!(" 1/s (white line; no certified enclosure: {reason})"),
             })
             .t(", (32) feasible iff a/b < r* = ")
             .n("region.r_star", self.r_star)
-            .t(" (red dashed line); hatched: a/b < min(ω1, r*), where both hold and Theorem 2 applies. The search's verdicts agree with the closed forms in ")
+            .t(" 1/s (red dashed line); hatched: a/b < min(ω₁, r*), where both hold and Theorem 2 applies. The search's verdicts agree with the closed forms in ")
             .count("region.w_agree", s.w_agree)
             .t(" and ")
             .count("region.mu_agree", s.mu_agree)
@@ -329,7 +329,7 @@ impl RegionMap {
         }
         Figure {
             file: "region-map-ab".into(),
-            label: "Region map R1".into(),
+            label: "Region map".into(),
             title: "(a, b) region map: hypotheses vs tip performance".into(),
             caption: cap.0,
             chart: Chart::Grid { map: Box::new(self.heatmap()), csv: self.to_csv() },
@@ -409,9 +409,9 @@ impl RegionMap {
             },
             Mark {
                 label: if self.omega1_certified.bounds().is_some() {
-                    "a/b = ω̲1 and ω̄1, the certified enclosure of ω1 (W ≻ 0 left of it, exact)".into()
+                    "a/b = ω̲₁ and ω̄₁, the certified enclosure of ω₁ (W ≻ 0 left of it, exact)".into()
                 } else {
-                    "a/b = ω1 (W ≻ 0 left of it, closed form)".into()
+                    "a/b = ω₁ (W ≻ 0 left of it, closed form)".into()
                 },
                 colour: W_LINE,
                 shape: MarkShape::Line,
