@@ -30,11 +30,20 @@ pub struct Heatmap {
     pub value_label: String,
     /// The colour scale is set by the samples with t ≥ this (s).
     pub scale_from: f64,
+    /// A fixed half-width of the colour scale instead (a pair of maps on one scale).
+    pub vmax: Option<f64>,
 }
 
 impl Heatmap {
-    /// The data as CSV: one row per sample time, one column per grid point.
+    /// The data as CSV: one row per sample time, one column per grid point (numbers in the
+    /// shortest round-trip form).
     pub fn to_csv(&self) -> String {
+        self.to_csv_with(|v| v.to_string())
+    }
+
+    /// The data as CSV with the field's values written by `value` (e.g. to the digits of their
+    /// error); times and grid points in the shortest round-trip form.
+    pub fn to_csv_with(&self, value: impl Fn(f64) -> String) -> String {
         let mut out = String::from("t_s");
         for z in &self.z {
             out.push_str(&format!(",z={z}"));
@@ -43,15 +52,21 @@ impl Heatmap {
         for (t, row) in self.t.iter().zip(&self.values) {
             out.push_str(&t.to_string());
             for v in row {
-                out.push_str(&format!(",{v}"));
+                out.push(',');
+                out.push_str(&value(*v));
             }
             out.push('\n');
         }
         out
     }
 
-    /// Half-width of the colour scale: max |v| over t ≥ `scale_from` (1 if that is 0).
+    /// Half-width of the colour scale: `vmax` when set, else [`Heatmap::own_scale`].
     pub fn scale(&self) -> f64 {
+        self.vmax.filter(|v| v.is_finite() && *v > 0.0).unwrap_or_else(|| self.own_scale())
+    }
+
+    /// max |v| over t ≥ `scale_from` (1 if that is 0).
+    pub fn own_scale(&self) -> f64 {
         let m = self
             .t
             .iter()

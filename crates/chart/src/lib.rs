@@ -25,7 +25,7 @@ mod ticks;
 pub use data::{Line, PlotData};
 pub use field::{heatmap_svg, Heatmap};
 pub use grid::{grid_heatmap_svg, viridis, GridAxis, GridHeatmap, Mark, MarkShape};
-pub use line::{line_svg, LineChart, LineStyle};
+pub use line::{line_svg, Band, LineChart, LineStyle};
 pub use plotters::style::RGBColor;
 pub use surface::surface_svg;
 pub use symlog::{SymLog, SymLogCoord};

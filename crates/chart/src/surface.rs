@@ -378,6 +378,7 @@ mod tests {
             value_label: "v (m)".into(),
             // colour scale ±1 (the whole run)
             scale_from: 0.0,
+            vmax: None,
         };
         let r = draw_surface(&s, VIEW, height_range(&s), &[0.0, 1.0]);
         let level = |p: (f64, f64)| {

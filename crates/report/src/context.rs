@@ -86,8 +86,10 @@ pub struct FigCtx {
     pub caption: Vec<Part>,
     /// SVG file name.
     pub svg: String,
-    /// CSV file name.
+    /// Data file name.
     pub csv: String,
+    /// How the data link reads.
+    pub data_label: String,
 }
 
 impl From<&Figure> for FigCtx {
@@ -98,7 +100,8 @@ impl From<&Figure> for FigCtx {
             title: f.title.clone(),
             caption: f.caption.clone(),
             svg: format!("{}.svg", f.file),
-            csv: format!("{}.csv", f.file),
+            csv: f.data_file(),
+            data_label: f.data_label(),
         }
     }
 }

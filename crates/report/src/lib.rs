@@ -22,6 +22,7 @@ mod context;
 mod error;
 mod estimate;
 mod figure;
+mod lines;
 mod paper;
 mod provenance;
 mod region;
@@ -182,10 +183,10 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     // Figure data and captions.
     let t = Instant::now();
     let region_fig = region.as_ref().map(|r| r.figure());
-    let groups = paper::paper_figures(cfg, &runs);
+    let groups = paper::paper_figures(cfg, &runs, paper::ftdo_bounds(&ledger));
     let comparison = paper::comparison_figures(cfg, &runs);
     let (acc_fig, acc_rows) = accuracy::accuracy(&runs.accuracy);
-    let row_figs: Vec<Vec<Figure>> = ledger.rows.iter().map(claim_figures).collect();
+    let row_figs: Vec<Vec<Figure>> = ledger.rows.iter().enumerate().map(|(i, r)| claim_figures(i, r)).collect();
     timings.push(StageTiming { name: "figure data".into(), seconds: t.elapsed().as_secs_f64() });
 
     // SVG + CSV of every figure, in parallel.
@@ -224,9 +225,7 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     files.push(staging.write("model.md", MODEL_MD.as_bytes())?);
     // The canonical compact JSON, so that `sha256sum config.json` equals the hash shown.
     files.push(staging.write("config.json", serde_json::to_string(cfg).expect("config serialises").as_bytes())?);
-    files.push(
-        staging.write("ledger.json", serde_json::to_string_pretty(&ledger).expect("ledger serialises").as_bytes())?,
-    );
+    files.push(staging.write("ledger.json", ledger.to_json().as_bytes())?);
     timings.push(StageTiming { name: "html".into(), seconds: t.elapsed().as_secs_f64() });
     report(progress, "html", 1, 1);
 
@@ -284,11 +283,13 @@ fn render_charts(
         .par_iter()
         .map(|f| {
             let r = f.render()?;
-            let svg = staging.write(&format!("{}.svg", f.file), r.svg.as_bytes())?;
-            let csv = staging.write(&format!("{}.csv", f.file), r.csv.as_bytes())?;
+            let mut names = vec![staging.write(&format!("{}.svg", f.file), r.svg.as_bytes())?];
+            if let Some(csv) = &r.csv {
+                names.push(staging.write(&f.data_file(), csv)?);
+            }
             let k = done.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
             report(progress, "charts", k, total);
-            Ok::<_, ReportError>([svg, csv])
+            Ok::<_, ReportError>(names)
         })
         .collect::<Result<Vec<_>, _>>()?
         .into_iter()
@@ -351,8 +352,9 @@ fn page(cfg: &Config, opts: &ReportOptions, ledger: &Ledger, figs: PageFigures) 
     })
 }
 
-/// A ledger row's plots as figures (files `claim-<row>-<plot>`).
-fn claim_figures(r: &wingcheck_claims::ClaimRow) -> Vec<Figure> {
+/// A ledger row's plots as figures (files `claim-<row>-<plot>`; their data is the row's `plots`
+/// in ledger.json, the `index`-th row).
+fn claim_figures(index: usize, r: &wingcheck_claims::ClaimRow) -> Vec<Figure> {
     r.plots
         .iter()
         .enumerate()
@@ -372,7 +374,7 @@ fn claim_figures(r: &wingcheck_claims::ClaimRow) -> Vec<Figure> {
                 label: format!("{} plot {}", r.id, i + 1),
                 title: pd.title.clone(),
                 caption: caption.0,
-                chart: Chart::Line(chart),
+                chart: Chart::InLedger { chart, path: format!("rows[{index}].plots[{i}]") },
             }
         })
         .collect()

@@ -29,7 +29,10 @@ mod stepper;
 pub mod strain;
 
 pub use disc::{mass_determinant, Discretisation, Interpolation, Parts};
-pub use error_estimate::{simulate_with_error, EstimatedRun, PeakEstimate, PeakEstimates, RICHARDSON_2, TIP_TOLERANCE};
+pub use error_estimate::{
+    estimate_from_runs, refinements, series_error, simulate_with_error, EstimatedRun, PeakEstimate, PeakEstimates,
+    RICHARDSON_2, TIP_TOLERANCE,
+};
 pub use estimate::Estimate;
 pub use run::{
     check_sample, resolved_basis, simulate, windowed_rms, Envelope, Fields, RunOptions, RunStats, Series, SimOutput,
