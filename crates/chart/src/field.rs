@@ -205,7 +205,14 @@ pub fn heatmap_svg(h: &Heatmap) -> Result<String, ChartError> {
             .margin_left(px(10))
             .margin_right(px(4))
             .right_y_label_area_size(px(70))
-            .build_cartesian_2d(0.0..1.0, Ticked::<RangedCoordf64>::new(-vmax..vmax, linear_ticks(-vmax, vmax, 6)))
+            .build_cartesian_2d(
+                0.0..1.0,
+                // the scale's ends labelled too (unless a tick is within 6 % of them)
+                Ticked::<RangedCoordf64>::new(
+                    -vmax..vmax,
+                    crate::with_ends(&linear_ticks(-vmax, vmax, 6), -vmax, vmax, 0.06),
+                ),
+            )
             .map_err(|e| err(e.to_string()))?;
         let steps = 64;
         cb.draw_series((0..steps).map(|i| {

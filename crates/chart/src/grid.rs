@@ -384,15 +384,24 @@ fn draw_cells_frame(main: &Area, h: &GridHeatmap, xe: &[f64], ye: &[f64]) -> Res
 /// area), labelled with values (not their logarithms) and the quantity.
 fn draw_colour_bar(bar: &Area, h: &GridHeatmap, vmin: f64, vmax: f64) -> Result<PixelRange, String> {
     let e = |e: DrawingAreaErrorKind<std::io::Error>| e.to_string();
+    // The scale's ends are labelled too (the top of the region map's is the unsuppressed
+    // deflection), unless a tick is within 6 % of the bar's height of them.
     let (ticks, labels): (Vec<f64>, Vec<String>) = if h.log_values {
         let t = log_ticks(10f64.powf(vmin), 10f64.powf(vmax), &[]);
         let decades = log_labels(&t);
-        (
-            t.iter().map(|v| v.log10()).collect(),
-            t.iter().map(|v| if decades { decade_label(*v) } else { tick(*v) }).collect(),
-        )
+        let logs: Vec<f64> = t.iter().map(|v| v.log10()).collect();
+        let all = crate::with_ends(&logs, vmin, vmax, 0.06);
+        let label = |l: f64| {
+            let v = 10f64.powf(l);
+            if t.iter().any(|x| (x.log10() - l).abs() < 1e-9) && decades {
+                decade_label(v)
+            } else {
+                tick(v)
+            }
+        };
+        (all.clone(), all.iter().map(|l| label(*l)).collect())
     } else {
-        let t = linear_ticks(vmin, vmax, 6);
+        let t = crate::with_ends(&linear_ticks(vmin, vmax, 6), vmin, vmax, 0.06);
         (t.clone(), t.iter().map(|v| crate::tick_linear(*v, vmax - vmin)).collect())
     };
     let mut cb = ChartBuilder::on(bar)

@@ -29,7 +29,7 @@ pub use line::{line_svg, Band, LineChart, LineStyle};
 pub use plotters::style::RGBColor;
 pub use surface::surface_svg;
 pub use symlog::{SymLog, SymLogCoord};
-pub use ticks::{linear_ticks, log_ticks, Ticked};
+pub use ticks::{linear_ticks, log_ticks, with_ends, Ticked};
 
 /// A chart could not be drawn.
 #[derive(Debug, thiserror::Error)]

@@ -269,6 +269,14 @@ fn colours(pd: &PlotData) -> Vec<RGBColor> {
 /// Colour of markers and levels.
 const MARK: RGBColor = RGBColor(90, 90, 90);
 
+/// Dash, gap (canvas px) and colour of the `k`-th vertical marker: each marker of a chart drawn
+/// differently, so two close ones (a measured time and its bound) stay apart in the legend.
+fn vline_style(k: usize) -> (u32, u32, RGBColor) {
+    const STYLES: [(u32, u32, RGBColor); 3] = [(6, 4, MARK), (14, 4, RGBColor(0, 0, 0)), (2, 3, RGBColor(140, 60, 0))];
+    let (d, g, c) = STYLES[k % STYLES.len()];
+    (px(d), px(g), c)
+}
+
 fn draw<X, Y>(
     root: &DrawingArea<SVGBackend, Shift>,
     c: &LineChart,
@@ -416,10 +424,11 @@ where
             }
         }
     }
-    for (x, _) in &c.vlines {
+    for (k, (x, _)) in c.vlines.iter().enumerate() {
         let s = vec![(*x, y_range.start), (*x, y_range.end)];
+        let (dash, gap, colour) = vline_style(k);
         chart
-            .draw_series(DashedLineSeries::new(s, px(6), px(4), MARK.stroke_width(px(2))))
+            .draw_series(DashedLineSeries::new(s, dash, gap, colour.stroke_width(px(2))))
             .map_err(|e| e.to_string())?;
     }
     for (y, _) in &c.hlines {
@@ -565,9 +574,14 @@ fn draw_legend(area: &DrawingArea<SVGBackend, Shift>, c: &LineChart) -> Result<(
         area.draw(&r).map_err(e)?;
         y = legend_text(area, &b.label, (x0 + px(36) as i32, y), &font)? + step;
     }
-    let levels = c.vlines.iter().map(|v| (v, px(6), px(4))).chain(c.hlines.iter().map(|h| (h, px(3), px(4))));
-    for ((_, label), dash, gap) in levels {
-        area.draw(&DashedPathElement::new(swatch(y), dash, gap, MARK.stroke_width(px(2)))).map_err(e)?;
+    let levels = c
+        .vlines
+        .iter()
+        .enumerate()
+        .map(|(k, v)| (v, vline_style(k)))
+        .chain(c.hlines.iter().map(|h| (h, (px(3), px(4), MARK))));
+    for ((_, label), (dash, gap, colour)) in levels {
+        area.draw(&DashedPathElement::new(swatch(y), dash, gap, colour.stroke_width(px(2)))).map_err(e)?;
         y = legend_text(area, label, (x0 + px(36) as i32, y), &font)? + step;
     }
     if let Some(s) = c.symlog() {

@@ -269,7 +269,7 @@ fn gerr_chart(r: &RunView, ch: u8) -> (LineChart, Option<f64>) {
     c.hlines.push((GTILDE_THRESHOLD, format!("|g̃| = {} {}", tick(GTILDE_THRESHOLD), unit(ch))));
     // (a time 0 has no place on the log time axis; the caption states it)
     if let Some(ts) = reach.filter(|t| *t > 0.0) {
-        c.vlines.push((ts, format!("t_reach = {} s", tick(ts))));
+        c.vlines.push((ts, format!("t_reach ≤ {} s", tick(ts))));
     }
     if let Some(tf) = r.bounds[usize::from(ch - 1)].filter(|t| *t > 0.0) {
         c.vlines.push((tf, format!("bound t_f{ch} = {} s of ({})", tick(tf), if ch == 1 { 38 } else { 39 })));
@@ -294,9 +294,9 @@ fn gerr_figure(r: &RunView, ch: u8, f: &Frame, chart: LineChart, reach: Option<f
         .t(format!(" {u}"));
     cap = match reach {
         Some(ts) => cap
-            .t(format!("; |g̃{ch}| stays ≤ {thr} {u} (the threshold used throughout) at full rate from t_reach = "))
+            .t(format!("; at full rate |g̃{ch}| stays ≤ {thr} {u} (the threshold used throughout) from within the output interval ending at t_reach = "))
             .n(format!("fig{n}.settle_time"), ts)
-            .t(format!(" s on (resolved to the {}-s output interval)", tick(f.every))),
+            .t(format!(" s (resolved to the {} s of an output interval)", tick(f.every))),
         None => cap.t(format!("; at full rate |g̃{ch}| still exceeds {thr} {u} (the threshold used throughout) in the last output interval")),
     };
     if let Some(tf) = r.bounds[usize::from(ch - 1)] {

@@ -118,7 +118,9 @@ pub fn pieces(s: &str) -> Vec<Piece> {
     let mut i = 0;
     while i < s.len() {
         let rest = &s[i..];
-        let starts = prev.is_none_or(|p| !(p.is_alphanumeric() || p == '_' || p == '.'));
+        // (a combining mark, like the tilde of g̃, belongs to the letter before it)
+        let starts =
+            prev.is_none_or(|p| !(p.is_alphanumeric() || p == '_' || p == '.' || ('\u{300}'..='\u{36f}').contains(&p)));
         let n = if starts { number_len(rest) } else { 0 };
         if n > 0 {
             if !text.is_empty() {
@@ -152,7 +154,8 @@ mod tests {
         // joined back, the sentence is unchanged
         let s = "ω₁ = 0.12085992204657 ± 3.4e-13 1/s, 1e-3 ≤ x";
         assert_eq!(pieces(s).iter().map(|p| p.text.as_str()).collect::<String>(), s);
-        assert_eq!(pieces(s).iter().filter(|p| p.num).count(), 5);
+        // 0.12085992204657, 3.4e-13, the 1 of 1/s, 1e-3
+        assert_eq!(pieces(s).iter().filter(|p| p.num).count(), 4);
     }
 
     #[test]
