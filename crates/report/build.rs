@@ -25,6 +25,21 @@ fn watch(path: PathBuf) {
 fn main() {
     let commit = git(&["rev-parse", "HEAD"]).unwrap_or_else(|| "unknown".into());
     println!("cargo:rustc-env=WINGCHECK_GIT_COMMIT={commit}");
+    // Dirty: tracked files differ from the commit at build time (untracked files ignored).
+    let dirty = match git(&["status", "--porcelain", "--untracked-files=no"]) {
+        _ if commit == "unknown" => "unknown",
+        Some(_) => "yes",
+        None => "no",
+    };
+    println!("cargo:rustc-env=WINGCHECK_GIT_DIRTY={dirty}");
+    // Re-run when a tracked source changes (the dirty flag follows the tree) or the index does.
+    let root = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").unwrap_or_default()).join("../..");
+    for p in ["crates", "src", "tests", "configs", "docs", "Cargo.toml", "Cargo.lock", "README.md"] {
+        watch(root.join(p));
+    }
+    if let Some(dir) = git(&["rev-parse", "--absolute-git-dir"]) {
+        watch(PathBuf::from(&dir).join("index"));
+    }
     // Re-run when HEAD or the branch it points to moves (worktrees keep HEAD in their own
     // git dir and the branch refs in the common dir; packed refs in packed-refs).
     if let Some(dir) = git(&["rev-parse", "--absolute-git-dir"]) {

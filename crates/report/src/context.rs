@@ -56,6 +56,8 @@ pub struct Page {
     pub changes: Vec<crate::top::ConfigChange>,
     /// The notation of the text (symbols and their meaning, with this run's values).
     pub notation: Vec<wingcheck_claims::display::Symbol>,
+    /// The certificate set in `proofs/` (file names), or why there is none.
+    pub proofs: Result<Vec<String>, String>,
 }
 
 /// Build and run provenance.
@@ -71,6 +73,10 @@ pub struct Build {
     pub command_line: String,
     /// Total wall time (s, volatile).
     pub total_seconds: String,
+    /// Whether tracked files differed from the commit at build time (`yes`, `no`, `unknown`).
+    pub git_dirty: String,
+    /// The machine of the run (volatile).
+    pub machine: Option<crate::provenance::Machine>,
 }
 
 /// A figure as the template sees it.

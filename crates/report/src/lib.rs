@@ -178,7 +178,7 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     let tracker = Tracker::new(opts);
     let on_progress = |p: Progress| tracker.update(p);
     let progress: Option<&(dyn Fn(Progress) + Sync)> = Some(&on_progress);
-    let (ledger, runs, region, mut timings) = compute(cfg, progress)?;
+    let (ledger, runs, region, proofs, mut timings) = compute(cfg, progress)?;
 
     // Figure data and captions.
     let t = Instant::now();
@@ -200,6 +200,18 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
         .chain(row_figs.iter().flatten())
         .collect();
     let mut files = render_charts(&all, &staging, progress)?;
+    // The certificate set for the configured point, re-checkable with `wingcheck verify proofs`.
+    let proofs = match proofs {
+        Ok(set) => {
+            let mut names = Vec::new();
+            for (name, text) in &set {
+                files.push(staging.write(&format!("{PROOFS}/{name}"), text.as_bytes())?);
+                names.push(name.clone());
+            }
+            Ok(names)
+        }
+        Err(e) => Err(e.to_string()),
+    };
     timings.push(StageTiming { name: "charts".into(), seconds: t.elapsed().as_secs_f64() });
 
     // The page.
@@ -210,6 +222,7 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
         comparison: &comparison,
         accuracy: (&acc_fig, acc_rows),
         rows: &row_figs,
+        proofs,
     };
     let mut page = page(cfg, opts, &ledger, figures)?;
     page.timings = timings
@@ -219,6 +232,7 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
         .map(|(name, seconds)| Timing { name, seconds: format!("{seconds:.3}") })
         .collect();
     page.build.total_seconds = format!("{:.3}", started.elapsed().as_secs_f64());
+    page.build.machine = Some(provenance::machine());
     let html = render_html(&page)?;
     files.push(staging.write("index.html", html.as_bytes())?);
     // The model as simulated (docs/model.md of the repository), so the report is self-contained.
@@ -238,14 +252,20 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     Ok(ReportSummary { out_dir: out_dir.to_path_buf(), timings, files, ledger })
 }
 
-type Computed = (Ledger, runs::Runs, Option<region::RegionMap>, Vec<StageTiming>);
+/// The report's certificate directory (`wingcheck certify`'s set for the configured point).
+pub const PROOFS: &str = "proofs";
 
-/// The ledger, the simulations and the region map, concurrently; the ledger and the figures
-/// share one study, so every simulation runs once.
+/// The certificate set's files (name, text), or why `certify` cannot make one.
+type ProofSet = Result<Vec<(String, String)>, wingcheck_claims::certify::CertifyError>;
+
+type Computed = (Ledger, runs::Runs, Option<region::RegionMap>, ProofSet, Vec<StageTiming>);
+
+/// The ledger, the simulations, the region map and the certificate set, concurrently; the
+/// ledger and the figures share one study, so every simulation runs once.
 fn compute(cfg: &Config, progress: Option<&(dyn Fn(Progress) + Sync)>) -> Result<Computed, ReportError> {
     let study = Study::new();
     let settings = CheckSettings::default();
-    let ((ledger, lt), ((runs, st), (region, rt))) = rayon::join(
+    let ((ledger, lt), (((runs, st), (region, rt)), (proofs, pt))) = rayon::join(
         || {
             report(progress, "ledger", 0, 1);
             let t = Instant::now();
@@ -253,15 +273,26 @@ fn compute(cfg: &Config, progress: Option<&(dyn Fn(Progress) + Sync)>) -> Result
             report(progress, "ledger", 1, 1);
             (l, t.elapsed().as_secs_f64())
         },
-        || rayon::join(|| timed(|| runs::run_all(cfg, &study, progress)), || timed(|| region_stage(cfg, progress))),
+        || {
+            rayon::join(
+                || {
+                    rayon::join(
+                        || timed(|| runs::run_all(cfg, &study, progress)),
+                        || timed(|| region_stage(cfg, progress)),
+                    )
+                },
+                || timed(|| wingcheck_claims::certify::render_set(cfg)),
+            )
+        },
     );
     let timings = vec![
         StageTiming { name: "ledger".into(), seconds: lt },
         StageTiming { name: "simulations".into(), seconds: st },
         StageTiming { name: "region map".into(), seconds: rt },
+        StageTiming { name: "certificates".into(), seconds: pt },
     ];
     report(progress, "region map", 1, 1);
-    Ok((ledger?, runs?, region?, timings))
+    Ok((ledger?, runs?, region?, proofs, timings))
 }
 
 /// `f()` and its wall time (s).
@@ -304,6 +335,7 @@ struct PageFigures<'a> {
     comparison: &'a [Figure],
     accuracy: (&'a Figure, Vec<accuracy::AccuracyRow>),
     rows: &'a [Vec<Figure>],
+    proofs: Result<Vec<String>, String>,
 }
 
 /// The template's context (wall times are filled in by the caller).
@@ -316,6 +348,8 @@ fn page(cfg: &Config, opts: &ReportOptions, ledger: &Ledger, figs: PageFigures) 
             date: provenance::utc_string(std::time::SystemTime::now()),
             command_line: opts.command_line.unwrap_or("(library call)").into(),
             total_seconds: String::new(),
+            git_dirty: provenance::GIT_DIRTY.into(),
+            machine: None,
         },
         region: figs.region.map(FigCtx::from),
         region_missing: if figs.region.is_none() {
@@ -349,6 +383,7 @@ fn page(cfg: &Config, opts: &ReportOptions, ledger: &Ledger, figs: PageFigures) 
         basis_legend: wingcheck_claims::Basis::ALL.iter().map(|b| (b.name(), b.meaning())).collect(),
         changes: top::config_changes(cfg),
         notation: wingcheck_claims::display::notation(cfg),
+        proofs: figs.proofs.clone(),
     })
 }
 

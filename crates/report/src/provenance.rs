@@ -5,6 +5,48 @@
 /// Git commit the tool was built from (`unknown` outside a git checkout), set by `build.rs`.
 pub const GIT_COMMIT: &str = env!("WINGCHECK_GIT_COMMIT");
 
+/// Whether tracked files differed from [`GIT_COMMIT`] when the tool was built (`yes`, `no`,
+/// `unknown`), set by `build.rs`.
+pub const GIT_DIRTY: &str = env!("WINGCHECK_GIT_DIRTY");
+
+/// The machine a run is on, read at run time (it varies between runs: kept in the page's
+/// wall-time block): CPU model, hardware threads, the threads the report ran on, load average.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct Machine {
+    /// `model name` of /proc/cpuinfo (or `unknown`).
+    pub cpu: String,
+    /// Hardware threads available to the process.
+    pub hardware_threads: usize,
+    /// Worker threads of the report's thread pool.
+    pub threads: usize,
+    /// 1-, 5- and 15-minute load averages from /proc/loadavg (or `unknown`).
+    pub load: String,
+}
+
+/// The machine now.
+pub fn machine() -> Machine {
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|t| {
+            t.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split_once(':'))
+                .map(|(_, v)| v.trim().to_string())
+        })
+        .unwrap_or_else(|| "unknown".into());
+    let load = std::fs::read_to_string("/proc/loadavg")
+        .ok()
+        .map(|t| t.split_whitespace().take(3).collect::<Vec<_>>().join(", "))
+        .filter(|s| !s.is_empty())
+        .unwrap_or_else(|| "unknown".into());
+    Machine {
+        cpu,
+        hardware_threads: std::thread::available_parallelism().map_or(1, |n| n.get()),
+        threads: rayon::current_num_threads(),
+        load,
+    }
+}
+
 /// `rustc --version` of the compiler that built the tool, set by `build.rs`.
 pub const RUSTC_VERSION: &str = env!("WINGCHECK_RUSTC_VERSION");
 
