@@ -143,8 +143,8 @@ pub struct RowAssumption {
     pub id: String,
     /// Anchor of the claim's section.
     pub anchor: String,
-    /// The assumption.
-    pub text: String,
+    /// The assumption, as text, number and key pieces.
+    pub text: Vec<Piece>,
 }
 
 /// Wall time of one stage.
@@ -218,8 +218,8 @@ pub struct RowCtx {
     pub tables: Vec<TableCtx>,
     /// The decisive figure (the row's first plot).
     pub lead_figure: Option<FigCtx>,
-    /// Assumptions.
-    pub assumptions: Vec<String>,
+    /// Assumptions, as pieces.
+    pub assumptions: Vec<Vec<Piece>>,
     /// Certificate files.
     pub certificates: Vec<String>,
     /// The row's other plots.
@@ -294,7 +294,7 @@ pub fn row_ctx(r: &ClaimRow, figures: &[Figure]) -> Result<RowCtx, ReportError> 
         evidence,
         tables,
         lead_figure,
-        assumptions: r.assumptions.clone(),
+        assumptions: r.assumptions.iter().map(|a| pieces(a)).collect(),
         certificates: r.certificates.clone(),
         figures: figs.collect(),
     })
@@ -378,7 +378,7 @@ pub fn row_assumptions(ledger: &Ledger) -> Vec<RowAssumption> {
             r.assumptions.iter().map(|a| RowAssumption {
                 id: r.id.to_string(),
                 anchor: claim_anchor(&r.id.to_string()),
-                text: a.clone(),
+                text: pieces(a),
             })
         })
         .collect()

@@ -63,13 +63,43 @@ pub fn command_text(args: &[String]) -> String {
     out.join(" ")
 }
 
-/// A piece of a sentence: text, or a number token drawn unbreakable.
+/// A piece of a sentence: text, a number token drawn unbreakable, or a configuration key
+/// (`horizon.field_points`) drawn as code.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Piece {
     /// The text.
     pub text: String,
     /// Whether it is a number token (`-4.15405`, `3.3e-4`, `1e-3`).
     pub num: bool,
+    /// Whether it is a configuration key (`section.key`, `section.*`).
+    pub key: bool,
+}
+
+/// The configuration's section names (`wing`, `control`, …), from its typed JSON.
+fn sections() -> Vec<String> {
+    match serde_json::to_value(Config::paper()) {
+        Ok(Value::Object(m)) => m.keys().cloned().collect(),
+        _ => Vec::new(),
+    }
+}
+
+/// Length in bytes of the configuration key at the start of `s` (0 if none): a section name,
+/// `.`, then `[a-z0-9_.*]` up to the last letter, digit or `*`.
+fn key_len(s: &str, sections: &[String]) -> usize {
+    for sec in sections {
+        if let Some(rest) = s.strip_prefix(sec.as_str()).and_then(|r| r.strip_prefix('.')) {
+            let n = rest
+                .char_indices()
+                .take_while(|(_, c)| c.is_ascii_lowercase() || c.is_ascii_digit() || matches!(c, '_' | '.' | '*'))
+                .last()
+                .map_or(0, |(i, c)| i + c.len_utf8());
+            let n = rest[..n].trim_end_matches('.').len();
+            if n > 0 {
+                return sec.len() + 1 + n;
+            }
+        }
+    }
+    0
 }
 
 /// Length in bytes of the number token at the start of `s` (0 if none): an optional sign
@@ -112,6 +142,7 @@ fn number_len(s: &str) -> usize {
 /// `s` as text and number pieces. A number starts a token: at the start, or after a character
 /// that is not a letter, digit or `_` (so `κ2`, `t_f1`, `10⁻³` are text).
 pub fn pieces(s: &str) -> Vec<Piece> {
+    let sections = sections();
     let mut out: Vec<Piece> = Vec::new();
     let mut text = String::new();
     let mut prev: Option<char> = None;
@@ -121,12 +152,14 @@ pub fn pieces(s: &str) -> Vec<Piece> {
         // (a combining mark, like the tilde of g̃, belongs to the letter before it)
         let starts =
             prev.is_none_or(|p| !(p.is_alphanumeric() || p == '_' || p == '.' || ('\u{300}'..='\u{36f}').contains(&p)));
-        let n = if starts { number_len(rest) } else { 0 };
-        if n > 0 {
+        let k = if starts { key_len(rest, &sections) } else { 0 };
+        let n = if starts && k == 0 { number_len(rest) } else { 0 };
+        if n > 0 || k > 0 {
             if !text.is_empty() {
-                out.push(Piece { text: std::mem::take(&mut text), num: false });
+                out.push(Piece { text: std::mem::take(&mut text), num: false, key: false });
             }
-            out.push(Piece { text: rest[..n].to_string(), num: true });
+            let n = n.max(k);
+            out.push(Piece { text: rest[..n].to_string(), num: k == 0, key: k > 0 });
             prev = rest[..n].chars().last();
             i += n;
         } else {
@@ -137,7 +170,7 @@ pub fn pieces(s: &str) -> Vec<Piece> {
         }
     }
     if !text.is_empty() {
-        out.push(Piece { text, num: false });
+        out.push(Piece { text, num: false, key: false });
     }
     out
 }
@@ -156,6 +189,13 @@ mod tests {
         assert_eq!(pieces(s).iter().map(|p| p.text.as_str()).collect::<String>(), s);
         // 0.12085992204657, 3.4e-13, the 1 of 1/s, 1e-3
         assert_eq!(pieces(s).iter().filter(|p| p.num).count(), 4);
+    }
+
+    #[test]
+    fn configuration_keys_are_code() {
+        let p = pieces("grid in z (horizon.field_points); names discretisation.* and control.a, control.b.");
+        let keys: Vec<&str> = p.iter().filter(|p| p.key).map(|p| p.text.as_str()).collect();
+        assert_eq!(keys, ["horizon.field_points", "discretisation.*", "control.a", "control.b"]);
     }
 
     #[test]
