@@ -101,7 +101,8 @@ pub enum MarkShape {
     Line,
     /// One dashed polyline through the points.
     DashedLine,
-    /// A cross at each point (e.g. the configured operating point).
+    /// An open square around each point (e.g. the configured operating point), outside the
+    /// circles and dots of the point's cell, so its own verdict marks stay visible.
     Cross,
     /// A hatched region: the convex polygon through the points, hatched with thin diagonal lines
     /// (the cell colours stay readable), drawn under the other marks.
@@ -367,11 +368,10 @@ fn draw_cells_frame(main: &Area, h: &GridHeatmap, xe: &[f64], ye: &[f64]) -> Res
             MarkShape::Cross => {
                 for &p in &pts {
                     let (x, y) = chart.backend_coord(&p);
-                    let d = px(9) as i32;
+                    let d = px(13) as i32;
+                    let square = vec![(x - d, y - d), (x + d, y - d), (x + d, y + d), (x - d, y + d), (x - d, y - d)];
                     for (style, w) in [(o, px(6)), (c.to_rgba(), px(3))] {
-                        for seg in [[(x - d, y - d), (x + d, y + d)], [(x - d, y + d), (x + d, y - d)]] {
-                            main.draw(&PathElement::new(seg.to_vec(), style.stroke_width(w))).map_err(e)?;
-                        }
+                        main.draw(&PathElement::new(square.clone(), style.stroke_width(w))).map_err(e)?;
                     }
                 }
             }
@@ -474,11 +474,10 @@ fn draw_legend(area: &Area, entries: &[(String, RGBColor, Option<MarkShape>)]) -
                 area.draw(&Circle::new((xm, y), px(7), c.stroke_width(px(2)))).map_err(e)?;
             }
             Some(MarkShape::Cross) => {
-                let d = px(8) as i32;
+                let d = px(9) as i32;
+                let square = vec![(xm - d, y - d), (xm + d, y - d), (xm + d, y + d), (xm - d, y + d), (xm - d, y - d)];
                 for (style, w) in [(o, px(6)), (c.to_rgba(), px(3))] {
-                    for s in [[(xm - d, y - d), (xm + d, y + d)], [(xm - d, y + d), (xm + d, y - d)]] {
-                        area.draw(&PathElement::new(s.to_vec(), style.stroke_width(w))).map_err(e)?;
-                    }
+                    area.draw(&PathElement::new(square.clone(), style.stroke_width(w))).map_err(e)?;
                 }
             }
         }

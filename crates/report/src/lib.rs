@@ -178,7 +178,7 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     let tracker = Tracker::new(opts);
     let on_progress = |p: Progress| tracker.update(p);
     let progress: Option<&(dyn Fn(Progress) + Sync)> = Some(&on_progress);
-    let (ledger, runs, region, proofs, mut timings) = compute(cfg, progress)?;
+    let (ledger, runs, region, mut timings) = compute(cfg, progress)?;
 
     // Figure data and captions.
     let t = Instant::now();
@@ -199,8 +199,13 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
         .chain(region_fig.iter())
         .chain(row_figs.iter().flatten())
         .collect();
-    let mut files = render_charts(&all, &staging, progress)?;
-    // The certificate set for the configured point, re-checkable with `wingcheck verify proofs`.
+    // The charts, and beside them the certificate set for the configured point (re-checkable
+    // with `wingcheck verify proofs`).
+    let (charts, (proofs, pt)) = rayon::join(
+        || render_charts(&all, &staging, progress),
+        || timed(|| wingcheck_claims::certify::render_set(cfg)),
+    );
+    let mut files = charts?;
     let proofs = match proofs {
         Ok(set) => {
             let mut names = Vec::new();
@@ -213,6 +218,7 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
         Err(e) => Err(e.to_string()),
     };
     timings.push(StageTiming { name: "charts".into(), seconds: t.elapsed().as_secs_f64() });
+    timings.push(StageTiming { name: "certificates (beside the charts)".into(), seconds: pt });
 
     // The page.
     let t = Instant::now();
@@ -255,17 +261,16 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
 /// The report's certificate directory (`wingcheck certify`'s set for the configured point).
 pub const PROOFS: &str = "proofs";
 
-/// The certificate set's files (name, text), or why `certify` cannot make one.
-type ProofSet = Result<Vec<(String, String)>, wingcheck_claims::certify::CertifyError>;
+type Computed = (Ledger, runs::Runs, Option<region::RegionMap>, Vec<StageTiming>);
 
-type Computed = (Ledger, runs::Runs, Option<region::RegionMap>, ProofSet, Vec<StageTiming>);
-
-/// The ledger, the simulations, the region map and the certificate set, concurrently; the
-/// ledger and the figures share one study, so every simulation runs once.
+/// The ledger, the simulations and the region map, concurrently; the ledger and the figures
+/// share one study, so every simulation runs once. (The certificate set is made afterwards,
+/// beside the charts: during the ledger it would compete with the SDP cross-check, whose
+/// answer has a wall-time budget.)
 fn compute(cfg: &Config, progress: Option<&(dyn Fn(Progress) + Sync)>) -> Result<Computed, ReportError> {
     let study = Study::new();
     let settings = CheckSettings::default();
-    let ((ledger, lt), (((runs, st), (region, rt)), (proofs, pt))) = rayon::join(
+    let ((ledger, lt), ((runs, st), (region, rt))) = rayon::join(
         || {
             report(progress, "ledger", 0, 1);
             let t = Instant::now();
@@ -273,26 +278,15 @@ fn compute(cfg: &Config, progress: Option<&(dyn Fn(Progress) + Sync)>) -> Result
             report(progress, "ledger", 1, 1);
             (l, t.elapsed().as_secs_f64())
         },
-        || {
-            rayon::join(
-                || {
-                    rayon::join(
-                        || timed(|| runs::run_all(cfg, &study, progress)),
-                        || timed(|| region_stage(cfg, progress)),
-                    )
-                },
-                || timed(|| wingcheck_claims::certify::render_set(cfg)),
-            )
-        },
+        || rayon::join(|| timed(|| runs::run_all(cfg, &study, progress)), || timed(|| region_stage(cfg, progress))),
     );
     let timings = vec![
         StageTiming { name: "ledger".into(), seconds: lt },
         StageTiming { name: "simulations".into(), seconds: st },
         StageTiming { name: "region map".into(), seconds: rt },
-        StageTiming { name: "certificates".into(), seconds: pt },
     ];
     report(progress, "region map", 1, 1);
-    Ok((ledger?, runs?, region?, proofs, timings))
+    Ok((ledger?, runs?, region?, timings))
 }
 
 /// `f()` and its wall time (s).
