@@ -29,6 +29,7 @@ mod region;
 mod runs;
 mod stats;
 mod top;
+mod wratio;
 
 use std::path::Path;
 use std::time::Instant;
@@ -186,7 +187,12 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     let groups = paper::paper_figures(cfg, &runs, paper::ftdo_bounds(&ledger));
     let comparison = paper::comparison_figures(cfg, &runs);
     let (acc_fig, acc_rows) = accuracy::accuracy(&runs.accuracy);
-    let row_figs: Vec<Vec<Figure>> = ledger.rows.iter().enumerate().map(|(i, r)| claim_figures(i, r)).collect();
+    let mut row_figs: Vec<Vec<Figure>> = ledger.rows.iter().enumerate().map(|(i, r)| claim_figures(i, r)).collect();
+    // the W-bounds row's λ2/λ1 against a/b (through zero at ω₁), drawn by the report
+    let omega1 = region.as_ref().map(|r| r.omega1).or_else(|| paper::omega1(cfg));
+    if let (Some(i), Some(w)) = (ledger.rows.iter().position(|r| r.id == wingcheck_claims::ClaimId::WBounds), omega1) {
+        row_figs[i].extend(wratio::w_ratio_figure(cfg, w, CheckSettings::default().uub_lambda2_elements));
+    }
     timings.push(StageTiming { name: "figure data".into(), seconds: t.elapsed().as_secs_f64() });
 
     // SVG + CSV of every figure, in parallel.
@@ -412,7 +418,7 @@ fn claim_figures(index: usize, r: &wingcheck_claims::ClaimRow) -> Vec<Figure> {
 /// Where a linear y axis would show some of the values as 0 ([`chart::SymLog::for_values`]
 /// decides from the plotted values): a logarithmic axis when every value is positive, else a
 /// symmetric-log one. Returns the chart and whether its axis was changed.
-fn readable_y_axis(mut c: chart::LineChart) -> (chart::LineChart, bool) {
+pub(crate) fn readable_y_axis(mut c: chart::LineChart) -> (chart::LineChart, bool) {
     if c.data.log_y {
         return (c, false);
     }

@@ -82,9 +82,9 @@ fn report_is_well_formed_complete_and_matches_the_ledger() {
     let figures: Vec<_> = doc.descendants().filter(|n| n.has_tag_name("figure")).collect();
     // 18 paper figures (3–20) + a 3-D view of each of the 6 field figures (3–6, 13–14) + the τ zoom
     // of each controlled run + 2 DOBC − FTDO difference maps + 1 accuracy figure + the region map
-    // + the ledger's own plots.
+    // + the W-bounds row's λ2/λ1 against a/b + the ledger's own plots.
     let ledger_plots: usize = summary.ledger.rows.iter().map(|r| r.plots.len()).sum();
-    assert_eq!(figures.len(), 18 + 6 + 2 + 2 + 1 + 1 + ledger_plots);
+    assert_eq!(figures.len(), 18 + 6 + 2 + 2 + 1 + 1 + 1 + ledger_plots);
     let ledger_json: serde_json::Value = serde_json::from_str(&read(&out.join("ledger.json"))).unwrap();
     // The FTDO and DOBC q and θ fields have a 3-D view, with its axes labelled with units.
     for f in ["fig05-q-ftdo", "fig06-theta-ftdo", "fig13-q-dobc", "fig14-theta-dobc"] {
