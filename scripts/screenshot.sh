@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Screenshots of a rendered report for a person to look at: the top of the page and every
-# section (each <h2 id> and <section id> of index.html), 1280 × 1000 px each, with headless
-# Chromium; with FIGURES=1 also every figure (<figure id>).
+# section (each <h2 id> and <section id> of index.html), with headless Chromium: the first
+# screen at 1280 × 800 px (what a reader sees on opening the page), each section at 1280 × 1000;
+# with FIGURES=1 also every figure (<figure id>).
 # Usage: [FIGURES=1] scripts/screenshot.sh [REPORT_DIR (reports/paper)] [OUT_DIR (target/screenshots)]
 # A section is shown by loading the page in an iframe at index.html#id (headless Chromium does
 # not scroll the top-level page to a fragment before the capture).
@@ -27,13 +28,13 @@ rm -f "$out"/[0-9][0-9]-*.png
 profile="$(mktemp -d)"
 trap 'rm -rf "$profile"' EXIT
 index="$(cd "$report" && pwd)/index.html"
-shot() { # name url
+shot() { # name url [width,height]
     "$browser" --headless --no-sandbox --disable-gpu --hide-scrollbars --virtual-time-budget=10000 \
         --no-first-run --disable-background-networking --disable-component-update --disable-sync \
-        --user-data-dir="$profile" --window-size=1280,1000 --screenshot="$out/$1.png" "$2" >/dev/null 2>&1
+        --user-data-dir="$profile" --window-size="${3:-1280,1000}" --screenshot="$out/$1.png" "$2" >/dev/null 2>&1
     echo "$out/$1.png"
 }
-shot 00-top "file://$index"
+shot 00-top "file://$index" 1280,800
 n=1
 tags='h2|section'
 if [ "${FIGURES:-0}" = 1 ]; then tags='h2|section|figure'; fi

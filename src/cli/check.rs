@@ -22,7 +22,7 @@ pub fn run(a: CheckArgs) -> anyhow::Result<()> {
     a.work.guard(&wingcheck_claims::plan::check_estimate(&cfg, &wingcheck_claims::CheckSettings::default()))?;
     let ledger = check_all(&cfg)?;
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&ledger)?);
+        println!("{}", ledger.to_json());
         return Ok(());
     }
     println!("claim ledger ({}, config sha256 {})", ledger.tool, &ledger.config_sha256[..12]);

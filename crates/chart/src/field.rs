@@ -30,18 +30,24 @@ pub struct Heatmap {
     pub value_label: String,
     /// The colour scale is set by the samples with t ≥ this (s).
     pub scale_from: f64,
+    /// A fixed half-width of the colour scale instead (a pair of maps on one scale).
+    pub vmax: Option<f64>,
 }
 
 impl Heatmap {
     /// The data as CSV in long form, `t_s,z_m,value` (one row per sample time and grid point,
     /// t outer); `value` is in the unit of [`Self::value_label`], which the report's
-    /// `provenance.json` lists for every figure file.
+    /// `provenance.json` lists for every figure file. Numbers in the shortest round-trip form.
     pub fn to_csv(&self) -> String {
+        self.to_csv_with(wingcheck_io::number)
+    }
+
+    /// [`Heatmap::to_csv`] with the field's values written by `value` (e.g. to the digits of
+    /// their error); times and grid points in the shortest round-trip form.
+    pub fn to_csv_with(&self, value: impl Fn(f64) -> String) -> String {
         let rows = self.t.iter().zip(&self.values).flat_map(|(t, row)| {
-            self.z
-                .iter()
-                .zip(row)
-                .map(|(z, v)| [wingcheck_io::number(*t), wingcheck_io::number(*z), wingcheck_io::number(*v)])
+            let value = &value;
+            self.z.iter().zip(row).map(move |(z, v)| [wingcheck_io::number(*t), wingcheck_io::number(*z), value(*v)])
         });
         wingcheck_io::csv_text(["t_s", "z_m", "value"], rows)
     }
@@ -54,8 +60,13 @@ impl Heatmap {
         )
     }
 
-    /// Half-width of the colour scale: max |v| over t ≥ `scale_from` (1 if that is 0).
+    /// Half-width of the colour scale: `vmax` when set, else [`Heatmap::own_scale`].
     pub fn scale(&self) -> f64 {
+        self.vmax.filter(|v| v.is_finite() && *v > 0.0).unwrap_or_else(|| self.own_scale())
+    }
+
+    /// max |v| over t ≥ `scale_from` (1 if that is 0).
+    pub fn own_scale(&self) -> f64 {
         let m = self
             .t
             .iter()
@@ -194,7 +205,14 @@ pub fn heatmap_svg(h: &Heatmap) -> Result<String, ChartError> {
             .margin_left(px(10))
             .margin_right(px(4))
             .right_y_label_area_size(px(70))
-            .build_cartesian_2d(0.0..1.0, Ticked::<RangedCoordf64>::new(-vmax..vmax, linear_ticks(-vmax, vmax, 6)))
+            .build_cartesian_2d(
+                0.0..1.0,
+                // the scale's ends labelled too (unless a tick is within 6 % of them)
+                Ticked::<RangedCoordf64>::new(
+                    -vmax..vmax,
+                    crate::with_ends(&linear_ticks(-vmax, vmax, 6), -vmax, vmax, 0.06),
+                ),
+            )
             .map_err(|e| err(e.to_string()))?;
         let steps = 64;
         cb.draw_series((0..steps).map(|i| {

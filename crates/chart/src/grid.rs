@@ -101,7 +101,8 @@ pub enum MarkShape {
     Line,
     /// One dashed polyline through the points.
     DashedLine,
-    /// A cross at each point (e.g. the configured operating point).
+    /// An open square around each point (e.g. the configured operating point), outside the
+    /// circles and dots of the point's cell, so its own verdict marks stay visible.
     Cross,
     /// A hatched region: the convex polygon through the points, hatched with thin diagonal lines
     /// (the cell colours stay readable), drawn under the other marks.
@@ -367,11 +368,10 @@ fn draw_cells_frame(main: &Area, h: &GridHeatmap, xe: &[f64], ye: &[f64]) -> Res
             MarkShape::Cross => {
                 for &p in &pts {
                     let (x, y) = chart.backend_coord(&p);
-                    let d = px(9) as i32;
+                    let d = px(13) as i32;
+                    let square = vec![(x - d, y - d), (x + d, y - d), (x + d, y + d), (x - d, y + d), (x - d, y - d)];
                     for (style, w) in [(o, px(6)), (c.to_rgba(), px(3))] {
-                        for seg in [[(x - d, y - d), (x + d, y + d)], [(x - d, y + d), (x + d, y - d)]] {
-                            main.draw(&PathElement::new(seg.to_vec(), style.stroke_width(w))).map_err(e)?;
-                        }
+                        main.draw(&PathElement::new(square.clone(), style.stroke_width(w))).map_err(e)?;
                     }
                 }
             }
@@ -384,15 +384,24 @@ fn draw_cells_frame(main: &Area, h: &GridHeatmap, xe: &[f64], ye: &[f64]) -> Res
 /// area), labelled with values (not their logarithms) and the quantity.
 fn draw_colour_bar(bar: &Area, h: &GridHeatmap, vmin: f64, vmax: f64) -> Result<PixelRange, String> {
     let e = |e: DrawingAreaErrorKind<std::io::Error>| e.to_string();
+    // The scale's ends are labelled too (the top of the region map's is the unsuppressed
+    // deflection), unless a tick is within 6 % of the bar's height of them.
     let (ticks, labels): (Vec<f64>, Vec<String>) = if h.log_values {
         let t = log_ticks(10f64.powf(vmin), 10f64.powf(vmax), &[]);
         let decades = log_labels(&t);
-        (
-            t.iter().map(|v| v.log10()).collect(),
-            t.iter().map(|v| if decades { decade_label(*v) } else { tick(*v) }).collect(),
-        )
+        let logs: Vec<f64> = t.iter().map(|v| v.log10()).collect();
+        let all = crate::with_ends(&logs, vmin, vmax, 0.06);
+        let label = |l: f64| {
+            let v = 10f64.powf(l);
+            if t.iter().any(|x| (x.log10() - l).abs() < 1e-9) && decades {
+                decade_label(v)
+            } else {
+                tick(v)
+            }
+        };
+        (all.clone(), all.iter().map(|l| label(*l)).collect())
     } else {
-        let t = linear_ticks(vmin, vmax, 6);
+        let t = crate::with_ends(&linear_ticks(vmin, vmax, 6), vmin, vmax, 0.06);
         (t.clone(), t.iter().map(|v| crate::tick_linear(*v, vmax - vmin)).collect())
     };
     let mut cb = ChartBuilder::on(bar)
@@ -465,11 +474,10 @@ fn draw_legend(area: &Area, entries: &[(String, RGBColor, Option<MarkShape>)]) -
                 area.draw(&Circle::new((xm, y), px(7), c.stroke_width(px(2)))).map_err(e)?;
             }
             Some(MarkShape::Cross) => {
-                let d = px(8) as i32;
+                let d = px(9) as i32;
+                let square = vec![(xm - d, y - d), (xm + d, y - d), (xm + d, y + d), (xm - d, y + d), (xm - d, y - d)];
                 for (style, w) in [(o, px(6)), (c.to_rgba(), px(3))] {
-                    for s in [[(xm - d, y - d), (xm + d, y + d)], [(xm - d, y + d), (xm + d, y - d)]] {
-                        area.draw(&PathElement::new(s.to_vec(), style.stroke_width(w))).map_err(e)?;
-                    }
+                    area.draw(&PathElement::new(square.clone(), style.stroke_width(w))).map_err(e)?;
                 }
             }
         }

@@ -25,11 +25,11 @@ mod ticks;
 pub use data::{Line, PlotData};
 pub use field::{heatmap_svg, Heatmap};
 pub use grid::{grid_heatmap_svg, viridis, GridAxis, GridHeatmap, Mark, MarkShape};
-pub use line::{line_svg, LineChart, LineStyle};
+pub use line::{line_svg, Band, LineChart, LineStyle};
 pub use plotters::style::RGBColor;
 pub use surface::surface_svg;
 pub use symlog::{SymLog, SymLogCoord};
-pub use ticks::{linear_ticks, log_ticks, Ticked};
+pub use ticks::{linear_ticks, log_ticks, with_ends, Ticked};
 
 /// A chart could not be drawn.
 #[derive(Debug, thiserror::Error)]

@@ -8,6 +8,7 @@ use plotters::coord::combinators::LogCoord;
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
+use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 
 use crate::symlog::{SymLog, SymLogCoord};
@@ -29,6 +30,22 @@ pub enum LineStyle {
     Dashed,
 }
 
+/// A band around a line: the signal's range between its samples (e.g. the full-rate min/max of
+/// τ over each output interval, which the samples alone alias). Drawn as a translucent fill in
+/// the line's colour, held over each interval (x_{k−1}, x_k] like the data it bounds; written to
+/// the CSV as two columns beside the line's values.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Band {
+    /// Index of the line whose x the band uses (and whose colour).
+    pub line: usize,
+    /// Lower edge per sample of that line (over the interval ending there).
+    pub lo: Vec<f64>,
+    /// Upper edge per sample.
+    pub hi: Vec<f64>,
+    /// Legend text (e.g. `full-rate min … max per 10-ms output interval`).
+    pub label: String,
+}
+
 /// A chart: the data and how to show it.
 #[derive(Debug, Clone)]
 pub struct LineChart {
@@ -45,11 +62,24 @@ pub struct LineChart {
     /// A symmetric-log y axis with this transform (ignored when `data.log_y`); the legend panel
     /// states its linear threshold.
     pub symlog_y: Option<SymLog>,
+    /// Show this y range instead of the data's padded range (a pair of figures on common axes).
+    pub y_range: Option<(f64, f64)>,
+    /// Bands around lines (full-rate ranges between samples).
+    pub bands: Vec<Band>,
 }
 
 impl From<PlotData> for LineChart {
     fn from(data: PlotData) -> Self {
-        LineChart { data, styles: Vec::new(), x_range: None, vlines: Vec::new(), hlines: Vec::new(), symlog_y: None }
+        LineChart {
+            data,
+            styles: Vec::new(),
+            x_range: None,
+            vlines: Vec::new(),
+            hlines: Vec::new(),
+            symlog_y: None,
+            y_range: None,
+            bands: Vec::new(),
+        }
     }
 }
 
@@ -61,6 +91,63 @@ impl LineChart {
     /// The symmetric-log transform of the y axis, if it has one.
     fn symlog(&self) -> Option<SymLog> {
         self.symlog_y.filter(|_| !self.data.log_y)
+    }
+
+    /// Every y value the chart shows (lines and bands inside the x range), for axis ranges.
+    pub fn y_values(&self) -> Vec<f64> {
+        let pd = &self.data;
+        let in_x = |x: f64| (!pd.log_x || x > 0.0) && self.x_range.is_none_or(|(a, b)| x >= a && x <= b);
+        let mut v: Vec<f64> =
+            pd.lines.iter().flat_map(|l| l.x.iter().zip(&l.y).filter(|(x, _)| in_x(**x)).map(|(_, y)| *y)).collect();
+        for b in &self.bands {
+            if let Some(l) = pd.lines.get(b.line) {
+                for (k, _) in l.x.iter().enumerate().filter(|(_, x)| in_x(**x)) {
+                    v.extend(b.lo.get(k).copied().into_iter().chain(b.hi.get(k).copied()));
+                }
+            }
+        }
+        v.retain(|y| y.is_finite());
+        v
+    }
+
+    /// The data as CSV: the lines as [`PlotData::to_csv`] writes them; with bands, two more
+    /// columns (the band's lower and upper edge) on the rows of each line a band belongs to.
+    pub fn to_csv(&self) -> String {
+        self.to_csv_with(wingcheck_io::number)
+    }
+
+    /// [`LineChart::to_csv`] with the y values and band edges written by `value` (e.g. to the
+    /// digits of their error); x in the shortest round-trip form. Long form `series,x,y`
+    /// ([`PlotData::to_csv`]); with bands, `y_min,y_max` (the band's edges, empty on rows of a
+    /// line without one).
+    pub fn to_csv_with(&self, value: impl Fn(f64) -> String) -> String {
+        let pd = &self.data;
+        let banded = !self.bands.is_empty();
+        let header: &[&str] = if banded { &["series", "x", "y", "y_min", "y_max"] } else { &["series", "x", "y"] };
+        let rows = pd.lines.iter().enumerate().flat_map(|(i, l)| {
+            let band = self.bands.iter().find(|b| b.line == i);
+            let value = &value;
+            l.x.iter().zip(&l.y).enumerate().map(move |(k, (x, y))| {
+                let mut row = vec![l.label.clone(), wingcheck_io::number(*x), value(*y)];
+                if banded {
+                    let edges = band.and_then(|b| Some((b.lo.get(k)?, b.hi.get(k)?)));
+                    let (lo, hi) = edges.map_or((String::new(), String::new()), |(a, b)| (value(*a), value(*b)));
+                    row.extend([lo, hi]);
+                }
+                row
+            })
+        });
+        wingcheck_io::csv_text(header.iter().copied(), rows)
+    }
+
+    /// What the CSV holds, for the provenance record.
+    pub fn csv_contents(&self) -> String {
+        let bands = if self.bands.is_empty() {
+            String::new()
+        } else {
+            format!("; y_min, y_max = the band ({}) per output interval", self.bands[0].label)
+        };
+        format!("{}{bands}", self.data.csv_contents())
     }
 }
 
@@ -98,6 +185,7 @@ pub fn line_svg(c: &LineChart) -> Result<String, ChartError> {
         let root = SVGBackend::with_string(&mut svg, CANVAS).into_drawing_area();
         root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
         let labelled = pd.lines.iter().any(|l| !l.label.is_empty())
+            || !c.bands.is_empty()
             || !c.vlines.is_empty()
             || !c.hlines.is_empty()
             || c.symlog().is_some();
@@ -107,19 +195,15 @@ pub fn line_svg(c: &LineChart) -> Result<String, ChartError> {
         } else {
             (root.clone(), None)
         };
-        let in_x = |x: f64| c.x_range.is_none_or(|(a, b)| x >= a && x <= b);
         let xs = match c.x_range {
             Some((a, b)) if b > a => (a, b),
             _ => padded_range(pd.lines.iter().flat_map(|l| l.x.iter().copied()), pd.log_x),
         };
-        let y_values = pd
-            .lines
-            .iter()
-            .flat_map(|l| l.x.iter().zip(&l.y).filter(|(x, _)| (!pd.log_x || **x > 0.0) && in_x(**x)).map(|(_, y)| *y))
-            .chain(c.hlines.iter().map(|h| h.0));
-        let ys = match c.symlog() {
-            Some(s) => s.padded_range(y_values),
-            None => padded_range(y_values, pd.log_y),
+        let y_values = c.y_values().into_iter().chain(c.hlines.iter().map(|h| h.0));
+        let ys = match (c.y_range, c.symlog()) {
+            (Some((a, b)), _) if b > a && (!pd.log_y || a > 0.0) => (a, b),
+            (_, Some(s)) => s.padded_range(y_values),
+            _ => padded_range(y_values, pd.log_y),
         };
         let data_x: Vec<f64> = pd.lines.iter().flat_map(|l| l.x.iter().copied()).collect();
         let xt = if pd.log_x { log_ticks(xs.0, xs.1, &data_x) } else { linear_ticks(xs.0, xs.1, 8) };
@@ -185,6 +269,14 @@ fn colours(pd: &PlotData) -> Vec<RGBColor> {
 /// Colour of markers and levels.
 const MARK: RGBColor = RGBColor(90, 90, 90);
 
+/// Dash, gap (canvas px) and colour of the `k`-th vertical marker: each marker of a chart drawn
+/// differently, so two close ones (a measured time and its bound) stay apart in the legend.
+fn vline_style(k: usize) -> (u32, u32, RGBColor) {
+    const STYLES: [(u32, u32, RGBColor); 3] = [(6, 4, MARK), (14, 4, RGBColor(0, 0, 0)), (2, 3, RGBColor(140, 60, 0))];
+    let (d, g, c) = STYLES[k % STYLES.len()];
+    (px(d), px(g), c)
+}
+
 fn draw<X, Y>(
     root: &DrawingArea<SVGBackend, Shift>,
     c: &LineChart,
@@ -228,6 +320,57 @@ where
     let keep = |(x, y): &(f64, f64)| {
         x.is_finite() && y.is_finite() && (!log_x || *x > 0.0) && (!log_y || *y > 0.0) && *x >= xa && *x <= xb
     };
+    for b in &c.bands {
+        let Some(line) = pd.lines.get(b.line) else { continue };
+        let color = colours[b.line];
+        let (y_lo, y_hi) = (y_range.start, y_range.end);
+        let clamp = |y: f64| if y.is_finite() { y.clamp(y_lo, y_hi) } else { y_lo };
+        let (x_lo, x_hi) = (x_range.start.max(xa), x_range.end.min(xb));
+        // Held over each interval (x_{k−1}, x_k], clipped to the plot; intervals narrower than
+        // a displayed pixel are merged per pixel column (their min and max), so the drawn
+        // region is the same and the path stays short.
+        let fx = |x: f64| if log_x { x.log10() } else { x };
+        let column = (fx(x_hi) - fx(x_lo)) / f64::from(crate::SIZE.0);
+        let (mut upper, mut lower) = (Vec::new(), Vec::new());
+        let mut open: Option<(i64, f64, f64, f64, f64)> = None; // (column, x0, x1, lo, hi)
+        let flush = |o: Option<(i64, f64, f64, f64, f64)>, upper: &mut Vec<(f64, f64)>, lower: &mut Vec<(f64, f64)>| {
+            if let Some((_, x0, x1, lo, hi)) = o {
+                upper.extend([(x0, clamp(hi)), (x1, clamp(hi))]);
+                lower.extend([(x0, clamp(lo)), (x1, clamp(lo))]);
+            }
+        };
+        for k in 1..line.x.len().min(b.lo.len()).min(b.hi.len()) {
+            let (x0, x1) = (line.x[k - 1].max(x_lo), line.x[k].min(x_hi));
+            if x1.partial_cmp(&x0) != Some(std::cmp::Ordering::Greater) || (log_x && x0 <= 0.0) {
+                continue;
+            }
+            let (lo, hi) = (b.lo[k].min(b.hi[k]), b.hi[k].max(b.lo[k]));
+            let col = if column.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) || fx(x1) - fx(x0) >= column {
+                -1 - k as i64
+            } else {
+                ((fx(x0) - fx(x_lo)) / column).floor() as i64
+            };
+            match open.as_mut() {
+                Some(o) if o.0 == col && col >= 0 => {
+                    o.2 = x1;
+                    o.3 = o.3.min(lo);
+                    o.4 = o.4.max(hi);
+                }
+                _ => {
+                    flush(open.take(), &mut upper, &mut lower);
+                    open = Some((col, x0, x1, lo, hi));
+                }
+            }
+        }
+        flush(open.take(), &mut upper, &mut lower);
+        lower.reverse();
+        upper.extend(lower);
+        if upper.len() >= 3 {
+            chart
+                .draw_series(std::iter::once(Polygon::new(upper, color.mix(0.3).filled())))
+                .map_err(|e| e.to_string())?;
+        }
+    }
     for (i, line) in pd.lines.iter().enumerate() {
         let color = colours[i];
         let width = px(if i == 0 { 3 } else { 2 });
@@ -259,6 +402,17 @@ where
             }
         }
         for s in segments.into_iter().filter(|s| !s.is_empty()) {
+            // The polyline as drawn: points within a quarter displayed pixel of the line through
+            // their kept neighbours add nothing visible (Douglas–Peucker on the canvas).
+            let canvas: Vec<(f64, f64)> = s
+                .iter()
+                .map(|p| {
+                    let (x, y) = chart.backend_coord(p);
+                    (f64::from(x), f64::from(y))
+                })
+                .collect();
+            let s: Vec<(f64, f64)> =
+                simplified(&canvas, f64::from(crate::SCALE) / 4.0).into_iter().map(|k| s[k]).collect();
             if c.style(i) == LineStyle::Dashed {
                 chart
                     .draw_series(DashedLineSeries::new(s, px(8), px(5), color.stroke_width(width)))
@@ -270,10 +424,11 @@ where
             }
         }
     }
-    for (x, _) in &c.vlines {
+    for (k, (x, _)) in c.vlines.iter().enumerate() {
         let s = vec![(*x, y_range.start), (*x, y_range.end)];
+        let (dash, gap, colour) = vline_style(k);
         chart
-            .draw_series(DashedLineSeries::new(s, px(6), px(4), MARK.stroke_width(px(2))))
+            .draw_series(DashedLineSeries::new(s, dash, gap, colour.stroke_width(px(2))))
             .map_err(|e| e.to_string())?;
     }
     for (y, _) in &c.hlines {
@@ -285,8 +440,97 @@ where
     Ok(())
 }
 
-/// The legend panel: one entry per labelled line (swatch as drawn: line, dashes or marker),
-/// then the markers and levels.
+/// Indices of the points of the polyline `p` (canvas coordinates) kept by Douglas–Peucker with
+/// tolerance `tol`: every dropped point lies within `tol` of the segment between the kept points
+/// around it. The ends are always kept. Iterative (no recursion depth limit).
+pub(crate) fn simplified(p: &[(f64, f64)], tol: f64) -> Vec<usize> {
+    let n = p.len();
+    if n <= 2 {
+        return (0..n).collect();
+    }
+    let mut keep = vec![false; n];
+    keep[0] = true;
+    keep[n - 1] = true;
+    let mut stack = vec![(0usize, n - 1)];
+    while let Some((a, b)) = stack.pop() {
+        let (ax, ay) = p[a];
+        let (dx, dy) = (p[b].0 - ax, p[b].1 - ay);
+        let len = (dx * dx + dy * dy).sqrt();
+        let mut worst = (0.0, 0usize);
+        for (k, &(x, y)) in p.iter().enumerate().take(b).skip(a + 1) {
+            let d = if len > 0.0 {
+                ((x - ax) * dy - (y - ay) * dx).abs() / len
+            } else {
+                ((x - ax).powi(2) + (y - ay).powi(2)).sqrt()
+            };
+            if d > worst.0 {
+                worst = (d, k);
+            }
+        }
+        if worst.0 > tol {
+            keep[worst.1] = true;
+            stack.push((a, worst.1));
+            stack.push((worst.1, b));
+        }
+    }
+    (0..n).filter(|&k| keep[k]).collect()
+}
+
+/// Characters per line of the legend panel's text (17-px sans-serif in [`LEGEND_W`] px less
+/// the swatch).
+const LEGEND_CHARS: usize = 23;
+
+/// `text` wrapped at word boundaries into lines of at most [`LEGEND_CHARS`] characters (a
+/// longer word is a line of its own).
+fn wrap(text: &str) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    for w in text.split(' ') {
+        match lines.last_mut() {
+            Some(l) if l.chars().count() + 1 + w.chars().count() <= LEGEND_CHARS => {
+                l.push(' ');
+                l.push_str(w);
+            }
+            _ => lines.push(w.to_string()),
+        }
+    }
+    lines
+}
+
+/// Whether a line has a point that can be drawn on the chart's axes (finite, positive on a
+/// log axis, inside a zoomed x range).
+fn drawable(c: &LineChart, l: &crate::Line) -> bool {
+    let (xa, xb) = c.x_range.unwrap_or((f64::NEG_INFINITY, f64::INFINITY));
+    l.x.iter().zip(&l.y).any(|(x, y)| {
+        x.is_finite()
+            && y.is_finite()
+            && (!c.data.log_x || *x > 0.0)
+            && (!c.data.log_y || *y > 0.0)
+            && *x >= xa
+            && *x <= xb
+    })
+}
+
+/// Draw a legend entry's text wrapped ([`wrap`]) with its first line beside the swatch at
+/// height `y`; the height of its last line.
+fn legend_text(
+    area: &DrawingArea<SVGBackend, Shift>,
+    text: &str,
+    (x, y): (i32, i32),
+    font: &TextStyle,
+) -> Result<i32, String> {
+    let mut y = y;
+    for (i, line) in wrap(text).into_iter().enumerate() {
+        if i > 0 {
+            y += px(21) as i32;
+        }
+        area.draw(&Text::new(line, (x, y - px(9) as i32), font.clone())).map_err(|e| e.to_string())?;
+    }
+    Ok(y)
+}
+
+/// The legend panel: one entry per labelled line (swatch as drawn: the same line width and
+/// dash pattern, or the marker), each band (a filled swatch), then the markers and levels. A
+/// line with nothing drawable on these axes (e.g. 0 throughout on a log axis) says so.
 fn draw_legend(area: &DrawingArea<SVGBackend, Shift>, c: &LineChart) -> Result<(), String> {
     let pd = &c.data;
     let colours = colours(pd);
@@ -294,6 +538,7 @@ fn draw_legend(area: &DrawingArea<SVGBackend, Shift>, c: &LineChart) -> Result<(
     let mut y = px(24) as i32;
     let x0 = px(10) as i32;
     let step = px(26) as i32;
+    let swatch = |y: i32| vec![(x0, y), (x0 + px(28) as i32, y)];
     let e = |e: DrawingAreaErrorKind<std::io::Error>| e.to_string();
     for (i, line) in pd.lines.iter().enumerate() {
         if line.label.is_empty() {
@@ -303,32 +548,41 @@ fn draw_legend(area: &DrawingArea<SVGBackend, Shift>, c: &LineChart) -> Result<(
         // A line followed by an unlabelled marker series of the same colour gets both.
         let marked = line.points || pd.lines.get(i + 1).is_some_and(|n| n.label.is_empty() && n.points);
         if !line.points {
-            let w = px(3);
-            let seg = vec![(x0, y), (x0 + px(28) as i32, y)];
+            let w = px(if i == 0 { 3 } else { 2 });
             if c.style(i) == LineStyle::Dashed {
-                area.draw(&PathElement::new(vec![(x0, y), (x0 + px(10) as i32, y)], color.stroke_width(w)))
-                    .map_err(e)?;
-                area.draw(&PathElement::new(
-                    vec![(x0 + px(16) as i32, y), (x0 + px(28) as i32, y)],
-                    color.stroke_width(w),
-                ))
-                .map_err(e)?;
+                area.draw(&DashedPathElement::new(swatch(y), px(8), px(5), color.stroke_width(w))).map_err(e)?;
             } else {
-                area.draw(&PathElement::new(seg, color.stroke_width(w))).map_err(e)?;
+                area.draw(&PathElement::new(swatch(y), color.stroke_width(w))).map_err(e)?;
             }
         }
         if marked {
             area.draw(&Circle::new((x0 + px(14) as i32, y), px(4), color.filled())).map_err(e)?;
         }
-        area.draw(&Text::new(line.label.clone(), (x0 + px(36) as i32, y - px(9) as i32), font.clone())).map_err(e)?;
-        y += step;
+        let text = if drawable(c, line) {
+            line.label.clone()
+        } else if pd.log_y {
+            format!("{} (≤ 0 throughout: not on the log axis)", line.label)
+        } else {
+            format!("{} (outside the plotted range)", line.label)
+        };
+        y = legend_text(area, &text, (x0 + px(36) as i32, y), &font)? + step;
     }
-    for (_, label) in c.vlines.iter().chain(&c.hlines) {
-        area.draw(&PathElement::new(vec![(x0, y), (x0 + px(10) as i32, y)], MARK.stroke_width(px(2)))).map_err(e)?;
-        area.draw(&PathElement::new(vec![(x0 + px(16) as i32, y), (x0 + px(28) as i32, y)], MARK.stroke_width(px(2))))
-            .map_err(e)?;
-        area.draw(&Text::new(label.clone(), (x0 + px(36) as i32, y - px(9) as i32), font.clone())).map_err(e)?;
-        y += step;
+    for b in &c.bands {
+        let color = colours.get(b.line).copied().unwrap_or(MARK);
+        let r =
+            Rectangle::new([(x0, y - px(7) as i32), (x0 + px(28) as i32, y + px(7) as i32)], color.mix(0.3).filled());
+        area.draw(&r).map_err(e)?;
+        y = legend_text(area, &b.label, (x0 + px(36) as i32, y), &font)? + step;
+    }
+    let levels = c
+        .vlines
+        .iter()
+        .enumerate()
+        .map(|(k, v)| (v, vline_style(k)))
+        .chain(c.hlines.iter().map(|h| (h, (px(3), px(4), MARK))));
+    for ((_, label), (dash, gap, colour)) in levels {
+        area.draw(&DashedPathElement::new(swatch(y), dash, gap, colour.stroke_width(px(2)))).map_err(e)?;
+        y = legend_text(area, label, (x0 + px(36) as i32, y), &font)? + step;
     }
     if let Some(s) = c.symlog() {
         y += step / 2;
@@ -338,4 +592,19 @@ fn draw_legend(area: &DrawingArea<SVGBackend, Shift>, c: &LineChart) -> Result<(
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod simplify_tests {
+    use super::simplified;
+
+    #[test]
+    fn a_straight_run_keeps_its_ends_and_a_corner_stays() {
+        // Reference: collinear points are within any tolerance of their chord; the corner of an
+        // L is 50/√2 ≈ 35 px off the chord of the whole path.
+        let line: Vec<(f64, f64)> = (0..100).map(|k| (k as f64, 2.0 * k as f64)).collect();
+        assert_eq!(simplified(&line, 1.0), vec![0, 99]);
+        let l: Vec<(f64, f64)> = (0..=50).map(|k| (k as f64, 0.0)).chain((1..=50).map(|k| (50.0, k as f64))).collect();
+        assert_eq!(simplified(&l, 1.0), vec![0, 50, 100]);
+    }
 }

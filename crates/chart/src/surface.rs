@@ -119,7 +119,9 @@ fn palette() -> Vec<u8> {
     for l in 0..LEVELS {
         let c = coolwarm((l as f64 + 0.5) / LEVELS as f64);
         for s in 0..SHADES {
-            let f = 0.5 + 0.5 * s as f64 / (SHADES - 1) as f64;
+            // shading darkens by at most a quarter, so a quad's colour stays readable on the
+            // colour bar (which shows the unshaded level)
+            let f = 0.75 + 0.25 * s as f64 / (SHADES - 1) as f64;
             p.extend([c.0, c.1, c.2].map(|v| (v as f64 * f).round() as u8));
         }
     }
@@ -257,7 +259,8 @@ pub fn surface_svg(s: &Heatmap) -> Result<String, ChartError> {
     let cmax = s.scale();
     let (t0, t1, z0, z1) = (s.t[0], s.t[nt - 1], s.z[0], s.z[nz - 1]);
     let view = VIEW;
-    let vt = linear_ticks(vmin, vmax, 5);
+    // the height axis labelled up to the peak (and down to the lowest value)
+    let vt = crate::with_ends(&linear_ticks(vmin, vmax, 5), vmin, vmax, 0.08);
     let (bx0, by0, bx1, by1) = view.bounds();
     let r = draw_surface(s, view, (vmin, vmax), &vt);
     let png = indexed_png(&r).map_err(err)?;
@@ -310,7 +313,7 @@ pub fn surface_svg(s: &Heatmap) -> Result<String, ChartError> {
             root.draw(&Rectangle::new([c((cx, ya)), c((cx + 18.0, yb + 0.5))], col.filled())).map_err(e)?;
         }
         root.draw(&Rectangle::new([c((cx, cy0)), c((cx + 18.0, cy1))], axis)).map_err(e)?;
-        for v in linear_ticks(-cmax, cmax, 4) {
+        for v in crate::with_ends(&linear_ticks(-cmax, cmax, 4), -cmax, cmax, 0.08) {
             let y = cy1 - frac(v, -cmax, cmax) * (cy1 - cy0);
             root.draw(&PathElement::new(vec![c((cx + 18.0, y)), c((cx + 23.0, y))], axis)).map_err(e)?;
             let label = tick_linear(v, 2.0 * cmax);
@@ -378,6 +381,7 @@ mod tests {
             value_label: "v (m)".into(),
             // colour scale ±1 (the whole run)
             scale_from: 0.0,
+            vmax: None,
         };
         let r = draw_surface(&s, VIEW, height_range(&s), &[0.0, 1.0]);
         let level = |p: (f64, f64)| {

@@ -21,6 +21,19 @@ pub fn linear_ticks(lo: f64, hi: f64, target: usize) -> Vec<f64> {
     (first..=last).map(|k| k as f64 * step).collect()
 }
 
+/// `ticks` with the ends `lo` and `hi` of a colour bar added (each unless a tick lies within
+/// `min_gap` · (hi − lo) of it), so the scale's ends are labelled; sorted.
+pub fn with_ends(ticks: &[f64], lo: f64, hi: f64, min_gap: f64) -> Vec<f64> {
+    let mut out: Vec<f64> = ticks.to_vec();
+    for end in [lo, hi] {
+        if end.is_finite() && out.iter().all(|t| (t - end).abs() > min_gap * (hi - lo).abs()) {
+            out.push(end);
+        }
+    }
+    out.sort_by(f64::total_cmp);
+    out
+}
+
 /// Ticks of a logarithmic axis over [lo, hi] (lo > 0). `data` are the abscissae of the plotted
 /// points: when there are at most 8 distinct ones and the axis spans less than 3 decades,
 /// they are the ticks (a grid study at N = 8, 16, 32, 64 is labelled at those N).

@@ -45,6 +45,61 @@ pub const NOT_REACHED: &str = "not reached within the run";
 /// How a settling time that is not reached before the horizon is written.
 pub const NEVER_SETTLED: &str = "never within the horizon";
 
+/// A symbol of the ledger's and the report's text with its meaning (the report's notation
+/// box): every symbol a sentence, label or legend uses is one of these.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Symbol {
+    /// The symbol as printed (`T_s`, `t_end`, `ω₁`).
+    pub symbol: &'static str,
+    /// What it is, with its unit and, where it is an input, the configured value.
+    pub meaning: String,
+}
+
+/// The notation of the text, with the values of `cfg` where a symbol is an input. Time:
+/// `t_end` is the horizon, `T_s` the observer's sample (hold) period, `dt` the integrator step,
+/// `t_f1`/`t_f2` the bounds (38)/(39), `t_reach` a measured time; never a bare `T`.
+pub fn notation(cfg: &wingcheck_model::Config) -> Vec<Symbol> {
+    let v = wingcheck_model::format_number;
+    let (w, c, o, h) = (&cfg.wing, &cfg.control, &cfg.observer, &cfg.horizon);
+    let sym = |symbol: &'static str, meaning: String| Symbol { symbol, meaning };
+    vec![
+        sym("t", "time (s)".into()),
+        sym("t_end", format!("the horizon of the runs: t ∈ [0, t_end], here t_end = {} s", v(h.t_end))),
+        sym("T_s", format!("the observer's sample (hold) period, here {} s", v(o.sample_period))),
+        sym("dt", format!("the integrator step, here {} s", v(cfg.discretisation.dt))),
+        sym("t_f1, t_f2, t_f", "the bounds (38), (39) on the time σ1, σ2 take to reach 0 (s); t_f: either".into()),
+        sym("t_reach", "a measured time: when σ reaches 0, or from when |g̃| stays below the threshold (s)".into()),
+        sym("s, z", format!("span and position along it, z ∈ [0, s], here s = {} m", v(w.span))),
+        sym("q(z,t), θ(z,t)", "bending displacement (m) and twist (rad); q(s,t), θ(s,t) at the tip".into()),
+        sym("ρ, I_p", format!("mass (kg/m) and polar inertia (kg m) per length, here {}, {}", v(w.rho), v(w.ip))),
+        sym("EI, GJ", format!("bending and torsion rigidity, here {} N m², {} N m²", v(w.ei), v(w.gj))),
+        sym("ρx_c, x_c, x_ac", format!("mass–elastic-axis coupling (kg; x_c the offset, m) and aerodynamic offset (m), here {}, {}", v(w.rho_xc), v(w.x_ac))),
+        sym("ξ", format!("Kelvin–Voigt damping coefficient (s), here {}", v(w.xi))),
+        sym("ω₁; ω̲₁, ω̄₁", "the wing's fundamental angular frequency (rad/s = 1/s); certified lower and upper bounds of it".into()),
+        sym("τ1, τ2", "boundary control force (N) and moment (N m) at the tip, law (15)".into()),
+        sym("a, b", format!("weights of the tip deflection (dimensionless) and its rate (s) in (15), here a = {}, b = {} s; a/b in 1/s", v(c.a), v(c.b))),
+        sym("k1, k2", format!("boundary gains of (15), here {} N/m, {} N m", v(c.k1), v(c.k2))),
+        sym("g1, g2; g_h, g_hmax", "tip disturbances (N, N m); the distributed disturbance (N/m) and its largest |g_h| over the run".into()),
+        sym("ĝ, g̃", "the observer's estimate of g, held over T_s; its error g̃ = g − ĝ".into()),
+        sym("σ_k, ĝ_k, τ_k", "values at the k-th observer sample; Δĝ, Δτ: their change from one sample to the next".into()),
+        sym("σ1, σ2; ν1, ν2", "the observer's sliding variables (N, N m) and internal states".into()),
+        sym("κ1 … κ6", format!("observer gains (20)–(21); κ2 = {}, κ5 = {} are the switching gains", v(o.kappa2), v(o.kappa5))),
+        sym("ζ1 … ζ4", "sup |g1|, sup |g2| (the theorems' hypotheses κ2 ≥ ζ1, κ5 ≥ ζ2); sup |g̃1|, sup |g̃2| in ε".into()),
+        sym("p", "the observer exponent ratio a1/a2 (dimensionless)".into()),
+        sym("W = W_a + W_o, κ", "the Lyapunov function (22)–(23) (its energy part W_a and cross part W_o) and the norm (25) it is compared with".into()),
+        sym("W units", "the unit of W and of λ1, λ2, λ3, ε, W(0): a mix of kinetic, elastic and cross terms weighted by a and b".into()),
+        sym("y1, y2, y3; λ1, λ2", "the paper's constants (26)–(28): printed bounds λ2 κ ≤ W ≤ λ1 κ".into()),
+        sym("λ1*, λ2*", "the tight bounds sup W/κ and inf W/κ; λ1(N), λ2(N) on N Galerkin elements".into()),
+        sym("μ1 … μ6, η", "the conditions (29)–(32) and their free parameters η".into()),
+        sym("λ3, λ3*, λ, ε", "λ3 = min μ3…μ6, its sup λ3* over the η's; the decay rate λ (1/s) and constant ε of (33)".into()),
+        sym("r*", "the largest a/b for which (32) can hold (1/s)".into()),
+        sym("f, ω", "the lemmas' span (f = s) and test function ω(z)".into()),
+        sym("Q, Q0; φ1, φ2, φ3, ψ", "Lemma 3's comparison ODE (13)–(14): Q = σ²/2 from Q0 = Q(0), with coefficients φ1…φ3 and a disturbance term ψ".into()),
+        sym("a1, a2; b1, b2", format!("the observer's odd exponent integers, here {}, {}; {}, {}; sig^r(x) = sign(x)|x|^r", o.a1, o.a2, o.b1, o.b2)),
+        sym("N", "number of elements of a Galerkin or simulation grid".into()),
+    ]
+}
+
 /// A number that may not exist (a reaching or settling time never reached, a ratio whose
 /// denominator vanishes): the quantity, or a labelled text saying why not.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]

@@ -262,7 +262,13 @@ fn compute(
 fn evidence_of(c: &Computed, hypotheses_here: bool, cfg: &Config, settings: &CheckSettings) -> UubEvidence {
     let (best, n2) = (&c.best, settings.uub_lambda2_elements);
     let fmt = |v: f64| wingcheck_model::quantity::format_value(v, None);
-    let at = format!("at a = {}, b = {}", fmt(best.a), fmt(best.b));
+    // every number says where it was evaluated: the configured point, or the feasible point the
+    // row moves to when the hypotheses fail there
+    let at = if hypotheses_here {
+        format!("at the configured a = {}, b = {} s", fmt(best.a), fmt(best.b))
+    } else {
+        format!("at the feasible a = {}, b = {} s (not the configured point)", fmt(best.a), fmt(best.b))
+    };
     let lower = |label: String, v: f64| Quantity::based(label, v, Unit::Metre, ValueBasis::LowerBound);
     let sim = |label: String, v: f64, unit: Unit| Quantity::based(label, v, unit, ValueBasis::Simulation);
     let based = |label: String, v: f64, unit: Unit, basis: ValueBasis| Quantity::based(label, v, unit, basis);
@@ -301,7 +307,7 @@ fn evidence_of(c: &Computed, hypotheses_here: bool, cfg: &Config, settings: &Che
         ultimate_bound_q_m: lower(format!("ultimate bound √(s³ε/(λ2λ)) on |q| {at}"), c.bound.ultimate_q()),
         bound_q_at_t_end_m: lower(format!("bound (37) on |q| at t_end {at}, W(0) on {} elements", c.w0s[0].0), bq),
         measured_max_abs_q_second_half_m: sim(
-            format!("simulated max_z |q| over [t_end/2, t_end] {at}"),
+            format!("simulated max over z of |q| in [t_end/2, t_end] {at}"),
             tail(&c.env[0]),
             Unit::Metre,
         ),
@@ -352,13 +358,13 @@ fn plot(c: &Computed, e: &UubEvidence) -> PlotData {
                 .map_or(String::new(), |r| format!("; ratio at t_end {}", r.value_text()))
         ),
         x_label: "t (s)".into(),
-        y_label: "max_z |q(z,t)| (m)".into(),
+        y_label: "max over z of |q(z,t)| (m)".into(),
         log_x: false,
         log_y: true,
         lines: vec![
             Line { label: "bound (37)".into(), x: pick(&c.t), y: pick(&c.bounds[0]), points: false },
             Line {
-                label: "simulated max_z |q|".into(),
+                label: "simulated max over z of |q|".into(),
                 x: pick(&c.t),
                 y: pick(&c.env[0]).iter().map(|v| v.max(1e-12)).collect(),
                 points: false,

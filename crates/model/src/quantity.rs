@@ -418,9 +418,50 @@ pub fn with_significant(value: f64, digits: usize) -> String {
     }
 }
 
+/// The resolution a number with error `error` is written to: the decade of the error's second
+/// significant digit (the rule of [`format_value`]: 1.4e-4 → 1e-5). None for an error that is
+/// 0 or not finite (then the shortest round-trip decimal is exact).
+pub fn resolution_of(error: f64) -> Option<f64> {
+    (error > 0.0 && error.is_finite()).then(|| 10f64.powi(error.log10().floor() as i32 - 1))
+}
+
+/// `value` written to `resolution` (a power of ten, [`resolution_of`]): in fixed notation with
+/// the resolution's decimals (none for a resolution ≥ 1), trailing zeros dropped, `0` for a value that rounds to zero. The
+/// data files' format (`0.04952` for 0.0495234… at 1e-5); deterministic, parses back as f64.
+pub fn format_resolved(value: f64, resolution: f64) -> String {
+    if !(value.is_finite() && resolution > 0.0 && resolution.is_finite()) {
+        return format!("{value}");
+    }
+    let decimals = (-resolution.log10().round()).max(0.0) as usize;
+    let s = format!("{value:.decimals$}");
+    let s = if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.') } else { s.as_str() };
+    if s == "-0" || s.is_empty() {
+        "0".into()
+    } else {
+        s.to_string()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn data_files_carry_the_digits_of_the_error() {
+        // 1.4e-4 m (the default grid's tip error): two significant digits of it → 1e-5
+        assert_eq!(resolution_of(1.4e-4), Some(1e-5));
+        assert_eq!(resolution_of(0.0), None);
+        assert_eq!(format_resolved(0.0495234750843, 1e-5), "0.04952");
+        assert_eq!(format_resolved(-3.2e-9, 1e-5), "0");
+        assert_eq!(format_resolved(0.9999999999999876, 1e-5), "1");
+        assert_eq!(format_resolved(-1.5, 1e-5), "-1.5");
+        assert_eq!(format_resolved(12345.678, 100.0), "12346");
+        // rounding error of the written value ≤ half the resolution
+        for v in [0.12345678, -0.98765432, 3.3333333] {
+            let back: f64 = format_resolved(v, 1e-5).parse().unwrap();
+            assert!((back - v).abs() <= 0.5e-5 + 1e-15);
+        }
+    }
 
     #[test]
     fn digits_follow_the_error() {

@@ -1,7 +1,7 @@
 //! Accuracy section: tip error against grid size for FD and FE. Runs at [`GRIDS`] elements
 //! on a uniform grid (grading 0); the reference is the Richardson extrapolation of the two
 //! finest runs with the order observed on the three finest; the error is the max over
-//! t ∈ [`T_SKIP`, T] (the first instants are the boundary layer where the control switches
+//! t ∈ [`T_SKIP`, t_end] (the first instants are the boundary layer where the control switches
 //! on against an initial state that violates the clamp).
 
 use serde::Serialize;
@@ -56,7 +56,7 @@ pub fn accuracy(accuracy: &[Vec<std::sync::Arc<SimOutput>>]) -> (Figure, Vec<Acc
     let mut rows = Vec::new();
     let mut lines = Vec::new();
     let mut cap = Caption::default().t(format!(
-        "Maximum tip error over t ∈ [{T_SKIP}, T] against the number of elements (uniform grid), \
+        "Maximum tip error over t ∈ [{T_SKIP} s, t_end] against the number of elements (uniform grid), \
          reference: Richardson extrapolation of the two finest grids. Fitted orders (grids {}, {}, {}): ",
         GRIDS[0], GRIDS[1], GRIDS[2]
     ));
@@ -110,7 +110,7 @@ pub fn accuracy(accuracy: &[Vec<std::sync::Arc<SimOutput>>]) -> (Figure, Vec<Acc
     let chart = LineChart { styles, ..LineChart::from(pd) };
     let fig = Figure {
         file: "accuracy-tip-error".into(),
-        label: "Accuracy A1".into(),
+        label: "Accuracy".into(),
         title: "Tip error vs grid size, FD and FE".into(),
         caption: cap.0,
         chart: Chart::Line(chart),

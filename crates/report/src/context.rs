@@ -8,6 +8,7 @@ use wingcheck_model::{Config, Quantity};
 
 use crate::accuracy::AccuracyRow;
 use crate::figure::{Figure, Part};
+use crate::top::{pieces, Piece};
 use crate::ReportError;
 
 /// Root of the template context.
@@ -47,8 +48,16 @@ pub struct Page {
     pub timings: Vec<Timing>,
     /// Each verdict with its meaning (from the claims crate's vocabulary).
     pub verdict_legend: Vec<(&'static str, &'static str)>,
+    /// Each verdict with its meaning in a few words (the one-line legend at the top).
+    pub verdict_short: Vec<(&'static str, &'static str)>,
     /// Each basis with its meaning.
     pub basis_legend: Vec<(&'static str, &'static str)>,
+    /// The keys that differ from the embedded default `configs/paper.json`.
+    pub changes: Vec<crate::top::ConfigChange>,
+    /// The notation of the text (symbols and their meaning, with this run's values).
+    pub notation: Vec<wingcheck_claims::display::Symbol>,
+    /// The certificate set in `proofs/` (file names), or why there is none.
+    pub proofs: Result<Vec<String>, String>,
 }
 
 /// Build and run provenance.
@@ -66,6 +75,10 @@ pub struct Build {
     pub command_line: String,
     /// Total wall time (s, volatile).
     pub total_seconds: String,
+    /// Whether tracked files differed from the commit at build time (`yes`, `no`, `unknown`).
+    pub git_dirty: String,
+    /// The machine of the run (volatile).
+    pub machine: Option<crate::provenance::Machine>,
 }
 
 /// A figure as the template sees it.
@@ -81,8 +94,10 @@ pub struct FigCtx {
     pub caption: Vec<Part>,
     /// SVG file name.
     pub svg: String,
-    /// CSV file name.
+    /// Data file name.
     pub csv: String,
+    /// How the data link reads.
+    pub data_label: String,
 }
 
 impl From<&Figure> for FigCtx {
@@ -93,7 +108,8 @@ impl From<&Figure> for FigCtx {
             title: f.title.clone(),
             caption: f.caption.clone(),
             svg: format!("{}.svg", f.file),
-            csv: format!("{}.csv", f.file),
+            csv: f.data_file(),
+            data_label: f.data_label(),
         }
     }
 }
@@ -129,8 +145,8 @@ pub struct RowAssumption {
     pub id: String,
     /// Anchor of the claim's section.
     pub anchor: String,
-    /// The assumption.
-    pub text: String,
+    /// The assumption, as text, number and key pieces.
+    pub text: Vec<Piece>,
 }
 
 /// Wall time of one stage.
@@ -190,22 +206,22 @@ pub struct RowCtx {
     pub verdict: String,
     /// Basis name.
     pub basis: String,
-    /// The finding: short sentences.
-    pub finding: Vec<String>,
+    /// The finding: short sentences, as text and number pieces.
+    pub finding: Vec<Vec<Piece>>,
     /// The decisive numbers.
     pub decisive: Vec<NumberCtx>,
     /// Further sentences.
-    pub details: Vec<String>,
+    pub details: Vec<Vec<Piece>>,
     /// Correction, if any.
-    pub correction: Option<String>,
+    pub correction: Option<Vec<Piece>>,
     /// The evidence's single values (numbers, yes/no facts, texts), in field order.
     pub evidence: Vec<NumberCtx>,
     /// The evidence's tables.
     pub tables: Vec<TableCtx>,
     /// The decisive figure (the row's first plot).
     pub lead_figure: Option<FigCtx>,
-    /// Assumptions.
-    pub assumptions: Vec<String>,
+    /// Assumptions, as pieces.
+    pub assumptions: Vec<Vec<Piece>>,
     /// Certificate files.
     pub certificates: Vec<String>,
     /// The row's other plots.
@@ -273,14 +289,14 @@ pub fn row_ctx(r: &ClaimRow, figures: &[Figure]) -> Result<RowCtx, ReportError> 
         claim: r.claim.clone(),
         verdict: r.verdict.name().into(),
         basis: r.basis.name().into(),
-        finding: r.finding.clone(),
+        finding: r.finding.iter().map(|s| pieces(s)).collect(),
         decisive: r.decisive.iter().map(NumberCtx::from).collect(),
-        details: r.details.clone(),
-        correction: r.correction.clone(),
+        details: r.details.iter().map(|s| pieces(s)).collect(),
+        correction: r.correction.as_deref().map(pieces),
         evidence,
         tables,
         lead_figure,
-        assumptions: r.assumptions.clone(),
+        assumptions: r.assumptions.iter().map(|a| pieces(a)).collect(),
         certificates: r.certificates.clone(),
         figures: figs.collect(),
     })
@@ -299,7 +315,7 @@ pub fn assumptions(cfg: &Config) -> Vec<Assumption> {
         ),
         a(
             "observer sampling (digital observer, zero-order hold)",
-            format!("period {} s, {} rule", o.sample_period, o.rule.name()),
+            format!("T_s = {} s, {} rule", o.sample_period, o.rule.name()),
             "observer.sample_period, observer.rule",
         ),
         a("analogue part −k(a·tip + b·tip rate) of (15)", "continuous (inside the implicit step)".into(), "—"),
@@ -342,7 +358,7 @@ pub fn assumptions(cfg: &Config) -> Vec<Assumption> {
         a(
             "horizon and output sampling",
             format!(
-                "T = {} s, every {} s, {} field points",
+                "t_end = {} s, output every {} s, {} field points",
                 cfg.horizon.t_end, cfg.horizon.sample_every, cfg.horizon.field_points
             ),
             "horizon.*",
@@ -364,7 +380,7 @@ pub fn row_assumptions(ledger: &Ledger) -> Vec<RowAssumption> {
             r.assumptions.iter().map(|a| RowAssumption {
                 id: r.id.to_string(),
                 anchor: claim_anchor(&r.id.to_string()),
-                text: a.clone(),
+                text: pieces(a),
             })
         })
         .collect()

@@ -39,14 +39,85 @@ impl Caption {
     }
 }
 
+/// How the values of a data file are written.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Digits {
+    /// Shortest round-trip decimal (exact: where small differences matter).
+    RoundTrip,
+    /// To an absolute resolution: the digits of the values' estimated error
+    /// ([`wingcheck_model::quantity::resolution_of`], [`wingcheck_model::quantity::format_resolved`]).
+    Resolution(f64),
+    /// With this many significant digits: values on a log axis, from their relative error
+    /// (two significant digits of it, the rule of [`wingcheck_model::quantity::format_value`]).
+    Significant(usize),
+}
+
+impl Digits {
+    /// The digits of a value with absolute error `error` (round-trip when there is none).
+    pub fn absolute(error: f64) -> Digits {
+        wingcheck_model::quantity::resolution_of(error).map_or(Digits::RoundTrip, Digits::Resolution)
+    }
+
+    /// The significant digits of values with relative error `relative` (round-trip when there
+    /// is none), at most 15.
+    pub fn relative(relative: f64) -> Digits {
+        match wingcheck_model::quantity::resolution_of(relative) {
+            Some(r) => Digits::Significant(((-r.log10()).round() as usize + 1).clamp(1, 15)),
+            None => Digits::RoundTrip,
+        }
+    }
+
+    /// `v` as written.
+    pub fn format(self, v: f64) -> String {
+        match self {
+            Digits::RoundTrip => v.to_string(),
+            Digits::Resolution(r) => wingcheck_model::quantity::format_resolved(v, r),
+            Digits::Significant(n) => {
+                // the shorter of the plain and the scientific form of the rounded value
+                let sci = format!("{:.*e}", n.saturating_sub(1), v);
+                let x: f64 = sci.parse().unwrap_or(v);
+                let (plain, sci) = (x.to_string(), format!("{x:e}"));
+                if sci.len() < plain.len() {
+                    sci
+                } else {
+                    plain
+                }
+            }
+        }
+    }
+}
+
 /// What is drawn.
 #[derive(Debug, Clone)]
 pub enum Chart {
-    /// Lines / points / steps.
+    /// Lines / points / steps; data file with round-trip numbers.
     Line(LineChart),
-    /// A field over (t, z).
-    Heat(Heatmap),
-    /// A field over (t, z) as a 3-D surface.
+    /// Lines of measured (simulated) values; data file with the values' digits,
+    /// gzip-compressed.
+    Measured {
+        /// The chart.
+        chart: LineChart,
+        /// How its values are written.
+        digits: Digits,
+    },
+    /// A ledger row's plot: its data is in `ledger.json` (at `path`), so it writes no file.
+    InLedger {
+        /// The chart.
+        chart: LineChart,
+        /// Where in ledger.json (`rows[5].plots[0]`).
+        path: String,
+    },
+    /// A field over (t, z); its data file has the values to `resolution` (the digits of their
+    /// estimated error, [`wingcheck_model::quantity::format_resolved`]; None: shortest
+    /// round-trip), gzip-compressed.
+    Heat {
+        /// The field.
+        map: Heatmap,
+        /// Resolution of the written values.
+        resolution: Option<f64>,
+    },
+    /// A field over (t, z) as a 3-D surface: the same data as its map (figure file stem
+    /// `<map>-surface`), so it writes no data file of its own.
     Surface(Heatmap),
     /// A grid heatmap with marks (the (a, b) region map) and the CSV of its data.
     Grid {
@@ -76,25 +147,67 @@ pub struct Figure {
 pub struct Rendered {
     /// SVG document.
     pub svg: String,
-    /// CSV of the data behind it.
-    pub csv: String,
-    /// What the CSV's columns hold, with units (the report's provenance.json lists it).
+    /// The data behind it (file bytes), unless another figure's file holds it.
+    pub csv: Option<Vec<u8>>,
+    /// What the data file's columns hold, with units (the report's provenance.json lists it).
     pub contents: String,
 }
 
+/// `text` gzip-compressed, deterministically (no file name, time 0, fixed level).
+fn gzip(text: &str) -> Vec<u8> {
+    use std::io::Write;
+    let mut enc = flate2::GzBuilder::new().mtime(0).write(Vec::new(), flate2::Compression::new(6));
+    enc.write_all(text.as_bytes()).expect("writing to memory");
+    enc.finish().expect("writing to memory")
+}
+
 impl Figure {
-    /// Draw the SVG and write the CSV.
+    /// Draw the SVG and write the data file.
     pub fn render(&self) -> Result<Rendered, ReportError> {
         Ok(match &self.chart {
-            Chart::Line(c) => Rendered { svg: line_svg(c)?, csv: c.data.to_csv(), contents: c.data.csv_contents() },
-            Chart::Heat(h) => Rendered { svg: heatmap_svg(h)?, csv: h.to_csv(), contents: h.csv_contents() },
-            Chart::Surface(s) => Rendered { svg: surface_svg(s)?, csv: s.to_csv(), contents: s.csv_contents() },
+            Chart::Line(c) => {
+                Rendered { svg: line_svg(c)?, csv: Some(c.to_csv().into_bytes()), contents: c.csv_contents() }
+            }
+            Chart::Measured { chart, digits } => Rendered {
+                svg: line_svg(chart)?,
+                csv: Some(gzip(&chart.to_csv_with(|v| digits.format(v)))),
+                contents: format!("{} (digits from the stated error)", chart.csv_contents()),
+            },
+            Chart::InLedger { chart, .. } => Rendered { svg: line_svg(chart)?, csv: None, contents: String::new() },
+            Chart::Heat { map, resolution } => {
+                let csv = match resolution {
+                    Some(r) => map.to_csv_with(|v| wingcheck_model::quantity::format_resolved(v, *r)),
+                    None => map.to_csv(),
+                };
+                Rendered { svg: heatmap_svg(map)?, csv: Some(gzip(&csv)), contents: map.csv_contents() }
+            }
+            Chart::Surface(s) => Rendered { svg: surface_svg(s)?, csv: None, contents: String::new() },
             Chart::Grid { map, csv } => Rendered {
                 svg: crate::chart::grid_heatmap_svg(map)?,
-                csv: csv.clone(),
+                csv: Some(csv.clone().into_bytes()),
                 contents: "the (a, b) region map: one row per cell (docs/outputs.md, region map)".into(),
             },
         })
+    }
+
+    /// The name of the file with the data behind the figure: `<file>.csv`, `<file>.csv.gz` for a
+    /// field map, the map's for its 3-D view.
+    pub fn data_file(&self) -> String {
+        match &self.chart {
+            Chart::Heat { .. } | Chart::Measured { .. } => format!("{}.csv.gz", self.file),
+            Chart::Surface(_) => format!("{}.csv.gz", self.file.trim_end_matches("-surface")),
+            Chart::InLedger { .. } => "ledger.json".into(),
+            _ => format!("{}.csv", self.file),
+        }
+    }
+
+    /// How the data link reads.
+    pub fn data_label(&self) -> String {
+        match &self.chart {
+            Chart::Heat { .. } | Chart::Surface(_) | Chart::Measured { .. } => "data (CSV, gzip)".into(),
+            Chart::InLedger { path, .. } => format!("data: ledger.json, {path}"),
+            _ => "data (CSV)".into(),
+        }
     }
 }
 

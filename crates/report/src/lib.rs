@@ -22,11 +22,14 @@ mod context;
 mod error;
 mod estimate;
 mod figure;
+mod lines;
 mod paper;
 mod provenance;
 mod region;
 mod runs;
 mod stats;
+mod top;
+mod wratio;
 
 use std::path::Path;
 use std::time::Instant;
@@ -40,6 +43,7 @@ pub use error::ReportError;
 pub use estimate::report_estimate;
 pub use runs::GRIDS;
 pub use stats::fmt_num;
+pub use top::command_text;
 
 use crate::context::{assumptions, claim_anchor, row_assumptions, row_ctx, Build, FigCtx, GroupCtx, Page, Timing};
 use crate::figure::{safe_name, Caption, Chart, Figure};
@@ -180,10 +184,15 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     // Figure data and captions.
     let t = Instant::now();
     let region_fig = region.as_ref().map(|r| r.figure());
-    let groups = paper::paper_figures(cfg, &runs);
+    let groups = paper::paper_figures(cfg, &runs, paper::ftdo_bounds(&ledger));
     let comparison = paper::comparison_figures(cfg, &runs);
     let (acc_fig, acc_rows) = accuracy::accuracy(&runs.accuracy);
-    let row_figs: Vec<Vec<Figure>> = ledger.rows.iter().map(claim_figures).collect();
+    let mut row_figs: Vec<Vec<Figure>> = ledger.rows.iter().enumerate().map(|(i, r)| claim_figures(i, r)).collect();
+    // the W-bounds row's λ2/λ1 against a/b (through zero at ω₁), drawn by the report
+    let omega1 = region.as_ref().map(|r| r.omega1).or_else(|| paper::omega1(cfg));
+    if let (Some(i), Some(w)) = (ledger.rows.iter().position(|r| r.id == wingcheck_claims::ClaimId::WBounds), omega1) {
+        row_figs[i].extend(wratio::w_ratio_figure(cfg, w, CheckSettings::default().uub_lambda2_elements));
+    }
     timings.push(StageTiming { name: "figure data".into(), seconds: t.elapsed().as_secs_f64() });
 
     // SVG + CSV of every figure, in parallel.
@@ -196,8 +205,26 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
         .chain(region_fig.iter())
         .chain(row_figs.iter().flatten())
         .collect();
-    let (mut files, csv_records) = render_charts(&all, &staging, progress)?;
+    // The charts, and beside them the certificate set for the configured point (re-checkable
+    // with `wingcheck verify proofs`).
+    let (charts, (proofs, pt)) = rayon::join(
+        || render_charts(&all, &staging, progress),
+        || timed(|| wingcheck_claims::certify::render_set(cfg)),
+    );
+    let (mut files, csv_records) = charts?;
+    let proofs = match proofs {
+        Ok(set) => {
+            let mut names = Vec::new();
+            for (name, text) in &set {
+                files.push(staging.write(&format!("{PROOFS}/{name}"), text.as_bytes())?);
+                names.push(name.clone());
+            }
+            Ok(names)
+        }
+        Err(e) => Err(e.to_string()),
+    };
     timings.push(StageTiming { name: "charts".into(), seconds: t.elapsed().as_secs_f64() });
+    timings.push(StageTiming { name: "certificates (beside the charts)".into(), seconds: pt });
 
     // The page.
     let t = Instant::now();
@@ -207,6 +234,7 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
         comparison: &comparison,
         accuracy: (&acc_fig, acc_rows),
         rows: &row_figs,
+        proofs,
     };
     let mut page = page(cfg, opts, &ledger, figures)?;
     page.timings = timings
@@ -216,16 +244,15 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
         .map(|(name, seconds)| Timing { name, seconds: format!("{seconds:.3}") })
         .collect();
     page.build.total_seconds = format!("{:.3}", started.elapsed().as_secs_f64());
+    page.build.machine = Some(provenance::machine());
     let html = render_html(&page)?;
     files.push(staging.write("index.html", html.as_bytes())?);
     // The model as simulated (docs/model.md of the repository), so the report is self-contained.
     files.push(staging.write("model.md", MODEL_MD.as_bytes())?);
     // The canonical compact JSON, so that `sha256sum config.json` equals the hash shown.
     files.push(staging.write("config.json", serde_json::to_string(cfg).expect("config serialises").as_bytes())?);
-    files.push(
-        staging.write("ledger.json", serde_json::to_string_pretty(&ledger).expect("ledger serialises").as_bytes())?,
-    );
-    // Where the data came from, and what each CSV's columns hold (docs/outputs.md).
+    files.push(staging.write("ledger.json", ledger.to_json().as_bytes())?);
+    // Where the data came from, and what each data file's columns hold (docs/outputs.md).
     let provenance = wingcheck_io::Provenance::new(&page.config_sha256, csv_records);
     files.push(staging.write("provenance.json", provenance.to_json().as_bytes())?);
     timings.push(StageTiming { name: "html".into(), seconds: t.elapsed().as_secs_f64() });
@@ -240,10 +267,15 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     Ok(ReportSummary { out_dir: out_dir.to_path_buf(), timings, files, ledger })
 }
 
+/// The report's certificate directory (`wingcheck certify`'s set for the configured point).
+pub const PROOFS: &str = "proofs";
+
 type Computed = (Ledger, runs::Runs, Option<region::RegionMap>, Vec<StageTiming>);
 
 /// The ledger, the simulations and the region map, concurrently; the ledger and the figures
-/// share one study, so every simulation runs once.
+/// share one study, so every simulation runs once. (The certificate set is made afterwards,
+/// beside the charts: during the ledger it would compete with the SDP cross-check, whose
+/// answer has a wall-time budget.)
 fn compute(cfg: &Config, progress: Option<&(dyn Fn(Progress) + Sync)>) -> Result<Computed, ReportError> {
     let study = Study::new();
     let settings = CheckSettings::default();
@@ -285,17 +317,21 @@ fn render_charts(
         .par_iter()
         .map(|f| {
             let r = f.render()?;
-            let svg = staging.write(&format!("{}.svg", f.file), r.svg.as_bytes())?;
-            let csv = staging.write(&format!("{}.csv", f.file), r.csv.as_bytes())?;
+            let mut names = vec![staging.write(&format!("{}.svg", f.file), r.svg.as_bytes())?];
+            if let Some(csv) = &r.csv {
+                names.push(staging.write(&f.data_file(), csv)?);
+            }
             let k = done.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
             report(progress, "charts", k, total);
-            let record = wingcheck_io::FileRecord { file: csv.clone(), contents: r.contents };
-            Ok::<_, ReportError>(([svg, csv], record))
+            let record =
+                r.csv.is_some().then(|| wingcheck_io::FileRecord { file: f.data_file(), contents: r.contents });
+            Ok::<_, ReportError>((names, record))
         })
         .collect::<Result<Vec<_>, _>>()?
         .into_iter()
         .unzip::<_, _, Vec<_>, Vec<_>>())
-    .map(|(names, mut records)| {
+    .map(|(names, records)| {
+        let mut records: Vec<wingcheck_io::FileRecord> = records.into_iter().flatten().collect();
         records.sort_by(|a, b| a.file.cmp(&b.file));
         (names.into_iter().flatten().collect(), records)
     })
@@ -308,6 +344,7 @@ struct PageFigures<'a> {
     comparison: &'a [Figure],
     accuracy: (&'a Figure, Vec<accuracy::AccuracyRow>),
     rows: &'a [Vec<Figure>],
+    proofs: Result<Vec<String>, String>,
 }
 
 /// The template's context (wall times are filled in by the caller).
@@ -327,6 +364,13 @@ fn page(cfg: &Config, opts: &ReportOptions, ledger: &Ledger, figs: PageFigures) 
             date: provenance::utc_string(jiff::Timestamp::now()),
             command_line: opts.command_line.unwrap_or("(library call)").into(),
             total_seconds: String::new(),
+            git_dirty: match wingcheck_io::build().tree {
+                wingcheck_io::TreeState::Clean => "no",
+                wingcheck_io::TreeState::Dirty => "yes",
+                wingcheck_io::TreeState::Unknown => "unknown",
+            }
+            .into(),
+            machine: None,
         },
         region: figs.region.map(FigCtx::from),
         region_missing: if figs.region.is_none() {
@@ -356,12 +400,17 @@ fn page(cfg: &Config, opts: &ReportOptions, ledger: &Ledger, figs: PageFigures) 
         row_assumptions: row_assumptions(ledger),
         timings: Vec::new(),
         verdict_legend: wingcheck_claims::Verdict::ALL.iter().map(|v| (v.name(), v.meaning())).collect(),
+        verdict_short: wingcheck_claims::Verdict::ALL.iter().map(|v| (v.name(), v.short())).collect(),
         basis_legend: wingcheck_claims::Basis::ALL.iter().map(|b| (b.name(), b.meaning())).collect(),
+        changes: top::config_changes(cfg),
+        notation: wingcheck_claims::display::notation(cfg),
+        proofs: figs.proofs.clone(),
     })
 }
 
-/// A ledger row's plots as figures (files `claim-<row>-<plot>`).
-fn claim_figures(r: &wingcheck_claims::ClaimRow) -> Vec<Figure> {
+/// A ledger row's plots as figures (files `claim-<row>-<plot>`; their data is the row's `plots`
+/// in ledger.json, the `index`-th row).
+fn claim_figures(index: usize, r: &wingcheck_claims::ClaimRow) -> Vec<Figure> {
     r.plots
         .iter()
         .enumerate()
@@ -381,7 +430,7 @@ fn claim_figures(r: &wingcheck_claims::ClaimRow) -> Vec<Figure> {
                 label: format!("{} plot {}", r.id, i + 1),
                 title: pd.title.clone(),
                 caption: caption.0,
-                chart: Chart::Line(chart),
+                chart: Chart::InLedger { chart, path: format!("rows[{index}].plots[{i}]") },
             }
         })
         .collect()
@@ -390,7 +439,7 @@ fn claim_figures(r: &wingcheck_claims::ClaimRow) -> Vec<Figure> {
 /// Where a linear y axis would show some of the values as 0 ([`chart::SymLog::for_values`]
 /// decides from the plotted values): a logarithmic axis when every value is positive, else a
 /// symmetric-log one. Returns the chart and whether its axis was changed.
-fn readable_y_axis(mut c: chart::LineChart) -> (chart::LineChart, bool) {
+pub(crate) fn readable_y_axis(mut c: chart::LineChart) -> (chart::LineChart, bool) {
     if c.data.log_y {
         return (c, false);
     }

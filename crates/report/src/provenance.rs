@@ -3,6 +3,44 @@
 //! line) from run time. The run part varies between two renders of the same configuration and
 //! is kept in the page's `walltime` block with the wall times.
 
+/// The machine a run is on, read at run time (it varies between runs: kept in the page's
+/// wall-time block): CPU model, hardware threads, the threads the report ran on, load average.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct Machine {
+    /// `model name` of /proc/cpuinfo (or `unknown`).
+    pub cpu: String,
+    /// Hardware threads available to the process.
+    pub hardware_threads: usize,
+    /// Worker threads of the report's thread pool.
+    pub threads: usize,
+    /// 1-, 5- and 15-minute load averages from /proc/loadavg (or `unknown`).
+    pub load: String,
+}
+
+/// The machine now.
+pub fn machine() -> Machine {
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|t| {
+            t.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split_once(':'))
+                .map(|(_, v)| v.trim().to_string())
+        })
+        .unwrap_or_else(|| "unknown".into());
+    let load = std::fs::read_to_string("/proc/loadavg")
+        .ok()
+        .map(|t| t.split_whitespace().take(3).collect::<Vec<_>>().join(", "))
+        .filter(|s| !s.is_empty())
+        .unwrap_or_else(|| "unknown".into());
+    Machine {
+        cpu,
+        hardware_threads: std::thread::available_parallelism().map_or(1, |n| n.get()),
+        threads: rayon::current_num_threads(),
+        load,
+    }
+}
+
 /// UTC date and time `YYYY-MM-DD HH:MM:SS UTC` of `t` (jiff's formatting, whole seconds).
 pub fn utc_string(t: jiff::Timestamp) -> String {
     t.strftime("%Y-%m-%d %H:%M:%S UTC").to_string()

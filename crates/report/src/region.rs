@@ -20,6 +20,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use rayon::prelude::*;
 use wingcheck_claims::certify::omega1::EnclosureSummary;
 use wingcheck_model::Config;
+use wingcheck_search::heatmap::{MU_COLOUR, W_COLOUR};
 use wingcheck_search::{modal::RunCache, PointResult, Search, SearchOptions, Status, TheoryCache};
 
 use crate::chart::{tick, GridAxis, GridHeatmap, Mark, MarkShape, RGBColor};
@@ -150,10 +151,6 @@ pub fn region_map(
 }
 
 const BLACK: RGBColor = RGBColor(0, 0, 0);
-/// Hatching of the region where both hypotheses hold.
-const SHADE: RGBColor = RGBColor(0, 0, 0);
-const W_LINE: RGBColor = RGBColor(255, 255, 255);
-const MU_LINE: RGBColor = RGBColor(230, 30, 40);
 
 /// Summary numbers of the map (for the caption).
 #[derive(Debug, Clone, Copy)]
@@ -293,17 +290,17 @@ impl RegionMap {
                 self.a.len(),
                 self.b.len()
             ))
-            .t("open circles: W ≻ 0 (tight λ2 > 0, Theorem 1's hypothesis); red dots: (29)–(32) feasible (best λ3 > 0). Closed-form boundaries: W ≻ 0 iff a/b < ω1 = ")
+            .t("open circles: W ≻ 0 (tight λ2 > 0, Theorem 1's hypothesis); red dots: (29)–(32) feasible (best λ3 > 0). Closed-form boundaries: W ≻ 0 iff a/b < ω₁ = ")
             .n("region.omega1", self.omega1)
             .t(match &self.omega1_certified {
                 EnclosureSummary::Certified { lower_exact, upper_exact, relative_width, .. } => format!(
-                    " rad/s, certified for the continuous model as {lower_exact} ≤ ω1 ≤ {upper_exact} rad/s (exact certificate, relative width {relative_width:.1e}; white lines at both bounds, indistinguishable at this scale)"
+                    " 1/s, certified for the continuous model as {lower_exact} ≤ ω₁ ≤ {upper_exact} 1/s (exact certificate, relative width {relative_width:.1e}; white lines at both bounds, indistinguishable at this scale)"
                 ),
-                EnclosureSummary::NotCertified { reason } => format!(" rad/s (white line; no certified enclosure: {reason})"),
+                EnclosureSummary::NotCertified { reason } => format!(" 1/s (white line; no certified enclosure: {reason})"),
             })
             .t(", (32) feasible iff a/b < r* = ")
             .n("region.r_star", self.r_star)
-            .t(" (red dashed line); hatched: a/b < min(ω1, r*), where both hold and Theorem 2 applies. The search's verdicts agree with the closed forms in ")
+            .t(" 1/s (red dashed line); hatched: a/b < min(ω₁, r*), where both hold and Theorem 2 applies. The search's verdicts agree with the closed forms in ")
             .count("region.w_agree", s.w_agree)
             .t(" and ")
             .count("region.mu_agree", s.mu_agree)
@@ -332,7 +329,7 @@ impl RegionMap {
             ));
         }
         if let Some(v) = s.at_operating {
-            cap = cap.t("; at the configured point (cross): ").n("region.at_operating", v).t(" m");
+            cap = cap.t("; at the configured point (open square): ").n("region.at_operating", v).t(" m");
         }
         cap = cap.t(".");
         if s.failed > 0 {
@@ -340,7 +337,7 @@ impl RegionMap {
         }
         Figure {
             file: "region-map-ab".into(),
-            label: "Region map R1".into(),
+            label: "Region map".into(),
             title: "(a, b) region map: hypotheses vs tip performance".into(),
             caption: cap.0,
             chart: Chart::Grid { map: Box::new(self.heatmap()), csv: self.to_csv() },
@@ -362,8 +359,8 @@ impl RegionMap {
         GridHeatmap {
             name: "region-map-ab".into(),
             title: String::new(),
-            x: axis("a, weight of the tip deflection in (15) (dimensionless, log scale)", &self.a),
-            y: axis("b, weight of the tip rate (s, log scale)", &self.b),
+            x: axis(&wingcheck_search::heatmap::axis_title("control.a", true), &self.a),
+            y: axis(&wingcheck_search::heatmap::axis_title("control.b", true), &self.b),
             values,
             log_values: true,
             value_label: "RMS |q(s,t)| (m)".into(),
@@ -386,55 +383,32 @@ impl RegionMap {
             }
             v
         };
-        // The b range of the plot (cell edges: half a step beyond the end centres); a boundary
-        // a/b = r is the line a = r·b across it (the chart clips it to the plot).
+        // The b range of the plot (cell edges: half a step beyond the end centres); the
+        // closed-form boundaries and the hatched region as the search's heatmaps draw them.
         let half = 10f64.powf(STEP_DECADES / 2.0);
         let (b_lo, b_hi) = (self.b[0] / half, self.b[self.b.len() - 1] * half);
         let a_lo = self.a[0] / half;
-        let line = |r: f64| vec![(r * b_lo, b_lo), (r * b_hi, b_hi)];
-        // Both hypotheses (closed form): a/b < min(ω1, r*), the part of the plot left of that line.
-        let (w_lo, w_hi) = self.w_boundary();
-        let r_both = w_lo.min(self.r_star);
-        // (A decade left of both the plot and the line, so the polygon covers the plot's left
-        // part whatever edge the line leaves by; the chart clips it to the plot.)
-        let far = a_lo.min(r_both * b_lo) / 10.0;
-        let shade = vec![(far, b_lo), (r_both * b_lo, b_lo), (r_both * b_hi, b_hi), (far, b_hi)];
-        vec![
-            Mark {
-                label: "W ≻ 0 and (32) both hold (closed forms): Theorem 2 applies".into(),
-                colour: SHADE,
-                shape: MarkShape::Hatch,
-                points: shade,
-            },
+        let closed = wingcheck_search::heatmap::ratio_marks(
+            self.w_boundary(),
+            self.omega1_certified.bounds().is_some(),
+            self.r_star,
+            a_lo,
+            (b_lo, b_hi),
+            true,
+        );
+        let mut marks = closed;
+        marks.extend([
             Mark {
                 label: "W ≻ 0 (search verdict)".into(),
-                colour: W_LINE,
+                colour: W_COLOUR,
                 shape: MarkShape::Circles,
                 points: cells(&|p| p.w_positive_definite == Some(true)),
             },
             Mark {
                 label: "(32) feasible (search verdict)".into(),
-                colour: MU_LINE,
+                colour: MU_COLOUR,
                 shape: MarkShape::Dots,
                 points: cells(&|p| p.feasible_32 == Some(true)),
-            },
-            Mark {
-                label: if self.omega1_certified.bounds().is_some() {
-                    "a/b = ω̲1 and ω̄1, the certified enclosure of ω1 (W ≻ 0 left of it, exact)".into()
-                } else {
-                    "a/b = ω1 (W ≻ 0 left of it, closed form)".into()
-                },
-                colour: W_LINE,
-                shape: MarkShape::Line,
-                points: line(w_lo),
-            },
-            // The upper bound (no second legend entry).
-            Mark { label: String::new(), colour: W_LINE, shape: MarkShape::Line, points: line(w_hi) },
-            Mark {
-                label: "a/b = r* ((32) feasible left of it, closed form)".into(),
-                colour: MU_LINE,
-                shape: MarkShape::DashedLine,
-                points: line(self.r_star),
             },
             Mark {
                 label: "configured (a, b)".into(),
@@ -442,6 +416,7 @@ impl RegionMap {
                 shape: MarkShape::Cross,
                 points: vec![self.operating],
             },
-        ]
+        ]);
+        marks
     }
 }

@@ -80,10 +80,12 @@ fn report_is_well_formed_complete_and_matches_the_ledger() {
 
     // Every image is a non-empty, well-formed SVG; every figure links its CSV.
     let figures: Vec<_> = doc.descendants().filter(|n| n.has_tag_name("figure")).collect();
-    // 18 paper figures (3–20) + a 3-D view of each of the 6 field figures (3–6, 13–14) + 2 DOBC − FTDO
-    // difference maps + 1 accuracy figure + the region map + the ledger's own plots.
+    // 18 paper figures (3–20) + a 3-D view of each of the 6 field figures (3–6, 13–14) + the τ zoom
+    // of each controlled run + 2 DOBC − FTDO difference maps + 1 accuracy figure + the region map
+    // + the W-bounds row's λ2/λ1 against a/b + the ledger's own plots.
     let ledger_plots: usize = summary.ledger.rows.iter().map(|r| r.plots.len()).sum();
-    assert_eq!(figures.len(), 18 + 6 + 2 + 1 + 1 + ledger_plots);
+    assert_eq!(figures.len(), 18 + 6 + 2 + 2 + 1 + 1 + 1 + ledger_plots);
+    let ledger_json: serde_json::Value = serde_json::from_str(&read(&out.join("ledger.json"))).unwrap();
     // The FTDO and DOBC q and θ fields have a 3-D view, with its axes labelled with units.
     for f in ["fig05-q-ftdo", "fig06-theta-ftdo", "fig13-q-dobc", "fig14-theta-dobc"] {
         let texts = svg_texts(&read(&out.join(format!("{f}-surface.svg"))));
@@ -100,14 +102,39 @@ fn report_is_well_formed_complete_and_matches_the_ledger() {
         let sdoc = parse_xml(&svg).unwrap_or_else(|e| panic!("{src} is not XML: {e}"));
         assert_eq!(sdoc.root_element().tag_name().name(), "svg");
         assert!(sdoc.root_element().children().filter(|n| n.is_element()).count() > 3, "{src} has content");
-        let csv = f
+        let link = f
             .descendants()
             .filter(|n| n.has_tag_name("a"))
-            .filter_map(|a| a.attribute("href"))
-            .find(|h| h.ends_with(".csv"))
-            .unwrap_or_else(|| panic!("figure {src} links no CSV"));
-        let data = read(&out.join(csv));
-        assert!(data.lines().count() > 1, "{csv} has a header and data");
+            .find(|a| {
+                a.attribute("href").is_some_and(|h| h.ends_with(".csv") || h.ends_with(".csv.gz") || h == "ledger.json")
+            })
+            .unwrap_or_else(|| panic!("figure {src} links no data"));
+        let href = link.attribute("href").unwrap();
+        if href == "ledger.json" {
+            // a ledger row's plot: the link names rows[i].plots[j], which holds its lines
+            let t = text(link);
+            let (i, j) = t
+                .split("rows[")
+                .nth(1)
+                .and_then(|r| r.split_once("].plots["))
+                .and_then(|(i, r)| Some((i.parse::<usize>().ok()?, r.trim_end_matches(']').parse::<usize>().ok()?)))
+                .unwrap_or_else(|| panic!("{src}: data link {t}"));
+            assert!(
+                ledger_json["rows"][i]["plots"][j]["lines"].as_array().is_some_and(|l| !l.is_empty()),
+                "{src}: {t}"
+            );
+            continue;
+        }
+        let bytes = std::fs::read(out.join(href)).unwrap();
+        let data = if href.ends_with(".gz") {
+            use std::io::Read;
+            let mut s = String::new();
+            flate2::read::GzDecoder::new(&bytes[..]).read_to_string(&mut s).unwrap();
+            s
+        } else {
+            String::from_utf8(bytes).unwrap()
+        };
+        assert!(data.lines().count() > 1, "{href} has a header and data");
     }
     // All local links resolve.
     for a in doc.descendants().filter(|n| n.has_tag_name("a")) {

@@ -8,27 +8,108 @@ use crate::point::PointVerdicts;
 use crate::refine::{BoundaryRow, KINDS};
 use crate::{Axis, Search, SearchError};
 
-const W_COLOUR: RGBColor = RGBColor(255, 0, 255);
-const MU_COLOUR: RGBColor = RGBColor(230, 30, 40);
+/// Colour of the W ≻ 0 marks (the closed-form line a/b = ω₁, the W ≻ 0 cells).
+pub const W_COLOUR: RGBColor = RGBColor(255, 255, 255);
+/// Colour of the (32) marks (the closed-form line a/b = r*, the feasible cells).
+pub const MU_COLOUR: RGBColor = RGBColor(230, 30, 40);
 const BOTH_COLOUR: RGBColor = RGBColor(0, 0, 0);
 
-/// Axis title with its meaning and unit, for the keys a gain search usually sweeps.
-fn axis_label(a: &Axis) -> String {
-    let what = match a.key.as_str() {
-        "control.a" => "weight a of q(s,t) in the control law (15), 1",
-        "control.b" => "weight b of q̇(s,t) in (15), s",
-        "control.k1" => "bending gain k1, N/m",
-        "control.k2" => "torsion gain k2, N m/rad",
-        "wing.xi" => "Kelvin–Voigt coefficient ξ, s",
-        "observer.sample_period" => "observer sample period T, s",
-        _ => "",
+/// Axis title: the symbol, its meaning and unit (the report's region map's words), for the keys
+/// a gain search usually sweeps; other keys by their name.
+pub fn axis_title(key: &str, log: bool) -> String {
+    let (what, unit) = match key {
+        "control.a" => ("a, weight of the tip deflection in (15)", "dimensionless"),
+        "control.b" => ("b, weight of the tip rate in (15)", "s"),
+        "control.k1" => ("k1, bending gain of (15)", "N/m"),
+        "control.k2" => ("k2, torsion gain of (15)", "N m"),
+        "wing.xi" => ("ξ, Kelvin–Voigt damping coefficient", "s"),
+        "wing.span" => ("s, span", "m"),
+        "observer.sample_period" => ("T_s, the observer's sample period", "s"),
+        _ => ("", ""),
     };
-    let scale = if a.is_log() { ", log scale" } else { "" };
+    let scale = if log { ", log scale" } else { "" };
     if what.is_empty() {
-        format!("{}{}", a.key, if a.is_log() { " (log scale)" } else { "" })
+        format!("{key}{}", if log { " (log scale)" } else { "" })
     } else {
-        format!("{} ({what}{scale})", a.key)
+        format!("{what} ({unit}{scale})")
     }
+}
+
+fn axis_label(a: &Axis) -> String {
+    axis_title(&a.key, a.is_log())
+}
+
+/// The closed-form marks of an (a, b) plane: the region where W ≻ 0 and (32) both hold
+/// hatched, the lines a/b = ω₁ at both bounds `w` = (ω̲₁, ω̄₁) of its enclosure (or at ω₁ twice
+/// when not certified), and the dashed line a/b = r*; the report's region map and the search's
+/// heatmaps draw these alike. `a_lo` and `b` are the plot's lower a and its b range (cell
+/// edges); the chart clips the lines to the plot. With `a_on_x` false the points are (b, a).
+pub fn ratio_marks(w: (f64, f64), certified: bool, r_star: f64, a_lo: f64, b: (f64, f64), a_on_x: bool) -> Vec<Mark> {
+    let (b_lo, b_hi) = b;
+    let orient = |pts: Vec<(f64, f64)>| if a_on_x { pts } else { pts.into_iter().map(|(a, b)| (b, a)).collect() };
+    let line = |r: f64| orient(vec![(r * b_lo, b_lo), (r * b_hi, b_hi)]);
+    let r_both = w.0.min(r_star);
+    // a decade left of both the plot and the line, so the polygon covers the plot's part where
+    // a/b < min(ω̲₁, r*) whatever edge the line leaves by
+    let far = a_lo.min(r_both * b_lo) / 10.0;
+    let shade = orient(vec![(far, b_lo), (r_both * b_lo, b_lo), (r_both * b_hi, b_hi), (far, b_hi)]);
+    vec![
+        Mark {
+            label: "W ≻ 0 and (32) both hold (closed forms): Theorem 2 applies".into(),
+            colour: BOTH_COLOUR,
+            shape: MarkShape::Hatch,
+            points: shade,
+        },
+        Mark {
+            label: if certified {
+                "a/b = ω̲₁ and ω̄₁, the certified enclosure of ω₁ (W ≻ 0 left of it, exact)".into()
+            } else {
+                "a/b = ω₁ (W ≻ 0 left of it, closed form)".into()
+            },
+            colour: W_COLOUR,
+            shape: MarkShape::Line,
+            points: line(w.0),
+        },
+        // the upper bound (no second legend entry)
+        Mark { label: String::new(), colour: W_COLOUR, shape: MarkShape::Line, points: line(w.1) },
+        Mark {
+            label: "a/b = r* ((32) feasible left of it, closed form)".into(),
+            colour: MU_COLOUR,
+            shape: MarkShape::DashedLine,
+            points: line(r_star),
+        },
+    ]
+}
+
+/// The closed-form marks of a search over (control.a, control.b) in either order (None for
+/// other axes, or when ω₁ or r* is not a positive finite number).
+fn closed_form_marks(search: &Search, ax: &GridAxis, ay: &GridAxis) -> Option<Vec<Mark>> {
+    let keys = (search.grid.axes[0].key.as_str(), search.grid.axes[1].key.as_str());
+    let a_on_x = match keys {
+        ("control.a", "control.b") => true,
+        ("control.b", "control.a") => false,
+        _ => return None,
+    };
+    if !(ax.log && ay.log) {
+        return None;
+    }
+    let cfg = &search.base;
+    let omega1 = wingcheck_claims::theory::w_threshold(cfg).ok()?.value;
+    let r_star = wingcheck_claims::mu::MuData::closed_form_ratio(cfg);
+    if !(omega1.is_finite() && omega1 > 0.0 && r_star.is_finite() && r_star > 0.0) {
+        return None;
+    }
+    let enclosure = wingcheck_claims::certify::omega1::EnclosureSummary::deciding(cfg);
+    let w = enclosure.bounds().unwrap_or((omega1, omega1));
+    let (a_axis, b_axis) = if a_on_x { (ax, ay) } else { (ay, ax) };
+    let edges = |g: &GridAxis| {
+        let c = &g.centres;
+        let n = c.len();
+        let half = if n > 1 { (c[1] / c[0]).sqrt() } else { 10f64.sqrt() };
+        let half_end = if n > 1 { (c[n - 1] / c[n - 2]).sqrt() } else { 10f64.sqrt() };
+        (c[0] / half, c[n - 1] * half_end)
+    };
+    Some(ratio_marks(w, enclosure.bounds().is_some(), r_star, edges(a_axis).0, edges(b_axis), a_on_x))
 }
 
 fn grid_axis(a: &Axis) -> GridAxis {
@@ -109,38 +190,67 @@ pub fn heatmap_svg(
         }
     };
     let mut marks = Vec::new();
-    for (kind, colour, label) in [
-        (0, W_COLOUR, "boundary of W ≻ 0 (Theorem 1) between grid cells"),
-        (1, MU_COLOUR, "boundary of (29)–(32) feasibility between grid cells"),
-    ] {
-        let v = |p: usize| if kind == 0 { verdicts[p].w_positive_definite } else { verdicts[p].feasible_32 };
-        let mut seg = Vec::new();
-        for i in 0..nx {
-            for j in 0..ny {
-                let p = grid.index(&[i, j]);
-                if i + 1 < nx && matches!((v(p), v(grid.index(&[i + 1, j]))), (Some(a), Some(b)) if a != b) {
-                    seg.extend([(edge(&ax, i + 1), edge(&ay, j)), (edge(&ax, i + 1), edge(&ay, j + 1))]);
-                }
-                if j + 1 < ny && matches!((v(p), v(grid.index(&[i, j + 1]))), (Some(a), Some(b)) if a != b) {
-                    seg.extend([(edge(&ax, i), edge(&ay, j + 1)), (edge(&ax, i + 1), edge(&ay, j + 1))]);
+    let closed = closed_form_marks(search, &ax, &ay);
+    if let Some(lines) = &closed {
+        // the (a, b) plane: the closed-form boundaries as lines and the search's verdicts per
+        // cell, as in the report's region map
+        marks.extend(lines.iter().cloned());
+        let cells = |f: &dyn Fn(&PointVerdicts) -> bool| -> Vec<(f64, f64)> {
+            (0..nx * ny)
+                .filter(|&p| f(&verdicts[p]))
+                .map(|p| {
+                    let m = grid.multi(p);
+                    (ax.centres[m[0]], ay.centres[m[1]])
+                })
+                .collect()
+        };
+        marks.push(Mark {
+            label: "W ≻ 0 (search verdict)".into(),
+            colour: W_COLOUR,
+            shape: MarkShape::Circles,
+            points: cells(&|v| v.w_positive_definite == Some(true)),
+        });
+        marks.push(Mark {
+            label: "(32) feasible (search verdict)".into(),
+            colour: MU_COLOUR,
+            shape: MarkShape::Dots,
+            points: cells(&|v| v.feasible_32 == Some(true)),
+        });
+    }
+    if closed.is_none() {
+        for (kind, colour, label) in [
+            (0, W_COLOUR, "boundary of W ≻ 0 (Theorem 1) between grid cells"),
+            (1, MU_COLOUR, "boundary of (29)–(32) feasibility between grid cells"),
+        ] {
+            let v = |p: usize| if kind == 0 { verdicts[p].w_positive_definite } else { verdicts[p].feasible_32 };
+            let mut seg = Vec::new();
+            for i in 0..nx {
+                for j in 0..ny {
+                    let p = grid.index(&[i, j]);
+                    if i + 1 < nx && matches!((v(p), v(grid.index(&[i + 1, j]))), (Some(a), Some(b)) if a != b) {
+                        seg.extend([(edge(&ax, i + 1), edge(&ay, j)), (edge(&ax, i + 1), edge(&ay, j + 1))]);
+                    }
+                    if j + 1 < ny && matches!((v(p), v(grid.index(&[i, j + 1]))), (Some(a), Some(b)) if a != b) {
+                        seg.extend([(edge(&ax, i), edge(&ay, j + 1)), (edge(&ax, i + 1), edge(&ay, j + 1))]);
+                    }
                 }
             }
+            marks.push(Mark { label: label.into(), colour, shape: MarkShape::Segments, points: seg });
         }
-        marks.push(Mark { label: label.into(), colour, shape: MarkShape::Segments, points: seg });
+        let both = (0..nx * ny)
+            .filter(|&p| verdicts[p].theorem_feasible() == Some(true))
+            .map(|p| {
+                let m = grid.multi(p);
+                (ax.centres[m[0]], ay.centres[m[1]])
+            })
+            .collect();
+        marks.push(Mark {
+            label: "W ≻ 0 and (32) both hold (Theorem 2 applies)".into(),
+            colour: BOTH_COLOUR,
+            shape: MarkShape::Dots,
+            points: both,
+        });
     }
-    let both = (0..nx * ny)
-        .filter(|&p| verdicts[p].theorem_feasible() == Some(true))
-        .map(|p| {
-            let m = grid.multi(p);
-            (ax.centres[m[0]], ay.centres[m[1]])
-        })
-        .collect();
-    marks.push(Mark {
-        label: "W ≻ 0 and (32) both hold (Theorem 2 applies)".into(),
-        colour: BOTH_COLOUR,
-        shape: MarkShape::Dots,
-        points: both,
-    });
     for (kind, colour) in [(KINDS[0], W_COLOUR), (KINDS[1], MU_COLOUR)] {
         let refined: Vec<(f64, f64)> = boundary
             .iter()

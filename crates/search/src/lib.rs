@@ -22,7 +22,7 @@ pub mod axis;
 pub mod bench;
 pub mod chunk;
 mod exec;
-mod heatmap;
+pub mod heatmap;
 pub mod limits;
 pub mod metric;
 pub mod modal;

@@ -210,6 +210,28 @@ pub fn simulate_with_error(cfg: &Config, opts: RunOptions<'_>) -> Result<Estimat
         other => other,
     })?;
     let time = simulate(&time_cfg, RunOptions::default())?;
+    Ok(estimate_from_runs(output, &space, &time, &space_cfg, &time_cfg))
+}
+
+/// The two refinements of `cfg` that [`simulate_with_error`] runs — the doubled grid and the
+/// halved step — both with the time scheme `scheme` of the base run (`stats.stepper`), for a
+/// caller that simulates them itself (e.g. through a cache shared with other runs).
+pub fn refinements(cfg: &Config, scheme: wingcheck_model::TimeScheme) -> (Config, Config) {
+    let (mut space_cfg, mut time_cfg) = (refined_space(cfg), refined_time(cfg));
+    space_cfg.discretisation.stepper = scheme;
+    time_cfg.discretisation.stepper = scheme;
+    (space_cfg, time_cfg)
+}
+
+/// The error estimates of a base run from its two refinements ([`refinements`]): what
+/// [`simulate_with_error`] returns, for runs simulated elsewhere.
+pub fn estimate_from_runs(
+    output: SimOutput,
+    space: &SimOutput,
+    time: &SimOutput,
+    space_cfg: &Config,
+    time_cfg: &Config,
+) -> EstimatedRun {
     let (b, s, t) = (&output.series, &space.series, &time.series);
     let n = b.len();
     let (mut eq, mut et) = (Vec::with_capacity(n), Vec::with_capacity(n));
@@ -226,22 +248,14 @@ pub fn simulate_with_error(cfg: &Config, opts: RunOptions<'_>) -> Result<Estimat
     }
     let eq = envelope(&b.t, &eq);
     let et = envelope(&b.t, &et);
+    debug_assert_eq!(eq, series_error(&b.t, &b.q_tip, &s.q_tip, &t.q_tip));
     let max_q = eq.iter().copied().fold(0.0, f64::max);
     let max_t = et.iter().copied().fold(0.0, f64::max);
-    // the grid sequence inside the initial layer, on 4N (a layer run: a few sample periods)
-    let layer_4n = match output.initial_layer {
-        Some(l) if output.peaks.signals().iter().any(|p| p.t <= l.t_end) => {
-            let mut fine = crate::layer::layer_config(&refined_space(&space_cfg), cfg.discretisation.dt);
-            fine.discretisation.stepper = scheme;
-            fine.validate().ok().map(|()| simulate(&fine, RunOptions::default())).transpose()?
-        }
-        _ => None,
-    };
+    let layer_4n = layer_grid_check(&output, space_cfg);
     let peaks = peak_estimates(&output, &space.peaks, &time.peaks, layer_4n.as_ref().map(|o| &o.peaks));
-    let refined_grid = space_cfg.discretisation.grid_size();
-    Ok(EstimatedRun {
+    EstimatedRun {
         output,
-        refined_grid,
+        refined_grid: space_cfg.discretisation.grid_size(),
         refined_dt: time_cfg.discretisation.dt,
         refined_stepper: space.stats.stepper,
         q_tip_error: eq,
@@ -253,7 +267,33 @@ pub fn simulate_with_error(cfg: &Config, opts: RunOptions<'_>) -> Result<Estimat
         peaks,
         tolerance: TIP_TOLERANCE,
         meets_tolerance: max_q <= TIP_TOLERANCE && max_t <= TIP_TOLERANCE,
-    })
+    }
+}
+
+/// The grid sequence inside the initial layer: the layer on 4N (the doubled grid of the spatial
+/// refinement `space_cfg`, its time scheme and step), when a peak of `output` lies in the layer
+/// (a short run: a few sample periods, resolved like every run). None when no peak is inside,
+/// or the 4N grid cannot run (the peaks inside then keep their Richardson bar).
+fn layer_grid_check(output: &SimOutput, space_cfg: &Config) -> Option<SimOutput> {
+    let l = output.initial_layer?;
+    if !output.peaks.signals().iter().any(|p| p.t <= l.t_end) {
+        return None;
+    }
+    let fine = crate::layer::layer_config(&refined_space(space_cfg), space_cfg.discretisation.dt);
+    fine.validate().ok()?;
+    simulate(&fine, RunOptions::default()).ok()
+}
+
+/// The estimated error of any sampled series of a run from the same series of its two
+/// refinements ([`refinements`]), by the rule of the tip values: F·(|u − u(2N)| + |u − u(dt/2)|)
+/// per sample (F = [`RICHARDSON_2`]), maximised over ±[`ENVELOPE_HALF_WIDTH`].
+pub fn series_error(t: &[f64], base: &[f64], space: &[f64], time: &[f64]) -> Vec<f64> {
+    let e: Vec<f64> = base
+        .iter()
+        .zip(space.iter().zip(time))
+        .map(|(b, (s, t))| RICHARDSON_2 * (b - s).abs() + RICHARDSON_2 * (b - t).abs())
+        .collect();
+    envelope(t, &e)
 }
 
 /// Work of [`simulate_with_error`] in units of the base run's unknown-steps (for the

@@ -126,6 +126,29 @@ pub fn observer_error_sup(out: &SimOutput, channel: usize) -> f64 {
     }
 }
 
+/// The full-rate envelope of one chattering signal ([`crate::Envelope`]): 0 is τ1, 1 is τ2,
+/// 2 is g̃1, 3 is g̃2; (min, max) per output interval.
+pub fn envelope_of(out: &SimOutput, signal: usize) -> &[(f64, f64)] {
+    let e = &out.envelope;
+    match signal {
+        0 => &e.tau1,
+        1 => &e.tau2,
+        2 => &e.g1_error,
+        _ => &e.g2_error,
+    }
+}
+
+/// max |v| per output interval of a full-rate envelope: max(|min|, |max|).
+pub fn envelope_abs_max(env: &[(f64, f64)]) -> Vec<f64> {
+    env.iter().map(|(lo, hi)| lo.abs().max(hi.abs())).collect()
+}
+
+/// min |v| per output interval of a full-rate envelope (0 when the interval's range holds 0;
+/// the values between the recorded instants are taken as continuous).
+pub fn envelope_abs_min(env: &[(f64, f64)]) -> Vec<f64> {
+    env.iter().map(|&(lo, hi)| if lo <= 0.0 && hi >= 0.0 { 0.0 } else { lo.abs().min(hi.abs()) }).collect()
+}
+
 /// Full-rate peak |τ| of one channel over the whole run.
 pub fn tau_peak(out: &SimOutput, channel: usize) -> f64 {
     if channel == 0 {

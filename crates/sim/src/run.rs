@@ -172,6 +172,37 @@ pub fn windowed_rms(t: &[f64], interval_rms: &[f64], t0: f64, t1: f64) -> Option
     (span > 0.0).then(|| (sum / span).sqrt())
 }
 
+/// Full-rate extremes per output interval of the signals that chatter at the observer's sample
+/// rate: `tau1[k] = (min, max)` of τ1 over every recorded instant of (t_{k−1}, t_k] (every
+/// integrator step's end and both sides of each sample's jump) and t_k itself; the entry at
+/// t_0 is the value there. Draw these, not the output samples, for τ and g̃: with the explicit
+/// observer the samples alias the chatter into a steady value.
+#[derive(Debug, Clone, Default, Serialize, PartialEq, schemars::JsonSchema)]
+pub struct Envelope {
+    /// (min, max) of τ1 (N) per output interval.
+    pub tau1: Vec<(f64, f64)>,
+    /// (min, max) of τ2 (N m) per output interval.
+    pub tau2: Vec<(f64, f64)>,
+    /// (min, max) of g̃1 = g1 − ĝ1 (N) per output interval.
+    pub g1_error: Vec<(f64, f64)>,
+    /// (min, max) of g̃2 = g2 − ĝ2 (N m) per output interval.
+    pub g2_error: Vec<(f64, f64)>,
+}
+
+impl Envelope {
+    /// The values of an output sample: [τ1, τ2, g̃1, g̃2].
+    pub(crate) fn values(s: &Sample) -> [f64; 4] {
+        [s.tau1, s.tau2, s.g1 - s.g1_hat, s.g2 - s.g2_hat]
+    }
+
+    pub(crate) fn push(&mut self, r: [(f64, f64); 4]) {
+        self.tau1.push(r[0]);
+        self.tau2.push(r[1]);
+        self.g1_error.push(r[2]);
+        self.g2_error.push(r[3]);
+    }
+}
+
 /// q(z,t) and θ(z,t) on the coarse output grid at the sample times.
 #[derive(Debug, Clone, Default, Serialize, PartialEq, schemars::JsonSchema)]
 pub struct Fields {
@@ -230,6 +261,8 @@ pub struct SimOutput {
     pub peaks_after_layer: Peaks,
     /// How the initial layer was resolved (None for a run that did not resolve it).
     pub initial_layer: Option<crate::layer::InitialLayer>,
+    /// Full-rate (min, max) of τ and g̃ per output interval (one entry per output sample).
+    pub envelope: Envelope,
     /// Cost statistics (wall times vary; everything else is deterministic).
     pub stats: RunStats,
 }
@@ -302,12 +335,14 @@ fn simulate_nodal(
     let total = cfg.total_samples();
     let every = cfg.samples_per_output();
     let mut series = Series::default();
+    let mut envelope = Envelope::default();
     let mut fields = opts.fields.then(|| Fields { z: stepper.discretisation().interp.z.clone(), ..Default::default() });
     let e0 = stepper.sample().energy;
-    let record = |st: &mut Stepper, series: &mut Series, fields: &mut Option<Fields>| -> Result<(), SimError> {
+    let mut record = |st: &mut Stepper, series: &mut Series, fields: &mut Option<Fields>| -> Result<(), SimError> {
         let s = st.sample();
         check_sample(&s, e0)?;
         series.push(&s, st.take_tau_rms());
+        envelope.push(st.take_range(Envelope::values(&s)));
         if let Some(f) = fields {
             let (x, _) = st.state();
             let d: &Discretisation = st.discretisation();
@@ -334,6 +369,7 @@ fn simulate_nodal(
         peaks: *stepper.peaks(),
         peaks_after_layer: *stepper.peaks_after_layer(),
         initial_layer: None,
+        envelope,
         stats: RunStats {
             unknowns,
             factor_nnz,

@@ -8,6 +8,15 @@ use crate::evidence::Explain;
 use crate::settings::CheckSettings;
 use crate::{Basis, ClaimId, ClaimRow, ClaimsError, Verdict};
 
+/// The switching gain of channel `ix` (0: κ2 of (20), 1: κ5 of (21)).
+fn kappa_sw(ix: usize) -> &'static str {
+    if ix == 0 {
+        "κ2"
+    } else {
+        "κ5"
+    }
+}
+
 /// One digital run of the observer (rule × hold period).
 #[derive(Debug, Clone, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct DigitalRecord {
@@ -15,7 +24,7 @@ pub struct DigitalRecord {
     pub rule: Text,
     /// The hold period T_s.
     pub period: Quantity,
-    /// The reaching time (implicit: entry into |σ_k| ≤ T_s κ_sw for good; explicit: first crossing).
+    /// The reaching time (implicit: entry into |σ_k| ≤ T_s κ2 (κ5) for good; explicit: first crossing).
     pub reach: Maybe,
     /// max |σ_k| after reaching.
     pub sigma_after_max: Maybe,
@@ -34,9 +43,9 @@ pub struct FiniteTimeEvidence {
     pub sigma0: Quantity,
     /// ζ = sup_t |g| (tight).
     pub zeta: Quantity,
-    /// κ_sw (κ2 or κ5).
+    /// The switching gain κ2 or κ5.
     pub kappa_switching: Quantity,
-    /// The theorem's hypothesis κ_sw ≥ ζ.
+    /// The theorem's hypothesis κ2 ≥ ζ1 (κ5 ≥ ζ2).
     pub hypothesis_holds: Flag,
     /// The bound t_f of (38)/(39) as read.
     pub bound_s: Quantity,
@@ -46,13 +55,13 @@ pub struct FiniteTimeEvidence {
     pub measured_s: Maybe,
     /// How it was integrated.
     pub filippov_method: Text,
-    /// σ reaches 0 and stays (reached and κ_sw ≥ ζ).
+    /// σ reaches 0 and stays (reached and the hypothesis holds).
     pub stays_at_zero_filippov: Flag,
     /// sup |ġ|.
     pub gdot_sup: Quantity,
     /// Horizon of the digital runs.
     pub run_t_end_s: Quantity,
-    /// Filippov time / bound for g ≡ κ_sw sign σ0 (1: the bound is sharp).
+    /// Filippov time / bound for g ≡ κ2 sign σ0 (κ5) (1: the bound is sharp).
     pub sharp_ratio: Maybe,
     /// Worst Filippov time / bound over the σ(0) sweep.
     pub sweep_max_ratio: Maybe,
@@ -123,12 +132,8 @@ fn evidence_of(c: &Computed, settings: &CheckSettings) -> FiniteTimeEvidence {
     FiniteTimeEvidence {
         sigma0: Quantity::based(format!("σ{n}(0) from the initial state"), c.sigma0, u, ValueBasis::ClosedForm),
         zeta: Quantity::based(format!("ζ{n} = sup |g{n}|"), c.zeta, u, ValueBasis::ClosedForm),
-        kappa_switching: Quantity::configured(
-            format!("switching gain κ{}", if ix == 0 { 2 } else { 5 }),
-            c.gain.switching,
-            u,
-        ),
-        hypothesis_holds: Flag::new(format!("hypothesis κ_sw ≥ ζ{n} holds"), hypothesis),
+        kappa_switching: Quantity::configured(format!("switching gain {}", kappa_sw(ix)), c.gain.switching, u),
+        hypothesis_holds: Flag::new(format!("hypothesis {} ≥ ζ{n} holds", kappa_sw(ix)), hypothesis),
         bound_s: s(format!("bound t_f{n} of ({}) as read", if ix == 0 { 38 } else { 39 }), c.bound),
         bound_literal_s: s("bound with the exponents read literally".into(), c.bound_literal),
         measured_s: Maybe::of(
@@ -150,8 +155,8 @@ fn evidence_of(c: &Computed, settings: &CheckSettings) -> FiniteTimeEvidence {
         ),
         gdot_sup: Quantity::based(format!("sup |ġ{n}|"), (c.g.amp * c.g.freq).abs(), rate, ValueBasis::ClosedForm),
         run_t_end_s: Quantity::exact("horizon of the digital runs", c.run_t_end, Unit::Second),
-        sharp_ratio: ratio("t_reach / t_f for g ≡ κ_sw sign σ(0)", c.sharp_ratio),
-        sweep_max_ratio: ratio("worst t_reach / t_f over σ(0) ∈ ±[1e-3, 1e2]", sweep_max),
+        sharp_ratio: ratio(&format!("t_reach / t_f{n} for g{n} ≡ {} sign σ{n}(0)", kappa_sw(ix)), c.sharp_ratio),
+        sweep_max_ratio: ratio(&format!("worst t_reach / t_f{n} over σ{n}(0) ∈ ±[1e-3, 1e2]"), sweep_max),
         digital: Table::new("digital observer runs", digital),
         implicit_stays_in_band: Flag::new(
             "the implicit rule stays in |σ_k| ≤ T_s ζ after reaching, every T_s",
@@ -189,7 +194,7 @@ impl FiniteTimeEvidence {
 }
 
 impl Explain for FiniteTimeEvidence {
-    /// Hypothesis κ_sw ≥ ζ fails → inconclusive (the theorem does not apply); the Filippov time
+    /// Hypothesis κ2 ≥ ζ1 (κ5 ≥ ζ2) fails → inconclusive (the theorem does not apply); the Filippov time
     /// exceeds the bound, or some σ(0) of the sweep does → fails; σ(0) = 0 → trivially true;
     /// else holds. Basis: simulation.
     fn verdict(&self) -> (Verdict, Basis) {
@@ -211,7 +216,8 @@ impl Explain for FiniteTimeEvidence {
         let mut f = Vec::new();
         if !self.hypothesis_holds.value {
             f.push(format!(
-                "The hypothesis fails: κ_sw = {} < ζ{n} = {}, so the theorem promises nothing here.",
+                "The hypothesis fails: {} = {} < ζ{n} = {}, so the theorem promises nothing here.",
+                kappa_sw(n - 1),
                 self.kappa_switching.value_text(),
                 self.zeta.value_text()
             ));
@@ -226,7 +232,7 @@ impl Explain for FiniteTimeEvidence {
                 self.bound_s.value_text()
             ));
         }
-        f.push(format!("Over a sweep of σ{n}(0) the worst t_reach/t_f is {sweep}."));
+        f.push(format!("Over a sweep of σ{n}(0) the worst t_reach/t_f{n} is {sweep}."));
         if let (Some(i), Some(e)) = (self.run(ObserverRule::Implicit), self.run(ObserverRule::Explicit)) {
             f.push(format!(
                 "At T_s = {} the implicit observer {} (max |g̃{n}| = {}); the explicit one chatters (max |g̃{n}| = {}).",
@@ -257,27 +263,32 @@ impl Explain for FiniteTimeEvidence {
     fn details(&self) -> Vec<String> {
         let n = self.n();
         let mut d = vec![format!(
-            "ζ{n} = {} against κ_sw = {}; sup |ġ{n}| = {}.",
+            "ζ{n} = {} against {} = {}; sup |ġ{n}| = {}.",
             self.zeta.value_text(),
+            kappa_sw(n - 1),
             self.kappa_switching.value_text(),
             self.gdot_sup.value_text()
         )];
         d.push(match self.sharp_ratio.quantity() {
             Some(q) if (q.value - 1.0).abs() <= 1e-6 => {
                 format!(
-                    "The bound is sharp: for g ≡ κ_sw sign σ(0) t_reach/t_f = {}.",
+                    "The bound is sharp: for g{n} ≡ {} sign σ{n}(0) t_reach/t_f{n} = {}.",
+                    kappa_sw(n - 1),
                     wingcheck_model::quantity::format_value(q.value, Some(1e-9))
                 )
             }
-            Some(q) => format!("For g ≡ κ_sw sign σ(0) t_reach/t_f = {} (not sharp).", q.value_text()),
-            None => "For g ≡ κ_sw sign σ(0) σ is not reached within 60 s.".into(),
+            Some(q) => {
+                format!("For g{n} ≡ {} sign σ{n}(0) t_reach/t_f{n} = {} (not sharp).", kappa_sw(n - 1), q.value_text())
+            }
+            None => format!("For g{n} ≡ {} sign σ{n}(0) σ{n} does not reach 0 within 60 s.", kappa_sw(n - 1)),
         });
         d.push(format!(
-            "The implicit rule enters its band at most {} after the Filippov time; the theorem promises g̃ = σ̇ = 0 after t_f in continuous time, which a digital observer gets only to O(T_s) and only with the implicit rule.",
+            "The implicit rule enters its band at most {} after the Filippov time; the theorem promises g̃{n} = σ̇{n} = 0 after t_f{n} in continuous time, which a digital observer gets only to O(T_s) and only with the implicit rule.",
             self.implicit_reach_excess_max_s.value_text()
         ));
         d.push(format!(
-            "The literal reading Q0^(a2 − a1/a2) of the exponents would give {}.",
+            "The literal reading Q(0)^(a2 − a1/a2) of the exponents in ({}) (Q = σ{n}²/2) would give {}.",
+            if n == 1 { 38 } else { 39 },
             self.bound_literal_s.value_text()
         ));
         d
@@ -295,7 +306,7 @@ pub fn check(cfg: &Config, channel: Channel, settings: &CheckSettings) -> Result
     let n = channel_index(channel) + 1;
     let id = if n == 1 { ClaimId::FiniteTime1 } else { ClaimId::FiniteTime2 };
     let assumptions = vec![
-        format!("ζ{n} = sup_t≥0 |g{n}| = |mean| + |amplitude| = {} (tight: the sine reaches ±1)", e.zeta.value_text()),
+        format!("ζ{n} = sup over t ≥ 0 of |g{n}| = |mean| + |amplitude| = {} (tight: the sine reaches ±1)", e.zeta.value_text()),
         "exponents read as Q0^((a2−a1)/a2), 2^(a1/a2 − 1), σ^((2a1−a2)/a2) = sig^r(σ)".into(),
         "continuous-time claim checked in the Filippov sense (σ slides on 0; ĝ takes the equivalent value g)".into(),
         format!(

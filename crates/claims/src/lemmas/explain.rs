@@ -41,11 +41,11 @@ pub struct Lemma2Counterexample {
 /// The evidence of the `lemmas` row.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, schemars::JsonSchema)]
 pub struct LemmasEvidence {
-    /// max ab/(a²/p + p b²) found.
+    /// max xy/(x²/c + c y²) found.
     pub lemma1_max_ratio: Quantity,
     /// Lemma 1 (11) holds (the maximum is ≤ 1).
     pub lemma1_holds: Flag,
-    /// The sharp constant of ab ≤ c(a²/p + p b²).
+    /// The sharp constant k of xy ≤ k(x²/c + c y²).
     pub lemma1_sharp_constant: Quantity,
     /// The Lemma 2 search per degree.
     pub lemma2_by_degree: Table<DegreeRecord>,
@@ -78,9 +78,9 @@ fn evidence_of(c: &Computed) -> LemmasEvidence {
     let violated = cx.printed_violated;
     let (ineq, viol) = c.lemma3_inequality;
     LemmasEvidence {
-        lemma1_max_ratio: ratio("Lemma 1: max ab/(a²/p + p b²)", c.lemma1_max_ratio),
+        lemma1_max_ratio: ratio("Lemma 1: max xy/(x²/c + c y²)", c.lemma1_max_ratio),
         lemma1_holds: Flag::new("Lemma 1 (11) holds (max ≤ 1)", c.lemma1_max_ratio <= 1.0),
-        lemma1_sharp_constant: Quantity::exact("sharp constant of ab ≤ c(a²/p + p b²)", 0.5, Unit::Dimensionless),
+        lemma1_sharp_constant: Quantity::exact("sharp constant k of xy ≤ k(x²/c + c y²)", 0.5, Unit::Dimensionless),
         lemma2_by_degree: Table::new(
             "Lemma 2: best ratio over polynomials of degree ≤ K with ω(0) = 0",
             c.printed
@@ -158,11 +158,11 @@ impl Explain for LemmasEvidence {
         vec![
             if self.lemma1_holds.value {
                 format!(
-                    "Lemma 1 (11) holds but loosely: the largest ab/(a²/p + p b²) is {} (sharp constant ½).",
+                    "Lemma 1 (11) holds but loosely: the largest xy/(x²/c + c y²) is {} (sharp constant ½).",
                     self.lemma1_max_ratio.value_text()
                 )
             } else {
-                format!("Lemma 1 (11) fails here: max ab/(a²/p + p b²) = {} > 1.", self.lemma1_max_ratio.value_text())
+                format!("Lemma 1 (11) fails here: max xy/(x²/c + c y²) = {} > 1.", self.lemma1_max_ratio.value_text())
             },
             if cx.printed_violated.value {
                 format!(
@@ -210,7 +210,7 @@ impl Explain for LemmasEvidence {
                 b.degree.value_text()
             ));
         }
-        d.push("Lemma 1's sharp form is ab ≤ a²/(2p) + p b²/2 (AM–GM, equality at a = p b); Lemma 2's corrected form follows from Cauchy–Schwarz and is the one (36) uses.".into());
+        d.push("Lemma 1 is written with x, y, c for the paper's a, b, p (not the weights of (15)); its sharp form is xy ≤ x²/(2c) + c y²/2 (AM–GM, equality at x = c y); Lemma 2's corrected form follows from Cauchy–Schwarz and is the one (36) uses.".into());
         d.push(format!(
             "Lemma 3's inequality cases: {} of {} are slower than (14).",
             self.lemma3_violations.value_text(),
@@ -222,7 +222,7 @@ impl Explain for LemmasEvidence {
     fn correction(&self) -> Option<String> {
         (!self.lemma2_printed_holds.value).then(|| {
             "Lemma 2 (12) must read ω̄(z)² ≤ z∫_0^z ω̄'(s)² ds ≤ f∫_0^f ω̄'(s)² ds (derivative inside the integral); \
-             Lemma 1 may be sharpened to ab ≤ a²/(2p) + p b²/2"
+             Lemma 1 may be sharpened to xy ≤ x²/(2c) + c y²/2 (the paper's a, b, p written x, y, c)"
                 .to_string()
         })
     }
@@ -279,7 +279,7 @@ pub fn check(cfg: &Config, settings: &CheckSettings) -> Result<ClaimRow, ClaimsE
     let assumptions = vec![
         "Lemma 2 read with ω̄ = ω̄(z) at any z ∈ [0, f]; searched at z = f (the worst point for increasing ω)".into(),
         format!(
-            "Lemma 2 search space: polynomials Σ_{{k=1}}^K c_k z^k, K ≤ {}, on the configured span f = {}",
+            "Lemma 2 search space: polynomials ω(z) = Σ_{{k=1}}^K c_k z^k (coefficients c_k), K ≤ {}, on the configured span f = {}",
             settings.lemma2_max_degree,
             e.lemma2_counterexample.f.value_text()
         ),

@@ -177,7 +177,12 @@ fn evidence_of(cfg: &Config, c: &Computed, settings: &CheckSettings) -> MuEviden
         satisfiable: Flag::new("(29)–(32) satisfiable at the configured gains", c.obstruction.is_none()),
         obstruction: c.obstruction.map(|o| Text::text("the condition that fails", o.text())),
         lambda3_sup: c.lambda3_sup.map(|v| {
-            Quantity::based("sup over the η's of λ3 = min μ3…μ6", v, Unit::LyapunovUnits, ValueBasis::ClosedForm)
+            Quantity::based(
+                "λ3* = sup over the η's of min μ3…μ6, at the configured a, b",
+                v,
+                Unit::LyapunovUnits,
+                ValueBasis::ClosedForm,
+            )
         }),
         a_over_b_boundary: Quantity::based(
             "largest a/b for which (32) can hold: r*",
@@ -246,8 +251,14 @@ impl Explain for MuEvidence {
         let mut out: Vec<Quantity> = self.lambda3_sup.iter().cloned().collect();
         out.push(self.a_over_b_boundary.clone());
         if let Some(p) = &self.best {
-            let at = if self.best_at_configured.value { "at the configured gains" } else { "at a/b = r*/2" };
-            out.push(p.lambda.clone().relabel(format!("decay rate λ at the ε/λ-optimal η's, {at} (optimistic)")));
+            let at = if self.best_at_configured.value {
+                "at the configured gains".to_string()
+            } else {
+                format!("at a = {}, b = {} (a/b = r*/2, not the configured point)", p.a.value_text(), p.b.value_text())
+            };
+            out.push(
+                p.lambda.clone().relabel(format!("decay rate λ at the ε/λ-optimal η's (not sup λ), {at}, optimistic")),
+            );
         }
         out
     }
@@ -341,7 +352,7 @@ pub fn check(cfg: &Config, study: &Study, settings: &CheckSettings) -> Result<Mu
         "silent conditions added: η3 ≤ b/(2a), η4 ≤ b/(2a) (the coefficients of ∫q''², ∫θ''² in (31) must be ≥ 0)".into(),
         "ρx_c and x_ac enter through their magnitudes (the Young inequalities behind μ3, μ4 bound |cross terms|)".into(),
         format!(
-            "g_hmax = {} = max_t |g_h| over the horizon; ζ3 = {}, ζ4 = {} = sup_t |g̃| of the FTDO simulation at full rate (the ε terms bound g̃², not ĝ²)",
+            "g_hmax = {} = max over t ∈ [0, t_end] of |g_h|; ζ3 = {}, ζ4 = {} = sup over t of |g̃1|, |g̃2| in the FTDO simulation at full rate (the ε terms bound g̃², not ĝ²)",
             e.g_hmax.value_text(),
             e.zeta3.value_text(),
             e.zeta4.value_text()

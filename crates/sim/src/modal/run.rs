@@ -6,7 +6,7 @@ use std::time::Instant;
 use wingcheck_model::Config;
 
 use super::{dot, drive, ModalBasis, ModalLoop, ModalState, ObserverSignal, Recorder};
-use crate::run::{Fields, RunOptions, RunStats, Series, SimOutput};
+use crate::run::{Envelope, Fields, RunOptions, RunStats, Series, SimOutput};
 use crate::stepper::FullRate;
 use crate::{Sample, SimError};
 
@@ -32,6 +32,7 @@ struct Simulation<'c, 'o> {
     basis: &'c ModalBasis,
     total: usize,
     series: Series,
+    envelope: Envelope,
     fields: Option<Fields>,
     full_rate: FullRate,
     progress: Option<&'o mut dyn FnMut(f64)>,
@@ -44,6 +45,7 @@ impl Recorder for Simulation<'_, '_> {
 
     fn output(&mut self, st: &ModalState, sample: &Sample, k: usize) -> Result<(), SimError> {
         self.series.push(sample, self.full_rate.take_tau_rms());
+        self.envelope.push(self.full_rate.take_range(crate::run::Envelope::values(sample)));
         if let Some(f) = &mut self.fields {
             f.q.push(self.basis.field_q.iter().map(|row| dot(row, &st.eta)).collect());
             f.theta.push(self.basis.field_theta.iter().map(|row| dot(row, &st.eta)).collect());
@@ -79,6 +81,7 @@ pub fn simulate_modal(
         basis,
         total,
         series: Series::default(),
+        envelope: Envelope::default(),
         fields: opts.fields.then(|| Fields { z: basis.field_z.clone(), ..Default::default() }),
         full_rate: FullRate::new(crate::layer::layer_end(cfg)),
         progress: opts.progress,
@@ -90,6 +93,7 @@ pub fn simulate_modal(
         peaks: rec.full_rate.peaks,
         peaks_after_layer: rec.full_rate.after_layer,
         initial_layer: None,
+        envelope: rec.envelope,
         stats: RunStats {
             unknowns: basis.len(),
             factor_nnz: 0,

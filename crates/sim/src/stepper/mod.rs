@@ -333,6 +333,13 @@ impl Stepper {
         self.full_rate.take_tau_rms()
     }
 
+    /// Full-rate (min, max) of [τ1, τ2, g̃1, g̃2] since the previous call, including `at`, the
+    /// values at the output instant ([`crate::run::Envelope`]); `simulate` calls it at every
+    /// output sample.
+    pub fn take_range(&mut self, at: [f64; 4]) -> [(f64, f64); 4] {
+        self.full_rate.take_range(at)
+    }
+
     /// One trapezoidal step of length h starting at time t.
     fn substep_trapezoid(&mut self, t: f64) {
         let h = self.h;

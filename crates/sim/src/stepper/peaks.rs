@@ -107,6 +107,45 @@ impl SquareIntegral {
     }
 }
 
+/// Full-rate extremes of the chattering signals [τ1, τ2, g̃1, g̃2] over the current output
+/// interval: the smallest and largest value at every recorded instant since the previous output
+/// (every integrator step's end and both sides of every sample's jump). An output sample alone
+/// aliases a signal that chatters at the sample rate (the explicit FTDO's τ1 jumps between about
+/// +3.35 and −3.8 N every millisecond; its 10-ms samples read a steady +3.4 N): these bound it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct IntervalRange {
+    lo: [f64; 4],
+    hi: [f64; 4],
+    seen: bool,
+}
+
+impl Default for IntervalRange {
+    fn default() -> Self {
+        IntervalRange { lo: [f64::INFINITY; 4], hi: [f64::NEG_INFINITY; 4], seen: false }
+    }
+}
+
+impl IntervalRange {
+    /// Fold in the values [τ1, τ2, g̃1, g̃2] of one instant.
+    pub fn update(&mut self, v: [f64; 4]) {
+        for c in 0..4 {
+            self.lo[c] = self.lo[c].min(v[c]);
+            self.hi[c] = self.hi[c].max(v[c]);
+        }
+        self.seen = true;
+    }
+
+    /// The (min, max) of each signal since the previous call — `at` (the values at the output
+    /// instant) when no instant was recorded, and always including `at` — and start the next
+    /// interval.
+    pub fn take(&mut self, at: [f64; 4]) -> [(f64, f64); 4] {
+        self.update(at);
+        let r = [0, 1, 2, 3].map(|c| (self.lo[c], self.hi[c]));
+        *self = IntervalRange::default();
+        r
+    }
+}
+
 /// What is tracked at every recorded instant of a run (every integrator step's end and both
 /// sides of every jump): the extremes and the τ square integrals, fed the same values
 /// [q, θ, q̇, θ̇, τ1, τ2, g̃1, g̃2].
@@ -118,6 +157,7 @@ pub(crate) struct FullRate {
     pub(crate) after_layer: Peaks,
     layer_end: f64,
     squares: SquareIntegral,
+    range: IntervalRange,
 }
 
 impl FullRate {
@@ -139,6 +179,13 @@ impl FullRate {
             self.after_layer.update(t, v);
         }
         self.squares.update_step(t, [v[4], v[5]], exact);
+        self.range.update([v[4], v[5], v[6], v[7]]);
+    }
+
+    /// Full-rate (min, max) of τ1, τ2, g̃1, g̃2 since the previous call, including the values
+    /// `at` of the output instant ([`IntervalRange::take`]).
+    pub(crate) fn take_range(&mut self, at: [f64; 4]) -> [(f64, f64); 4] {
+        self.range.take(at)
     }
 
     /// Full-rate RMS of τ1, τ2 since the previous call ([`SquareIntegral::take_rms`]).
@@ -149,7 +196,21 @@ impl FullRate {
 
 #[cfg(test)]
 mod tests {
-    use super::SquareIntegral;
+    use super::{IntervalRange, SquareIntegral};
+
+    #[test]
+    fn interval_range_holds_every_instant_and_restarts() {
+        // Reference: the extremes of the values fed in, by inspection.
+        let mut r = IntervalRange::default();
+        r.update([3.35, 1.0, -0.5, 0.0]);
+        r.update([-3.8, 2.0, 0.5, 0.0]);
+        let got = r.take([3.4, 1.5, 0.0, 0.0]);
+        assert_eq!(got[0], (-3.8, 3.4));
+        assert_eq!(got[1], (1.0, 2.0));
+        assert_eq!(got[2], (-0.5, 0.5));
+        // nothing recorded since: the output instant's own values
+        assert_eq!(r.take([1.0, 2.0, 3.0, 4.0])[3], (4.0, 4.0));
+    }
 
     #[test]
     fn full_rate_rms_of_a_sine_and_of_a_jump() {
