@@ -349,7 +349,7 @@ fn summary(
             q_error: tips.as_ref().map(|v| v.iter().map(|x| x.0.error).collect()),
             theta_error: tips.as_ref().map(|v| v.iter().map(|x| x.1.error).collect()),
         },
-        peaks: out.peaks.clone(),
+        peaks: out.peaks,
         initial_layer: out.initial_layer,
         out: path.map(|p| p.display().to_string()),
         error_estimate: estimated.map(|e| ErrorSummary {
@@ -362,7 +362,7 @@ fn summary(
             max_time_error: e.max_time_error,
             tolerance: e.tolerance,
             meets_tolerance: e.meets_tolerance,
-            peaks: e.peaks.clone(),
+            peaks: e.peaks,
             basis: "Richardson, order 2 in h and dt, safety factor 1.25: (5/3)·|u(N) − u(2N)| + (5/3)·|u(dt) − u(dt/2)| per output sample, maximised over ±0.1 s; peaks at full rate with the initial layer resolved at finer steps (its last change), a 4N grid check inside the layer, and a round-off floor of 256 ulp".into(),
         }),
     }
