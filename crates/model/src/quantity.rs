@@ -395,7 +395,7 @@ pub fn resolution_of(error: f64) -> Option<f64> {
 /// the resolution's decimals (none for a resolution ≥ 1), trailing zeros dropped, `0` for a value that rounds to zero. The
 /// data files' format (`0.04952` for 0.0495234… at 1e-5); deterministic, parses back as f64.
 pub fn format_resolved(value: f64, resolution: f64) -> String {
-    if !value.is_finite() || !(resolution > 0.0 && resolution.is_finite()) {
+    if !(value.is_finite() && resolution > 0.0 && resolution.is_finite()) {
         return format!("{value}");
     }
     let decimals = (-resolution.log10().round()).max(0.0) as usize;
