@@ -78,6 +78,42 @@ pub(crate) fn hatch(corners: &[(f64, f64)], step: f64, x_clip: (i32, i32)) -> Ve
     out
 }
 
+/// Indices of the points of the polyline `p` (canvas coordinates) kept by Douglas–Peucker with
+/// tolerance `tol`: every dropped point lies within `tol` of the segment between the kept points
+/// around it. The ends are always kept. Iterative (no recursion depth limit).
+pub(crate) fn simplified(p: &[(f64, f64)], tol: f64) -> Vec<usize> {
+    let n = p.len();
+    if n <= 2 {
+        return (0..n).collect();
+    }
+    let mut keep = vec![false; n];
+    keep[0] = true;
+    keep[n - 1] = true;
+    let mut stack = vec![(0usize, n - 1)];
+    while let Some((a, b)) = stack.pop() {
+        let (ax, ay) = p[a];
+        let (dx, dy) = (p[b].0 - ax, p[b].1 - ay);
+        let len = (dx * dx + dy * dy).sqrt();
+        let mut worst = (0.0, 0usize);
+        for (k, &(x, y)) in p.iter().enumerate().take(b).skip(a + 1) {
+            let d = if len > 0.0 {
+                ((x - ax) * dy - (y - ay) * dx).abs() / len
+            } else {
+                ((x - ax).powi(2) + (y - ay).powi(2)).sqrt()
+            };
+            if d > worst.0 {
+                worst = (d, k);
+            }
+        }
+        if worst.0 > tol {
+            keep[worst.1] = true;
+            stack.push((a, worst.1));
+            stack.push((worst.1, b));
+        }
+    }
+    (0..n).filter(|&k| keep[k]).collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -112,5 +148,20 @@ mod tests {
         for l in hatch(&rev, 10.0, (0, 30)) {
             assert!(l.iter().all(|p| (0..=30).contains(&p.0) && p.0 + p.1 <= 100), "{l:?}");
         }
+    }
+}
+
+#[cfg(test)]
+mod simplify_tests {
+    use super::simplified;
+
+    #[test]
+    fn a_straight_run_keeps_its_ends_and_a_corner_stays() {
+        // Reference: collinear points are within any tolerance of their chord; the corner of an
+        // L is 50/√2 ≈ 35 px off the chord of the whole path.
+        let line: Vec<(f64, f64)> = (0..100).map(|k| (k as f64, 2.0 * k as f64)).collect();
+        assert_eq!(simplified(&line, 1.0), vec![0, 99]);
+        let l: Vec<(f64, f64)> = (0..=50).map(|k| (k as f64, 0.0)).chain((1..=50).map(|k| (50.0, k as f64))).collect();
+        assert_eq!(simplified(&l, 1.0), vec![0, 50, 100]);
     }
 }

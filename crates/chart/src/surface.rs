@@ -313,7 +313,7 @@ pub fn surface_svg(s: &Heatmap) -> Result<String, ChartError> {
             root.draw(&Rectangle::new([c((cx, ya)), c((cx + 18.0, yb + 0.5))], col.filled())).map_err(e)?;
         }
         root.draw(&Rectangle::new([c((cx, cy0)), c((cx + 18.0, cy1))], axis)).map_err(e)?;
-        for v in crate::with_ends(&linear_ticks(-cmax, cmax, 4), -cmax, cmax, 0.08) {
+        for v in crate::with_ends(&linear_ticks(-cmax, cmax, 4), -cmax, cmax, 0.04) {
             let y = cy1 - frac(v, -cmax, cmax) * (cy1 - cy0);
             root.draw(&PathElement::new(vec![c((cx + 18.0, y)), c((cx + 23.0, y))], axis)).map_err(e)?;
             let label = tick_linear(v, 2.0 * cmax);

@@ -62,11 +62,11 @@ impl Verdict {
         match self {
             Verdict::Holds => "as printed",
             Verdict::Fails => "false as printed",
-            Verdict::HoldsAfterCorrection => "only after the stated correction",
-            Verdict::Vacuous => "valid but uninformative",
-            Verdict::TriviallyTrue => "true only because the hypothesis is trivial",
-            Verdict::PartlyReproduced => "part reproduced, part not",
-            Verdict::Inconclusive => "not decided (the row says why)",
+            Verdict::HoldsAfterCorrection => "after the correction",
+            Verdict::Vacuous => "uninformative",
+            Verdict::TriviallyTrue => "by a trivial hypothesis",
+            Verdict::PartlyReproduced => "in part",
+            Verdict::Inconclusive => "undecided",
         }
     }
 

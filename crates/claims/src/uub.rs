@@ -259,16 +259,20 @@ fn compute(
     })
 }
 
+/// Where the row's numbers are evaluated, as their labels say it: the configured point, or the
+/// feasible point the row moves to when the hypotheses fail there.
+fn evaluated_at(a: f64, b: f64, configured: bool) -> String {
+    let fmt = |v: f64| wingcheck_model::quantity::format_value(v, None);
+    if configured {
+        format!("at the configured a = {}, b = {} s", fmt(a), fmt(b))
+    } else {
+        format!("at the feasible a = {}, b = {} s (not the configured point)", fmt(a), fmt(b))
+    }
+}
+
 fn evidence_of(c: &Computed, hypotheses_here: bool, cfg: &Config, settings: &CheckSettings) -> UubEvidence {
     let (best, n2) = (&c.best, settings.uub_lambda2_elements);
-    let fmt = |v: f64| wingcheck_model::quantity::format_value(v, None);
-    // every number says where it was evaluated: the configured point, or the feasible point the
-    // row moves to when the hypotheses fail there
-    let at = if hypotheses_here {
-        format!("at the configured a = {}, b = {} s", fmt(best.a), fmt(best.b))
-    } else {
-        format!("at the feasible a = {}, b = {} s (not the configured point)", fmt(best.a), fmt(best.b))
-    };
+    let at = evaluated_at(best.a, best.b, hypotheses_here);
     let lower = |label: String, v: f64| Quantity::based(label, v, Unit::Metre, ValueBasis::LowerBound);
     let sim = |label: String, v: f64, unit: Unit| Quantity::based(label, v, unit, ValueBasis::Simulation);
     let based = |label: String, v: f64, unit: Unit, basis: ValueBasis| Quantity::based(label, v, unit, basis);

@@ -187,12 +187,8 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     let groups = paper::paper_figures(cfg, &runs, paper::ftdo_bounds(&ledger));
     let comparison = paper::comparison_figures(cfg, &runs);
     let (acc_fig, acc_rows) = accuracy::accuracy(&runs.accuracy);
-    let mut row_figs: Vec<Vec<Figure>> = ledger.rows.iter().enumerate().map(|(i, r)| claim_figures(i, r)).collect();
-    // the W-bounds row's λ2/λ1 against a/b (through zero at ω₁), drawn by the report
     let omega1 = region.as_ref().map(|r| r.omega1).or_else(|| paper::omega1(cfg));
-    if let (Some(i), Some(w)) = (ledger.rows.iter().position(|r| r.id == wingcheck_claims::ClaimId::WBounds), omega1) {
-        row_figs[i].extend(wratio::w_ratio_figure(cfg, w, CheckSettings::default().uub_lambda2_elements));
-    }
+    let row_figs = row_figures(cfg, &ledger, omega1);
     timings.push(StageTiming { name: "figure data".into(), seconds: t.elapsed().as_secs_f64() });
 
     // SVG + CSV of every figure, in parallel.
@@ -212,17 +208,7 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
         || timed(|| wingcheck_claims::certify::render_set(cfg)),
     );
     let (mut files, csv_records) = charts?;
-    let proofs = match proofs {
-        Ok(set) => {
-            let mut names = Vec::new();
-            for (name, text) in &set {
-                files.push(staging.write(&format!("{PROOFS}/{name}"), text.as_bytes())?);
-                names.push(name.clone());
-            }
-            Ok(names)
-        }
-        Err(e) => Err(e.to_string()),
-    };
+    let proofs = write_proofs(proofs, &staging, &mut files)?;
     timings.push(StageTiming { name: "charts".into(), seconds: t.elapsed().as_secs_f64() });
     timings.push(StageTiming { name: "certificates (beside the charts)".into(), seconds: pt });
 
@@ -269,6 +255,36 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
 
 /// The report's certificate directory (`wingcheck certify`'s set for the configured point).
 pub const PROOFS: &str = "proofs";
+
+/// The rows' figures: each row's plots, and the W-bounds row's λ2/λ1 against a/b (through
+/// zero at ω₁), drawn by the report.
+fn row_figures(cfg: &Config, ledger: &Ledger, omega1: Option<f64>) -> Vec<Vec<Figure>> {
+    let mut row_figs: Vec<Vec<Figure>> = ledger.rows.iter().enumerate().map(|(i, r)| claim_figures(i, r)).collect();
+    if let (Some(i), Some(w)) = (ledger.rows.iter().position(|r| r.id == wingcheck_claims::ClaimId::WBounds), omega1) {
+        row_figs[i].extend(wratio::w_ratio_figure(cfg, w, CheckSettings::default().uub_lambda2_elements));
+    }
+    row_figs
+}
+
+/// The certificate set into `proofs/` of the staging directory (names appended to `files`);
+/// the set's file names, or why `certify` could not make it.
+fn write_proofs(
+    set: Result<Vec<(String, String)>, wingcheck_claims::certify::CertifyError>,
+    staging: &atomic::Staging,
+    files: &mut Vec<String>,
+) -> Result<Result<Vec<String>, String>, ReportError> {
+    match set {
+        Ok(set) => {
+            let mut names = Vec::new();
+            for (name, text) in &set {
+                files.push(staging.write(&format!("{PROOFS}/{name}"), text.as_bytes())?);
+                names.push(name.clone());
+            }
+            Ok(Ok(names))
+        }
+        Err(e) => Ok(Err(e.to_string())),
+    }
+}
 
 type Computed = (Ledger, runs::Runs, Option<region::RegionMap>, Vec<StageTiming>);
 

@@ -179,8 +179,8 @@ fn surface(n: u32, run: &str, desc: &str, f: Field, out: &SimOutput, c: &Ctx, vm
 }
 
 /// The field figures of a controlled run (q, θ: map and 3-D view, on the colour scales the
-/// pair shares, `scales` = (q, θ)), then its time-series figures `lines`.
-#[allow(clippy::too_many_arguments)]
+/// pair shares, `pair` = (q scale, θ scale, the twin's first figure)); the caller appends its
+/// time-series figures.
 fn controlled(
     n: u32,
     run: &str,
@@ -188,18 +188,15 @@ fn controlled(
     out: &SimOutput,
     c: &Ctx,
     pair: (f64, f64, u32),
-    lines: Vec<Figure>,
     err: &TipErrors,
 ) -> Vec<Figure> {
     let (sq, st, twin) = pair;
-    let mut v = vec![
+    vec![
         heat(n, run, desc, Field::Q, out, c, Some((sq, twin)), err.max_q),
         surface(n, run, desc, Field::Q, out, c, Some(sq)),
         heat(n + 1, run, desc, Field::Theta, out, c, Some((st, twin + 1)), err.max_theta),
         surface(n + 1, run, desc, Field::Theta, out, c, Some(st)),
-    ];
-    v.extend(lines);
-    v
+    ]
 }
 
 /// Figures 3–20 in three groups (no control, FTDO, DOBC), FTDO/DOBC pairs on common axes;
@@ -235,13 +232,13 @@ pub fn paper_figures(cfg: &Config, runs: &Runs, bounds: [Option<f64>; 2]) -> Vec
             id: "paper-ftdo",
             title: "Proposed control: law (15) with the finite-time disturbance observer (paper Figures 5–12)".into(),
             intro: "The configured gains; the values the paper leaves out are listed under Assumptions.".into(),
-            figures: controlled(5, "ftdo", pf, ftdo, &c, (sq, st, 13), lf, &runs.errors[1]),
+            figures: [controlled(5, "ftdo", pf, ftdo, &c, (sq, st, 13), &runs.errors[1]), lf].concat(),
         },
         Group {
             id: "paper-dobc",
             title: "Comparison: DOBC (57), corrected (paper Figures 13–20)".into(),
             intro: "Same law (15) and gains, with the linear disturbance observer of (57).".into(),
-            figures: controlled(13, "dobc", db, dobc, &c, (sq, st, 5), ld, &runs.errors[2]),
+            figures: [controlled(13, "dobc", db, dobc, &c, (sq, st, 5), &runs.errors[2]), ld].concat(),
         },
     ]
 }

@@ -14,18 +14,21 @@ use crate::figure::{Caption, Chart, Figure};
 /// Points of the a/b sweep (log spaced).
 const POINTS: usize = 61;
 
-/// The figure, or None when the pencil cannot be set up or b is not positive.
-pub fn w_ratio_figure(cfg: &Config, omega1: f64, elements: usize) -> Option<Figure> {
+/// The sweep: a/b log spaced over two decades beyond ω₁ and the configured a/b, the tight and
+/// the printed λ2/λ1 at each, and where the tight one changes sign (bisection in log a/b).
+struct Sweep {
+    ratios: Vec<f64>,
+    tight: Vec<f64>,
+    printed: Vec<f64>,
+    crossing: Option<f64>,
+}
+
+fn sweep(cfg: &Config, pencil: &WPencil, omega1: f64) -> Option<Sweep> {
     let b = cfg.control.b;
-    if !(b > 0.0 && omega1 > 0.0 && omega1.is_finite()) {
-        return None;
-    }
-    let pencil = WPencil::new(cfg, elements).ok()?;
     let here = cfg.control.a / b;
     let (lo, hi) = (omega1.min(if here > 0.0 { here } else { omega1 }) / 100.0, omega1.max(here) * 100.0);
     let ratios: Vec<f64> = (0..POINTS).map(|k| lo * (hi / lo).powf(k as f64 / (POINTS - 1) as f64)).collect();
-    let mut tight = Vec::with_capacity(POINTS);
-    let mut printed = Vec::with_capacity(POINTS);
+    let (mut tight, mut printed) = (Vec::with_capacity(POINTS), Vec::with_capacity(POINTS));
     for &r in &ratios {
         let (l2, l1) = pencil.constants(r * b, b).ok()?;
         tight.push(l2 / l1);
@@ -33,19 +36,31 @@ pub fn w_ratio_figure(cfg: &Config, omega1: f64, elements: usize) -> Option<Figu
         let (l2p, l1p) = ((&p.y2 - &p.y3).to_f64()?, (&p.y1 + &p.y3).to_f64()?);
         printed.push(l2p / l1p);
     }
+    let crossing =
+        ratios.windows(2).zip(tight.windows(2)).find(|(_, t)| t[0] > 0.0 && t[1] <= 0.0).and_then(|(r, _)| {
+            let (mut x0, mut x1) = (r[0].ln(), r[1].ln());
+            for _ in 0..60 {
+                let m = 0.5 * (x0 + x1);
+                let (l2, _) = pencil.constants(m.exp() * b, b).ok()?;
+                if l2 > 0.0 {
+                    x0 = m;
+                } else {
+                    x1 = m;
+                }
+            }
+            Some((0.5 * (x0 + x1)).exp())
+        });
+    Some(Sweep { ratios, tight, printed, crossing })
+}
+
+fn chart_of(cfg: &Config, s: &Sweep, omega1: f64, elements: usize) -> LineChart {
+    let (b, here) = (cfg.control.b, cfg.control.a / cfg.control.b);
+    let (lo, hi) = (s.ratios[0], s.ratios[s.ratios.len() - 1]);
+    let line =
+        |label: String, y: &[f64]| wingcheck_claims::Line { label, x: s.ratios.clone(), y: y.to_vec(), points: false };
     let lines = vec![
-        wingcheck_claims::Line {
-            label: format!("tight λ2*/λ1* ({elements} elements)"),
-            x: ratios.clone(),
-            y: tight.clone(),
-            points: false,
-        },
-        wingcheck_claims::Line {
-            label: format!("printed λ2/λ1, b = {} s", tick(b)),
-            x: ratios.clone(),
-            y: printed,
-            points: false,
-        },
+        line(format!("tight λ2*/λ1* ({elements} elements)"), &s.tight),
+        line(format!("printed λ2/λ1, b = {} s", tick(b)), &s.printed),
         wingcheck_claims::Line { label: "0 (W ≻ 0 above)".into(), x: vec![lo, hi], y: vec![0.0, 0.0], points: false },
     ];
     let data = wingcheck_claims::PlotData {
@@ -63,25 +78,14 @@ pub fn w_ratio_figure(cfg: &Config, omega1: f64, elements: usize) -> Option<Figu
     if here > 0.0 {
         chart.vlines.push((here, format!("configured a/b = {} 1/s", tick(here))));
     }
-    // where the tight ratio changes sign: bisection in log a/b between the sweep's points
-    let crossing =
-        ratios.windows(2).zip(tight.windows(2)).find(|(_, t)| t[0] > 0.0 && t[1] <= 0.0).and_then(|(r, _)| {
-            let (mut x0, mut x1) = (r[0].ln(), r[1].ln());
-            for _ in 0..60 {
-                let m = 0.5 * (x0 + x1);
-                let (l2, _) = pencil.constants(m.exp() * b, b).ok()?;
-                if l2 > 0.0 {
-                    x0 = m;
-                } else {
-                    x1 = m;
-                }
-            }
-            Some((0.5 * (x0 + x1)).exp())
-        });
+    chart
+}
+
+fn caption_of(s: &Sweep, omega1: f64, elements: usize, chart: &LineChart, rescaled: bool) -> Caption {
     let mut cap = Caption::default().t(format!(
         "The tight ratio λ2*/λ1* = min W/κ / max W/κ on {elements} Galerkin elements against a/b (W is linear in a and b, so the ratio depends on a/b alone), and the printed λ2/λ1 = (y2 − y3)/(y1 + y3) of (27)–(28) at the configured b. W ≻ 0 exactly where the tight ratio is positive: "
     ));
-    cap = match crossing {
+    cap = match s.crossing {
         Some(x) => cap
             .t("it crosses zero at a/b = ")
             .n("w-ratio.crossing", x)
@@ -90,12 +94,11 @@ pub fn w_ratio_figure(cfg: &Config, omega1: f64, elements: usize) -> Option<Figu
             .t(" 1/s."),
         None => cap.t("it does not change sign on this sweep."),
     };
-    let negative = (0..POINTS).filter(|&k| chart.data.lines[1].y[k] < 0.0).count();
+    let negative = s.printed.iter().filter(|v| **v < 0.0).count();
     cap = cap
         .t(" The printed ratio is negative at ")
         .count("w-ratio.printed_negative", negative)
         .t(format!(" of {POINTS} points: the printed λ2 = y2 − y3 gives no bound where the tight one does."));
-    let (chart, rescaled) = crate::readable_y_axis(chart);
     if let Some(sl) = chart.symlog_y {
         cap = cap
             .t(" The y axis is symmetric-logarithmic (the small positive ratios would read as 0 on a linear one): linear for |y| ≤ ")
@@ -104,6 +107,18 @@ pub fn w_ratio_figure(cfg: &Config, omega1: f64, elements: usize) -> Option<Figu
     } else if rescaled {
         cap = cap.t(" The y axis is logarithmic.");
     }
+    cap
+}
+
+/// The figure, or None when the pencil cannot be set up or b is not positive.
+pub fn w_ratio_figure(cfg: &Config, omega1: f64, elements: usize) -> Option<Figure> {
+    if !(cfg.control.b > 0.0 && omega1 > 0.0 && omega1.is_finite()) {
+        return None;
+    }
+    let pencil = WPencil::new(cfg, elements).ok()?;
+    let s = sweep(cfg, &pencil, omega1)?;
+    let (chart, rescaled) = crate::readable_y_axis(chart_of(cfg, &s, omega1, elements));
+    let cap = caption_of(&s, omega1, elements, &chart, rescaled);
     Some(Figure {
         file: "w-ratio".into(),
         label: "W-bounds, λ2/λ1 against a/b".into(),

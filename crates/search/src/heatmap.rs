@@ -151,46 +151,33 @@ fn metric_text(metric: Metric, window: (f64, f64)) -> (String, String, String) {
     }
 }
 
-/// Render `metric` over a 2-D search (x = first axis, y = second), log colour scale if `log`;
-/// `values`: the metric at every point, `verdicts`: every point's verdicts (index order).
-/// Marks: the W ≻ 0 and (32) boundaries between grid cells, the theorem-feasible cells
-/// (both hold), and refined boundary points.
-pub fn heatmap_svg(
-    search: &Search,
-    values: Vec<Option<f64>>,
-    verdicts: &[PointVerdicts],
-    metric: Metric,
-    log: bool,
-    boundary: &[BoundaryRow],
-) -> Result<String, SearchError> {
-    let name = format!("heatmap-{metric}");
-    let err = |e: String| SearchError::Io { path: format!("{name}.svg"), detail: e };
-    let grid = &search.grid;
-    let (ax, ay) = (grid_axis(&grid.axes[0]), grid_axis(&grid.axes[1]));
-    let (nx, ny) = (grid.dims()[0], grid.dims()[1]);
-    if values.len() != nx * ny || verdicts.len() != nx * ny {
-        return Err(err(format!("{} values and {} verdicts for {nx} × {ny} cells", values.len(), verdicts.len())));
-    }
-    // row-major with the first axis slowest: point grid.index([i, j]) = i·ny + j, the chart's order
-    // cell edges in axis values, for the boundary segments between cells
-    let edge = |a: &GridAxis, i: usize| -> f64 {
-        let c = |k: usize| if a.log { a.centres[k].log10() } else { a.centres[k] };
-        let n = a.centres.len();
-        let e = if i == 0 {
-            c(0) - 0.5 * (c(1) - c(0))
-        } else if i == n {
-            c(n - 1) + 0.5 * (c(n - 1) - c(n - 2))
-        } else {
-            0.5 * (c(i - 1) + c(i))
-        };
-        if a.log {
-            10f64.powf(e)
-        } else {
-            e
-        }
+/// Cell edge `i` of axis `a` in axis values (the midpoints between centres; the ends half a
+/// spacing out), for the boundary segments between cells.
+fn edge(a: &GridAxis, i: usize) -> f64 {
+    let c = |k: usize| if a.log { a.centres[k].log10() } else { a.centres[k] };
+    let n = a.centres.len();
+    let e = if i == 0 {
+        c(0) - 0.5 * (c(1) - c(0))
+    } else if i == n {
+        c(n - 1) + 0.5 * (c(n - 1) - c(n - 2))
+    } else {
+        0.5 * (c(i - 1) + c(i))
     };
+    if a.log {
+        10f64.powf(e)
+    } else {
+        e
+    }
+}
+
+/// The marks of the closed-form boundaries and the search's verdicts per cell: on an (a, b)
+/// plane the closed-form lines with the verdicts as circles and dots (the report's region map);
+/// on other axes the verdict boundaries between grid cells and the cells where both hold.
+fn verdict_marks(search: &Search, ax: &GridAxis, ay: &GridAxis, verdicts: &[PointVerdicts]) -> Vec<Mark> {
+    let grid = &search.grid;
+    let (nx, ny) = (grid.dims()[0], grid.dims()[1]);
     let mut marks = Vec::new();
-    let closed = closed_form_marks(search, &ax, &ay);
+    let closed = closed_form_marks(search, ax, ay);
     if let Some(lines) = &closed {
         // the (a, b) plane: the closed-form boundaries as lines and the search's verdicts per
         // cell, as in the report's region map
@@ -228,10 +215,10 @@ pub fn heatmap_svg(
                 for j in 0..ny {
                     let p = grid.index(&[i, j]);
                     if i + 1 < nx && matches!((v(p), v(grid.index(&[i + 1, j]))), (Some(a), Some(b)) if a != b) {
-                        seg.extend([(edge(&ax, i + 1), edge(&ay, j)), (edge(&ax, i + 1), edge(&ay, j + 1))]);
+                        seg.extend([(edge(ax, i + 1), edge(ay, j)), (edge(ax, i + 1), edge(ay, j + 1))]);
                     }
                     if j + 1 < ny && matches!((v(p), v(grid.index(&[i, j + 1]))), (Some(a), Some(b)) if a != b) {
-                        seg.extend([(edge(&ax, i), edge(&ay, j + 1)), (edge(&ax, i + 1), edge(&ay, j + 1))]);
+                        seg.extend([(edge(ax, i), edge(ay, j + 1)), (edge(ax, i + 1), edge(ay, j + 1))]);
                     }
                 }
             }
@@ -251,6 +238,30 @@ pub fn heatmap_svg(
             points: both,
         });
     }
+    marks
+}
+
+/// Render `metric` over a 2-D search (x = first axis, y = second), log colour scale if `log`;
+/// `values`: the metric at every point, `verdicts`: every point's verdicts (index order).
+/// Marks: the W ≻ 0 and (32) boundaries between grid cells, the theorem-feasible cells
+/// (both hold), and refined boundary points.
+pub fn heatmap_svg(
+    search: &Search,
+    values: Vec<Option<f64>>,
+    verdicts: &[PointVerdicts],
+    metric: Metric,
+    log: bool,
+    boundary: &[BoundaryRow],
+) -> Result<String, SearchError> {
+    let name = format!("heatmap-{metric}");
+    let err = |e: String| SearchError::Io { path: format!("{name}.svg"), detail: e };
+    let grid = &search.grid;
+    let (ax, ay) = (grid_axis(&grid.axes[0]), grid_axis(&grid.axes[1]));
+    let (nx, ny) = (grid.dims()[0], grid.dims()[1]);
+    if values.len() != nx * ny || verdicts.len() != nx * ny {
+        return Err(err(format!("{} values and {} verdicts for {nx} × {ny} cells", values.len(), verdicts.len())));
+    }
+    let mut marks = verdict_marks(search, &ax, &ay, verdicts);
     for (kind, colour) in [(KINDS[0], W_COLOUR), (KINDS[1], MU_COLOUR)] {
         let refined: Vec<(f64, f64)> = boundary
             .iter()
