@@ -54,7 +54,9 @@ fn main() {
             watch(&common.join("packed-refs"));
         }
         // The tracked sources: an edit makes the tree dirty (or clean again).
-        for p in ["src", "crates", "configs", "tests", "scripts", "docs", "proofs", "Cargo.toml", "Cargo.lock", "build.rs"] {
+        for p in
+            ["src", "crates", "configs", "tests", "scripts", "docs", "proofs", "Cargo.toml", "Cargo.lock", "build.rs"]
+        {
             watch(Path::new(p));
         }
     }

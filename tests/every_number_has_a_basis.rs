@@ -40,7 +40,9 @@ fn bare_numbers(v: &Value, path: &str, out: &mut Vec<String>) {
                 // exempt: the checker's settings, the data behind the figures, and the layout
                 // version `schema_version` (an identifier of the document's shape, not a number
                 // of the run)
-                if (path == "$" && (k == "settings" || k == "schema_version")) || (k == "plots" && path.starts_with("$.rows")) {
+                if (path == "$" && (k == "settings" || k == "schema_version"))
+                    || (k == "plots" && path.starts_with("$.rows"))
+                {
                     continue;
                 }
                 bare_numbers(x, &format!("{path}.{k}"), out);

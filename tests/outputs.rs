@@ -47,7 +47,9 @@ fn documented() -> BTreeMap<String, BTreeMap<String, String>> {
         let cells: Vec<&str> = line.split('|').map(str::trim).collect();
         if cells.len() >= 4 && cells[1].starts_with('`') && !cells[2].is_empty() {
             for name in cells[1].split(", ") {
-                out.entry(section.clone()).or_default().insert(name.trim_matches('`').to_string(), cells[2].to_string());
+                out.entry(section.clone())
+                    .or_default()
+                    .insert(name.trim_matches('`').to_string(), cells[2].to_string());
             }
         }
     }
@@ -73,7 +75,12 @@ fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
 
 /// Every column of `header` is numpy-safe and documented in `section` with a unit; a column
 /// named after a configuration key (`control__a`) must be a key documented with a unit.
-fn check_columns(path: &Path, header: &[String], section: &BTreeMap<String, String>, config: &BTreeMap<String, String>) {
+fn check_columns(
+    path: &Path,
+    header: &[String],
+    section: &BTreeMap<String, String>,
+    config: &BTreeMap<String, String>,
+) {
     for col in header {
         assert!(wingcheck_io::is_column_name(col), "{}: column {col:?} is not numpy-safe", path.display());
         let unit = match section.get(col.as_str()) {
@@ -81,7 +88,10 @@ fn check_columns(path: &Path, header: &[String], section: &BTreeMap<String, Stri
             None if col.contains("__") => {
                 assert!(section.contains_key("<section>__<key>"), "{}: {col} undocumented", path.display());
                 let key = col.replace("__", ".");
-                config.get(&key).cloned().unwrap_or_else(|| panic!("{}: {key} not in the config-key table", path.display()))
+                config
+                    .get(&key)
+                    .cloned()
+                    .unwrap_or_else(|| panic!("{}: {key} not in the config-key table", path.display()))
             }
             None => panic!("{}: column {col} is not listed in docs/outputs.md", path.display()),
         };
@@ -135,7 +145,10 @@ fn the_committed_schemas_are_the_generated_ones() {
     let dir = tempfile::tempdir().unwrap();
     wingcheck(&["schema", "--out", dir.path().to_str().unwrap()]);
     let names = |d: &Path| {
-        std::fs::read_dir(d).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().to_string()).collect::<BTreeSet<_>>()
+        std::fs::read_dir(d)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().to_string())
+            .collect::<BTreeSet<_>>()
     };
     assert_eq!(names(dir.path()), names(&repo("docs/schema")), "run `wingcheck schema --out docs/schema`");
     for n in names(dir.path()) {
@@ -167,10 +180,14 @@ fn every_output_is_documented_and_valid() {
     let (header, rows) = read_csv(&csv);
     check_columns(&csv, &header, &docs["run.csv"], &config_units);
     assert_eq!(rows.len(), 51, "0.5 s at 0.01 s: 51 samples");
-    assert!(rows.iter().flatten().all(|c| c.parse::<f64>().is_ok_and(f64::is_finite)), "run.csv: a cell is not a finite number");
+    assert!(
+        rows.iter().flatten().all(|c| c.parse::<f64>().is_ok_and(f64::is_finite)),
+        "run.csv: a cell is not a finite number"
+    );
     let side = schemas.validate_file("provenance", &wingcheck_io::sidecar_path(&csv));
     assert_eq!(side["files"][0]["file"], "run.csv");
-    let cfg = wingcheck_model::apply_overrides(&wingcheck_model::Config::paper(), &["horizon.t_end=0.5".into()]).unwrap();
+    let cfg =
+        wingcheck_model::apply_overrides(&wingcheck_model::Config::paper(), &["horizon.t_end=0.5".into()]).unwrap();
     assert_eq!(side["config_sha256"], cfg.sha256(), "the sidecar names the configuration that ran");
     let run_json = d("run.json");
     wingcheck(&[&["simulate", "--out", run_json.to_str().unwrap()][..], &SHORT].concat());
@@ -186,10 +203,25 @@ fn every_output_is_documented_and_valid() {
 
     // a search
     let out = d("search");
-    let o = Command::new(env!("CARGO_BIN_EXE_wingcheck"))
-        .args([&["search", "--over", "control.a=1e-4,1", "--over", "control.b=1,2", "--out", out.to_str().unwrap()][..], &SHORT].concat())
-        .output()
-        .unwrap();
+    let o =
+        Command::new(env!("CARGO_BIN_EXE_wingcheck"))
+            .args(
+                [
+                    &[
+                        "search",
+                        "--over",
+                        "control.a=1e-4,1",
+                        "--over",
+                        "control.b=1,2",
+                        "--out",
+                        out.to_str().unwrap(),
+                    ][..],
+                    &SHORT,
+                ]
+                .concat(),
+            )
+            .output()
+            .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     for f in ["results.csv", "failures.csv", "boundary.csv", "timings.csv"] {
         let (header, rows) = read_csv(&out.join(f));
@@ -206,7 +238,8 @@ fn every_output_is_documented_and_valid() {
     schemas.validate_file("best", &out.join("best.json"));
     schemas.validate_file("manifest", &out.join("manifest.json"));
     let prov = schemas.validate_file("provenance", &out.join("provenance.json"));
-    let listed: BTreeSet<&str> = prov["files"].as_array().unwrap().iter().map(|f| f["file"].as_str().unwrap()).collect();
+    let listed: BTreeSet<&str> =
+        prov["files"].as_array().unwrap().iter().map(|f| f["file"].as_str().unwrap()).collect();
     assert_eq!(listed, BTreeSet::from(["results.csv", "failures.csv", "boundary.csv", "timings.csv"]));
 
     // the committed certificate set's index
@@ -248,8 +281,12 @@ fn the_reports_csvs_are_documented() {
     let out = dir.path().join("r");
     wingcheck(&["report", "--out", out.to_str().unwrap(), "--set", "horizon.t_end=1"]);
     let prov = schemas.validate_file("provenance", &out.join("provenance.json"));
-    let described: BTreeMap<&str, &str> =
-        prov["files"].as_array().unwrap().iter().map(|f| (f["file"].as_str().unwrap(), f["contents"].as_str().unwrap())).collect();
+    let described: BTreeMap<&str, &str> = prov["files"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| (f["file"].as_str().unwrap(), f["contents"].as_str().unwrap()))
+        .collect();
     let mut csvs = 0;
     for e in std::fs::read_dir(&out).unwrap() {
         let path = e.unwrap().path();

@@ -109,7 +109,9 @@ pub fn run_search(a: SearchArgs) -> anyhow::Result<()> {
     } else {
         match std::env::var(MERGED_BY) {
             // A driver script merges the shards itself: nothing for a person to do.
-            Ok(by) if !by.trim().is_empty() => println!("shard {}/{} done; {} merges the shards", a.shard.k, a.shard.n, by.trim()),
+            Ok(by) if !by.trim().is_empty() => {
+                println!("shard {}/{} done; {} merges the shards", a.shard.k, a.shard.n, by.trim())
+            }
             _ => println!(
                 "shard {}/{} done; combine the shard directories with `wingcheck merge DIR... --out DIR`",
                 a.shard.k, a.shard.n

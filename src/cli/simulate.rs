@@ -295,7 +295,10 @@ fn summary(
     let s = &out.series;
     let tips: Option<Vec<_>> = estimated.map(|e| sample_times.iter().map(|&t| e.tip_at(t)).collect());
     let files = path
-        .map(|p| wingcheck_io::FileRecord { file: p.display().to_string(), contents: "the run written by --out".into() })
+        .map(|p| wingcheck_io::FileRecord {
+            file: p.display().to_string(),
+            contents: "the run written by --out".into(),
+        })
         .into_iter()
         .collect();
     SimulateSummary {
@@ -323,7 +326,7 @@ fn summary(
             q_error: tips.as_ref().map(|v| v.iter().map(|x| x.0.error).collect()),
             theta_error: tips.as_ref().map(|v| v.iter().map(|x| x.1.error).collect()),
         },
-        peaks: out.peaks.clone(),
+        peaks: out.peaks,
         out: path.map(|p| p.display().to_string()),
         error_estimate: estimated.map(|e| ErrorSummary {
             refined_grid: e.refined_grid,
@@ -335,7 +338,7 @@ fn summary(
             max_time_error: e.max_time_error,
             tolerance: e.tolerance,
             meets_tolerance: e.meets_tolerance,
-            peaks: e.peaks.clone(),
+            peaks: e.peaks,
             basis: "Richardson, order 2 in h and dt, safety factor 1.25: (5/3)·|u(N) − u(2N)| + (5/3)·|u(dt) − u(dt/2)| per output sample, maximised over ±0.1 s; peaks at full rate".into(),
         }),
     }

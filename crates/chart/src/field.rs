@@ -38,14 +38,20 @@ impl Heatmap {
     /// `provenance.json` lists for every figure file.
     pub fn to_csv(&self) -> String {
         let rows = self.t.iter().zip(&self.values).flat_map(|(t, row)| {
-            self.z.iter().zip(row).map(|(z, v)| [wingcheck_io::number(*t), wingcheck_io::number(*z), wingcheck_io::number(*v)])
+            self.z
+                .iter()
+                .zip(row)
+                .map(|(z, v)| [wingcheck_io::number(*t), wingcheck_io::number(*z), wingcheck_io::number(*v)])
         });
         wingcheck_io::csv_text(["t_s", "z_m", "value"], rows)
     }
 
     /// What the CSV holds, for the provenance record.
     pub fn csv_contents(&self) -> String {
-        format!("field v(z,t) in long form: t_s = time (s), z_m = position along the span (m), value = {}", self.value_label)
+        format!(
+            "field v(z,t) in long form: t_s = time (s), z_m = position along the span (m), value = {}",
+            self.value_label
+        )
     }
 
     /// Half-width of the colour scale: max |v| over t ≥ `scale_from` (1 if that is 0).

@@ -64,7 +64,9 @@ impl BuildInfo {
         match self.tree {
             TreeState::Unknown => format!("wingcheck {} (commit unknown)", self.version),
             TreeState::Clean => format!("wingcheck {} (commit {})", self.version, self.commit),
-            TreeState::Dirty => format!("wingcheck {} (commit {}, with uncommitted changes)", self.version, self.commit),
+            TreeState::Dirty => {
+                format!("wingcheck {} (commit {}, with uncommitted changes)", self.version, self.commit)
+            }
         }
     }
 }
@@ -124,7 +126,9 @@ impl Provenance {
             tool: "wingcheck".into(),
             build: build().clone(),
             config_sha256: config_sha256.to_string(),
-            documentation: "docs/outputs.md of the wingcheck repository (columns, units, meanings); JSON Schemas in docs/schema/".into(),
+            documentation:
+                "docs/outputs.md of the wingcheck repository (columns, units, meanings); JSON Schemas in docs/schema/"
+                    .into(),
             files,
         }
     }

@@ -87,7 +87,8 @@ pub fn key_column(key: &str) -> String {
 
 /// Whether `name` follows the column-name rule (letters, digits, `_`; a letter first).
 pub fn is_column_name(name: &str) -> bool {
-    name.chars().next().is_some_and(|c| c.is_ascii_alphabetic()) && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+    name.chars().next().is_some_and(|c| c.is_ascii_alphabetic())
+        && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
 }
 
 /// A number as written in every CSV: Rust's shortest round-trip form (re-reads to the same

@@ -435,7 +435,10 @@ impl Config {
     /// Every key whose value differs between `self` and `other`, in the config's key order:
     /// (`section.key`, value here, value there) — what `wingcheck config --diff` prints.
     pub fn diff(&self, other: &Config) -> Vec<(String, serde_json::Value, serde_json::Value)> {
-        let (a, b) = (serde_json::to_value(self).expect("config serialises"), serde_json::to_value(other).expect("config serialises"));
+        let (a, b) = (
+            serde_json::to_value(self).expect("config serialises"),
+            serde_json::to_value(other).expect("config serialises"),
+        );
         let mut out = Vec::new();
         diff_values("", &a, &b, &mut out);
         out
@@ -534,7 +537,12 @@ fn merge(base: &mut serde_json::Value, over: serde_json::Value) {
     }
 }
 
-fn diff_values(path: &str, a: &serde_json::Value, b: &serde_json::Value, out: &mut Vec<(String, serde_json::Value, serde_json::Value)>) {
+fn diff_values(
+    path: &str,
+    a: &serde_json::Value,
+    b: &serde_json::Value,
+    out: &mut Vec<(String, serde_json::Value, serde_json::Value)>,
+) {
     match (a, b) {
         (serde_json::Value::Object(x), serde_json::Value::Object(y)) => {
             for (k, va) in x {

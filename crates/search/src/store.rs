@@ -320,7 +320,11 @@ pub fn timings_header() -> String {
 
 /// One row of `timings.csv`.
 pub fn timings_row(p: &PointResult) -> String {
-    wingcheck_io::csv_record([p.index.to_string(), wingcheck_io::number(p.sim_seconds), wingcheck_io::number(p.theory_seconds)])
+    wingcheck_io::csv_record([
+        p.index.to_string(),
+        wingcheck_io::number(p.sim_seconds),
+        wingcheck_io::number(p.theory_seconds),
+    ])
 }
 
 /// Header of `failures.csv`: `index,<axis key columns>,status,message` (the whole file when
