@@ -203,3 +203,37 @@ fn certify_names_the_real_cause_of_io_errors() {
     let names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
     assert_eq!(names.len(), 1, "no staging directory left: {names:?}");
 }
+
+#[test]
+fn a_shard_asks_a_person_to_merge_only_when_no_script_does() {
+    // issue 24: every shard of scripts/parallel-search.sh said "combine with wingcheck merge",
+    // although the script merges. The script sets WINGCHECK_MERGED_BY; a shard run by hand
+    // (or a Slurm task, whose merge job a person submits) still gets the hint.
+    let dir = tempfile::tempdir().unwrap();
+    let run = |out: &str, merged_by: Option<&str>| {
+        let mut c = Command::new(env!("CARGO_BIN_EXE_wingcheck"));
+        c.args([
+            "search",
+            "--over",
+            "control.a=0.1,1",
+            "--shard",
+            "1/2",
+            "--chunk-size",
+            "1",
+            "--set",
+            "horizon.t_end=0.2",
+        ]);
+        c.args(["--out", dir.path().join(out).to_str().unwrap()]).env_remove("WINGCHECK_MERGED_BY");
+        if let Some(by) = merged_by {
+            c.env("WINGCHECK_MERGED_BY", by);
+        }
+        let o = c.output().unwrap();
+        assert!(o.status.success(), "{}", stderr(&o));
+        String::from_utf8(o.stdout).unwrap()
+    };
+    let by_hand = run("a", None);
+    assert!(by_hand.contains("combine the shard directories with `wingcheck merge"), "{by_hand}");
+    let by_script = run("b", Some("scripts/parallel-search.sh"));
+    assert!(!by_script.contains("wingcheck merge"), "{by_script}");
+    assert!(by_script.contains("shard 1/2 done; scripts/parallel-search.sh merges the shards"), "{by_script}");
+}
