@@ -35,19 +35,43 @@ pub const LAYER_RUNS_MAX: usize = 6;
 /// [`LAYER_STEPS_FLOOR`] steps if that is more (the first two layer runs, at dt and dt/10, are
 /// always made).
 pub const LAYER_WORK_FRACTION: f64 = 2.0;
-/// Steps the layer runs may always take (≈ 0.2 s in the modal basis at the default grid; enough
-/// for dt/10⁴ over the layer at dt = T_s).
-pub const LAYER_STEPS_FLOOR: f64 = 250_000.0;
+/// Steps the layer runs may always take: enough for dt/10⁴ over a layer of two steps
+/// (2 + 20 + … + 20000 = 22222 steps, the default run's layer; ≈ 0.02 s in the modal basis).
+pub const LAYER_STEPS_FLOOR: f64 = 25_000.0;
 
 /// Steps of the layer run at `dt` (the first one).
 pub fn layer_first_steps(cfg: &Config) -> f64 {
     LAYER_SAMPLES.min(cfg.total_samples().max(1)) as f64 * cfg.steps_per_sample() as f64
 }
 
-/// The most steps the initial-layer runs of one `simulate` of `cfg` may take.
-pub fn layer_steps_max(cfg: &Config) -> f64 {
+/// Finest step of the layer runs relative to `discretisation.dt` (at most
+/// [`LAYER_RUNS_MAX`] − 1 refinements by 10), and never below validation's 1e-9 s.
+pub const LAYER_MIN_FRACTION: f64 = 1e-5;
+/// Refinement factor between successive layer runs.
+pub const LAYER_REFINEMENT: f64 = 10.0;
+
+/// The steps `simulate` grants the initial-layer runs of `cfg`: [`LAYER_WORK_FRACTION`] × the
+/// base run's steps or [`LAYER_STEPS_FLOOR`], whichever is more (at least the runs at dt and
+/// dt/10). The runs stop at the first refinement that would exceed it.
+pub fn layer_budget(cfg: &Config) -> f64 {
     let base_steps = (cfg.horizon.t_end / cfg.discretisation.dt).ceil();
     (11.0 * layer_first_steps(cfg)).max(LAYER_WORK_FRACTION * base_steps).max(LAYER_STEPS_FLOOR)
+}
+
+/// The most steps the initial-layer runs of one `simulate` of `cfg` can take: the runs at dt,
+/// dt/10, … down to the finest step, as many as fit in [`layer_budget`] (the same loop as
+/// sim's `layer::resolve`, so this is what the work estimates count).
+pub fn layer_steps_max(cfg: &Config) -> f64 {
+    let dt0 = cfg.discretisation.dt;
+    let finest = (dt0 * LAYER_MIN_FRACTION).max(1e-9);
+    let budget = layer_budget(cfg);
+    let (mut dt, mut spent, mut level_steps) = (dt0, 0.0, layer_first_steps(cfg));
+    while dt >= finest * (1.0 - 1e-9) && spent + level_steps <= budget {
+        spent += level_steps;
+        level_steps *= LAYER_REFINEMENT;
+        dt /= LAYER_REFINEMENT;
+    }
+    spent
 }
 
 /// Seconds of a run's modal-basis setup per unknown³ (the dense eigenproblems, once per run):
@@ -204,9 +228,20 @@ fn human_seconds(s: f64) -> String {
 impl WorkEstimate {
     /// One simulation of `cfg` (at its grid), storing fields if `fields`, writing JSON
     /// (`json_output`) or CSV.
+    /// Counts the initial layer's re-runs ([`layer_steps_max`]).
     pub fn simulation(cfg: &Config, fields: bool, json_output: Option<bool>) -> WorkEstimate {
+        Self::run(cfg, fields, json_output, layer_steps_max(cfg), 1 + LAYER_RUNS_MAX)
+    }
+
+    /// One run of `cfg` at its configured step only, without the initial layer's re-runs (the
+    /// search's and the region map's closed-loop runs, sim's `simulate_base`).
+    pub fn simulation_base(cfg: &Config) -> WorkEstimate {
+        Self::run(cfg, false, None, 0.0, 1)
+    }
+
+    fn run(cfg: &Config, fields: bool, json_output: Option<bool>, layer_steps: f64, setups: usize) -> WorkEstimate {
         let base_steps = (cfg.horizon.t_end / cfg.discretisation.dt).ceil();
-        let steps = base_steps + layer_steps_max(cfg);
+        let steps = base_steps + layer_steps;
         let samples = (cfg.horizon.t_end / cfg.horizon.sample_every).floor() + 1.0;
         let n = 2.0 * cfg.unknowns() as f64;
         let field_values = if fields { 2.0 * cfg.horizon.field_points as f64 } else { 0.0 };
@@ -228,7 +263,7 @@ impl WorkEstimate {
             steps,
             seconds: steps * n * SECONDS_PER_UNKNOWN_STEP
                 + exponential
-                + (1.0 + LAYER_RUNS_MAX as f64) * Self::setup_seconds(cfg),
+                + setups as f64 * Self::setup_seconds(cfg),
             memory_bytes: memory,
             output_bytes: output,
         }

@@ -18,7 +18,8 @@ pub fn report_estimate(cfg: &Config) -> WorkEstimate {
         .filter(|c| !ledger_runs.contains(&wingcheck_claims::config_sha256(c)))
         .collect();
     let runs: Vec<WorkEstimate> = extra.iter().map(|c| WorkEstimate::simulation(c, true, None)).collect();
-    let one = WorkEstimate::simulation(cfg, false, None);
+    // the region map's closed-loop runs (search's, at the configured step: no layer re-runs)
+    let one = WorkEstimate::simulation_base(cfg);
     let region = REGION_MAP_MAX_POINTS as f64;
     // the page's CSVs: the three controllers' series and fields
     let csv = WorkEstimate::simulation(cfg, true, Some(false)).output_bytes * 3.0 * 2.0;

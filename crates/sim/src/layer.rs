@@ -22,13 +22,10 @@ use crate::{Peak, Peaks, SimError, SimOutput};
 /// it is shorter).
 pub use wingcheck_model::work::LAYER_SAMPLES;
 
-/// Refinement factor between successive layer runs.
-pub const LAYER_REFINEMENT: f64 = 10.0;
-
-/// Finest step of the layer runs relative to `discretisation.dt` (at most 5 refinements), and
-/// never below validation's 1e-9 s; the runs stop earlier at their work budget
-/// ([`wingcheck_model::work::layer_steps_max`]: twice the base run's steps).
-pub const LAYER_MIN_FRACTION: f64 = 1e-5;
+/// Refinement factor between successive layer runs, and the finest layer step relative to
+/// `discretisation.dt` (never below validation's 1e-9 s); the runs stop earlier at their work
+/// budget ([`wingcheck_model::work::layer_budget`]).
+pub use wingcheck_model::work::{LAYER_MIN_FRACTION, LAYER_REFINEMENT};
 
 /// Convergence of the layer's peaks: the last refinement changed no peak by more than this
 /// fraction of its value (the change itself is then the peak's layer error, so this only
@@ -89,8 +86,9 @@ pub fn resolve(
     let mut dt = dt0;
     let mut converged = false;
     let mut finest_run = dt0;
-    // bounded: at most model::work::layer_steps_max(cfg) steps in all (the estimate counts it)
-    let budget = wingcheck_model::work::layer_steps_max(cfg);
+    // bounded: model::work::layer_budget(cfg) steps in all; the work estimates count the most
+    // this loop can take (model::work::layer_steps_max, the same loop)
+    let budget = wingcheck_model::work::layer_budget(cfg);
     let mut spent = 0.0;
     let mut level_steps = wingcheck_model::work::layer_first_steps(cfg);
     while dt >= finest * (1.0 - 1e-9) && spent + level_steps <= budget {
