@@ -75,8 +75,6 @@ pub struct Build {
     pub command_line: String,
     /// Total wall time (s, volatile).
     pub total_seconds: String,
-    /// Whether tracked files differed from the commit at build time (`yes`, `no`, `unknown`).
-    pub git_dirty: String,
     /// The machine of the run (volatile).
     pub machine: Option<crate::provenance::Machine>,
 }

@@ -380,12 +380,6 @@ fn page(cfg: &Config, opts: &ReportOptions, ledger: &Ledger, figs: PageFigures) 
             date: provenance::utc_string(jiff::Timestamp::now()),
             command_line: opts.command_line.unwrap_or("(library call)").into(),
             total_seconds: String::new(),
-            git_dirty: match wingcheck_io::build().tree {
-                wingcheck_io::TreeState::Clean => "no",
-                wingcheck_io::TreeState::Dirty => "yes",
-                wingcheck_io::TreeState::Unknown => "unknown",
-            }
-            .into(),
             machine: None,
         },
         region: figs.region.map(FigCtx::from),
