@@ -126,12 +126,13 @@ const UNDEFINED: [&str; 10] = [
     "max_z",
 ];
 
-/// The envelope columns of an explicit-observer figure: (sample, min, max) per row of the first
-/// line, which bracket the sample; the largest late spread max − min.
+/// The envelope columns of an explicit-observer figure (long form `series,x,y,y_min,y_max`,
+/// docs/outputs.md): on every row with a band, min ≤ sample ≤ max; the largest late spread
+/// max − min.
 fn envelope_spread(csv: &str) -> f64 {
     let mut lines = csv.lines();
     let header = lines.next().unwrap();
-    assert!(header.contains("(min)") && header.contains("(max)"), "min and max columns: {header}");
+    assert!(header.ends_with(",y,y_min,y_max"), "min and max columns: {header}");
     let rows: Vec<Vec<f64>> = lines
         .map(|l| l.rsplitn(4, ',').map(|x| x.parse::<f64>().unwrap_or(f64::NAN)).collect::<Vec<_>>())
         .filter(|r| r.len() == 4 && r.iter().take(3).all(|x| x.is_finite()))

@@ -23,8 +23,27 @@ fn assert_complete(out: &Path) {
     for f in &listed {
         assert!(out.join(f).is_file(), "{f} listed but missing");
     }
-    let present = std::fs::read_dir(out).unwrap().count();
-    assert_eq!(present, listed.len() + 1, "files besides the listed ones and the marker");
+    // every file under the folder (proofs/ included), by its path relative to the folder
+    let mut present = Vec::new();
+    files_under(out, "", &mut present);
+    let mut expected: Vec<String> = listed.iter().map(|s| s.to_string()).collect();
+    expected.push(".wingcheck-report".into());
+    expected.sort();
+    present.sort();
+    assert_eq!(present, expected, "files besides the listed ones and the marker");
+}
+
+/// The files under `dir`, as `prefix` + their relative paths (`/`-separated).
+fn files_under(dir: &Path, prefix: &str, out: &mut Vec<String>) {
+    for e in std::fs::read_dir(dir).unwrap() {
+        let e = e.unwrap();
+        let name = format!("{prefix}{}", e.file_name().to_string_lossy());
+        if e.file_type().unwrap().is_dir() {
+            files_under(&e.path(), &format!("{name}/"), out);
+        } else {
+            out.push(name);
+        }
+    }
 }
 
 #[test]

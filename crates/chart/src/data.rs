@@ -3,14 +3,39 @@
 
 use serde::{Deserialize, Serialize};
 
+/// Significant digits of a plot line's values in JSON (`ledger.json`, `check --json`) and in its
+/// CSV: at most 5e-6 relative, below the errors the tool states for the drawn quantities (2e-4
+/// absolute on the tips at the default grid) and far below a pixel. A plot line is drawing data; the evidence numbers
+/// beside it keep full precision.
+pub const PLOT_DIGITS: usize = 6;
+
+/// `v` rounded to [`PLOT_DIGITS`] significant digits (finite values; others unchanged).
+pub fn drawing_value(v: f64) -> f64 {
+    if v == 0.0 || !v.is_finite() {
+        return v;
+    }
+    format!("{v:.*e}", PLOT_DIGITS - 1).parse().unwrap_or(v)
+}
+
+fn drawing_digits<S: serde::Serializer>(values: &[f64], s: S) -> Result<S::Ok, S::Error> {
+    use serde::ser::SerializeSeq;
+    let mut seq = s.serialize_seq(Some(values.len()))?;
+    for v in values {
+        seq.serialize_element(&drawing_value(*v))?;
+    }
+    seq.end()
+}
+
 /// One line of a plot: y against x.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Line {
     /// Legend label.
     pub label: String,
-    /// Abscissae.
+    /// Abscissae (serialised to [`PLOT_DIGITS`] significant digits).
+    #[serde(serialize_with = "drawing_digits")]
     pub x: Vec<f64>,
-    /// Ordinates (same length as x).
+    /// Ordinates (same length as x; serialised to [`PLOT_DIGITS`] significant digits).
+    #[serde(serialize_with = "drawing_digits")]
     pub y: Vec<f64>,
     /// Draw as points instead of a polyline.
     #[serde(default)]
@@ -44,7 +69,9 @@ impl PlotData {
     /// [`Self::y_label`], which the report's `provenance.json` lists for every figure file.
     pub fn to_csv(&self) -> String {
         let rows = self.lines.iter().flat_map(|l| {
-            l.x.iter().zip(&l.y).map(|(x, y)| [l.label.clone(), wingcheck_io::number(*x), wingcheck_io::number(*y)])
+            l.x.iter().zip(&l.y).map(|(x, y)| {
+                [l.label.clone(), wingcheck_io::number(drawing_value(*x)), wingcheck_io::number(drawing_value(*y))]
+            })
         });
         wingcheck_io::csv_text(["series", "x", "y"], rows)
     }
@@ -52,5 +79,21 @@ impl PlotData {
     /// What the CSV holds, for the provenance record: the axes' labels with their units.
     pub fn csv_contents(&self) -> String {
         format!("{}: series = line label, x = {}, y = {}", self.title, self.x_label, self.y_label)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn drawing_values_keep_six_significant_digits() {
+        // references: the decimal expansions written out by hand
+        assert_eq!(drawing_value(0.35000000000000003), 0.35);
+        assert_eq!(drawing_value(-1.234567891e-7), -1.23457e-7);
+        assert_eq!(drawing_value(0.0), 0.0);
+        for v in [1.0000049, 9.999995e3, 2.718281e-3, 2.0e-300] {
+            assert!(((drawing_value(v) - v) / v).abs() <= 5e-6, "{v}");
+        }
     }
 }

@@ -37,17 +37,20 @@ pub struct Heatmap {
 impl Heatmap {
     /// The data as CSV in long form, `t_s,z_m,value` (one row per sample time and grid point,
     /// t outer); `value` is in the unit of [`Self::value_label`], which the report's
-    /// `provenance.json` lists for every figure file. Numbers in the shortest round-trip form.
+    /// `provenance.json` lists for every figure file. Values in the shortest round-trip form.
     pub fn to_csv(&self) -> String {
         self.to_csv_with(wingcheck_io::number)
     }
 
     /// [`Heatmap::to_csv`] with the field's values written by `value` (e.g. to the digits of
-    /// their error); times and grid points in the shortest round-trip form.
+    /// their error); times and grid points as grid coordinates ([`wingcheck_io::grid_number`]:
+    /// to 1/1000 of their spacing).
     pub fn to_csv_with(&self, value: impl Fn(f64) -> String) -> String {
+        let spacing = |v: &[f64]| v.windows(2).map(|w| w[1] - w[0]).fold(f64::INFINITY, f64::min);
+        let (dt, dz) = (spacing(&self.t), spacing(&self.z));
         let rows = self.t.iter().zip(&self.values).flat_map(|(t, row)| {
-            let value = &value;
-            self.z.iter().zip(row).map(move |(z, v)| [wingcheck_io::number(*t), wingcheck_io::number(*z), value(*v)])
+            let (value, t) = (&value, wingcheck_io::grid_number(*t, dt));
+            self.z.iter().zip(row).map(move |(z, v)| [t.clone(), wingcheck_io::grid_number(*z, dz), value(*v)])
         });
         wingcheck_io::csv_text(["t_s", "z_m", "value"], rows)
     }

@@ -26,7 +26,7 @@ pub use lock::{lock_name, lock_owner, owner_alive, remove_stale_locks, DirLock};
 pub use provenance::{
     build, set_build, sha256_hex, sidecar_path, BuildInfo, FileRecord, Provenance, TreeState, SCHEMA_VERSION,
 };
-pub use table::{column_name, csv_record, csv_text, is_column_name, key_column, number, CsvWriter};
+pub use table::{column_name, csv_record, csv_text, grid_number, is_column_name, key_column, number, CsvWriter};
 
 use std::collections::BTreeSet;
 use std::io::Write;

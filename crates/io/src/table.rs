@@ -97,6 +97,18 @@ pub fn number(x: f64) -> String {
     format!("{x}")
 }
 
+/// A coordinate of a regular grid (a sample time, a grid point) as written in a CSV: rounded to
+/// the decimal places that resolve 1/1000 of the grid's `spacing` (so 0.9500000000000001 on a
+/// 0.01-s grid is written 0.95), then in the shortest round-trip form. The rounding moves it by
+/// at most spacing/2000. A non-positive or non-finite spacing writes [`number`].
+pub fn grid_number(x: f64, spacing: f64) -> String {
+    if !(spacing > 0.0 && spacing.is_finite() && x.is_finite()) {
+        return number(x);
+    }
+    let decimals = (3.0 - spacing.log10().floor()).clamp(0.0, 17.0) as usize;
+    number(format!("{x:.decimals$}").parse().unwrap_or(x))
+}
+
 /// One CSV record as text with its line end (for files written row by row).
 pub fn csv_record<I, S>(fields: I) -> String
 where
@@ -106,4 +118,19 @@ where
     let mut w = csv::WriterBuilder::new().terminator(csv::Terminator::Any(b'\n')).from_writer(Vec::new());
     w.write_record(fields).expect("writing to memory cannot fail");
     String::from_utf8(w.into_inner().expect("writing to memory cannot fail")).expect("the fields are UTF-8")
+}
+
+#[cfg(test)]
+mod grid_number_tests {
+    use super::*;
+
+    #[test]
+    fn grid_coordinates_lose_only_their_noise() {
+        // references: the decimal values the grids are made of, written by hand
+        assert_eq!(grid_number(0.9500000000000001, 0.01), "0.95");
+        assert_eq!(grid_number(0.35000000000000003, 0.05), "0.35");
+        assert_eq!(grid_number(20.0, 0.01), "20");
+        assert_eq!(grid_number(1e5 - 1e-3, 1e-3), "99999.999");
+        assert_eq!(grid_number(0.3, 0.0), "0.3");
+    }
 }

@@ -261,9 +261,7 @@ impl WorkEstimate {
         WorkEstimate {
             what: "simulate".into(),
             steps,
-            seconds: steps * n * SECONDS_PER_UNKNOWN_STEP
-                + exponential
-                + setups as f64 * Self::setup_seconds(cfg),
+            seconds: steps * n * SECONDS_PER_UNKNOWN_STEP + exponential + setups as f64 * Self::setup_seconds(cfg),
             memory_bytes: memory,
             output_bytes: output,
         }

@@ -142,9 +142,9 @@ pub struct ComparisonEvidence {
     /// The same against the FTDO with the other rule.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub gtilde_ratio_late_other_rule: Option<Quantity>,
-    /// Full-rate RMS τ1 of the explicit-rule FTDO with its time-step error.
+    /// Full-rate RMS τ1 of the explicit-rule FTDO with its grid, time-step, start-spread and round-off error.
     pub explicit_rms_tau1: Quantity,
-    /// Full-rate RMS τ2 of the explicit-rule FTDO with its time-step error.
+    /// Full-rate RMS τ2 of the explicit-rule FTDO with its grid, time-step, start-spread and round-off error.
     pub explicit_rms_tau2: Quantity,
     /// Time scheme of the explicit-rule runs.
     pub explicit_stepper: Text,
@@ -184,7 +184,13 @@ fn evidence_of(c: &Computed, settings: &CheckSettings) -> ComparisonEvidence {
     let tau = |ch: usize| {
         let (v, e) = c.explicit_rms_tau[ch];
         let (name, unit) = if ch == 0 { ("τ1", Unit::Newton) } else { ("τ2", Unit::NewtonMetre) };
-        Quantity::with_error(format!("full-rate RMS {name}, FTDO explicit rule"), v, e, unit, &[ErrorSource::TimeStep])
+        Quantity::with_error(
+            format!("full-rate RMS {name}, FTDO explicit rule"),
+            v,
+            e,
+            unit,
+            &[ErrorSource::Grid, ErrorSource::TimeStep, ErrorSource::Spread, ErrorSource::RoundOff],
+        )
     };
     ComparisonEvidence {
         rule: Text::text("FTDO sampling rule compared (the configured one)", rule),

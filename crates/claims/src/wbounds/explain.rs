@@ -279,7 +279,12 @@ fn w_units(label: &str, v: f64) -> Quantity {
 }
 
 fn tight(label: &str, e: theory::Estimate) -> Quantity {
-    Quantity::estimate(label, e, Unit::LyapunovUnits, &[ErrorSource::Grid, ErrorSource::Extrapolation])
+    Quantity::estimate(
+        label,
+        e,
+        Unit::LyapunovUnits,
+        &[ErrorSource::Grid, ErrorSource::Extrapolation, ErrorSource::RoundOff],
+    )
 }
 
 /// The evidence from the computed facts.
