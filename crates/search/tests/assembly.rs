@@ -108,15 +108,16 @@ fn assembly_memory_does_not_hold_a_result_per_point() {
     eprintln!("3-D: {per_point:.1} bytes per point");
     assert!(per_point < 32.0, "peak grew by {per_point:.1} bytes per point ({small} → {large} bytes)");
     // 2 axes (heatmaps): 3 plotted values (48 bytes) + verdicts per point, and one heatmap's
-    // SVG text at a time (≈ 120 bytes per cell, measured on a 100 × 100 search) with the
-    // chart's own work. 16 × 16 vs 16 × 128 points; the bound is below the ≈ 1.1 kB of
-    // results.json text alone that a whole-document assembly holds per point.
+    // SVG text at a time with the chart's own work (≈ 120 bytes per cell, measured on a
+    // 100 × 100 search before the cells carried their verdict marks and edges; ≈ 600 with
+    // them, measured 2026-12-02). 16 × 16 vs 16 × 128 points; the bound is below the ≈ 1.1 kB
+    // of results.json text alone that a whole-document assembly holds per point.
     let (per_point, small, large) = growth_per_point(
         &["control.a=1e-4..10:log:16", "control.b=1e-2..1e4:log:16"],
         &["control.a=1e-4..10:log:16", "control.b=1e-2..1e4:log:128"],
     );
     eprintln!("2-D: {per_point:.1} bytes per point");
-    assert!(per_point < 600.0, "peak grew by {per_point:.1} bytes per point ({small} → {large} bytes)");
+    assert!(per_point < 800.0, "peak grew by {per_point:.1} bytes per point ({small} → {large} bytes)");
 }
 
 #[test]
