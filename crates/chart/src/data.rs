@@ -5,8 +5,8 @@ use serde::{Deserialize, Serialize};
 
 /// Significant digits of a plot line's values in JSON (`ledger.json`, `check --json`) and in its
 /// CSV: at most 5e-6 relative, below the errors the tool states for the drawn quantities (2e-4
-/// absolute on the tips at the default grid) and far below a pixel. A plot line is drawing data; the evidence numbers
-/// beside it keep full precision.
+/// absolute on the tips at the default grid) and far below a pixel. A plot line is drawing
+/// data; the evidence numbers beside it keep full precision.
 pub const PLOT_DIGITS: usize = 6;
 
 /// `v` rounded to [`PLOT_DIGITS`] significant digits (finite values; others unchanged).

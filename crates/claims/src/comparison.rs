@@ -148,8 +148,7 @@ pub struct Computed {
     /// DOBC.
     pub dobc: Metrics,
     /// Full-rate RMS τ1, τ2 of the explicit-rule FTDO run, and their errors
-    /// ([`explicit_rms_error`]: grid + time step + round-off, plus the spread over the
-    /// [`START_NUDGE`]d starts).
+    /// ([`explicit_rms_error`]: grid + time step + start spread + round-off).
     pub explicit_rms_tau: [(f64, f64); 2],
     /// The time scheme of the explicit-rule runs.
     pub explicit_stepper: String,
@@ -219,23 +218,16 @@ impl Runs {
     pub fn of(cfg: &Config, settings: &CheckSettings) -> Runs {
         let (a0, b0) = (cfg.control.a, cfg.control.b);
         let rule = cfg.observer.rule;
-        let mut half_dt = cfg.clone();
-        half_dt.discretisation.dt = 0.5 * cfg.discretisation.dt;
+        let explicit = variant(cfg, ControllerKind::Ftdo, ObserverRule::Explicit, a0, b0);
         let f = settings.sweep_factor;
         Runs {
             ftdo: variant(cfg, ControllerKind::Ftdo, rule, a0, b0),
             other: variant(cfg, ControllerKind::Ftdo, other_rule(rule), a0, b0),
             dobc: variant(cfg, ControllerKind::Dobc, rule, a0, b0),
-            explicit_half: variant(&half_dt, ControllerKind::Ftdo, ObserverRule::Explicit, a0, b0),
-            explicit_fine: variant(
-                &wingcheck_model::work::refined_in_space(cfg),
-                ControllerKind::Ftdo,
-                ObserverRule::Explicit,
-                a0,
-                b0,
-            ),
+            explicit_half: wingcheck_model::work::refined_in_time(&explicit),
+            explicit_fine: wingcheck_model::work::refined_in_space(&explicit),
             explicit_nudged: [1.0, -1.0].map(|sign| {
-                let mut c = variant(cfg, ControllerKind::Ftdo, ObserverRule::Explicit, a0, b0);
+                let mut c = explicit.clone();
                 c.observer.nu1_0 += sign * START_NUDGE * c.observer.nu1_0.abs().max(1.0);
                 c.observer.nu2_0 += sign * START_NUDGE * c.observer.nu2_0.abs().max(1.0);
                 c
@@ -279,13 +271,16 @@ pub const EXPLICIT_RMS_GRID_FACTOR: f64 = 1.25 * 2.0;
 pub const START_NUDGE: f64 = 1e-12;
 
 /// Error of a full-rate RMS τ of the explicit-rule FTDO, `value` at the configured grid and
-/// step, from its values on the doubled grid (`fine`) and at dt/2 (`half_dt`): the grid part
-/// ([`EXPLICIT_RMS_GRID_FACTOR`]), the time-step part (F·|Δ|, F = [`wingcheck_sim::RICHARDSON_2`],
-/// order 2 in dt) and a round-off floor of 256 ulp of the value.
-pub fn explicit_rms_error(value: f64, fine: f64, half_dt: f64) -> f64 {
+/// step, from its values on the doubled grid (`fine`), at dt/2 (`half_dt`) and from the
+/// [`START_NUDGE`]d starts (`nudged`): the grid part ([`EXPLICIT_RMS_GRID_FACTOR`]), the
+/// time-step part (F·|Δ|, F = [`wingcheck_sim::RICHARDSON_2`], order 2 in dt), the spread (the
+/// largest change over the nudged starts) and a round-off floor of 256 ulp of the value.
+pub fn explicit_rms_error(value: f64, fine: f64, half_dt: f64, nudged: [f64; 2]) -> f64 {
+    let spread = nudged.iter().map(|n| (value - n).abs()).fold(0.0, f64::max);
     EXPLICIT_RMS_GRID_FACTOR * (value - fine).abs()
         + wingcheck_sim::RICHARDSON_2 * (value - half_dt).abs()
         + wingcheck_sim::layer::PEAK_ROUND_OFF * value.abs()
+        + spread
 }
 
 /// The runs (through the study) and their metrics. Returns the facts and the two full outputs
@@ -308,8 +303,8 @@ pub fn compute(
     let rms_tau = |o: &SimOutput, c| metrics::tau_rms_in(&o.series, c, whole).unwrap_or(0.0);
     let explicit_rms_tau = [0, 1].map(|c| {
         let v = rms_tau(explicit, c);
-        let spread = nudged.iter().map(|o| (v - rms_tau(o, c)).abs()).fold(0.0, f64::max);
-        (v, explicit_rms_error(v, rms_tau(&explicit_fine, c), rms_tau(&explicit_half, c)) + spread)
+        let starts = [rms_tau(&nudged[0], c), rms_tau(&nudged[1], c)];
+        (v, explicit_rms_error(v, rms_tau(&explicit_fine, c), rms_tau(&explicit_half, c), starts))
     });
     let mut sweep = Vec::new();
     for (a, b, f_cfg, d_cfg) in &plan.sweep {

@@ -58,20 +58,36 @@ pub fn layer_budget(cfg: &Config) -> f64 {
     (11.0 * layer_first_steps(cfg)).max(LAYER_WORK_FRACTION * base_steps).max(LAYER_STEPS_FLOOR)
 }
 
-/// The most steps the initial-layer runs of one `simulate` of `cfg` can take: the runs at dt,
-/// dt/10, … down to the finest step, as many as fit in [`layer_budget`] (the same loop as
-/// sim's `layer::resolve`, so this is what the work estimates count).
-pub fn layer_steps_max(cfg: &Config) -> f64 {
+/// One initial-layer run of `simulate`: its step and its number of integrator steps.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LayerRun {
+    /// The run's step (s).
+    pub dt: f64,
+    /// Integrator steps of the run over the layer.
+    pub steps: f64,
+}
+
+/// The initial-layer runs `simulate` may make for `cfg`, coarse to fine: dt, dt/10, … down to
+/// the finest step, as many as fit in [`layer_budget`]. Sim's `layer::resolve` runs them in
+/// order until the peaks converge; the work estimates count them all ([`layer_steps_max`]).
+pub fn layer_runs(cfg: &Config) -> Vec<LayerRun> {
     let dt0 = cfg.discretisation.dt;
     let finest = (dt0 * LAYER_MIN_FRACTION).max(1e-9);
     let budget = layer_budget(cfg);
-    let (mut dt, mut spent, mut level_steps) = (dt0, 0.0, layer_first_steps(cfg));
-    while dt >= finest * (1.0 - 1e-9) && spent + level_steps <= budget {
-        spent += level_steps;
-        level_steps *= LAYER_REFINEMENT;
-        dt /= LAYER_REFINEMENT;
+    let (mut runs, mut spent) = (Vec::new(), 0.0);
+    let mut next = LayerRun { dt: dt0, steps: layer_first_steps(cfg) };
+    while next.dt >= finest * (1.0 - 1e-9) && spent + next.steps <= budget {
+        spent += next.steps;
+        runs.push(next);
+        next = LayerRun { dt: next.dt / LAYER_REFINEMENT, steps: next.steps * LAYER_REFINEMENT };
     }
-    spent
+    runs
+}
+
+/// The most steps the initial-layer runs of one `simulate` of `cfg` can take: all of
+/// [`layer_runs`].
+pub fn layer_steps_max(cfg: &Config) -> f64 {
+    layer_runs(cfg).iter().map(|r| r.steps).sum()
 }
 
 /// Seconds of a run's modal-basis setup per unknown³ (the dense eigenproblems, once per run):

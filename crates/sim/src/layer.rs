@@ -79,23 +79,15 @@ pub fn resolve(
     out: &mut SimOutput,
     mut run: impl FnMut(&Config) -> Result<SimOutput, SimError>,
 ) -> Result<InitialLayer, SimError> {
-    let dt0 = cfg.discretisation.dt;
-    let finest = (dt0 * LAYER_MIN_FRACTION).max(1e-9);
     let mut history: Vec<[f64; 8]> = Vec::new();
     let mut best: Option<Peaks> = None;
-    let mut dt = dt0;
     let mut converged = false;
-    let mut finest_run = dt0;
-    // bounded: model::work::layer_budget(cfg) steps in all; the work estimates count the most
-    // this loop can take (model::work::layer_steps_max, the same loop)
-    let budget = wingcheck_model::work::layer_budget(cfg);
-    let mut spent = 0.0;
-    let mut level_steps = wingcheck_model::work::layer_first_steps(cfg);
-    while dt >= finest * (1.0 - 1e-9) && spent + level_steps <= budget {
-        spent += level_steps;
-        level_steps *= LAYER_REFINEMENT;
-        let layer = run(&layer_config(cfg, dt))?;
-        finest_run = dt;
+    let mut finest_run = cfg.discretisation.dt;
+    // bounded: the runs model::work::layer_runs plans within layer_budget(cfg) steps, which the
+    // work estimates count (model::work::layer_steps_max)
+    for level in wingcheck_model::work::layer_runs(cfg) {
+        let layer = run(&layer_config(cfg, level.dt))?;
+        finest_run = level.dt;
         let values = layer.peaks.signals().map(|p| p.abs_max);
         if let Some(last) = history.last() {
             let change = max_relative_change(last, &values);
@@ -110,7 +102,6 @@ pub fn resolve(
         if converged {
             break;
         }
-        dt /= LAYER_REFINEMENT;
     }
     let layer = best.expect("at least the run at dt itself");
     let runs = history.len();
