@@ -75,6 +75,13 @@ fn explicit_rms_tau_bars_contain_the_finer_grids_extrapolation() {
     for sets in configs {
         let row = comparison_row(sets);
         let ev = &row["evidence"];
+        // the row's sentence on these numbers names what their ± covers (from the quantities'
+        // own `covers`, so it cannot go stale when a source is added)
+        let text = row.to_string();
+        assert!(
+            text.contains("the ± covers the grid, the time step, the spread over starts and round-off"),
+            "{sets:?}: the sentence on the explicit RMS τ does not name the ± sources"
+        );
         let cfg = {
             let mut c = paper_with(sets);
             c.observer.rule = wingcheck_model::ObserverRule::Explicit;

@@ -87,6 +87,7 @@ pub fn notation(cfg: &wingcheck_model::Config) -> Vec<Symbol> {
         sym("ζ1 … ζ4", "sup |g1|, sup |g2| (the theorems' hypotheses κ2 ≥ ζ1, κ5 ≥ ζ2); sup |g̃1|, sup |g̃2| in ε".into()),
         sym("p", "the observer exponent ratio a1/a2 (dimensionless)".into()),
         sym("W = W_a + W_o, κ", "the Lyapunov function (22)–(23) (its energy part W_a and cross part W_o) and the norm (25) it is compared with".into()),
+        sym("E, ⟨x, Mv⟩", "the simulated wing's mechanical energy (J) and the mass-weighted product of its displacement and velocity (J s); along a run W = b·E + a·⟨x, Mv⟩".into()),
         sym("W units", "the unit of W and of λ1, λ2, λ3, ε, W(0): a mix of kinetic, elastic and cross terms weighted by a and b".into()),
         sym("y1, y2, y3; λ1, λ2", "the paper's constants (26)–(28): printed bounds λ2 κ ≤ W ≤ λ1 κ".into()),
         sym("λ1*, λ2*", "the tight bounds sup W/κ and inf W/κ; λ1(N), λ2(N) on N Galerkin elements".into()),

@@ -504,18 +504,19 @@ pub struct UubBound {
 }
 
 impl UubBound {
-    fn core(&self, t: f64) -> f64 {
+    /// The bound (35) on W(t): W(0)e^{−λt} + ε/λ (W units).
+    pub fn lyapunov(&self, t: f64) -> f64 {
         self.w0 * (-self.lambda * t).exp() + self.epsilon / self.lambda
     }
 
     /// The bound on |q| at time t (m).
     pub fn q(&self, t: f64) -> f64 {
-        (self.span.powi(3) / self.lambda2 * self.core(t)).sqrt()
+        (self.span.powi(3) / self.lambda2 * self.lyapunov(t)).sqrt()
     }
 
     /// The bound on |θ| at time t (rad).
     pub fn theta(&self, t: f64) -> f64 {
-        (self.span / self.lambda2 * self.core(t)).sqrt()
+        (self.span / self.lambda2 * self.lyapunov(t)).sqrt()
     }
 
     /// The ultimate bound √(s³/λ2 · ε/λ) on |q| (m), the limit t → ∞.

@@ -91,6 +91,11 @@ pub struct UubEvidence {
     pub bound_violated: Flag,
     /// Output grid points in z used for the envelope.
     pub field_points: Quantity,
+    /// W(0) of the simulated run at the evaluation point (its discretised initial state).
+    pub w0_of_run: Quantity,
+    /// max over the run's samples of W(t)/(W(0)e^{−λt} + ε/λ), the simulated W against (35)
+    /// (> 1: W exceeds the bound evaluated with the optimistic λ).
+    pub max_w_over_bound35: Quantity,
     /// At the configured gains: max |q(s,t)| over the second half.
     pub config_max_abs_q_tip_second_half_m: Quantity,
     /// max |θ(s,t)| there.
@@ -166,6 +171,16 @@ impl Explain for UubEvidence {
                 self.ultimate_bound_q_m.value_text()
             ),
             format!(
+                "Along the simulated run W(t) = b·E(t) + a·⟨x, Mv⟩ starts at W(0) = {} and reaches at most {} × the bound (35) W(0)e^(−λt) + ε/λ{}.",
+                self.w0_of_run.value_text(),
+                self.max_w_over_bound35.value_text(),
+                if self.max_w_over_bound35.value > 1.0 {
+                    " (above 1: the simulated W exceeds (35) as evaluated with the optimistic λ)"
+                } else {
+                    ""
+                }
+            ),
+            format!(
                 "In simulation at the configured gains the tip stays bounded: max |q(s,t)| = {}, max |θ(s,t)| = {} over [t_end/2, t_end].",
                 self.config_max_abs_q_tip_second_half_m.value_text(),
                 self.config_max_abs_theta_tip_second_half_rad.value_text()
@@ -226,6 +241,33 @@ struct Computed {
     field_points: usize,
     /// max |q(s,t)|, |θ(s,t)| over [t_end/2, t_end] at the configured gains.
     config_tail: [f64; 2],
+    /// W(t) = b·E(t) + a·⟨x, Mv⟩ of the operating run at its samples (W units), and b·E(t).
+    lyapunov: LyapunovAlongRun,
+}
+
+/// The Lyapunov function along the operating run: W(t) of (22)–(23) (with the kinetic-energy
+/// coupling ρx_c) evaluated on the run's discretised state, W = b·E + a·⟨x, Mv⟩, against the
+/// bound (35) W(0)e^{−λt} + ε/λ with the run's own W(0).
+struct LyapunovAlongRun {
+    /// W(t_k) (W units).
+    w: Vec<f64>,
+    /// b·E(t_k), the part of W without the a-weighted cross term (W units).
+    b_energy: Vec<f64>,
+    /// The bound (35) at t_k with W(0) = w[0] (W units).
+    bound: Vec<f64>,
+    /// max_k W(t_k)/bound(t_k).
+    max_ratio: f64,
+}
+
+impl LyapunovAlongRun {
+    fn of(series: &wingcheck_sim::Series, bound: &UubBound, a: f64, b: f64) -> LyapunovAlongRun {
+        let w: Vec<f64> =
+            series.energy.iter().zip(&series.displacement_momentum).map(|(e, xmv)| b * e + a * xmv).collect();
+        let run_bound = UubBound { w0: w.first().copied().unwrap_or(0.0), ..*bound };
+        let bound: Vec<f64> = series.t.iter().map(|&t| run_bound.lyapunov(t)).collect();
+        let max_ratio = w.iter().zip(&bound).map(|(w, c)| w / c).fold(0.0, f64::max);
+        LyapunovAlongRun { b_energy: series.energy.iter().map(|e| b * e).collect(), w, bound, max_ratio }
+    }
 }
 
 /// λ2 at the operating point, the W(0) study, the simulated envelope and the bound.
@@ -242,6 +284,7 @@ fn compute(
     let w0s = settings.uub_w0_elements.map(|n| (n, w_initial(cfg, best.b, n)));
     let bound = UubBound { span: cfg.wing.span, lambda2, lambda: best.lambda, epsilon: best.epsilon, w0: w0s[0].1 };
     let t = out.series.t.clone();
+    let lyapunov = LyapunovAlongRun::of(&out.series, &bound, best.a, best.b);
     let bounds = [t.iter().map(|&tt| bound.q(tt)).collect(), t.iter().map(|&tt| bound.theta(tt)).collect()];
     let here = study.simulate(cfg)?;
     let late = Window::second_half(cfg.horizon.t_end);
@@ -256,6 +299,7 @@ fn compute(
         t,
         field_points: fields.z.len(),
         config_tail: [tail(&here.series.q_tip), tail(&here.series.theta_tip)],
+        lyapunov,
     })
 }
 
@@ -334,6 +378,17 @@ fn evidence_of(c: &Computed, hypotheses_here: bool, cfg: &Config, settings: &Che
         ),
         bound_violated: Flag::new("the simulated envelope exceeds the bound somewhere", violated),
         field_points: Quantity::count("output grid points in z of the envelope", c.field_points),
+        w0_of_run: sim(
+            format!("W(0) of the simulated run {at} (its grid, zero initial velocity)"),
+            c.lyapunov.w.first().copied().unwrap_or(0.0),
+            Unit::LyapunovUnits,
+        ),
+        max_w_over_bound35: Quantity::based(
+            format!("max over t of simulated W(t) / bound (35) {at}"),
+            c.lyapunov.max_ratio,
+            Unit::Dimensionless,
+            ValueBasis::Simulation,
+        ),
         config_max_abs_q_tip_second_half_m: sim(
             "max |q(s,t)| over [t_end/2, t_end] at the configured gains".into(),
             c.config_tail[0],
@@ -344,6 +399,38 @@ fn evidence_of(c: &Computed, hypotheses_here: bool, cfg: &Config, settings: &Che
             c.config_tail[1],
             Unit::Radian,
         ),
+    }
+}
+
+/// W(t) along the run against (35), with b·E(t), on a log axis.
+fn lyapunov_plot(c: &Computed) -> PlotData {
+    let stride = (c.t.len() / 400).max(1);
+    let pick = |v: &[f64]| v.iter().step_by(stride).copied().collect::<Vec<_>>();
+    let l = &c.lyapunov;
+    let top = l.w.iter().chain(&l.bound).copied().fold(0.0, f64::max);
+    let floor = |v: &[f64]| pick(v).into_iter().map(|x| x.max(1e-12 * top)).collect::<Vec<_>>();
+    let fmt = |v: f64| wingcheck_model::quantity::format_value(v, None);
+    PlotData {
+        name: "uub-lyapunov-vs-bound".into(),
+        title: format!(
+            "The Lyapunov function W(t) along the run against the bound (35) at a = {}, b = {}; max W/bound {}",
+            fmt(c.best.a),
+            fmt(c.best.b),
+            fmt(l.max_ratio)
+        ),
+        x_label: "t (s)".into(),
+        y_label: "W (W units)".into(),
+        log_x: false,
+        log_y: true,
+        lines: vec![
+            Line {
+                label: "bound (35) W(0)e^(−λt) + ε/λ".into(), x: pick(&c.t), y: floor(&l.bound), points: false
+            },
+            Line {
+                label: "simulated W(t) = b·E + a·⟨x, Mv⟩".into(), x: pick(&c.t), y: floor(&l.w), points: false
+            },
+            Line { label: "b·E(t) (energy part of W)".into(), x: pick(&c.t), y: floor(&l.b_energy), points: false },
+        ],
     }
 }
 
@@ -420,6 +507,6 @@ pub fn check(
         "ζ3, ζ4 from the FTDO run at the configured gains".into(),
         format!("λ2 on {n2} Galerkin elements and λ with λ1 on a Galerkin space: both make the evaluated bound a lower bound of the theorem's bound (optimistic)"),
     ];
-    let plots = vec![plot(&c, &e)];
+    let plots = vec![plot(&c, &e), lyapunov_plot(&c)];
     Ok(ClaimRow::decided(ClaimId::Uub, e, assumptions, plots))
 }

@@ -85,6 +85,9 @@ pub enum Unit {
     /// Joule (the wing's energy).
     #[serde(rename = "J")]
     Joule,
+    /// Joule second (⟨x, Mv⟩, the cross term of the Lyapunov function).
+    #[serde(rename = "J s")]
+    JouleSecond,
     /// 1/m² (the tip shear term q'''(s,t) of the boundary condition).
     #[serde(rename = "1/m²")]
     PerSquareMetre,
@@ -120,6 +123,7 @@ impl Unit {
             Unit::NewtonMetrePerSecond => "N m/s",
             Unit::NewtonPerMetre => "N/m",
             Unit::Joule => "J",
+            Unit::JouleSecond => "J s",
             Unit::PerSquareMetre => "1/m²",
             Unit::RadianPerMetre => "rad/m",
             Unit::LyapunovUnits => "W units",
@@ -146,6 +150,7 @@ impl Unit {
             Unit::NewtonMetrePerSecond => "N_m_per_s",
             Unit::NewtonPerMetre => "N_per_m",
             Unit::Joule => "J",
+            Unit::JouleSecond => "J_s",
             Unit::PerSquareMetre => "per_m2",
             Unit::RadianPerMetre => "rad_per_m",
             Unit::LyapunovUnits => "Wu",
@@ -177,6 +182,21 @@ pub enum ErrorSource {
     Sampling,
     /// A statistical spread (e.g. sensitivity to the start of a chattering observer).
     Spread,
+}
+
+impl ErrorSource {
+    /// The source in words, as a sentence names it.
+    pub fn text(self) -> &'static str {
+        match self {
+            ErrorSource::Grid => "the grid",
+            ErrorSource::TimeStep => "the time step",
+            ErrorSource::RoundOff => "round-off",
+            ErrorSource::Extrapolation => "the extrapolation",
+            ErrorSource::Solver => "the solver's tolerance",
+            ErrorSource::Sampling => "the sample times",
+            ErrorSource::Spread => "the spread over starts",
+        }
+    }
 }
 
 /// What a number without an error estimate rests on.
@@ -348,6 +368,18 @@ impl Quantity {
             Some(e) => format!("{} ± {}{unit}", format_value(self.value, Some(e)), format_error(e)),
             None => format!("{}{unit}", self.number_text()),
         }
+    }
+
+    /// What the error covers, in words ("the grid, the time step and round-off"); `None` for a
+    /// number without an error estimate.
+    pub fn covers_text(&self) -> Option<String> {
+        let Accuracy::Error { covers, .. } = &self.accuracy else { return None };
+        let words: Vec<&str> = covers.iter().map(|c| c.text()).collect();
+        Some(match words.as_slice() {
+            [] => "nothing named".to_string(),
+            [one] => one.to_string(),
+            [init @ .., last] => format!("{} and {last}", init.join(", ")),
+        })
     }
 
     /// The error or basis as printed (`± 3.4e-13`, `exact`, `simulation`).

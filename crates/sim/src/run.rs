@@ -40,8 +40,12 @@ pub struct Series {
     pub sigma1: Vec<f64>,
     /// σ2 (N m).
     pub sigma2: Vec<f64>,
-    /// Mechanical energy (J).
+    /// Mechanical energy E = ½⟨v, Mv⟩ + ½⟨x, Kx⟩ (J).
     pub energy: Vec<f64>,
+    /// ⟨x, M v⟩ = ∫(ρqq̇ − ρx_c(qθ̇ + θq̇) + I_pθθ̇) dz (J s) of the discretised state: the
+    /// cross term of the Lyapunov function (22)–(23), W = b·E + a·⟨x, Mv⟩ (with the
+    /// kinetic-energy coupling ρx_c), and ½ d/dt ⟨x, Mx⟩.
+    pub displacement_momentum: Vec<f64>,
     /// q'''(s,t) (1/m²), from the boundary condition.
     pub q_tip_shear: Vec<f64>,
     /// θ'(s,t) (rad/m), from the boundary condition.
@@ -56,7 +60,7 @@ pub struct Series {
 impl Series {
     /// Column names and units in output order (run.csv writes `name_unitsuffix`,
     /// [`Series::csv_header`]).
-    pub const COLUMNS: [(&'static str, Unit); 18] = [
+    pub const COLUMNS: [(&'static str, Unit); 19] = [
         ("t", Unit::Second),
         ("q_tip", Unit::Metre),
         ("theta_tip", Unit::Radian),
@@ -71,6 +75,7 @@ impl Series {
         ("sigma1", Unit::Newton),
         ("sigma2", Unit::NewtonMetre),
         ("energy", Unit::Joule),
+        ("displacement_momentum", Unit::JouleSecond),
         ("q_tip_shear", Unit::PerSquareMetre),
         ("theta_tip_slope", Unit::RadianPerMetre),
         ("tau1_rms", Unit::Newton),
@@ -83,7 +88,7 @@ impl Series {
     }
 
     /// Columns in the order of [`Series::COLUMNS`].
-    pub fn columns(&self) -> [&Vec<f64>; 18] {
+    pub fn columns(&self) -> [&Vec<f64>; 19] {
         [
             &self.t,
             &self.q_tip,
@@ -99,6 +104,7 @@ impl Series {
             &self.sigma1,
             &self.sigma2,
             &self.energy,
+            &self.displacement_momentum,
             &self.q_tip_shear,
             &self.theta_tip_slope,
             &self.tau1_rms,
@@ -133,6 +139,7 @@ impl Series {
         self.sigma1.push(s.sigma1);
         self.sigma2.push(s.sigma2);
         self.energy.push(s.energy);
+        self.displacement_momentum.push(s.displacement_momentum);
         self.q_tip_shear.push(s.q_tip_shear);
         self.theta_tip_slope.push(s.theta_tip_slope);
     }

@@ -339,10 +339,11 @@ impl Explain for ComparisonEvidence {
             ));
         }
         out.push(format!(
-            "The explicit-rule FTDO's full-rate RMS τ1 is {} and RMS τ2 {} ({} scheme; the ± is the time-step error from a run at dt/2, the grid's is not estimated here); the tip disturbances are bounded by ζ1 = {}, ζ2 = {}.",
+            "The explicit-rule FTDO's full-rate RMS τ1 is {} and RMS τ2 {} ({} scheme; the ± covers {}); the tip disturbances are bounded by ζ1 = {}, ζ2 = {}.",
             self.explicit_rms_tau1.pm_text(),
             self.explicit_rms_tau2.pm_text(),
             self.explicit_stepper.value,
+            self.explicit_rms_tau1.covers_text().unwrap_or_else(|| "nothing: no error estimate".into()),
             self.zeta1.value_text(),
             self.zeta2.value_text()
         ));

@@ -167,6 +167,8 @@ impl<'a> ModalLoop<'a> {
             sigma1: obs.sigma[0],
             sigma2: obs.sigma[1],
             energy: basis.energy(&st.eta, &st.zeta),
+            // ⟨x, Mv⟩ = ηᵀΦᵀMΦζ = η·ζ (ΦᵀMΦ = I)
+            displacement_momentum: dot(&st.eta, &st.zeta),
             q_tip_shear: st.w[0],
             theta_tip_slope: st.w[1],
         }

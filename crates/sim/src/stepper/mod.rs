@@ -102,6 +102,8 @@ pub struct Sample {
     pub sigma2: f64,
     /// Mechanical energy E (J).
     pub energy: f64,
+    /// ⟨x, M v⟩ (J s): see [`crate::Series::displacement_momentum`].
+    pub displacement_momentum: f64,
     /// Tip shear state q'''(s,t) (1/m²).
     pub q_tip_shear: f64,
     /// Tip slope state θ'(s,t) (1/m).
@@ -296,6 +298,7 @@ impl Stepper {
             sigma1: b.sigma,
             sigma2: tr.sigma,
             energy: self.disc.energy(&self.x, &self.v),
+            displacement_momentum: self.disc.mass.form(&self.x, &self.v),
             q_tip_shear: b.w,
             theta_tip_slope: tr.w,
         }
