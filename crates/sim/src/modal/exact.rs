@@ -12,21 +12,24 @@
 //! term by term; then m doublings E(2s) = E(s)², carried as F = E − I (F ← 2F + F²), and
 //! Q(2s) = Q(s) + E(s)ᵀQ(s)E(s). (Van Loan's
 //! block exponential would need e^{−Aᵀh}, which overflows: the stiff Kelvin–Voigt modes decay
-//! at ξω² ≫ 1/h.) Q_c is stored as its eigenvalue-truncated factor (∫τ² = Σ_j (f_jᵀX)²).
+//! at ξω² ≫ 1/h.) Q_c is carried through the doublings as an eigenvalue-truncated factor L
+//! (Q = LLᵀ, L(2s) = [L, EᵀL] compressed to rank r_c), and applied as ∫τ² = Σ_j (f_jᵀX)² with
+//! the columns f_j of L.
 //!
-//! Work: O(N³ log(‖A‖h)) once per run, N = 2n + 2 + 5 (2n + 5 with ξ = 0: no tip states),
-//! then one dense (2n + 2 + r1 + r2)×N product per step (r_c: the Gramian factors' ranks, ≈ 23
-//! each on the default grid): measured 3.1 µs against TR-BDF2's 0.43 µs in the same basis
-//! (≈ 7×; ≈ 8× per 20-s run with the 13-ms setup, `wingcheck bench`). What it buys: τ
+//! Work: O(N³ log(‖A‖h)) once per run for E (one N×N product per doubling; the Gramians add
+//! O(N² r_c) each), N = 2n + 2 + 5 (2n + 5 with ξ = 0: no tip states), then one dense
+//! (2n + 2 + r1 + r2)×N product per step ([`super::gemv`]; r_c ≈ 23 each on the default
+//! grid). `wingcheck bench` prints its cost against TR-BDF2's in the same run. What it buys: τ
 //! statistics that do not depend on dt at a fixed observer period, however the held estimate
 //! jumps (the explicit FTDO alternates at the sample rate, which one TR-BDF2 step per sample
 //! resolves only to 1–2 % in RMS τ).
 
 use faer::linalg::matmul::matmul;
-use faer::{Accum, Mat, MatMut, MatRef, Par, Side};
+use faer::{Accum, Mat, Par, Side};
 
 use crate::SimError;
 
+use super::gemv::RowMajor;
 use super::{ModalBasis, ModalState};
 
 /// Number of held inputs in the state: ḡ1 − ĝ1, ḡ2 − ĝ2, φ̄, ĝ1, ĝ2.
@@ -36,8 +39,10 @@ pub(crate) const INPUTS: usize = 5;
 const TAYLOR_DEGREE: usize = 18;
 /// ‖A s₀‖₁ bound of the Taylor start.
 const START_NORM: f64 = 0.25;
-/// Gramian eigenvalues below this fraction of the largest are dropped from its factor. The
-/// computed Q carries an absolute round-off of order ε‖Q‖ in every entry anyway, so the quadratic
+/// Gramian eigenvalues below this fraction of the largest are dropped from its factor, at the
+/// Taylor start and at every doubling ([`compress`]); a dropped part δQ reaches the final Q as
+/// E(s)ᵀδQ E(s) through the later doublings, so the truncations together stay of the same order
+/// (‖E(s)‖ ≤ e^{‖A‖s}, and ‖A s‖ ≤ ¼ at the start). The computed Q carries an absolute round-off of order ε‖Q‖ in every entry anyway, so the quadratic
 /// form XᵀQX has an error of order ε‖Q‖·|X|² with or without the truncation, which adds at most
 /// N·1e-15·‖Q‖·|X|² (in the state's own coordinates: energy coordinates for the modes, the tip
 /// states and the held inputs in their units). Measured: rank 23 of 151 on the default grid, 38
@@ -53,8 +58,9 @@ pub(crate) struct ExactStep {
     /// ω_i (1/s).
     omega: Vec<f64>,
     /// One operator applied per step: rows 0..2n + tip_states of e^{Ah}, then the rows f_j of
-    /// the τ1 Gramian's factor, then those of τ2's (∫_0^h τ_c² = Σ_j (f_j · X)²).
-    operator: Mat<f64>,
+    /// the τ1 Gramian's factor, then those of τ2's (∫_0^h τ_c² = Σ_j (f_j · X)²); padded
+    /// row-major ([`RowMajor`]).
+    operator: RowMajor,
     /// Ranks of the two Gramian factors.
     ranks: [usize; 2],
 }
@@ -68,6 +74,24 @@ pub(crate) struct LoopCoefficients {
     pub(crate) xi: f64,
     pub(crate) stiff: [f64; 2],
     pub(crate) sign: [f64; 2],
+}
+
+/// A factor of Q = LLᵀ with at most rank(L) columns and Q's eigenvalues below
+/// [`GRAMIAN_CUTOFF`] × its largest dropped: the columns L v_i = √μ_i u_i of LV for the
+/// eigenpairs (μ_i, v_i) of LᵀL above the cutoff (Q's nonzero eigenvalues are those of LᵀL,
+/// with eigenvectors u_i = Lv_i/√μ_i). Work O(N k²) for k columns, instead of the O(N³) of
+/// forming and decomposing Q.
+fn compress(l: &Mat<f64>) -> Result<Mat<f64>, SimError> {
+    let k = l.ncols();
+    let gram = l.transpose() * l;
+    let gram = Mat::from_fn(k, k, |i, j| 0.5 * (gram[(i, j)] + gram[(j, i)]));
+    let evd = gram
+        .self_adjoint_eigen(Side::Lower)
+        .map_err(|e| SimError::Numerical(format!("exponential scheme: Gramian eigenproblem: {e:?}")))?;
+    let top = (0..k).map(|i| evd.S()[i]).fold(0.0, f64::max);
+    let keep: Vec<usize> = (0..k).filter(|&i| evd.S()[i] > GRAMIAN_CUTOFF * top).collect();
+    let v = Mat::from_fn(k, keep.len(), |r, c| evd.U()[(r, keep[c])]);
+    Ok(l * &v)
 }
 
 /// e ← I + f.
@@ -172,10 +196,20 @@ impl ExactStep {
         matmul(f.as_mut(), Accum::Replace, a_s0.as_ref(), p.as_ref(), 1.0, Par::Seq);
         let mut e = p;
         // Q_c(s₀) = s₀ Σ_jk d_j d_kᵀ/(j + k + 1) = D H Dᵀ with d_j = (s₀Aᵀ)^j c/j! the columns
-        // of D and H_jk = s₀/(j + k + 1).
+        // of D and H_jk = s₀/(j + k + 1), carried as a factor L (Q = LLᵀ): L = D W Λ^½ from
+        // H = WΛWᵀ, then L(2s) = [L(s), E(s)ᵀL(s)] at every doubling, compressed ([`compress`]).
         let terms = TAYLOR_DEGREE + 1;
         let hilbert = Mat::from_fn(terms, terms, |j, k| s0 / (j + k + 1) as f64);
-        let mut q = outputs.map(|c| {
+        let hilbert_root = {
+            let evd = hilbert
+                .self_adjoint_eigen(Side::Lower)
+                .map_err(|e| SimError::Numerical(format!("exponential scheme: Taylor Gramian: {e:?}")))?;
+            let top = (0..terms).map(|i| evd.S()[i]).fold(0.0, f64::max);
+            let keep: Vec<usize> = (0..terms).filter(|&i| evd.S()[i] > GRAMIAN_CUTOFF * top).collect();
+            Mat::from_fn(terms, keep.len(), |r, c| evd.U()[(r, keep[c])] * evd.S()[keep[c]].sqrt())
+        };
+        let mut factors = Vec::with_capacity(2);
+        for c in &outputs {
             let mut d = Mat::<f64>::zeros(len, terms);
             for (r, v) in c.iter().enumerate() {
                 d[(r, 0)] = *v;
@@ -191,24 +225,24 @@ impl ExactStep {
                     Par::Seq,
                 );
             }
-            let mut dh = Mat::<f64>::zeros(len, terms);
-            matmul(dh.as_mut(), Accum::Replace, d.as_ref(), hilbert.as_ref(), 1.0, Par::Seq);
-            let mut q0 = Mat::<f64>::zeros(len, len);
-            matmul(q0.as_mut(), Accum::Replace, dh.as_ref(), d.transpose(), 1.0, Par::Seq);
-            q0
-        });
-        let mut qe = Mat::<f64>::zeros(len, len);
+            factors.push(compress(&(&d * &hilbert_root))?);
+        }
         for _ in 0..doublings {
             identity_plus(&f, &mut e);
-            for qc in q.iter_mut() {
-                // Q ← Q + EᵀQE (symmetrised)
-                matmul(qe.as_mut(), Accum::Replace, qc.as_ref(), e.as_ref(), 1.0, Par::Seq);
-                matmul(next.as_mut(), Accum::Replace, e.transpose(), qe.as_ref(), 1.0, Par::Seq);
-                for j in 0..len {
-                    for i in 0..len {
-                        qc[(i, j)] += 0.5 * (next[(i, j)] + next[(j, i)]);
-                    }
-                }
+            for l in factors.iter_mut() {
+                // Q ← Q + EᵀQE: L ← [L, EᵀL]
+                let k = l.ncols();
+                let mut wide = Mat::<f64>::zeros(len, 2 * k);
+                wide.as_mut().submatrix_mut(0, 0, len, k).copy_from(l.as_ref());
+                matmul(
+                    wide.as_mut().submatrix_mut(0, k, len, k),
+                    Accum::Replace,
+                    e.transpose(),
+                    l.as_ref(),
+                    1.0,
+                    Par::Seq,
+                );
+                *l = compress(&wide)?;
             }
             // F ← 2F + F²
             matmul(next.as_mut(), Accum::Replace, f.as_ref(), f.as_ref(), 1.0, Par::Seq);
@@ -220,21 +254,9 @@ impl ExactStep {
         }
         identity_plus(&f, &mut e);
         let rows = 2 * n + tip_states;
-        let mut factor_rows: Vec<Vec<f64>> = Vec::new();
-        let mut ranks = [0; 2];
-        for (c, qc) in q.iter().enumerate() {
-            let evd = qc
-                .self_adjoint_eigen(Side::Lower)
-                .map_err(|e| SimError::Numerical(format!("exponential scheme: Gramian eigenproblem: {e:?}")))?;
-            let top = (0..len).map(|i| evd.S()[i]).fold(0.0, f64::max);
-            for i in 0..len {
-                let mu = evd.S()[i];
-                if mu > GRAMIAN_CUTOFF * top {
-                    factor_rows.push((0..len).map(|r| mu.sqrt() * evd.U()[(r, i)]).collect());
-                    ranks[c] += 1;
-                }
-            }
-        }
+        let ranks = [factors[0].ncols(), factors[1].ncols()];
+        let factor_rows: Vec<Vec<f64>> =
+            factors.iter().flat_map(|l| (0..l.ncols()).map(move |k| (0..len).map(|r| l[(r, k)]).collect())).collect();
         let operator =
             Mat::from_fn(
                 rows + factor_rows.len(),
@@ -247,7 +269,8 @@ impl ExactStep {
                     }
                 },
             );
-        if (0..len).any(|j| operator.col(j).iter().any(|v| !v.is_finite())) {
+        let operator = RowMajor::new(&operator);
+        if !operator.is_finite() {
             return Err(SimError::Numerical("exponential scheme: e^{Ah} or a τ Gramian is not finite".into()));
         }
         Ok(ExactStep { n, tip_states, omega, operator, ranks })
@@ -255,7 +278,7 @@ impl ExactStep {
 
     /// Work buffers for [`ExactStep::advance`]: X and the operator's output.
     pub(crate) fn buffers(&self) -> (Vec<f64>, Vec<f64>) {
-        (vec![0.0; self.operator.ncols()], vec![0.0; self.operator.nrows()])
+        (vec![0.0; self.operator.stride()], vec![0.0; self.operator.rows()])
     }
 
     /// Advance (η, ζ, w) of `st` by one step with the held inputs
@@ -269,16 +292,10 @@ impl ExactStep {
             x[n + i] = st.zeta[i];
         }
         x[2 * n..2 * n + self.tip_states].copy_from_slice(&st.w[..self.tip_states]);
-        x[2 * n + self.tip_states..].copy_from_slice(&inputs);
-        let (rows, len) = (self.operator.nrows(), self.operator.ncols());
-        matmul(
-            MatMut::from_column_major_slice_mut(y, rows, 1),
-            Accum::Replace,
-            self.operator.as_ref(),
-            MatRef::from_column_major_slice(x, len, 1),
-            1.0,
-            Par::Seq,
-        );
+        let inputs_at = 2 * n + self.tip_states;
+        x[inputs_at..inputs_at + INPUTS].copy_from_slice(&inputs);
+        // x's padding past the state stays 0 (set by `buffers`, never written)
+        self.operator.mul_into(x, y);
         for i in 0..n {
             st.eta[i] = y[i] / self.omega[i];
             st.zeta[i] = y[n + i];

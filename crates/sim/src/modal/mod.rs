@@ -19,6 +19,7 @@
 
 mod drive;
 mod exact;
+mod gemv;
 mod run;
 pub mod scheme;
 mod signal;
