@@ -15,9 +15,10 @@ pub const SECONDS_PER_UNKNOWN_STEP: f64 = 4e-8;
 /// Seconds per integrator step per entry of the exponential scheme's (2n)² step operator,
 /// measured ≈ 1.5e-10 s on one core (144 states, 3.1 µs per step), doubled.
 pub const SECONDS_PER_EXPONENTIAL_ENTRY_STEP: f64 = 3e-10;
-/// Seconds of the exponential scheme's setup per (2n)³ (≈ 20 doublings of five dense products),
-/// measured ≈ 4e-9 s (13 ms at 144 states), rounded up for the stiffer, longer chains of finer
-/// grids.
+/// Seconds of the exponential scheme's setup per (2n)³, measured ≈ 4e-9 s (13 ms at 144 states)
+/// when each of its ≈ 20 doublings made five dense products, rounded up for the stiffer, longer
+/// chains of finer grids. Since the τ Gramians are carried as low-rank factors a doubling makes
+/// one dense product (setup ≈ 2× faster, measured 2026-12-02), so the estimate errs high.
 pub const SECONDS_PER_EXPONENTIAL_SETUP_CUBE: f64 = 1e-8;
 /// Estimated seconds of the exponential scheme's work beyond the per-unknown stepping cost, for
 /// `steps` integrator steps of a loop with `states` states (displacements + velocities): one
