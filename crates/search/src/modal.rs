@@ -108,6 +108,10 @@ impl Recorder for Trace {
         self.squares.update_step(t, tau, exact);
     }
 
+    fn deferred_squares(&mut self, squares: [f64; 2]) {
+        self.squares.add_squares(squares);
+    }
+
     fn output(&mut self, _: &ModalState, s: &Sample, _: usize) -> Result<(), SimError> {
         let (tr, rms) = (&mut self.trace, self.squares.take_rms());
         tr.t.push(s.t);
@@ -130,7 +134,7 @@ impl Recorder for Trace {
 /// simulator's driver.
 pub fn run(cfg: &Config, basis: &ModalBasis, signal: &RecordedSignal) -> Result<TipTrace, SimError> {
     cfg.validate().map_err(SimError::Config)?;
-    let lp = ModalLoop::new(cfg, basis)?;
+    let lp = ModalLoop::with_eigenbasis(cfg, basis)?;
     let mut st = lp.initial_state(cfg, basis);
     let mut rec = Trace::default();
     drive(cfg, basis, &lp, &mut st, &mut signal.replay(), &mut rec)?;

@@ -1,6 +1,8 @@
 //! The search's modal runner against the simulator. In the modal basis both run the one driver
 //! (`wingcheck_sim::modal::drive`) on the same inputs, so the search's trace equals
-//! `simulate`'s bit for bit (first test). Against the nodal stepper: the same discrete scheme (TR-BDF2 or the
+//! `simulate`'s bit for bit (first test), except that the search steps the exponential scheme
+//! in the closed loop's eigenbasis where its checks pass (within its round-off estimate,
+//! second test). Against the nodal stepper: the same discrete scheme (TR-BDF2 or the
 //! trapezoidal rule, as `discretisation.stepper` selects) in another basis (Woodbury solve of
 //! diagonal + rank 2 vs sparse Cholesky of the step matrix, observer signal precomputed vs
 //! integrated with the plant), so every recorded tip quantity must agree to round-off.
@@ -88,13 +90,50 @@ fn the_search_records_the_simulators_own_run() {
         &["control.kind=ftdo"][..],
         &["control.kind=dobc", "discretisation.stepper=trapezoid"],
         &["control.kind=pd", "control.a=10", "control.b=1e-2"],
-        &["observer.rule=explicit"],
         &["observer.rule=explicit", "discretisation.stepper=trbdf2", "wing.xi=0"],
         &["discretisation.method=fd", "discretisation.grading=0", "discretisation.fd_points=24", "control.k1=50"],
+        // the exponential scheme where the eigenbasis refuses (a = 1, b = 3000: its round-off
+        // estimate 5.8e-5 is above the limit) is the dense one in both
+        &["observer.rule=explicit", "control.a=1", "control.b=3000"],
     ] {
         let c = cfg(&[sets, &["horizon.t_end=0.5"]].concat());
         let cache = RunCache::new();
         assert_eq!(closed_loop(&c, &cache).unwrap(), modal_simulation(&c), "{sets:?}");
+    }
+}
+
+#[test]
+fn the_search_steps_the_exponential_scheme_in_the_eigenbasis_within_its_roundoff() {
+    // The search steps the exponential scheme in the closed loop's eigenbasis where its checks
+    // pass (ModalLoop::with_eigenbasis), `simulate` by the dense scaling and squaring: the same
+    // exact transition computed two ways. Reference: `simulate` in the modal basis; the
+    // eigenbasis's round-off estimate is ≤ 1e-6 relative of the state (its acceptance limit;
+    // 1.7e-7 at the paper point), so 1e-6 relative on every sampled value, peak and RMS. g̃ is
+    // the replayed observer signal, independent of the plant: equal.
+    for sets in [
+        &["observer.rule=explicit"][..],
+        &["observer.rule=explicit", "control.k1=3", "control.a=0.5", "wing.xi=0.3"],
+        &[
+            "observer.rule=explicit",
+            "discretisation.method=fd",
+            "discretisation.grading=0",
+            "discretisation.fd_points=24",
+        ],
+    ] {
+        let c = cfg(&[sets, &["horizon.t_end=2"]].concat());
+        let basis = wingcheck_sim::modal::ModalBasis::new(&c).unwrap();
+        let lp = wingcheck_sim::modal::ModalLoop::with_eigenbasis(&c, &basis).unwrap();
+        assert!(lp.eigenbasis_roundoff().is_some(), "{sets:?}: the eigenbasis was refused");
+        let fast = closed_loop(&c, &RunCache::new()).unwrap();
+        let reference = modal_simulation(&c);
+        let (d, g) = differences(&fast, &reference);
+        let rms = rel(
+            &[&fast.tau1_rms[..], &fast.tau2_rms[..]].concat(),
+            &[&reference.tau1_rms[..], &reference.tau2_rms[..]].concat(),
+        );
+        println!("{sets:?}: {d:.1e} relative, RMS τ {rms:.1e}");
+        assert!(d <= 1e-6 && rms <= 1e-6, "{sets:?}: differs by {d:e} / RMS {rms:e} relative");
+        assert_eq!(g, 0.0, "{sets:?}");
     }
 }
 

@@ -32,6 +32,12 @@ pub trait Recorder {
     /// last), after the tip values were recomputed from the modal state and `sample` passed the
     /// divergence check ([`check_sample`]).
     fn output(&mut self, st: &ModalState, sample: &Sample, k: usize) -> Result<(), SimError>;
+
+    /// Called at each output sample before [`Recorder::output`] with what the steps' `exact`
+    /// values since the previous output still lack (N² s, N² m² s), for a scheme that defers
+    /// part of its ∫τ² to checkpoints ([`ModalLoop::checkpoint`]): the steps' values plus this
+    /// are the exact ∫τ_c² over the output interval.
+    fn deferred_squares(&mut self, squares: [f64; 2]);
 }
 
 /// Run the loop `lp` of `cfg` on `basis` over [0, T] from the state `st`, with the observer
@@ -49,6 +55,9 @@ pub fn drive<S: Signal, R: Recorder>(
     let h = cfg.discretisation.dt;
     let e0 = basis.energy(&st.eta, &st.zeta);
     let output = |st: &mut ModalState, obs: &SampleInput, t: f64, k: usize, rec: &mut R| {
+        if let Some(squares) = lp.checkpoint(st) {
+            rec.deferred_squares(squares);
+        }
         st.sync_tip(basis);
         let sample = lp.sample(basis, st, t, obs);
         check_sample(&sample, e0)?;

@@ -105,7 +105,7 @@ fn identity_plus(f: &Mat<f64>, e: &mut Mat<f64>) {
 
 /// The closed loop's matrix A (Ẋ = AX) in X = (p, ζ, w, u) and its output rows c_c (τ_c = c_cᵀX),
 /// for modes with frequencies `omega` and `tip_states` = 2 (ξ > 0) or 0.
-fn closed_loop(
+pub(crate) fn closed_loop(
     basis: &ModalBasis,
     co: &LoopCoefficients,
     omega: &[f64],

@@ -17,6 +17,7 @@
 //! eigenproblem with ω² spanning many decades; ≤ 3e-11 on FD wings), not bit for bit.
 //! [`simulate_modal`] is `simulate` in this basis; `discretisation.basis` chooses.
 
+mod diagonal;
 mod drive;
 mod exact;
 mod gemv;

@@ -43,6 +43,10 @@ impl Recorder for Simulation<'_, '_> {
         self.full_rate.update_step(t, &peak_values(lp, st, g_hat, signal_g(self.cfg, t)), exact);
     }
 
+    fn deferred_squares(&mut self, squares: [f64; 2]) {
+        self.full_rate.add_squares(squares);
+    }
+
     fn output(&mut self, st: &ModalState, sample: &Sample, k: usize) -> Result<(), SimError> {
         self.series.push(sample, self.full_rate.take_tau_rms());
         self.envelope.push(self.full_rate.take_range(crate::run::Envelope::values(sample)));

@@ -97,6 +97,14 @@ impl SquareIntegral {
         (self.last_t, self.last) = (t, v);
     }
 
+    /// Add `squares` (N² s, N² m² s) to the current interval's ∫τ² dt: the part a scheme
+    /// defers from its steps to the interval's end ([`crate::modal::Recorder::deferred_squares`]).
+    pub fn add_squares(&mut self, squares: [f64; 2]) {
+        for (i, s) in self.integral.iter_mut().zip(squares) {
+            *i += s;
+        }
+    }
+
     /// RMS √(∫τ² dt / Δt) of each channel over the interval since the previous call (|τ| at
     /// the latest instant for an interval of zero length), and start the next interval there.
     pub fn take_rms(&mut self) -> [f64; 2] {
@@ -186,6 +194,11 @@ impl FullRate {
     /// `at` of the output instant ([`IntervalRange::take`]).
     pub(crate) fn take_range(&mut self, at: [f64; 4]) -> [(f64, f64); 4] {
         self.range.take(at)
+    }
+
+    /// See [`SquareIntegral::add_squares`].
+    pub(crate) fn add_squares(&mut self, squares: [f64; 2]) {
+        self.squares.add_squares(squares);
     }
 
     /// Full-rate RMS of τ1, τ2 since the previous call ([`SquareIntegral::take_rms`]).

@@ -1,0 +1,558 @@
+//! The `exponential` time scheme in the closed loop's own eigenbasis: the same exact transition
+//! of the semi-discrete loop with held inputs as [`super::exact`], O(N) work per step instead of
+//! a dense N×N product.
+//!
+//! With z = (p, ζ, w) (p_i = ω_i η_i) and the held inputs u = (ḡ1 − ĝ1, ḡ2 − ĝ2, φ̄, ĝ1, ĝ2),
+//! ż = A z + B u. Diagonalise A = VΛV⁻¹ once per run (complex, the conjugate pairs stored
+//! once) and carry x̂ = V⁻¹z. Over a step with u held, z relaxes to z*(u) = −A⁻¹Bu, so
+//! x̂(h) = μ ⊙ x̂ + (1 − μ) ⊙ ŝ with μ_i = e^{λ_i h} and ŝ = V⁻¹z*(u): O(N).
+//!
+//! τ_c = c_cᵀz + d_cᵀu = c_cᵀe + τ*_c with e = z − z*(u), ė = Ae. Its square integral over a
+//! step is split by the Lyapunov solution P_c = ∫_0^∞ e^{Aᵀs}c_c c_cᵀe^{As} ds (closed form in
+//! the eigenbasis, P_ij = −c̄̃_i c̃_j/(λ̄_i + λ_j), c̃ = Vᵀc):
+//!
+//! ∫_0^h τ² = e₀ᵀPe₀ − e_hᵀPe_h + 2τ* ∫_0^h c̃ᵀe^{Λs}ẽ₀ ds + hτ*².
+//!
+//! The first two terms telescope over consecutive steps except where u jumps (at every step
+//! start): the jump of eᵀPe is −2Δz*ᵀPe + Δz*ᵀPΔz*, O(N) with the rows Zᵀ P V precomputed.
+//! So each step returns its jump, linear and constant terms, and [`DiagonalStep::checkpoint`]
+//! adds the boundary terms eᵀPe at the previous and the current checkpoint (every output
+//! sample; one O(N²) reconstruction of z and an O(N r) quadratic form with P's low-rank factor).
+//! The sum over every interval between two checkpoints is then the exact ∫τ² over it;
+//! the single steps' shares are not.
+//!
+//! Refused (the caller falls back to the dense [`super::exact::ExactStep`]) where the
+//! eigenbasis would lose accuracy: a round-off estimate of the state above [`MAX_ROUNDOFF`]
+//! (stiff Kelvin–Voigt modes against slow ones), a nearly defective A (condition of V above
+//! [`MAX_CONDITION`]), an eigendecomposition residual above its tolerance, an eigenvalue not
+//! strictly in the left half-plane, or a
+//! mode so slowly decaying that the telescoped eᵀPe dwarfs an interval's integral
+//! ([`MAX_TELESCOPE`]).
+
+use faer::linalg::solvers::DenseSolveCore;
+use faer::{c64, Mat};
+
+use super::exact::{closed_loop, LoopCoefficients, INPUTS};
+use super::gemv::RowMajor;
+use super::scheme::dot;
+use super::{ModalBasis, ModalState};
+
+/// Held inputs that move the state: ḡ1 − ĝ1, ḡ2 − ĝ2, φ̄ (ĝ enters τ only).
+const DRIVING: usize = 3;
+/// Largest accepted ‖V‖_F‖V⁻¹‖_F (unit eigenvectors): the state is read through V and V⁻¹,
+/// so its round-off is of order this × ε relative (≤ 2e-10 here).
+pub(crate) const MAX_CONDITION: f64 = 1e6;
+/// Largest accepted 1/(min_i |Re λ_i| · Δt_out): the checkpoint terms eᵀPe are up to this many
+/// output intervals' worth of ∫τ², so their round-off is of order this × ε of an interval's
+/// integral.
+pub(crate) const MAX_TELESCOPE: f64 = 1e7;
+/// Largest accepted round-off estimate of the state, relative: ε(‖A‖_F/s + cond V) with s the
+/// slowest rate of the loop (min of ω₁ and the smallest |λ|). A dense eigen-solve is backward
+/// stable, so each eigenvector carries an error of order ε‖A‖ over its eigenvalue's distance
+/// from the others; the Kelvin–Voigt modes make ‖A‖ ≈ ξω_max² large, and the slow modes that
+/// carry the state feel it most. Measured against the dense scheme on eight wings (unit test
+/// in `scheme.rs`): the state error is 0.006–0.3 × this estimate.
+pub(crate) const MAX_ROUNDOFF: f64 = 1e-6;
+/// Tolerance of the relative residuals ‖AV − VΛ‖/(‖A‖‖V‖) and of the Lyapunov equation.
+const RESIDUAL_TOLERANCE: f64 = 1e-10;
+/// Eigenvalues of P below this fraction of its largest are dropped from its factor (as the
+/// dense scheme's Gramians, [`super::exact`]).
+const FACTOR_CUTOFF: f64 = 1e-15;
+
+/// A complex vector over the eigenvalue representatives (one per real eigenvalue, one per
+/// conjugate pair), real and imaginary parts apart. As a row it carries the weight of its
+/// representative (1 real, 2 pair), so Σ over all N eigenvalues of a_i x_i for conjugate-closed
+/// a, x is [`Half::re_dot`].
+#[derive(Debug, Clone)]
+struct Half {
+    re: Vec<f64>,
+    im: Vec<f64>,
+}
+
+impl Half {
+    fn zeros(k: usize) -> Half {
+        Half { re: vec![0.0; k], im: vec![0.0; k] }
+    }
+    fn from_fn(k: usize, f: impl Fn(usize) -> c64) -> Half {
+        let v: Vec<c64> = (0..k).map(f).collect();
+        Half { re: v.iter().map(|c| c.re).collect(), im: v.iter().map(|c| c.im).collect() }
+    }
+    /// Re Σ a_i x_i = Σ (a_re x_re − a_im x_im).
+    #[inline]
+    fn re_dot(&self, x: &Half) -> f64 {
+        dot(&self.re, &x.re) - dot(&self.im, &x.im)
+    }
+}
+
+/// e^{z} − 1 for complex z without cancellation at small |z|.
+fn expm1(z: c64) -> c64 {
+    let (s, c) = z.im.sin_cos();
+    let half = (0.5 * z.im).sin();
+    c64::new(z.re.exp_m1() * c - 2.0 * half * half, z.re.exp() * s)
+}
+
+/// The state of a run in the eigenbasis, kept in [`ModalState`].
+#[derive(Debug, Clone)]
+pub(crate) struct DiagonalState {
+    /// x̂ = V⁻¹z over the k representatives as (x̂_re, x̂_im), padded with zeros for
+    /// [`RowMajor`].
+    x: Vec<f64>,
+    /// The inputs of the latest step (0 before the first).
+    inputs: [f64; INPUTS],
+    /// e_cᵀP_c e_c at the latest checkpoint (e = z − z*(inputs)).
+    boundary: [f64; 2],
+    /// Work buffers: z, ŝ and ê = x̂ − ŝ as (re, im), the start-of-step rows' values.
+    z: Vec<f64>,
+    relaxed: Vec<f64>,
+    e: Vec<f64>,
+    start: Vec<f64>,
+}
+
+/// Why a loop is not stepped in its eigenbasis (the dense scheme is used instead).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Refused(pub(crate) String);
+
+/// The closed loop's transition in its eigenbasis, built once per run.
+#[derive(Debug)]
+pub(crate) struct DiagonalStep {
+    n: usize,
+    tip_states: usize,
+    h: f64,
+    omega: Vec<f64>,
+    mu: Half,
+    one_minus_mu: Half,
+    /// ∫_0^h c̃ᵀe^{Λs}ẽ ds = Re(lin · x̂) − lin_input · u (lin in `start_rows`).
+    lin_input: [[f64; DRIVING]; 2],
+    /// τ*_c = tau_star_c · u.
+    tau_star: [[f64; INPUTS]; 2],
+    /// Zᵀ P_c Z, Z = the columns of z*(u) (the rows Z_kᵀ P_c V are in `start_rows`).
+    jump_input: [[[f64; DRIVING]; DRIVING]; 2],
+    /// z = Re(V x̂) = [V_re, −V_im](x̂_re, x̂_im) (weighted columns).
+    v: RowMajor,
+    /// The rows read at a step's start, Re(row · x̂) as [row_re, −row_im]: jump[0][0..3],
+    /// jump[1][0..3], lin[0], lin[1]; and at its end: the four tip rows.
+    start_rows: RowMajor,
+    tip_rows: RowMajor,
+    /// The columns of S as (re, im) over the representatives.
+    s_flat: [Vec<f64>; DRIVING],
+    /// Rows of P_c's factor over ξ = (ê_re, ê_im): e_cᵀP_c e_c = Σ_j (f_j · ξ)².
+    factor: [RowMajor; 2],
+    /// Rows of V⁻¹ giving (x̂_re, x̂_im) from z (2k × N).
+    v_inv: RowMajor,
+    /// The relative round-off estimate of the state ([`MAX_ROUNDOFF`]).
+    pub(crate) roundoff: f64,
+}
+
+impl DiagonalStep {
+    /// The eigenbasis step for step h (s) of the loop on `basis`, with checkpoints every
+    /// `interval` (s); [`Refused`] with the reason where the dense scheme must be used.
+    pub(crate) fn new(
+        basis: &ModalBasis,
+        co: &LoopCoefficients,
+        h: f64,
+        interval: f64,
+    ) -> Result<DiagonalStep, Refused> {
+        let refuse = |s: String| Err(Refused(s));
+        let n = basis.len();
+        let omega: Vec<f64> = basis.omega2.iter().map(|w| w.sqrt()).collect();
+        let tip_states = if co.xi > 0.0 { 2 } else { 0 };
+        let m = 2 * n + tip_states;
+        let (a_full, outputs) = closed_loop(basis, co, &omega, tip_states);
+        let a = a_full.as_ref().submatrix(0, 0, m, m).to_owned();
+        let evd = match a.eigen() {
+            Ok(e) => e,
+            Err(e) => return refuse(format!("eigen-solve failed: {e:?}")),
+        };
+        let lambda: Vec<c64> = (0..m).map(|i| evd.S()[i]).collect();
+        // representatives: faer puts a conjugate pair in adjacent columns, +Im first
+        let mut reps: Vec<(usize, f64)> = Vec::with_capacity(m);
+        let mut j = 0;
+        while j < m {
+            if lambda[j].im == 0.0 {
+                reps.push((j, 1.0));
+                j += 1;
+            } else {
+                if j + 1 >= m || lambda[j + 1] != lambda[j].conj() {
+                    return refuse("eigenvalues not in conjugate pairs".into());
+                }
+                reps.push((j, 2.0));
+                j += 2;
+            }
+        }
+        if !lambda.iter().all(|l| l.re.is_finite() && l.im.is_finite() && l.re < 0.0) {
+            return refuse("an eigenvalue with Re λ ≥ 0".into());
+        }
+        let slowest = lambda.iter().map(|l| -l.re).fold(f64::INFINITY, f64::min);
+        if !within(1.0 / (slowest * interval), MAX_TELESCOPE) {
+            return refuse(format!(
+                "slowest decay rate {slowest:.3e} 1/s over an output interval of {interval:e} s \
+                 (limit {MAX_TELESCOPE:.0e} intervals)"
+            ));
+        }
+        let k = reps.len();
+        let vc = |r: usize, rep: usize| evd.U()[(r, reps[rep].0)];
+        // V_r: the representatives' (Re v) and, for pairs, (Im v) columns; z = Re(V x̂) =
+        // V_re x̂_re − V_im x̂_im with the weighted columns below.
+        let mut vr = Mat::<f64>::zeros(m, m);
+        let mut col = 0;
+        for (rep, &(_, w)) in reps.iter().enumerate() {
+            for r in 0..m {
+                vr[(r, col)] = vc(r, rep).re;
+            }
+            if w == 2.0 {
+                for r in 0..m {
+                    vr[(r, col + 1)] = vc(r, rep).im;
+                }
+            }
+            col += if w == 2.0 { 2 } else { 1 };
+        }
+        // residual of A V_r = V_r Λ_r (Λ_r: λ or the 2×2 block [[α, β], [−β, α]])
+        let av = &a * &vr;
+        let mut defect = 0.0;
+        let mut col = 0;
+        for (rep, &(j, w)) in reps.iter().enumerate() {
+            let l = lambda[j];
+            let mut own = 0.0;
+            for r in 0..m {
+                let v = vc(r, rep);
+                if w == 2.0 {
+                    let (d0, d1) =
+                        (av[(r, col)] - (l.re * v.re - l.im * v.im), av[(r, col + 1)] - (l.im * v.re + l.re * v.im));
+                    own += d0 * d0 + d1 * d1;
+                } else {
+                    let d = av[(r, col)] - l.re * v.re;
+                    own += d * d;
+                }
+            }
+            defect += own;
+            col += if w == 2.0 { 2 } else { 1 };
+        }
+        let rel = defect.sqrt() / (a.norm_l2() * vr.norm_l2());
+        if !within(rel, RESIDUAL_TOLERANCE) {
+            return refuse(format!("eigendecomposition residual {rel:.1e}"));
+        }
+        let vr_inv = vr.partial_piv_lu().inverse();
+        let condition = vr.norm_l2() * vr_inv.norm_l2();
+        let smallest = lambda.iter().map(|l| l.norm()).fold(f64::INFINITY, f64::min);
+        let slow = omega.iter().copied().fold(smallest, f64::min);
+        let roundoff = f64::EPSILON * (a.norm_l2() / slow + condition);
+        if !within(roundoff, MAX_ROUNDOFF) {
+            return refuse(format!(
+                "eigenbasis round-off {roundoff:.1e} relative (ε‖A‖/{slow:.3e} 1/s + ε·cond V; limit {MAX_ROUNDOFF:.0e})"
+            ));
+        }
+        if !within(condition, MAX_CONDITION) {
+            return refuse(format!("eigenvector condition {condition:.1e} (limit {MAX_CONDITION:.0e})"));
+        }
+        // x̂ = V⁻¹z over the representatives from ρ = V_r⁻¹z: x̂ = ρ (real), ρ_a + iρ_b (pair;
+        // z = Σ v ρ for a real eigenvalue, Σ 2Re(v x̂) = v_re ρ_a' + … with ρ_a = x̂_re, ρ_b = −x̂_im
+        // after the weight 2 is put in the columns below)
+        let mut to_half: Vec<[Option<(usize, f64)>; 2]> = Vec::with_capacity(k);
+        let mut col = 0;
+        for &(_, w) in &reps {
+            if w == 2.0 {
+                to_half.push([Some((col, 0.5)), Some((col + 1, -0.5))]);
+                col += 2;
+            } else {
+                to_half.push([Some((col, 1.0)), None]);
+                col += 1;
+            }
+        }
+        let half_of_real = |rho: &dyn Fn(usize) -> f64| -> Half {
+            let part = |p: usize| to_half.iter().map(|t| t[p].map_or(0.0, |(c, f)| f * rho(c))).collect();
+            Half { re: part(0), im: part(1) }
+        };
+        let v_inv = Mat::from_fn(2 * k, m, |row, q| {
+            let (rep, p) = (row % k, row / k);
+            to_half[rep][p].map_or(0.0, |(c, f)| f * vr_inv[(c, q)])
+        });
+        let v = Mat::from_fn(
+            m,
+            2 * k,
+            |r, c| if c < k { vc(r, c).re * reps[c].1 } else { -vc(r, c - k).im * reps[c - k].1 },
+        );
+        let lam = Half::from_fn(k, |r| lambda[reps[r].0]);
+        let lam_at = |r: usize| c64::new(lam.re[r], lam.im[r]);
+        // ŝ = V⁻¹ z*(u), z* = −A⁻¹Bu: S_ik = −(V⁻¹B)_ik/λ_i
+        let s = [0, 1, 2].map(|kk| {
+            let b: Vec<f64> = (0..m).map(|i| a_full[(i, m + kk)]).collect();
+            let rho: Vec<f64> = (0..m).map(|c| (0..m).map(|q| vr_inv[(c, q)] * b[q]).sum()).collect();
+            let x = half_of_real(&|c| rho[c]);
+            Half::from_fn(k, |r| -c64::new(x.re[r], x.im[r]) / lam_at(r))
+        });
+        // t·V over the representatives, weighted (Re(row · x̂) = t·z)
+        let row_times_v = |t: &[f64]| -> Half {
+            Half::from_fn(k, |c| (0..m).fold(c64::new(0.0, 0.0), |acc, r| acc + vc(r, c) * t[r]) * reps[c].1)
+        };
+        let u = &basis.tip;
+        let tip_row = |c: usize, vel: bool| -> Vec<f64> {
+            let mut row = vec![0.0; m];
+            for j in 0..n {
+                if vel {
+                    row[n + j] = u[c][j];
+                } else {
+                    row[j] = u[c][j] / omega[j];
+                }
+            }
+            row
+        };
+        let tip = [(0, false), (1, false), (0, true), (1, true)].map(|(c, vel)| row_times_v(&tip_row(c, vel)));
+        let em1: Vec<c64> = (0..k).map(|r| expm1(lam_at(r) * h)).collect();
+        let mu = Half::from_fn(k, |r| em1[r] + c64::new(1.0, 0.0));
+        let one_minus_mu = Half::from_fn(k, |r| -em1[r]);
+        // φ_i = (e^{λh} − 1)/λ = ∫_0^h e^{λs} ds
+        let phi: Vec<c64> = (0..k).map(|r| em1[r] / lam_at(r)).collect();
+        let cmul = |a: &Half, r: usize, z: c64| c64::new(a.re[r], a.im[r]) * z;
+        let re_sum = |a: &Half, b: &Half| a.re_dot(b);
+        let mut lin = [Half::zeros(k), Half::zeros(k)];
+        let mut lin_input = [[0.0; DRIVING]; 2];
+        let mut tau_star = [[0.0; INPUTS]; 2];
+        let mut jump =
+            [[Half::zeros(k), Half::zeros(k), Half::zeros(k)], [Half::zeros(k), Half::zeros(k), Half::zeros(k)]];
+        let mut jump_input = [[[0.0; DRIVING]; DRIVING]; 2];
+        let mut factors: Vec<Mat<f64>> = Vec::with_capacity(2);
+        for c in 0..2 {
+            let cz = &outputs[c][..m];
+            // g = c·V weighted; unweighted g_i for P
+            let gw = row_times_v(cz);
+            let g: Vec<c64> = (0..k).map(|r| c64::new(gw.re[r], gw.im[r]) / reps[r].1).collect();
+            lin[c] = Half::from_fn(k, |r| cmul(&gw, r, phi[r]));
+            for kk in 0..DRIVING {
+                lin_input[c][kk] = re_sum(&lin[c], &s[kk]);
+            }
+            for kk in 0..INPUTS {
+                let through_state = if kk < DRIVING { re_sum(&gw, &s[kk]) } else { 0.0 };
+                tau_star[c][kk] = through_state + outputs[c][m + kk];
+            }
+            // Φ = êᴴPê over all N eigenvalues, P_ij = −ḡ_i g_j/(λ̄_i + λ_j), as a real quadratic
+            // form ξᵀP_rξ in ξ = (x̂_re, x̂_im) over the representatives: a pair contributes
+            // ê_i = ξ_re + iξ_im and its conjugate.
+            let p_r = real_form(&g, &lam, &reps);
+            for kk in 0..DRIVING {
+                let xi = [s[kk].re.as_slice(), s[kk].im.as_slice()].concat();
+                let row: Vec<f64> = (0..2 * k).map(|a| (0..2 * k).map(|b| p_r[(a, b)] * xi[b]).sum()).collect();
+                // row·(x̂_re, x̂_im) = re·x_re − im·x_im with im = −row[k..]
+                jump[c][kk] = Half { re: row[..k].to_vec(), im: row[k..].iter().map(|v| -v).collect() };
+                for ll in 0..DRIVING {
+                    let other = [s[ll].re.as_slice(), s[ll].im.as_slice()].concat();
+                    jump_input[c][kk][ll] = row.iter().zip(&other).map(|(a, b)| a * b).sum();
+                }
+            }
+            factors.push(pivoted_cholesky(&p_r));
+        }
+        let step = DiagonalStep {
+            n,
+            tip_states,
+            h,
+            omega,
+            mu,
+            one_minus_mu,
+            lin_input,
+            tau_star,
+            jump_input,
+            v: RowMajor::new(&v),
+            start_rows: RowMajor::new(&stack(&[&jump[0][..], &jump[1][..], &lin[..]].concat())),
+            tip_rows: RowMajor::new(&stack(&tip)),
+            s_flat: [0, 1, 2].map(|kk| [s[kk].re.as_slice(), s[kk].im.as_slice()].concat()),
+            factor: [RowMajor::new(&factors[0]), RowMajor::new(&factors[1])],
+            v_inv: RowMajor::new(&v_inv),
+            roundoff,
+        };
+        let finite = |h: &Half| h.re.iter().chain(&h.im).all(|x| x.is_finite());
+        if !(step.v.is_finite()
+            && step.start_rows.is_finite()
+            && step.tip_rows.is_finite()
+            && step.v_inv.is_finite()
+            && step.factor.iter().all(RowMajor::is_finite)
+            && step.s_flat.iter().flatten().all(|x| x.is_finite())
+            && [&step.mu, &step.one_minus_mu].iter().all(|h| finite(h)))
+        {
+            return refuse("a coefficient is not finite".into());
+        }
+        Ok(step)
+    }
+
+    fn len(&self) -> usize {
+        2 * self.n + self.tip_states
+    }
+
+    /// ŝ = S u as (re, im) into `out`.
+    fn relaxed(&self, inputs: &[f64; INPUTS], out: &mut [f64]) {
+        let [s0, s1, s2] = &self.s_flat;
+        let (u0, u1, u2) = (inputs[0], inputs[1], inputs[2]);
+        for (i, o) in out.iter_mut().enumerate().take(s0.len()) {
+            *o = s0[i] * u0 + s1[i] * u1 + s2[i] * u2;
+        }
+    }
+
+    /// e_cᵀP_c e_c of both channels at x̂ with the inputs `inputs` (e = z − z*(u)).
+    fn boundary(&self, ds: &mut DiagonalState) -> [f64; 2] {
+        let inputs = ds.inputs;
+        self.relaxed(&inputs, &mut ds.relaxed);
+        for (i, e) in ds.e.iter_mut().enumerate().take(ds.relaxed.len()) {
+            *e = ds.x[i] - ds.relaxed[i];
+        }
+        [0, 1].map(|c| {
+            let mut y = vec![0.0; self.factor[c].rows()];
+            self.factor[c].mul_into(&ds.e, &mut y);
+            y.iter().map(|f| f * f).sum()
+        })
+    }
+
+    /// The eigenbasis state of `st` (η, ζ, w as set by the loop's initial state), no inputs yet.
+    pub(crate) fn start(&self, st: &ModalState) -> DiagonalState {
+        let (n, m) = (self.n, self.len());
+        let mut z = vec![0.0; self.v_inv.stride()];
+        for i in 0..n {
+            z[i] = self.omega[i] * st.eta[i];
+            z[n + i] = st.zeta[i];
+        }
+        z[2 * n..m].copy_from_slice(&st.w[..self.tip_states]);
+        let stride = self.start_rows.stride();
+        let mut x = vec![0.0; stride];
+        self.v_inv.mul_into(&z, &mut x);
+        let mut ds = DiagonalState {
+            x,
+            inputs: [0.0; INPUTS],
+            boundary: [0.0; 2],
+            z: vec![0.0; m],
+            relaxed: vec![0.0; self.s_flat[0].len()],
+            e: vec![0.0; stride],
+            start: vec![0.0; self.start_rows.rows()],
+        };
+        ds.boundary = self.boundary(&mut ds);
+        ds
+    }
+
+    /// One step with the held inputs u = (ḡ1 − ĝ1, ḡ2 − ĝ2, φ̄, ĝ1, ĝ2): advances x̂ and the tip
+    /// values of `st` (η, ζ, w are brought up to date by [`DiagonalStep::checkpoint`]); returns
+    /// this step's share of ∫τ_c² (N² s, N² m² s), exact when summed between checkpoints.
+    pub(crate) fn advance(&self, ds: &mut DiagonalState, st: &mut ModalState, inputs: [f64; INPUTS]) -> [f64; 2] {
+        let old = ds.inputs;
+        let du = [0, 1, 2].map(|kk| inputs[kk] - old[kk]);
+        self.start_rows.mul_into(&ds.x, &mut ds.start);
+        let mut square = [0.0; 2];
+        for (c, sq) in square.iter_mut().enumerate() {
+            // jump of eᵀPe at the step's start: −2Δz*ᵀP(z − z*(old)) + Δz*ᵀPΔz*
+            let mut jump = 0.0;
+            for kk in 0..DRIVING {
+                let pe = ds.start[DRIVING * c + kk]
+                    - (0..DRIVING).map(|ll| self.jump_input[c][kk][ll] * old[ll]).sum::<f64>();
+                let quad = (0..DRIVING).map(|ll| self.jump_input[c][kk][ll] * du[ll]).sum::<f64>();
+                jump += du[kk] * (quad - 2.0 * pe);
+            }
+            let tau_star: f64 = (0..INPUTS).map(|kk| self.tau_star[c][kk] * inputs[kk]).sum();
+            let lin =
+                ds.start[2 * DRIVING + c] - (0..DRIVING).map(|kk| self.lin_input[c][kk] * inputs[kk]).sum::<f64>();
+            *sq = jump + 2.0 * tau_star * lin + self.h * tau_star * tau_star;
+        }
+        // x̂ ← μ x̂ + (1 − μ) ŝ
+        self.relaxed(&inputs, &mut ds.relaxed);
+        let k = self.mu.re.len();
+        let (mu, om) = (&self.mu, &self.one_minus_mu);
+        let (xr, xi) = ds.x.split_at_mut(k);
+        let (sr, si) = ds.relaxed.split_at(k);
+        for i in 0..k {
+            let (a, b) = (xr[i], xi[i]);
+            xr[i] = mu.re[i] * a - mu.im[i] * b + (om.re[i] * sr[i] - om.im[i] * si[i]);
+            xi[i] = mu.re[i] * b + mu.im[i] * a + (om.re[i] * si[i] + om.im[i] * sr[i]);
+        }
+        ds.inputs = inputs;
+        let mut tips = [0.0; 4];
+        self.tip_rows.mul_into(&ds.x, &mut tips);
+        st.x_tip = [tips[0], tips[1]];
+        st.v_tip = [tips[2], tips[3]];
+        square
+    }
+
+    /// Bring η, ζ and (ξ > 0) w of `st` up to date from x̂ and return the boundary terms
+    /// e_aᵀPe_a − e_bᵀPe_b of the interval since the previous checkpoint a (N² s, N² m² s).
+    pub(crate) fn checkpoint(&self, ds: &mut DiagonalState, st: &mut ModalState) -> [f64; 2] {
+        self.v.mul_into(&ds.x, &mut ds.z);
+        let n = self.n;
+        for i in 0..n {
+            st.eta[i] = ds.z[i] / self.omega[i];
+            st.zeta[i] = ds.z[n + i];
+        }
+        for c in 0..self.tip_states {
+            st.w[c] = ds.z[2 * n + c];
+        }
+        let now = self.boundary(ds);
+        let before = std::mem::replace(&mut ds.boundary, now);
+        [before[0] - now[0], before[1] - now[1]]
+    }
+}
+
+/// The rows Re(a · x̂) of the [`Half`] vectors `rows` as a matrix over (x̂_re, x̂_im):
+/// [a_re, −a_im].
+fn stack(rows: &[Half]) -> Mat<f64> {
+    let k = rows.first().map_or(0, |r| r.re.len());
+    Mat::from_fn(rows.len(), 2 * k, |i, j| if j < k { rows[i].re[j] } else { -rows[i].im[j - k] })
+}
+
+/// One of all N eigenvalues for [`real_form`]: λ, g_i, and ê_i as Σ t_α ξ_α.
+type Eigenvalue = (c64, c64, Vec<(usize, c64)>);
+
+/// x ≤ limit, false for NaN (a refusal).
+fn within(x: f64, limit: f64) -> bool {
+    x <= limit
+}
+
+/// The real symmetric matrix P_r of ξ ↦ êᴴPê over all N eigenvalues, ξ = (x̂_re, x̂_im) over
+/// the k representatives (length 2k), P_ij = −ḡ_i g_j/(λ̄_i + λ_j) (the Lyapunov solution of
+/// Λᴴ P + PΛ = −ḡgᵀ): a real eigenvalue has ê = ξ_re, a pair ê = ξ_re ± iξ_im.
+fn real_form(g: &[c64], lam: &Half, reps: &[(usize, f64)]) -> Mat<f64> {
+    let k = g.len();
+    let i1 = c64::new(0.0, 1.0);
+    // every eigenvalue: (λ, g, its ê as Σ t ξ_α)
+    let mut full: Vec<Eigenvalue> = Vec::with_capacity(2 * k);
+    for r in 0..k {
+        let l = c64::new(lam.re[r], lam.im[r]);
+        if reps[r].1 == 2.0 {
+            full.push((l, g[r], vec![(r, c64::new(1.0, 0.0)), (k + r, i1)]));
+            full.push((l.conj(), g[r].conj(), vec![(r, c64::new(1.0, 0.0)), (k + r, -i1)]));
+        } else {
+            full.push((l, g[r], vec![(r, c64::new(1.0, 0.0))]));
+        }
+    }
+    let mut p = Mat::<f64>::zeros(2 * k, 2 * k);
+    for (li, gi, ti) in &full {
+        for (lj, gj, tj) in &full {
+            let pij = -(gi.conj() * gj) / (li.conj() + lj);
+            for (a, ta) in ti {
+                for (b, tb) in tj {
+                    p[(*a, *b)] += (ta.conj() * pij * tb).re;
+                }
+            }
+        }
+    }
+    Mat::from_fn(2 * k, 2 * k, |a, b| 0.5 * (p[(a, b)] + p[(b, a)]))
+}
+
+/// Rows f_j with ξᵀPξ = Σ_j (f_j·ξ)² up to the dropped remainder, for a positive semidefinite
+/// P: Cholesky with complete (diagonal) pivoting, stopped where the largest remaining diagonal
+/// is below [`FACTOR_CUTOFF`] × the largest initial one (the remainder is positive semidefinite
+/// with that diagonal, so it changes ξᵀPξ by at most its trace × |ξ|²). O(N r²) for rank r;
+/// written by hand because faer has no pivoted (low-rank) Cholesky.
+fn pivoted_cholesky(p: &Mat<f64>) -> Mat<f64> {
+    let n = p.nrows();
+    let mut diag: Vec<f64> = (0..n).map(|i| p[(i, i)]).collect();
+    let top = diag.iter().copied().fold(0.0, f64::max);
+    let mut rows: Vec<Vec<f64>> = Vec::new();
+    loop {
+        let (piv, d) =
+            diag.iter().copied().enumerate().fold((0, f64::NEG_INFINITY), |b, (i, d)| if d > b.1 { (i, d) } else { b });
+        if d.is_nan() || d <= FACTOR_CUTOFF * top || rows.len() == n {
+            break;
+        }
+        let root = d.sqrt();
+        let row: Vec<f64> =
+            (0..n).map(|i| (p[(piv, i)] - rows.iter().map(|f| f[piv] * f[i]).sum::<f64>()) / root).collect();
+        for (i, di) in diag.iter_mut().enumerate() {
+            *di -= row[i] * row[i];
+        }
+        diag[piv] = 0.0;
+        rows.push(row);
+    }
+    Mat::from_fn(rows.len(), n, |r, c| rows[r][c])
+}
