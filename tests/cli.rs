@@ -237,3 +237,34 @@ fn a_shard_asks_a_person_to_merge_only_when_no_script_does() {
     assert!(!by_script.contains("wingcheck merge"), "{by_script}");
     assert!(by_script.contains("shard 1/2 done; scripts/parallel-search.sh merges the shards"), "{by_script}");
 }
+
+#[test]
+fn bench_report_measures_the_explicit_observer_beside_the_configured_report() {
+    // One sitting, alternating runs (issue: the explicit-observer report against the paper
+    // report, as a ratio under one load). A 2-s horizon keeps the two reports short; the
+    // reference is the JSON's own two medians (the ratio is their quotient), not a time.
+    let o = wingcheck(&["bench", "--what", "report", "--repeats", "1", "--json", "--set", "horizon.t_end=2"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let (base, explicit) =
+        (v["report_seconds"].as_f64().unwrap(), v["explicit_observer_report_seconds"].as_f64().unwrap());
+    assert!(base > 0.0 && explicit > 0.0, "{v}");
+    let ratio = v["explicit_over_configured"].as_f64().unwrap();
+    assert!((ratio - explicit / base).abs() <= 1e-12 * ratio, "{v}");
+    // a configuration that already uses the explicit observer has nothing to compare with
+    let o = wingcheck(&[
+        "bench",
+        "--what",
+        "report",
+        "--repeats",
+        "1",
+        "--json",
+        "--set",
+        "horizon.t_end=2",
+        "--set",
+        "observer.rule=explicit",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(v.get("explicit_over_configured").is_none(), "{v}");
+}

@@ -39,7 +39,15 @@ fn estimate(cfg: &Config, what: &str, repeats: usize) -> WorkEstimate {
         "check" => {
             parts.push((r, wingcheck_claims::plan::check_estimate(cfg, &wingcheck_claims::CheckSettings::default())))
         }
-        "report" => parts.push((r, wingcheck_report::report_estimate(cfg))),
+        "report" => {
+            parts.push((r, wingcheck_report::report_estimate(cfg)));
+            // the same report with the explicit observer, alternating with it (bench_report)
+            if cfg.observer.rule == wingcheck_model::ObserverRule::Implicit {
+                if let Some(c) = set(&["observer.rule=explicit".to_string()]) {
+                    parts.push((r, wingcheck_report::report_estimate(&c)));
+                }
+            }
+        }
         "search" => {}
         _ => {
             parts.push((r, sim(cfg)));
@@ -308,32 +316,58 @@ fn bench_check(cfg: &wingcheck_model::Config, repeats: usize, as_json: bool) -> 
     Ok(())
 }
 
-/// Whole `wingcheck report` wall time with the stage breakdown.
+/// Whole `wingcheck report` wall time with the stage breakdown; for a configuration with the
+/// implicit observer also the same report with `observer.rule = explicit`, the two alternating
+/// run by run in one sitting so that their ratio (the explicit observer's extra cost: its
+/// exponential scheme in the simulations and the region map) is measured under one load.
 fn bench_report(cfg: &wingcheck_model::Config, repeats: usize, as_json: bool) -> anyhow::Result<()> {
-    let mut runs = Vec::new();
+    let explicit = (cfg.observer.rule == wingcheck_model::ObserverRule::Implicit).then(|| {
+        let mut c = cfg.clone();
+        c.observer.rule = wingcheck_model::ObserverRule::Explicit;
+        c
+    });
+    let (mut runs, mut explicit_runs) = (Vec::new(), Vec::new());
     let mut last = None;
-    for i in 0..repeats.max(1) {
-        let dir = std::env::temp_dir().join(format!("wingcheck-bench-report-{}-{i}", std::process::id()));
+    let timed = |c: &wingcheck_model::Config, tag: &str, i: usize| -> anyhow::Result<(f64, _)> {
+        let dir = std::env::temp_dir().join(format!("wingcheck-bench-report-{}-{tag}{i}", std::process::id()));
         let t = std::time::Instant::now();
-        let summary = wingcheck_report::write_report(cfg, &dir, &Default::default())?;
-        runs.push(t.elapsed().as_secs_f64());
+        let summary = wingcheck_report::write_report(c, &dir, &Default::default());
+        let seconds = t.elapsed().as_secs_f64();
         let _ = std::fs::remove_dir_all(&dir);
+        Ok((seconds, summary?))
+    };
+    for i in 0..repeats.max(1) {
+        let (seconds, summary) = timed(cfg, "", i)?;
+        runs.push(seconds);
         last = Some(summary);
+        if let Some(c) = &explicit {
+            explicit_runs.push(timed(c, "explicit-", i)?.0);
+        }
     }
     let summary = last.expect("at least one run");
+    let ratio = explicit.as_ref().map(|_| median(explicit_runs.clone()) / median(runs.clone()));
     if as_json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&json!({
-                "report_seconds": median(runs),
-                "stages": summary.timings.iter().map(|t| json!({"stage": t.name, "seconds": t.seconds})).collect::<Vec<_>>(),
-            }))?
-        );
+        let mut out = json!({
+            "report_seconds": median(runs),
+            "stages": summary.timings.iter().map(|t| json!({"stage": t.name, "seconds": t.seconds})).collect::<Vec<_>>(),
+        });
+        if let Some(r) = ratio {
+            out["explicit_observer_report_seconds"] = json!(median(explicit_runs));
+            out["explicit_over_configured"] = json!(r);
+        }
+        println!("{}", serde_json::to_string_pretty(&out)?);
         return Ok(());
     }
     println!("wingcheck report: {:.3} s (median of {})", median(runs.clone()), runs.len());
     for t in &summary.timings {
         println!("  {:<12} {:>7.3} s (last run)", t.name, t.seconds);
+    }
+    if let Some(r) = ratio {
+        println!(
+            "with observer.rule=explicit: {:.3} s (median of {}, alternating with the runs above); ratio {r:.2}",
+            median(explicit_runs.clone()),
+            explicit_runs.len()
+        );
     }
     Ok(())
 }

@@ -53,7 +53,7 @@ pub(crate) const MAX_TELESCOPE: f64 = 1e7;
 /// carry the state feel it most. Measured against the dense scheme on eight wings (unit test
 /// in `scheme.rs`): the state error is 0.006–0.3 × this estimate.
 pub(crate) const MAX_ROUNDOFF: f64 = 1e-6;
-/// Tolerance of the relative residuals ‖AV − VΛ‖/(‖A‖‖V‖) and of the Lyapunov equation.
+/// Tolerance of the relative residual ‖AV − VΛ‖_F/(‖A‖_F‖V‖_F) of the eigendecomposition.
 const RESIDUAL_TOLERANCE: f64 = 1e-10;
 /// Eigenvalues of P below this fraction of its largest are dropped from its factor (as the
 /// dense scheme's Gramians, [`super::exact`]).
