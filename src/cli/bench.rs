@@ -42,10 +42,8 @@ fn estimate(cfg: &Config, what: &str, repeats: usize) -> WorkEstimate {
         "report" => {
             parts.push((r, wingcheck_report::report_estimate(cfg)));
             // the same report with the explicit observer, alternating with it (bench_report)
-            if cfg.observer.rule == wingcheck_model::ObserverRule::Implicit {
-                if let Some(c) = set(&["observer.rule=explicit".to_string()]) {
-                    parts.push((r, wingcheck_report::report_estimate(&c)));
-                }
+            if let Some(c) = explicit_twin(cfg) {
+                parts.push((r, wingcheck_report::report_estimate(&c)));
             }
         }
         "search" => {}
@@ -316,16 +314,22 @@ fn bench_check(cfg: &wingcheck_model::Config, repeats: usize, as_json: bool) -> 
     Ok(())
 }
 
+/// `cfg` with `observer.rule = explicit` where it has the implicit observer: the report
+/// [`bench_report`] times beside the configured one (and [`estimate`] counts).
+fn explicit_twin(cfg: &Config) -> Option<Config> {
+    (cfg.observer.rule == wingcheck_model::ObserverRule::Implicit).then(|| {
+        let mut c = cfg.clone();
+        c.observer.rule = wingcheck_model::ObserverRule::Explicit;
+        c
+    })
+}
+
 /// Whole `wingcheck report` wall time with the stage breakdown; for a configuration with the
 /// implicit observer also the same report with `observer.rule = explicit`, the two alternating
 /// run by run in one sitting so that their ratio (the explicit observer's extra cost: its
 /// exponential scheme in the simulations and the region map) is measured under one load.
 fn bench_report(cfg: &wingcheck_model::Config, repeats: usize, as_json: bool) -> anyhow::Result<()> {
-    let explicit = (cfg.observer.rule == wingcheck_model::ObserverRule::Implicit).then(|| {
-        let mut c = cfg.clone();
-        c.observer.rule = wingcheck_model::ObserverRule::Explicit;
-        c
-    });
+    let explicit = explicit_twin(cfg);
     let (mut runs, mut explicit_runs) = (Vec::new(), Vec::new());
     let mut last = None;
     let timed = |c: &wingcheck_model::Config, tag: &str, i: usize| -> anyhow::Result<(f64, _)> {
@@ -345,27 +349,32 @@ fn bench_report(cfg: &wingcheck_model::Config, repeats: usize, as_json: bool) ->
         }
     }
     let summary = last.expect("at least one run");
-    let ratio = explicit.as_ref().map(|_| median(explicit_runs.clone()) / median(runs.clone()));
+    let report_seconds = median(runs.clone());
+    // (explicit-observer median, its ratio to the configured report's)
+    let explicit = explicit.as_ref().map(|_| {
+        let seconds = median(explicit_runs.clone());
+        (seconds, seconds / report_seconds)
+    });
     if as_json {
         let mut out = json!({
-            "report_seconds": median(runs),
+            "report_seconds": report_seconds,
             "stages": summary.timings.iter().map(|t| json!({"stage": t.name, "seconds": t.seconds})).collect::<Vec<_>>(),
         });
-        if let Some(r) = ratio {
-            out["explicit_observer_report_seconds"] = json!(median(explicit_runs));
-            out["explicit_over_configured"] = json!(r);
+        if let Some((seconds, ratio)) = explicit {
+            out["explicit_observer_report_seconds"] = json!(seconds);
+            out["explicit_over_configured"] = json!(ratio);
         }
         println!("{}", serde_json::to_string_pretty(&out)?);
         return Ok(());
     }
-    println!("wingcheck report: {:.3} s (median of {})", median(runs.clone()), runs.len());
+    println!("wingcheck report: {report_seconds:.3} s (median of {})", runs.len());
     for t in &summary.timings {
         println!("  {:<12} {:>7.3} s (last run)", t.name, t.seconds);
     }
-    if let Some(r) = ratio {
+    if let Some((seconds, ratio)) = explicit {
         println!(
-            "with observer.rule=explicit: {:.3} s (median of {}, alternating with the runs above); ratio {r:.2}",
-            median(explicit_runs.clone()),
+            "with observer.rule=explicit: {seconds:.3} s (median of {}, alternating with the runs above); \
+             ratio {ratio:.2}",
             explicit_runs.len()
         );
     }

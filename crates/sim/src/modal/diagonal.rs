@@ -191,41 +191,30 @@ impl DiagonalStep {
         }
         let k = reps.len();
         let vc = |r: usize, rep: usize| evd.U()[(r, reps[rep].0)];
-        // V_r: the representatives' (Re v) and, for pairs, (Im v) columns; z = Re(V x̂) =
-        // V_re x̂_re − V_im x̂_im with the weighted columns below.
+        // V_r: the representatives' (Re v) and, for pairs, (Im v) columns, from column
+        // first_col[rep] on; z = Re(V x̂) = V_re x̂_re − V_im x̂_im with the weighted columns below.
+        let first_col: Vec<usize> =
+            reps.iter().scan(0, |col, &(_, w)| Some(std::mem::replace(col, *col + w as usize))).collect();
         let mut vr = Mat::<f64>::zeros(m, m);
-        let mut col = 0;
         for (rep, &(_, w)) in reps.iter().enumerate() {
             for r in 0..m {
-                vr[(r, col)] = vc(r, rep).re;
-            }
-            if w == 2.0 {
-                for r in 0..m {
-                    vr[(r, col + 1)] = vc(r, rep).im;
+                vr[(r, first_col[rep])] = vc(r, rep).re;
+                if w == 2.0 {
+                    vr[(r, first_col[rep] + 1)] = vc(r, rep).im;
                 }
             }
-            col += if w == 2.0 { 2 } else { 1 };
         }
         // residual of A V_r = V_r Λ_r (Λ_r: λ or the 2×2 block [[α, β], [−β, α]])
         let av = &a * &vr;
         let mut defect = 0.0;
-        let mut col = 0;
         for (rep, &(j, w)) in reps.iter().enumerate() {
-            let l = lambda[j];
-            let mut own = 0.0;
+            let (l, col) = (lambda[j], first_col[rep]);
             for r in 0..m {
                 let v = vc(r, rep);
-                if w == 2.0 {
-                    let (d0, d1) =
-                        (av[(r, col)] - (l.re * v.re - l.im * v.im), av[(r, col + 1)] - (l.im * v.re + l.re * v.im));
-                    own += d0 * d0 + d1 * d1;
-                } else {
-                    let d = av[(r, col)] - l.re * v.re;
-                    own += d * d;
-                }
+                let d0 = av[(r, col)] - (l.re * v.re - l.im * v.im);
+                let d1 = if w == 2.0 { av[(r, col + 1)] - (l.im * v.re + l.re * v.im) } else { 0.0 };
+                defect += d0 * d0 + d1 * d1;
             }
-            defect += own;
-            col += if w == 2.0 { 2 } else { 1 };
         }
         let rel = defect.sqrt() / (a.norm_l2() * vr.norm_l2());
         if !within(rel, RESIDUAL_TOLERANCE) {
@@ -247,17 +236,19 @@ impl DiagonalStep {
         // x̂ = V⁻¹z over the representatives from ρ = V_r⁻¹z: x̂ = ρ (real), ρ_a + iρ_b (pair;
         // z = Σ v ρ for a real eigenvalue, Σ 2Re(v x̂) = v_re ρ_a' + … with ρ_a = x̂_re, ρ_b = −x̂_im
         // after the weight 2 is put in the columns below)
-        let mut to_half: Vec<[Option<(usize, f64)>; 2]> = Vec::with_capacity(k);
-        let mut col = 0;
-        for &(_, w) in &reps {
-            if w == 2.0 {
-                to_half.push([Some((col, 0.5)), Some((col + 1, -0.5))]);
-                col += 2;
-            } else {
-                to_half.push([Some((col, 1.0)), None]);
-                col += 1;
-            }
-        }
+        let to_half: Vec<[Option<(usize, f64)>; 2]> = reps
+            .iter()
+            .zip(&first_col)
+            .map(
+                |(&(_, w), &col)| {
+                    if w == 2.0 {
+                        [Some((col, 0.5)), Some((col + 1, -0.5))]
+                    } else {
+                        [Some((col, 1.0)), None]
+                    }
+                },
+            )
+            .collect();
         let half_of_real = |rho: &dyn Fn(usize) -> f64| -> Half {
             let part = |p: usize| to_half.iter().map(|t| t[p].map_or(0.0, |(c, f)| f * rho(c))).collect();
             Half { re: part(0), im: part(1) }
@@ -271,14 +262,13 @@ impl DiagonalStep {
             2 * k,
             |r, c| if c < k { vc(r, c).re * reps[c].1 } else { -vc(r, c - k).im * reps[c - k].1 },
         );
-        let lam = Half::from_fn(k, |r| lambda[reps[r].0]);
-        let lam_at = |r: usize| c64::new(lam.re[r], lam.im[r]);
+        let lam: Vec<c64> = reps.iter().map(|&(j, _)| lambda[j]).collect();
         // ŝ = V⁻¹ z*(u), z* = −A⁻¹Bu: S_ik = −(V⁻¹B)_ik/λ_i
         let s = [0, 1, 2].map(|kk| {
             let b: Vec<f64> = (0..m).map(|i| a_full[(i, m + kk)]).collect();
             let rho: Vec<f64> = (0..m).map(|c| (0..m).map(|q| vr_inv[(c, q)] * b[q]).sum()).collect();
             let x = half_of_real(&|c| rho[c]);
-            Half::from_fn(k, |r| -c64::new(x.re[r], x.im[r]) / lam_at(r))
+            Half::from_fn(k, |r| -c64::new(x.re[r], x.im[r]) / lam[r])
         });
         // t·V over the representatives, weighted (Re(row · x̂) = t·z)
         let row_times_v = |t: &[f64]| -> Half {
@@ -297,13 +287,13 @@ impl DiagonalStep {
             row
         };
         let tip = [(0, false), (1, false), (0, true), (1, true)].map(|(c, vel)| row_times_v(&tip_row(c, vel)));
-        let em1: Vec<c64> = (0..k).map(|r| expm1(lam_at(r) * h)).collect();
+        let em1: Vec<c64> = lam.iter().map(|l| expm1(*l * h)).collect();
         let mu = Half::from_fn(k, |r| em1[r] + c64::new(1.0, 0.0));
         let one_minus_mu = Half::from_fn(k, |r| -em1[r]);
         // φ_i = (e^{λh} − 1)/λ = ∫_0^h e^{λs} ds
-        let phi: Vec<c64> = (0..k).map(|r| em1[r] / lam_at(r)).collect();
-        let cmul = |a: &Half, r: usize, z: c64| c64::new(a.re[r], a.im[r]) * z;
-        let re_sum = |a: &Half, b: &Half| a.re_dot(b);
+        let phi: Vec<c64> = em1.iter().zip(&lam).map(|(e, l)| e / l).collect();
+        // S's columns as (re, im): the vector the rows over ξ = (x̂_re, x̂_im) act on
+        let s_flat = [0, 1, 2].map(|kk| [s[kk].re.as_slice(), s[kk].im.as_slice()].concat());
         let mut lin = [Half::zeros(k), Half::zeros(k)];
         let mut lin_input = [[0.0; DRIVING]; 2];
         let mut tau_star = [[0.0; INPUTS]; 2];
@@ -316,12 +306,12 @@ impl DiagonalStep {
             // g = c·V weighted; unweighted g_i for P
             let gw = row_times_v(cz);
             let g: Vec<c64> = (0..k).map(|r| c64::new(gw.re[r], gw.im[r]) / reps[r].1).collect();
-            lin[c] = Half::from_fn(k, |r| cmul(&gw, r, phi[r]));
+            lin[c] = Half::from_fn(k, |r| c64::new(gw.re[r], gw.im[r]) * phi[r]);
             for kk in 0..DRIVING {
-                lin_input[c][kk] = re_sum(&lin[c], &s[kk]);
+                lin_input[c][kk] = lin[c].re_dot(&s[kk]);
             }
             for kk in 0..INPUTS {
-                let through_state = if kk < DRIVING { re_sum(&gw, &s[kk]) } else { 0.0 };
+                let through_state = if kk < DRIVING { gw.re_dot(&s[kk]) } else { 0.0 };
                 tau_star[c][kk] = through_state + outputs[c][m + kk];
             }
             // Φ = êᴴPê over all N eigenvalues, P_ij = −ḡ_i g_j/(λ̄_i + λ_j), as a real quadratic
@@ -329,13 +319,11 @@ impl DiagonalStep {
             // ê_i = ξ_re + iξ_im and its conjugate.
             let p_r = real_form(&g, &lam, &reps);
             for kk in 0..DRIVING {
-                let xi = [s[kk].re.as_slice(), s[kk].im.as_slice()].concat();
-                let row: Vec<f64> = (0..2 * k).map(|a| (0..2 * k).map(|b| p_r[(a, b)] * xi[b]).sum()).collect();
+                let row: Vec<f64> = (0..2 * k).map(|a| (0..2 * k).map(|b| p_r[(a, b)] * s_flat[kk][b]).sum()).collect();
                 // row·(x̂_re, x̂_im) = re·x_re − im·x_im with im = −row[k..]
                 jump[c][kk] = Half { re: row[..k].to_vec(), im: row[k..].iter().map(|v| -v).collect() };
                 for ll in 0..DRIVING {
-                    let other = [s[ll].re.as_slice(), s[ll].im.as_slice()].concat();
-                    jump_input[c][kk][ll] = row.iter().zip(&other).map(|(a, b)| a * b).sum();
+                    jump_input[c][kk][ll] = row.iter().zip(&s_flat[ll]).map(|(a, b)| a * b).sum();
                 }
             }
             factors.push(pivoted_cholesky(&p_r));
@@ -353,7 +341,7 @@ impl DiagonalStep {
             v: RowMajor::new(&v),
             start_rows: RowMajor::new(&stack(&[&jump[0][..], &jump[1][..], &lin[..]].concat())),
             tip_rows: RowMajor::new(&stack(&tip)),
-            s_flat: [0, 1, 2].map(|kk| [s[kk].re.as_slice(), s[kk].im.as_slice()].concat()),
+            s_flat,
             factor: [RowMajor::new(&factors[0]), RowMajor::new(&factors[1])],
             v_inv: RowMajor::new(&v_inv),
             roundoff,
@@ -424,10 +412,11 @@ impl DiagonalStep {
         ds
     }
 
-    /// One step with the held inputs u = (ḡ1 − ĝ1, ḡ2 − ĝ2, φ̄, ĝ1, ĝ2): advances x̂ and the tip
-    /// values of `st` (η, ζ, w are brought up to date by [`DiagonalStep::checkpoint`]); returns
-    /// this step's share of ∫τ_c² (N² s, N² m² s), exact when summed between checkpoints.
-    pub(crate) fn advance(&self, ds: &mut DiagonalState, st: &mut ModalState, inputs: [f64; INPUTS]) -> [f64; 2] {
+    /// One step with the held inputs u = (ḡ1 − ĝ1, ḡ2 − ĝ2, φ̄, ĝ1, ĝ2): advances x̂ (η, ζ, w
+    /// are brought up to date by [`DiagonalStep::checkpoint`]); returns this step's share of
+    /// ∫τ_c² (N² s, N² m² s), exact when summed between checkpoints, and the tip values at the
+    /// step's end [q, θ, q̇, θ̇] (m, rad, m/s, rad/s).
+    pub(crate) fn advance(&self, ds: &mut DiagonalState, inputs: [f64; INPUTS]) -> ([f64; 2], [f64; 4]) {
         let old = ds.inputs;
         let du = [0, 1, 2].map(|kk| inputs[kk] - old[kk]);
         self.start_rows.mul_into(&ds.x, &mut ds.start);
@@ -460,23 +449,25 @@ impl DiagonalStep {
         ds.inputs = inputs;
         let mut tips = [0.0; 4];
         self.tip_rows.mul_into(&ds.x, &mut tips);
-        st.x_tip = [tips[0], tips[1]];
-        st.v_tip = [tips[2], tips[3]];
-        square
+        (square, tips)
     }
 
-    /// Bring η, ζ and (ξ > 0) w of `st` up to date from x̂ and return the boundary terms
+    /// Bring η, ζ and (ξ > 0) w up to date from x̂ and return the boundary terms
     /// e_aᵀPe_a − e_bᵀPe_b of the interval since the previous checkpoint a (N² s, N² m² s).
-    pub(crate) fn checkpoint(&self, ds: &mut DiagonalState, st: &mut ModalState) -> [f64; 2] {
+    pub(crate) fn checkpoint(
+        &self,
+        ds: &mut DiagonalState,
+        eta: &mut [f64],
+        zeta: &mut [f64],
+        w: &mut [f64; 2],
+    ) -> [f64; 2] {
         self.v.mul_into(&ds.x, &mut ds.z);
         let n = self.n;
         for i in 0..n {
-            st.eta[i] = ds.z[i] / self.omega[i];
-            st.zeta[i] = ds.z[n + i];
+            eta[i] = ds.z[i] / self.omega[i];
+            zeta[i] = ds.z[n + i];
         }
-        for c in 0..self.tip_states {
-            st.w[c] = ds.z[2 * n + c];
-        }
+        w[..self.tip_states].copy_from_slice(&ds.z[2 * n..]);
         let now = self.boundary(ds);
         let before = std::mem::replace(&mut ds.boundary, now);
         [before[0] - now[0], before[1] - now[1]]
@@ -501,13 +492,13 @@ fn within(x: f64, limit: f64) -> bool {
 /// The real symmetric matrix P_r of ξ ↦ êᴴPê over all N eigenvalues, ξ = (x̂_re, x̂_im) over
 /// the k representatives (length 2k), P_ij = −ḡ_i g_j/(λ̄_i + λ_j) (the Lyapunov solution of
 /// Λᴴ P + PΛ = −ḡgᵀ): a real eigenvalue has ê = ξ_re, a pair ê = ξ_re ± iξ_im.
-fn real_form(g: &[c64], lam: &Half, reps: &[(usize, f64)]) -> Mat<f64> {
+fn real_form(g: &[c64], lam: &[c64], reps: &[(usize, f64)]) -> Mat<f64> {
     let k = g.len();
     let i1 = c64::new(0.0, 1.0);
     // every eigenvalue: (λ, g, its ê as Σ t ξ_α)
     let mut full: Vec<Eigenvalue> = Vec::with_capacity(2 * k);
     for r in 0..k {
-        let l = c64::new(lam.re[r], lam.im[r]);
+        let l = lam[r];
         if reps[r].1 == 2.0 {
             full.push((l, g[r], vec![(r, c64::new(1.0, 0.0)), (k + r, i1)]));
             full.push((l.conj(), g[r].conj(), vec![(r, c64::new(1.0, 0.0)), (k + r, -i1)]));

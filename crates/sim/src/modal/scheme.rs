@@ -92,6 +92,8 @@ enum Stepping {
 pub struct ModalLoop<'a> {
     u: &'a [Vec<f64>; 2],
     stepping: Stepping,
+    /// Why [`DiagonalStep::new`] refused where the eigenbasis was asked for.
+    eigenbasis_refused: Option<String>,
     h: f64,
     /// α of the implicit scheme's step matrix (s): h/2 (trapezoid), γh/2 (TR-BDF2).
     alpha: f64,
@@ -128,6 +130,12 @@ impl<'a> ModalLoop<'a> {
         }
     }
 
+    /// Why the eigenbasis was refused where [`ModalLoop::with_eigenbasis`] asked for it and the
+    /// dense exponential scheme steps instead; `None` otherwise.
+    pub fn eigenbasis_refusal(&self) -> Option<&str> {
+        self.eigenbasis_refused.as_deref()
+    }
+
     fn build(cfg: &Config, basis: &'a ModalBasis, eigenbasis: bool) -> Result<ModalLoop<'a>, SimError> {
         let h = cfg.discretisation.dt;
         let law = BoundaryLaw::of(cfg);
@@ -140,6 +148,7 @@ impl<'a> ModalLoop<'a> {
         let stiff = [cfg.wing.ei, cfg.wing.gj];
         let sign = [TipChannel::Bending.bc_sign(), TipChannel::Torsion.bc_sign()];
         let solve = || StepSolve::new(basis, alpha, xi, b + alpha * a, gain);
+        let mut eigenbasis_refused = None;
         let stepping = match scheme {
             TimeScheme::Trapezoid => Stepping::Trapezoid(solve()?),
             TimeScheme::Exponential => {
@@ -147,12 +156,15 @@ impl<'a> ModalLoop<'a> {
                 let interval = cfg.samples_per_output() as f64 * cfg.observer.sample_period;
                 match eigenbasis.then(|| DiagonalStep::new(basis, &co, h, interval)) {
                     Some(Ok(diagonal)) => Stepping::Diagonal(Box::new(diagonal)),
-                    _ => Stepping::Exponential(ExactStep::new(basis, &co, h)?),
+                    other => {
+                        eigenbasis_refused = other.and_then(Result::err).map(|why| why.0);
+                        Stepping::Exponential(ExactStep::new(basis, &co, h)?)
+                    }
                 }
             }
             _ => Stepping::Trbdf2(solve()?),
         };
-        Ok(ModalLoop { u: &basis.tip, stepping, h, alpha, law, xi, stiff, sign })
+        Ok(ModalLoop { u: &basis.tip, stepping, eigenbasis_refused, h, alpha, law, xi, stiff, sign })
     }
 
     /// The scheme this loop steps with (`auto` resolved).
@@ -231,12 +243,6 @@ impl<'a> ModalLoop<'a> {
         }
     }
 
-    /// Whether the loop steps in the closed loop's eigenbasis (tests).
-    #[cfg(test)]
-    pub(crate) fn is_diagonal(&self) -> bool {
-        matches!(self.stepping, Stepping::Diagonal(_))
-    }
-
     /// Step with the baseline instructions even where AVX is available (the results are the
     /// same bits: see [`super::woodbury`]).
     #[cfg(test)]
@@ -262,9 +268,9 @@ impl<'a> ModalLoop<'a> {
     /// exact summed between checkpoints ([`ModalLoop::checkpoint`]).
     fn diagonal_step(&self, diagonal: &DiagonalStep, st: &mut ModalState, input: &StepInput) -> [f64; 2] {
         let u = input.tip_input;
-        let mut ds = st.diagonal.take().expect("a diagonal loop's state has its eigenbasis part");
-        let square = diagonal.advance(&mut ds, st, [u[0], u[1], input.phi, input.g_hat[0], input.g_hat[1]]);
-        st.diagonal = Some(ds);
+        let ds = st.diagonal.as_mut().expect("a diagonal loop's state has its eigenbasis part");
+        let (square, tips) = diagonal.advance(ds, [u[0], u[1], input.phi, input.g_hat[0], input.g_hat[1]]);
+        (st.x_tip, st.v_tip) = ([tips[0], tips[1]], [tips[2], tips[3]]);
         self.algebraic_tip_states(st, input);
         square
     }
@@ -287,10 +293,9 @@ impl<'a> ModalLoop<'a> {
     pub fn checkpoint(&self, st: &mut ModalState) -> Option<[f64; 2]> {
         match &self.stepping {
             Stepping::Diagonal(diagonal) => {
-                let mut ds = st.diagonal.take().expect("a diagonal loop's state has its eigenbasis part");
-                let boundary = diagonal.checkpoint(&mut ds, st);
-                st.diagonal = Some(ds);
-                Some(boundary)
+                let ModalState { diagonal: ds, eta, zeta, w, .. } = st;
+                let ds = ds.as_mut().expect("a diagonal loop's state has its eigenbasis part");
+                Some(diagonal.checkpoint(ds, eta, zeta, w))
             }
             _ => None,
         }
@@ -467,24 +472,15 @@ mod tests {
             let basis = ModalBasis::new(&cfg).unwrap();
             let diag = ModalLoop::with_eigenbasis(&cfg, &basis).unwrap();
             let dense = ModalLoop::new(&cfg, &basis).unwrap();
-            let co = LoopCoefficients {
-                gain: diag.law.gains,
-                a: diag.law.a,
-                b: diag.law.b,
-                xi: cfg.wing.xi,
-                stiff: diag.stiff,
-                sign: diag.sign,
-            };
-            let interval = cfg.samples_per_output() as f64 * cfg.observer.sample_period;
             let Some(estimate) = diag.eigenbasis_roundoff() else {
-                let why = DiagonalStep::new(&basis, &co, cfg.discretisation.dt, interval).unwrap_err().0;
+                let why = diag.eigenbasis_refusal().expect("a refusal names its reason");
                 println!("{sets:?}: refused ({why})");
                 assert!(refused.contains(&sets), "{sets:?} refused: {why}");
                 assert!(why.contains(expected_reason(sets)), "{sets:?}: {why}");
                 continue;
             };
             assert!(!refused.contains(&sets), "{sets:?} was expected to be refused");
-            assert!(!dense.is_diagonal());
+            assert!(dense.eigenbasis_roundoff().is_none() && dense.eigenbasis_refusal().is_none());
             let (mut a, mut b) = (diag.initial_state(&cfg, &basis), dense.initial_state(&cfg, &basis));
             let (mut sum_a, mut sum_b) = ([0.0; 2], [0.0; 2]);
             let (mut worst_tip, mut worst_state, mut worst_square) = (0.0f64, 0.0f64, 0.0f64);
