@@ -19,7 +19,7 @@ use wingcheck_sim::{resolved_basis, simulate, Discretisation, Peak, RunOptions, 
 fn run(cfg: &Config, basis: StepBasis) -> SimOutput {
     let mut c = cfg.clone();
     c.discretisation.basis = basis;
-    let out = simulate(&c, RunOptions { fields: true, progress: None }).unwrap();
+    let out = simulate(&c, RunOptions { fields: true, ..Default::default() }).unwrap();
     assert_eq!(out.stats.basis, basis, "stats name the basis used");
     out
 }

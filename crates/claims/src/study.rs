@@ -36,7 +36,7 @@ impl Study {
         let cell = self.runs.lock().expect("study lock").entry(key).or_default().clone();
         let out = cell.get_or_init(|| {
             *self.performed.lock().expect("study lock") += 1;
-            simulate(cfg, RunOptions { fields: true, progress: None }).map(Arc::new).map_err(Arc::new)
+            simulate(cfg, RunOptions { fields: true, ..Default::default() }).map(Arc::new).map_err(Arc::new)
         });
         out.clone().map_err(ClaimsError::Sim)
     }

@@ -27,6 +27,15 @@ pub const SECONDS_PER_EXPONENTIAL_SETUP_CUBE: f64 = 1e-8;
 pub fn exponential_seconds(steps: f64, states: f64) -> f64 {
     steps * states * states * SECONDS_PER_EXPONENTIAL_ENTRY_STEP + states.powi(3) * SECONDS_PER_EXPONENTIAL_SETUP_CUBE
 }
+/// Estimated seconds of the exponential scheme's sub-step probe over `probes` probed steps of a
+/// loop with `states` states: its coarse grid is about as many entries as the step operator
+/// (measured: the probe adds 0.3–0.6 × the stepping of the default explicit run), counted as 1 ×.
+pub fn sub_step_probe_seconds(probes: f64, states: f64) -> f64 {
+    probes * states * states * SECONDS_PER_EXPONENTIAL_ENTRY_STEP
+}
+/// Rows of length `states` the sub-step probe stores: 16 points per octave of s over up to 30
+/// octaves, 6 outputs each.
+pub const SUB_STEP_PROBE_ROWS: f64 = 16.0 * 30.0 * 6.0;
 /// Observer sample periods at the start of a run that `simulate` re-runs at finer steps to
 /// resolve a sub-step transient (the initial layer; sim's `layer` module).
 pub const LAYER_SAMPLES: usize = 2;
@@ -269,12 +278,17 @@ impl WorkEstimate {
             Some(false) => samples * 16.0 * 25.0,
         };
         // the exponential scheme (the modal basis, n = displacements + velocities states): one
-        // dense product per step after an O(n³) setup
-        let exponential = if cfg.expected_time_scheme() == crate::TimeScheme::Exponential {
-            exponential_seconds(steps, n)
+        // dense product per step after an O(n³) setup, and the sub-step probe of the first step
+        // of every sample period with its rows (≈ 16 points per octave of s × 6 outputs)
+        let is_exponential = cfg.expected_time_scheme() == crate::TimeScheme::Exponential;
+        let exponential = if is_exponential {
+            let layer_periods = (LAYER_SAMPLES * (setups - 1)) as f64;
+            let periods = (cfg.horizon.t_end / cfg.observer.sample_period).ceil() + layer_periods;
+            exponential_seconds(steps, n) + sub_step_probe_seconds(periods, n)
         } else {
             0.0
         };
+        let memory = memory + if is_exponential { SUB_STEP_PROBE_ROWS * n * 8.0 } else { 0.0 };
         WorkEstimate {
             what: "simulate".into(),
             steps,
@@ -294,16 +308,28 @@ impl WorkEstimate {
         }
     }
 
-    /// `simulate --error-estimate`: the run, the run on the doubled grid and the run at dt/2.
+    /// `simulate --error-estimate`: the run, the run on the doubled grid and the run at dt/2,
+    /// and for a scheme without the sub-step probe its exponential twin (modal basis, at the
+    /// configured step only).
     pub fn simulation_with_error(cfg: &Config, fields: bool, json_output: Option<bool>) -> WorkEstimate {
         let base = Self::simulation(cfg, fields, json_output);
         let space = Self::simulation(&refined_in_space(cfg), false, None);
         let time = Self::simulation(&refined_in_time(cfg), false, None);
+        let twin = if cfg.expected_time_scheme() == crate::TimeScheme::Exponential {
+            None
+        } else {
+            let mut t = cfg.clone();
+            t.discretisation.stepper = crate::TimeScheme::Exponential;
+            t.discretisation.basis = crate::StepBasis::Modal;
+            Some(Self::simulation_base(&t))
+        };
+        let (twin_steps, twin_seconds, twin_memory) =
+            twin.map_or((0.0, 0.0, 0.0), |t| (t.steps, t.seconds, t.memory_bytes));
         WorkEstimate {
             what: "simulate".into(),
-            steps: base.steps + space.steps + time.steps,
-            seconds: base.seconds + space.seconds + time.seconds,
-            memory_bytes: base.memory_bytes + space.memory_bytes.max(time.memory_bytes),
+            steps: base.steps + space.steps + time.steps + twin_steps,
+            seconds: base.seconds + space.seconds + time.seconds + twin_seconds,
+            memory_bytes: base.memory_bytes + space.memory_bytes.max(time.memory_bytes).max(twin_memory),
             output_bytes: base.output_bytes,
         }
     }

@@ -88,6 +88,30 @@ pub struct EstimatedRun {
     pub tolerance: f64,
     /// Whether both maxima are within the tolerance.
     pub meets_tolerance: bool,
+    /// How the peaks were checked for sub-step transients after the initial layer.
+    pub sub_step_check: SubStepCheck,
+}
+
+/// How a run's full-rate peaks were checked for a transient shorter than dt after a later jump
+/// of the held inputs (the initial layer is resolved by every run, [`crate::layer`]).
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
+#[serde(rename_all = "kebab-case", tag = "kind")]
+pub enum SubStepCheck {
+    /// The base run's own scheme (exponential) probed the first step after every jump; each
+    /// probed peak's ± includes the probe's resolution ([`crate::Peak::sub_step_error`]).
+    Probed,
+    /// The base run's scheme has no probe: a twin run with the exponential scheme (modal basis,
+    /// same grid, step and observer) probed instead, and each peak's ± includes how far the
+    /// twin's probed value after the layer (plus its resolution) exceeds the base's.
+    Twin {
+        /// Peaks whose ± the twin raised.
+        raised: usize,
+    },
+    /// Neither was possible (the reason: e.g. a grid above the modal basis's limit).
+    Unavailable {
+        /// Why.
+        reason: String,
+    },
 }
 
 impl EstimatedRun {
@@ -116,8 +140,10 @@ fn refined_time(cfg: &Config) -> Config {
 /// Each peak's error: Richardson in h and dt (the refined runs resolve their own initial
 /// layers; inside the layer the grid sequence is checked on 4N, see
 /// [`PeakEstimate::grid_converged`]), plus, for a peak inside the initial layer, the layer's own
-/// error ([`crate::layer::InitialLayer::errors`]), plus the round-off floor
-/// [`crate::layer::PEAK_ROUND_OFF`] of its value.
+/// error ([`crate::layer::InitialLayer::errors`]), plus, for a peak found inside a step by the
+/// exponential scheme's sub-step probe, the probe's one-sided resolution
+/// ([`crate::Peak::sub_step_error`]), plus the round-off floor [`crate::layer::PEAK_ROUND_OFF`]
+/// of its value.
 fn peak_estimates(base: &SimOutput, space: &Peaks, time: &Peaks, layer_4n: Option<&Peaks>) -> PeakEstimates {
     let layer = base.initial_layer;
     let [b, s, t] = [base.peaks.signals(), space.signals(), time.signals()];
@@ -145,7 +171,7 @@ fn peak_estimates(base: &SimOutput, space: &Peaks, time: &Peaks, layer_4n: Optio
         PeakEstimate {
             abs_max: Estimate {
                 value: b[i].abs_max,
-                error: grid + time_part + in_layer + crate::layer::PEAK_ROUND_OFF * b[i].abs_max,
+                error: grid + time_part + in_layer + b[i].sub_step_error + crate::layer::PEAK_ROUND_OFF * b[i].abs_max,
             },
             t: b[i].t,
             grid_converged,
@@ -210,7 +236,52 @@ pub fn simulate_with_error(cfg: &Config, opts: RunOptions<'_>) -> Result<Estimat
         other => other,
     })?;
     let time = simulate(&time_cfg, RunOptions::default())?;
-    Ok(estimate_from_runs(output, &space, &time, &space_cfg, &time_cfg))
+    let twin = (scheme != wingcheck_model::TimeScheme::Exponential).then(|| sub_step_twin(cfg));
+    let mut estimated = estimate_from_runs(output, &space, &time, &space_cfg, &time_cfg);
+    if let Some(twin) = twin {
+        estimated.apply_twin(twin);
+    }
+    Ok(estimated)
+}
+
+/// The twin of `cfg` that probes inside its steps: the exponential scheme in the modal basis,
+/// at the configured step only (the base run resolves its own initial layer).
+fn sub_step_twin(cfg: &Config) -> Result<SimOutput, String> {
+    let mut twin = cfg.clone();
+    twin.discretisation.stepper = wingcheck_model::TimeScheme::Exponential;
+    twin.discretisation.basis = wingcheck_model::StepBasis::Modal;
+    twin.validate().map_err(|e| format!("the exponential twin is not a valid configuration: {e}"))?;
+    crate::simulate_base(&twin, RunOptions::default()).map_err(|e| format!("the exponential twin did not run: {e}"))
+}
+
+impl EstimatedRun {
+    /// Fold in the exponential twin's probed peaks ([`SubStepCheck::Twin`]), or say why there
+    /// is none.
+    fn apply_twin(&mut self, twin: Result<SimOutput, String>) {
+        let twin = match twin {
+            Ok(t) => t,
+            Err(reason) => {
+                self.sub_step_check = SubStepCheck::Unavailable { reason };
+                return;
+            }
+        };
+        let layer_end = self.output.initial_layer.map_or(0.0, |l| l.t_end);
+        let base = self.output.peaks.signals();
+        let p = &mut self.peaks;
+        let estimates =
+            [&mut p.q_tip, &mut p.theta_tip, &mut p.q_tip_rate, &mut p.theta_tip_rate, &mut p.tau1, &mut p.tau2];
+        let mut raised = 0;
+        for (i, e) in estimates.into_iter().enumerate() {
+            let t = twin.peaks.signals()[i];
+            let inside_a_step = t.sub_step_error > 0.0 && t.t > layer_end;
+            let excess = t.abs_max + t.sub_step_error - base[i].abs_max;
+            if inside_a_step && excess > 0.0 {
+                e.abs_max.error += excess;
+                raised += 1;
+            }
+        }
+        self.sub_step_check = SubStepCheck::Twin { raised };
+    }
 }
 
 /// The two refinements of `cfg` that [`simulate_with_error`] runs — the doubled grid and the
@@ -232,6 +303,7 @@ pub fn estimate_from_runs(
     space_cfg: &Config,
     time_cfg: &Config,
 ) -> EstimatedRun {
+    let output_scheme = output.stats.stepper;
     let (b, s, t) = (&output.series, &space.series, &time.series);
     let n = b.len();
     let (mut eq, mut et) = (Vec::with_capacity(n), Vec::with_capacity(n));
@@ -267,6 +339,11 @@ pub fn estimate_from_runs(
         peaks,
         tolerance: TIP_TOLERANCE,
         meets_tolerance: max_q <= TIP_TOLERANCE && max_t <= TIP_TOLERANCE,
+        sub_step_check: if output_scheme == wingcheck_model::TimeScheme::Exponential {
+            SubStepCheck::Probed
+        } else {
+            SubStepCheck::Unavailable { reason: "no twin run was made for this estimate".into() }
+        },
     }
 }
 

@@ -9,9 +9,11 @@
 //! the scheme's order, the last change below [`LAYER_TOLERANCE`] relative), and takes each
 //! full-rate peak as the larger of the resolved layer's and the base run's after the layer.
 //!
-//! What it does not resolve: a sub-step transient after a later jump of the held estimate
-//! (each observer sample); there the peak comes from the base run's steps (the implicit FTDO's
-//! later jumps are small once the estimate has converged).
+//! After the layer, the held estimate jumps every sample period: the exponential scheme probes
+//! the exact solution inside the first step after each jump (`crate::modal`'s sub-step probe,
+//! [`crate::Peak::sub_step_error`]); the implicit schemes have no probe, and there a sub-step
+//! transient after a later jump comes from the base run's steps (the implicit FTDO's later
+//! jumps are small once the estimate has converged).
 
 use serde::Serialize;
 use wingcheck_model::Config;

@@ -33,12 +33,12 @@ pub mod strain;
 pub use disc::{mass_determinant, Discretisation, Interpolation, Parts};
 pub use error_estimate::{
     estimate_from_runs, refinements, series_error, simulate_with_error, EstimatedRun, PeakEstimate, PeakEstimates,
-    RICHARDSON_2, TIP_TOLERANCE,
+    SubStepCheck, RICHARDSON_2, TIP_TOLERANCE,
 };
 pub use estimate::Estimate;
 pub use run::{
     check_sample, resolved_basis, simulate, simulate_base, windowed_rms, Envelope, Fields, RunOptions, RunStats,
-    Series, SimOutput,
+    Series, SimOutput, SubStepProbe,
 };
 pub use stepper::{initial_tip_states, trbdf2, Channel, EnergyLedger, Peak, Peaks, Sample, SquareIntegral, Stepper};
 

@@ -228,6 +228,22 @@ pub struct RunOptions<'a> {
     pub fields: bool,
     /// Called with the fraction done (0..=1) at every output sample.
     pub progress: Option<&'a mut dyn FnMut(f64)>,
+    /// The exponential scheme's sub-step probe (`crate::modal`'s probe): screened (the
+    /// default), exhaustive, or off.
+    pub sub_step_probe: SubStepProbe,
+}
+
+/// How a run of the exponential scheme looks inside its steps after each jump of the held
+/// inputs (the other schemes have no probe).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum SubStepProbe {
+    /// The coarse grid, and the fine grid near its maximum where that may raise a peak.
+    #[default]
+    Screened,
+    /// The whole fine grid for every output (no screen): to test the screen.
+    Exhaustive,
+    /// Not at all: peaks at the recorded instants only (an independent reference at a fine step).
+    Off,
 }
 
 /// Cost statistics of a run.
@@ -250,6 +266,10 @@ pub struct RunStats {
     pub setup_seconds: f64,
     /// Wall time for time stepping (s).
     pub stepping_seconds: f64,
+    /// Steps probed inside by the exponential scheme's sub-step probe (the first step after
+    /// every jump of the held inputs; 0 for the other schemes), and of those, the steps whose
+    /// probe raised a running full-rate peak.
+    pub sub_step_probes: [usize; 2],
 }
 
 /// Result of [`simulate`].
@@ -312,8 +332,11 @@ pub fn resolved_basis(cfg: &Config, disc: &Discretisation) -> Result<(StepBasis,
 /// same discrete equations either way: the results agree to round-off; `stats.basis` says
 /// which).
 pub fn simulate(cfg: &Config, opts: RunOptions<'_>) -> Result<SimOutput, SimError> {
+    let sub_step_probe = opts.sub_step_probe;
     let mut out = simulate_base(cfg, opts)?;
-    let layer = crate::layer::resolve(cfg, &mut out, |c| simulate_base(c, RunOptions::default()))?;
+    let layer = crate::layer::resolve(cfg, &mut out, |c| {
+        simulate_base(c, RunOptions { sub_step_probe, ..Default::default() })
+    })?;
     out.initial_layer = Some(layer);
     Ok(out)
 }
@@ -385,6 +408,7 @@ fn simulate_nodal(
             steps: total * cfg.steps_per_sample(),
             setup_seconds,
             stepping_seconds: start.elapsed().as_secs_f64(),
+            sub_step_probes: [0, 0],
         },
     })
 }

@@ -30,6 +30,7 @@ use faer::{Accum, Mat, Par, Side};
 use crate::SimError;
 
 use super::gemv::RowMajor;
+use super::probe::{ProbeBuilder, SubStepPeak, SubStepProbe, PROBED};
 use super::{ModalBasis, ModalState};
 
 /// Number of held inputs in the state: ḡ1 − ĝ1, ḡ2 − ĝ2, φ̄, ĝ1, ĝ2.
@@ -63,6 +64,8 @@ pub(crate) struct ExactStep {
     operator: RowMajor,
     /// Ranks of the two Gramian factors.
     ranks: [usize; 2],
+    /// The exact outputs inside a step ([`super::probe`]), from the same chain.
+    probe: SubStepProbe,
 }
 
 /// What the closed loop's coefficients are: gains k_c (N/m, N m/rad), a, b, ξ, EI/GJ, signs.
@@ -227,8 +230,25 @@ impl ExactStep {
             }
             factors.push(compress(&(&d * &hilbert_root))?);
         }
-        for _ in 0..doublings {
+        // the probe's rows: q(s) = Σ U_0j p_j/ω_j, θ(s) likewise, q̇(s) = Σ U_0j ζ_j, θ̇(s)
+        // likewise, τ1, τ2
+        let tip_row = |c: usize| {
+            let mut row = vec![0.0; len];
+            for j in 0..n {
+                row[j] = basis.tip[c][j] / omega[j];
+            }
+            row
+        };
+        let rate_row = |c: usize| {
+            let mut row = vec![0.0; len];
+            row[n..2 * n].copy_from_slice(&basis.tip[c][..n]);
+            row
+        };
+        let rows = [tip_row(0), tip_row(1), rate_row(0), rate_row(1), outputs[0].clone(), outputs[1].clone()];
+        let mut probe = ProbeBuilder::new(rows, s0, doublings);
+        for level in 0..doublings {
             identity_plus(&f, &mut e);
+            probe.level(level, &e);
             for l in factors.iter_mut() {
                 // Q ← Q + EᵀQE: L ← [L, EᵀL]
                 let k = l.ncols();
@@ -273,12 +293,36 @@ impl ExactStep {
         if !operator.is_finite() {
             return Err(SimError::Numerical("exponential scheme: e^{Ah} or a τ Gramian is not finite".into()));
         }
-        Ok(ExactStep { n, tip_states, omega, operator, ranks })
+        let probe = probe.finish(h, &e);
+        Ok(ExactStep { n, tip_states, omega, operator, ranks, probe })
     }
 
     /// Work buffers for [`ExactStep::advance`]: X and the operator's output.
     pub(crate) fn buffers(&self) -> (Vec<f64>, Vec<f64>) {
         (vec![0.0; self.operator.stride()], vec![0.0; self.operator.rows()])
+    }
+
+    /// The probe's work buffer ([`SubStepProbe::probe`]).
+    pub(crate) fn probe_buffer(&self) -> Vec<f64> {
+        self.probe.buffer()
+    }
+
+    /// Probe the step [`ExactStep::advance`] made last on `st` (its start state X_k is still in
+    /// the work buffer) against the running peaks `running` of q, θ, q̇, θ̇, τ1, τ2 ([`super::probe`];
+    /// `exhaustive`: the whole fine grid).
+    pub(crate) fn probe_last_step(
+        &self,
+        st: &ModalState,
+        running: [f64; PROBED],
+        buf: &mut [f64],
+        exhaustive: bool,
+    ) -> [Option<SubStepPeak>; PROBED] {
+        self.probe.probe(&st.exact_x, running, buf, exhaustive)
+    }
+
+    /// Points of the probe's fine grid.
+    pub(crate) fn probe_points(&self) -> usize {
+        self.probe.fine_points()
     }
 
     /// Advance (η, ζ, w) of `st` by one step with the held inputs

@@ -50,6 +50,11 @@ impl RowMajor {
         self.stride
     }
 
+    /// Row i, padded to [`RowMajor::stride`] with zeros.
+    pub(crate) fn row(&self, i: usize) -> &[f64] {
+        &self.data[i * self.stride..(i + 1) * self.stride]
+    }
+
     /// Every entry finite.
     pub(crate) fn is_finite(&self) -> bool {
         self.data.iter().all(|v| v.is_finite())

@@ -21,6 +21,7 @@ mod diagonal;
 mod drive;
 mod exact;
 mod gemv;
+mod probe;
 mod run;
 pub mod scheme;
 mod signal;
@@ -32,6 +33,7 @@ use wingcheck_model::{Config, MODAL_MAX_UNKNOWNS};
 use crate::{Discretisation, SimError};
 
 pub use drive::{drive, Recorder, Signal};
+pub use probe::{probed_signal, SubStepPeak, FINE_PER_OCTAVE, PROBED, PROBE_MARGIN};
 pub use run::simulate_modal;
 pub use scheme::{dot, ModalLoop, ModalState, StepInput};
 pub use signal::{ObserverSignal, RecordedSignal, Replay, SampleInput};

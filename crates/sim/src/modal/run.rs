@@ -5,8 +5,8 @@ use std::time::Instant;
 
 use wingcheck_model::Config;
 
-use super::{dot, drive, ModalBasis, ModalLoop, ModalState, ObserverSignal, Recorder};
-use crate::run::{Envelope, Fields, RunOptions, RunStats, Series, SimOutput};
+use super::{dot, drive, probed_signal, ModalBasis, ModalLoop, ModalState, ObserverSignal, Recorder};
+use crate::run::{Envelope, Fields, RunOptions, RunStats, Series, SimOutput, SubStepProbe};
 use crate::stepper::FullRate;
 use crate::{Sample, SimError};
 
@@ -36,11 +36,26 @@ struct Simulation<'c, 'o> {
     fields: Option<Fields>,
     full_rate: FullRate,
     progress: Option<&'o mut dyn FnMut(f64)>,
+    /// Probe the next step ([`ModalLoop::probe_last_step`]): the held inputs jumped (t = 0 and
+    /// every sample), and the probe is on.
+    probe_next: bool,
+    probe_on: bool,
+    exhaustive: bool,
+    probe_buf: Vec<f64>,
+    /// Steps probed, and probes that raised a running peak.
+    probes: usize,
+    raised: usize,
 }
 
 impl Recorder for Simulation<'_, '_> {
     fn instant(&mut self, lp: &ModalLoop<'_>, st: &ModalState, t: f64, g_hat: [f64; 2], exact: Option<[f64; 2]>) {
+        if exact.is_some() && std::mem::take(&mut self.probe_next) {
+            self.probe(lp, st, t - self.cfg.discretisation.dt);
+        }
         self.full_rate.update_step(t, &peak_values(lp, st, g_hat, signal_g(self.cfg, t)), exact);
+        if exact.is_none() {
+            self.probe_next = self.probe_on;
+        }
     }
 
     fn deferred_squares(&mut self, squares: [f64; 2]) {
@@ -60,6 +75,27 @@ impl Recorder for Simulation<'_, '_> {
             }
         }
         Ok(())
+    }
+}
+
+impl Simulation<'_, '_> {
+    /// Fold in the sub-step probe of the step from `start` (s) just made.
+    fn probe(&mut self, lp: &ModalLoop<'_>, st: &ModalState, start: f64) {
+        let indices = std::array::from_fn(probed_signal);
+        let running = self.full_rate.running(start, indices);
+        let Some(found) = lp.probe_last_step(st, running, &mut self.probe_buf, self.exhaustive) else {
+            return;
+        };
+        self.probes += 1;
+        let mut raised = false;
+        for (o, peak) in found.iter().enumerate() {
+            if let Some(p) = peak {
+                let t = start + p.s;
+                raised |= p.value.abs() > self.full_rate.running(t, [indices[o]])[0];
+                self.full_rate.update_sub_step(indices[o], t, p.value, p.miss);
+            }
+        }
+        self.raised += usize::from(raised);
     }
 }
 
@@ -89,6 +125,12 @@ pub fn simulate_modal(
         fields: opts.fields.then(|| Fields { z: basis.field_z.clone(), ..Default::default() }),
         full_rate: FullRate::new(crate::layer::layer_end(cfg)),
         progress: opts.progress,
+        probe_next: false,
+        probe_on: opts.sub_step_probe != SubStepProbe::Off,
+        exhaustive: opts.sub_step_probe == SubStepProbe::Exhaustive,
+        probe_buf: lp.probe_buffer(),
+        probes: 0,
+        raised: 0,
     };
     drive(cfg, basis, &lp, &mut st, &mut signal, &mut rec)?;
     Ok(SimOutput {
@@ -106,6 +148,7 @@ pub fn simulate_modal(
             steps: total * cfg.steps_per_sample(),
             setup_seconds,
             stepping_seconds: start.elapsed().as_secs_f64(),
+            sub_step_probes: [rec.probes, rec.raised],
         },
     })
 }

@@ -167,6 +167,39 @@ impl<'a> ModalLoop<'a> {
         Ok(ModalLoop { u: &basis.tip, stepping, eigenbasis_refused, h, alpha, law, xi, stiff, sign })
     }
 
+    /// The work buffer of [`ModalLoop::probe_last_step`] (empty where the scheme has no probe).
+    pub fn probe_buffer(&self) -> Vec<f64> {
+        match &self.stepping {
+            Stepping::Exponential(exact) => exact.probe_buffer(),
+            _ => Vec::new(),
+        }
+    }
+
+    /// The exact q(s), θ(s), q̇(s), θ̇(s), τ1, τ2 inside the step just made on `st` where they may exceed
+    /// `running` (their running peaks), for the dense exponential scheme ([`super::probe`];
+    /// `exhaustive`: the whole fine grid, no screen); `None` for the schemes without one
+    /// (TR-BDF2, the trapezoidal rule, the eigenbasis form).
+    pub fn probe_last_step(
+        &self,
+        st: &ModalState,
+        running: [f64; super::PROBED],
+        buf: &mut [f64],
+        exhaustive: bool,
+    ) -> Option<[Option<super::SubStepPeak>; super::PROBED]> {
+        match &self.stepping {
+            Stepping::Exponential(exact) => Some(exact.probe_last_step(st, running, buf, exhaustive)),
+            _ => None,
+        }
+    }
+
+    /// Points of the sub-step probe's fine grid per step (0 where the scheme has none).
+    pub fn probe_points(&self) -> usize {
+        match &self.stepping {
+            Stepping::Exponential(exact) => exact.probe_points(),
+            _ => 0,
+        }
+    }
+
     /// The scheme this loop steps with (`auto` resolved).
     pub fn scheme(&self) -> TimeScheme {
         match self.stepping {

@@ -13,12 +13,20 @@ pub struct Peak {
     pub value: f64,
     /// Its time (s).
     pub t: f64,
+    /// How far the true maximum may lie above `abs_max` where the peak was found inside an
+    /// integrator step by the exponential scheme's sub-step probe (`crate::modal`'s probe: the
+    /// fine grid's resolution, one-sided); 0 for a value at a recorded instant.
+    pub sub_step_error: f64,
 }
 
 impl Peak {
     fn update(&mut self, t: f64, v: f64) {
+        self.update_sub_step(t, v, 0.0);
+    }
+
+    fn update_sub_step(&mut self, t: f64, v: f64, sub_step_error: f64) {
         if v.abs() > self.abs_max {
-            *self = Peak { abs_max: v.abs(), value: v, t };
+            *self = Peak { abs_max: v.abs(), value: v, t, sub_step_error };
         }
     }
 }
@@ -55,6 +63,22 @@ impl Peaks {
         self.tau2.update(t, v[5]);
         self.g1_error.update(t, v[6]);
         self.g2_error.update(t, v[7]);
+    }
+
+    /// Fold in the value v of signal `index` ([`Peaks::signals`]'s order) found inside a step
+    /// at time t, with its one-sided `sub_step_error`.
+    pub(crate) fn update_sub_step(&mut self, index: usize, t: f64, v: f64, sub_step_error: f64) {
+        let peak = match index {
+            0 => &mut self.q_tip,
+            1 => &mut self.theta_tip,
+            2 => &mut self.q_tip_rate,
+            3 => &mut self.theta_tip_rate,
+            4 => &mut self.tau1,
+            5 => &mut self.tau2,
+            6 => &mut self.g1_error,
+            _ => &mut self.g2_error,
+        };
+        peak.update_sub_step(t, v, sub_step_error);
     }
 }
 
@@ -143,6 +167,12 @@ impl IntervalRange {
         self.seen = true;
     }
 
+    /// Fold in one value of signal `c` (τ1, τ2, g̃1, g̃2) without the others (a sub-step value).
+    pub fn include(&mut self, c: usize, v: f64) {
+        self.lo[c] = self.lo[c].min(v);
+        self.hi[c] = self.hi[c].max(v);
+    }
+
     /// The (min, max) of each signal since the previous call — `at` (the values at the output
     /// instant) when no instant was recorded, and always including `at` — and start the next
     /// interval.
@@ -188,6 +218,27 @@ impl FullRate {
         }
         self.squares.update_step(t, [v[4], v[5]], exact);
         self.range.update([v[4], v[5], v[6], v[7]]);
+    }
+
+    /// Fold in the value v of signal `index` ([`Peaks::signals`]'s order) found inside a step at
+    /// time t by the sub-step probe, with its one-sided error: the peaks (after the layer too,
+    /// for t past it) and, for τ, the interval's range; not the ∫τ² (the scheme's is exact).
+    pub(crate) fn update_sub_step(&mut self, index: usize, t: f64, v: f64, sub_step_error: f64) {
+        self.peaks.update_sub_step(index, t, v, sub_step_error);
+        if t > self.layer_end {
+            self.after_layer.update_sub_step(index, t, v, sub_step_error);
+        }
+        if (4..6).contains(&index) {
+            self.range.include(index - 4, v);
+        }
+    }
+
+    /// The running peaks |max| of the signals `indices` ([`Peaks::signals`]'s order) that a
+    /// value at time t competes with: after the initial layer, those after it.
+    pub(crate) fn running<const K: usize>(&self, t: f64, indices: [usize; K]) -> [f64; K] {
+        let peaks = if t > self.layer_end { &self.after_layer } else { &self.peaks };
+        let s = peaks.signals();
+        indices.map(|i| s[i].abs_max)
     }
 
     /// Full-rate (min, max) of τ1, τ2, g̃1, g̃2 since the previous call, including the values

@@ -1,0 +1,272 @@
+//! The sub-step probe of the exponential scheme: the exact tip rates and controls *inside* the
+//! first integrator step after each jump of the held inputs, where the step ends alone miss a
+//! transient shorter than the step.
+//!
+//! With strong tip damping (large b) a jump of the held estimate ĝ sets off a tip transient
+//! that peaks microseconds after the jump and has died out long before the step's end: at
+//! a = 1, b = 3500 with the explicit FTDO the θ̇(s) peak 2 µs after the jump at t = 3 ms is 11 %
+//! above every step-end value at dt = 1 ms (measured against dt = 1e-6 s). The initial layer
+//! ([`crate::layer`]) re-runs the first sample periods at finer steps; after it, the jumps come
+//! every sample period, and re-running them all is out of reach. But between two step ends the
+//! exponential scheme's loop is linear time-invariant, X(t_k + s) = E(s) X_k
+//! ([`super::exact`]), so the outputs inside the step are y_o(s) = c_oᵀE(s) X_k, exactly, for
+//! the rows c_o of q(s), θ(s), q̇(s), θ̇(s), τ1, τ2 in X (the displacement peaks move too: at
+//! a = 0.01, b = 1000, q(s) peaks 35 µs after the jump at 5 ms, 2e-8 above every step end).
+//!
+//! The grid of sub-instants comes from the scaling-and-squaring chain that builds E(h): it
+//! passes through E(δ_i) for δ_i = s₀2^i, so the rows c_oᵀE(kδ_i) follow by k − 1 more products
+//! per level. The fine grid has [`FINE_PER_OCTAVE`] points per octave of s between s₀ and h
+//! (s = kδ_i, k = 16 … 31 at level i ≥ 1, k = 1 … 31 at level 0), plus s = 0 and s = h (the
+//! recorded instants); its points at s₀2^m are the coarse grid, one point per octave. A probe
+//! evaluates the coarse grid (6 × ≈ log₂(‖A‖h) dot products of length N); for each output whose
+//! largest coarse |y_o| comes within [`PROBE_MARGIN`] of the signal's running peak, the fine
+//! grid between the coarse neighbours of that point (two octaves), and the largest fine value,
+//! with the parabola through it and its fine neighbours giving how far the true maximum may lie
+//! above it ([`SubStepPeak::miss`]). Cost: measured 1.3–1.6 × the stepping of the explicit FTDO's
+//! default run without the probe (one step per sample period, so every step is probed).
+//!
+//! Every probed value is a value the exact solution of the scheme's loop takes (from the
+//! scheme's state at the step's start), so a probe can only raise a peak toward its true
+//! value. What it does not see: a sub-step maximum away from the coarse grid's largest value
+//! (two maxima within one step, or an oscillation faster than one point per octave of s), and
+//! sub-step transients inside a sample period after the step means of ḡ and φ̄ change (steps
+//! other than the first; their input changes are O(dt·ġ), the jumps of ĝ are O(1) for the
+//! explicit FTDO).
+
+use faer::linalg::matmul::matmul;
+use faer::{Accum, Mat, Par};
+
+use super::gemv::RowMajor;
+use super::scheme::dot;
+
+/// Fine grid points per octave of s (the fine grid's relative spacing is 1/16 to 1/32).
+pub const FINE_PER_OCTAVE: usize = 16;
+
+/// The fine search runs where the coarse grid's largest |y_o| is at least (1 − this) × the
+/// signal's running peak: one point per octave misses the maximum of a peak of the shape
+/// s e^{−λs} (unit curvature in ln s) by ≤ 6 % (half gap ½ ln 2 in ln s), so 50 % leaves a wide
+/// margin for narrower ones; tests/sub_step.rs checks the screen against the whole fine grid.
+pub const PROBE_MARGIN: f64 = 0.5;
+
+/// Outputs probed, in the order of the rows: q(s), θ(s), q̇(s), θ̇(s), τ1, τ2 (the first six
+/// of [`crate::Peaks::signals`]; g̃ is the observer's, constant over a step).
+pub const PROBED: usize = 6;
+
+/// Index in [`crate::Peaks::signals`] of the probed output `o`.
+pub const fn probed_signal(o: usize) -> usize {
+    o
+}
+
+/// The largest value of one output found inside a step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SubStepPeak {
+    /// Time after the step's start (s).
+    pub s: f64,
+    /// The output's value there (units of the signal).
+    pub value: f64,
+    /// How far the true maximum of |y| near s may lie above |value| (units of the signal):
+    /// twice the rise of the parabola through the largest fine-grid value and its neighbours
+    /// (one-sided: |value| itself is attained).
+    pub miss: f64,
+}
+
+/// Builds the probe's rows level by level during the scaling-and-squaring chain.
+#[derive(Debug)]
+pub(crate) struct ProbeBuilder {
+    /// The output rows c_o as the columns of an N × 4 matrix.
+    outputs: Mat<f64>,
+    /// s₀ (s) and the number of doublings m (h = s₀2^m).
+    s0: f64,
+    doublings: u32,
+    /// (s, rows c_oᵀE(s)) in ascending s.
+    points: Vec<(f64, [Vec<f64>; PROBED])>,
+}
+
+impl ProbeBuilder {
+    /// A builder for the output rows `outputs` (each of length N) of a chain starting at `s0`
+    /// with `doublings` doublings.
+    pub(crate) fn new(outputs: [Vec<f64>; PROBED], s0: f64, doublings: u32) -> ProbeBuilder {
+        let len = outputs[0].len();
+        let m = Mat::from_fn(len, PROBED, |i, o| outputs[o][i]);
+        let zero = outputs.clone();
+        ProbeBuilder { outputs: m, s0, doublings, points: vec![(0.0, zero)] }
+    }
+
+    /// Record the points of level `level` from e = E(s₀2^level).
+    pub(crate) fn level(&mut self, level: u32, e: &Mat<f64>) {
+        let delta = self.s0 * 2f64.powi(level as i32);
+        let f = FINE_PER_OCTAVE as u64;
+        let k_lo = if level == 0 { 1 } else { f };
+        let k_hi = (2 * f - 1).min((1u64 << (self.doublings - level).min(62)) - 1);
+        if k_lo > k_hi {
+            return;
+        }
+        let len = self.outputs.nrows();
+        let mut w = self.outputs.clone();
+        let mut next = Mat::<f64>::zeros(len, PROBED);
+        for k in 1..=k_hi {
+            // wᵀ ← wᵀE
+            matmul(next.as_mut(), Accum::Replace, e.transpose(), w.as_ref(), 1.0, Par::Seq);
+            std::mem::swap(&mut w, &mut next);
+            if k >= k_lo {
+                let rows = std::array::from_fn(|o| (0..len).map(|i| w[(i, o)]).collect());
+                self.points.push((k as f64 * delta, rows));
+            }
+        }
+    }
+
+    /// The probe, with the last point s = h from e = E(h).
+    pub(crate) fn finish(mut self, h: f64, e: &Mat<f64>) -> SubStepProbe {
+        let len = self.outputs.nrows();
+        let w = e.transpose() * &self.outputs;
+        self.points.push((h, std::array::from_fn(|o| (0..len).map(|i| w[(i, o)]).collect())));
+        let times: Vec<f64> = self.points.iter().map(|p| p.0).collect();
+        let rows = |idx: &[usize]| {
+            RowMajor::new(&Mat::from_fn(idx.len() * PROBED, len, |r, j| self.points[idx[r / PROBED]].1[r % PROBED][j]))
+        };
+        let all: Vec<usize> = (0..times.len()).collect();
+        // coarse: the interior points with s/s₀ a power of two (exact in floating point), and
+        // the two ends
+        let coarse: Vec<usize> = all
+            .iter()
+            .copied()
+            .filter(|&j| {
+                let ratio = times[j] / self.s0;
+                j == 0 || j + 1 == times.len() || is_coarse(ratio)
+            })
+            .collect();
+        let fine = rows(&all);
+        let coarse_rows = rows(&coarse);
+        SubStepProbe { times, fine, coarse: coarse_rows, coarse_at: coarse }
+    }
+}
+
+/// s/s₀ = 2^m (exact for the grid's integer multiples of powers of two).
+fn is_coarse(ratio: f64) -> bool {
+    let r = ratio.round() as u64;
+    if r == 0 || (r as f64) != ratio {
+        return false;
+    }
+    let odd = r >> r.trailing_zeros();
+    odd == 1
+}
+
+/// The rows c_oᵀE(s) on the fine and coarse grids of one step h.
+#[derive(Debug)]
+pub(crate) struct SubStepProbe {
+    /// The fine grid's s (s), ascending, from 0 to h.
+    times: Vec<f64>,
+    /// Row PROBED·j + o: c_oᵀE(times[j]).
+    fine: RowMajor,
+    /// The same for the coarse points.
+    coarse: RowMajor,
+    /// Fine index of each coarse point.
+    coarse_at: Vec<usize>,
+}
+
+impl SubStepProbe {
+    /// The work buffer of [`SubStepProbe::probe`] (the coarse grid's values).
+    pub(crate) fn buffer(&self) -> Vec<f64> {
+        vec![0.0; self.coarse.rows()]
+    }
+
+    /// Points of the fine grid (with s = 0 and s = h).
+    pub(crate) fn fine_points(&self) -> usize {
+        self.times.len()
+    }
+
+    /// Probe the step starting from the state `x` (X_k of [`super::exact`], padded): for each
+    /// output o whose coarse maximum reaches (1 − [`PROBE_MARGIN`]) × `running[o]`, the largest
+    /// fine-grid value strictly inside the step, if it is not at the step's ends.
+    /// With `exhaustive`, every output's whole fine grid instead (no screen; for testing it).
+    pub(crate) fn probe(
+        &self,
+        x: &[f64],
+        running: [f64; PROBED],
+        buf: &mut [f64],
+        exhaustive: bool,
+    ) -> [Option<SubStepPeak>; PROBED] {
+        self.coarse.mul_into(x, buf);
+        let points = self.coarse_at.len();
+        std::array::from_fn(|o| {
+            if exhaustive {
+                return self.fine_maximum(x, o, 0, self.times.len() - 1);
+            }
+            let (best, top) = (0..points).map(|j| (j, buf[PROBED * j + o].abs())).fold((0, -1.0), |acc, (j, v)| {
+                if v > acc.1 {
+                    (j, v)
+                } else {
+                    acc
+                }
+            });
+            let reaches = top >= (1.0 - PROBE_MARGIN) * running[o];
+            if !reaches || top == 0.0 {
+                return None;
+            }
+            let lo = self.coarse_at[best.saturating_sub(1)];
+            let hi = self.coarse_at[(best + 1).min(points - 1)];
+            self.fine_maximum(x, o, lo, hi)
+        })
+    }
+
+    /// The largest |y_o| over the fine points lo..=hi from the state x, if not at the step's
+    /// ends, with its miss.
+    fn fine_maximum(&self, x: &[f64], o: usize, lo: usize, hi: usize) -> Option<SubStepPeak> {
+        let value = |j: usize| dot(self.fine.row(PROBED * j + o), x);
+        let (m, _) =
+            (lo..=hi).map(|j| (j, value(j).abs())).fold((lo, -1.0), |acc, (j, v)| if v > acc.1 { (j, v) } else { acc });
+        if m == 0 || m + 1 == self.times.len() {
+            return None; // the maximum is at a recorded instant
+        }
+        let (y0, y1, y2) = (value(m - 1), value(m), value(m + 1));
+        let miss = 2.0 * parabola_rise(self.times[m - 1], self.times[m], self.times[m + 1], y0, y1, y2);
+        Some(SubStepPeak { s: self.times[m], value: y1, miss })
+    }
+}
+
+/// How far the maximum of |p| for the parabola p through (s0, y0), (s1, y1), (s2, y2) lies
+/// above |y1| (|y1| ≥ |y0|, |y2|, s0 < s1 < s2); the larger neighbour difference where the
+/// parabola has no interior maximum (then the points do not resolve the peak's shape).
+fn parabola_rise(s0: f64, s1: f64, s2: f64, y0: f64, y1: f64, y2: f64) -> f64 {
+    let sign = if y1 < 0.0 { -1.0 } else { 1.0 };
+    let (z0, z1, z2) = (sign * y0, sign * y1, sign * y2);
+    let d1 = (z1 - z0) / (s1 - s0);
+    let d2 = (z2 - z1) / (s2 - s1);
+    let c = (d2 - d1) / (s2 - s0);
+    let fallback = (z1 - z0).abs().max((z1 - z2).abs());
+    let concave = c < 0.0;
+    if !concave {
+        return fallback;
+    }
+    let slope = d1 + c * (s1 - s0);
+    let at = s1 - slope / (2.0 * c);
+    if !(s0..=s2).contains(&at) {
+        return fallback;
+    }
+    (-slope * slope / (4.0 * c)).max(0.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{is_coarse, parabola_rise};
+
+    #[test]
+    fn a_parabola_s_rise_is_its_vertex() {
+        // Reference: p(s) = 1 − (s − 0.3)² has its maximum 1 at s = 0.3 (analytic); through
+        // s = 0.2, 0.35, 0.5 the largest point is p(0.35) = 0.9975, so the rise is 0.0025.
+        let p = |s: f64| 1.0 - (s - 0.3) * (s - 0.3);
+        let rise = parabola_rise(0.2, 0.35, 0.5, p(0.2), p(0.35), p(0.5));
+        assert!((rise - 0.0025).abs() < 1e-15, "{rise}");
+        // negative values: the same for −p
+        let rise = parabola_rise(0.2, 0.35, 0.5, -p(0.2), -p(0.35), -p(0.5));
+        assert!((rise - 0.0025).abs() < 1e-15, "{rise}");
+    }
+
+    #[test]
+    fn the_coarse_grid_is_one_point_per_octave() {
+        // Reference: k·2^i with k ∈ {16 … 31} is coarse for k = 16 only (by definition)
+        let coarse: Vec<u64> = (16..32).filter(|&k| is_coarse((k * 8) as f64)).collect();
+        assert_eq!(coarse, vec![16]);
+        assert!(is_coarse(1.0) && !is_coarse(3.0) && !is_coarse(5.0) && !is_coarse(0.5));
+    }
+}
