@@ -90,6 +90,12 @@ fn json_summary_reports_tip_values_at_requested_times() {
     assert_eq!(v["tip"]["t"], serde_json::json!([0.5, 1.0]));
     assert_eq!(v["tip"]["q"].as_array().unwrap().len(), 2);
     assert!(v["run_seconds"].as_f64().unwrap() > 0.0);
+    // a horizon shorter than every default time: the summary reports its end, not nothing
+    let o = wingcheck(&["simulate", "--json", SHORT[0], SHORT[1]]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let end = v["tip"]["t"].as_array().unwrap();
+    assert_eq!(end.len(), 1, "{end:?}");
+    assert!(end[0].as_f64().unwrap() < 5.0, "{end:?}");
 }
 
 #[test]

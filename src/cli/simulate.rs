@@ -42,7 +42,7 @@ pub struct SimulateArgs {
     #[arg(long)]
     json: bool,
     /// Times at which the summary reports the tip values (comma-separated, s; default 5,10,20,
-    /// those beyond the horizon dropped).
+    /// those beyond the horizon dropped, or the horizon's end when none is left).
     #[arg(long, value_delimiter = ',')]
     sample_times: Option<Vec<f64>>,
 }
@@ -67,7 +67,14 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
     let cfg = super::ConfigArgs { config: a.config.config.clone(), set }.load()?;
     let sample_times: Vec<f64> = match &a.sample_times {
         Some(v) => v.clone(),
-        None => [5.0, 10.0, 20.0].into_iter().filter(|&t| t <= cfg.horizon.t_end).collect(),
+        None => {
+            let within: Vec<f64> = [5.0, 10.0, 20.0].into_iter().filter(|&t| t <= cfg.horizon.t_end).collect();
+            if within.is_empty() {
+                vec![cfg.horizon.t_end]
+            } else {
+                within
+            }
+        }
     };
     for &t in &sample_times {
         if !(t.is_finite() && (0.0..=cfg.horizon.t_end).contains(&t)) {

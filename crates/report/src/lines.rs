@@ -101,9 +101,14 @@ fn tau_figure(r: &RunView, ch: u8, f: &Frame, chart: LineChart, twin: u32) -> Fi
     let n = r.first + u32::from(ch - 1);
     let peak = envelope_abs_max(envelope_of(r.out, usize::from(ch - 1)));
     let u = unit(ch);
+    let inside = if r.out.stats.sub_step_probes[0] > 0 {
+        ", and inside the first step after each jump (the exponential scheme's sub-step probe)"
+    } else {
+        ""
+    };
     let caption = Caption::default()
         .t(format!(
-            "Control command τ{ch}(t) {} (paper Figure {n}). Shaded: the full-rate range of τ{ch} over each output interval (every integrator step, both sides of every sample's jump); line: the output samples, which alias a command that chatters at the observer's sample rate. Full-rate max |τ{ch}| over [0, {}] s: ",
+            "Control command τ{ch}(t) {} (paper Figure {n}). Shaded: the full-rate range of τ{ch} over each output interval (every integrator step, both sides of every sample's jump{inside}); line: the output samples, which alias a command that chatters at the observer's sample rate. Full-rate max |τ{ch}| over [0, {}] s: ",
             r.desc,
             tick(f.t_end)
         ))

@@ -30,7 +30,7 @@ use faer::{Accum, Mat, Par, Side};
 use crate::SimError;
 
 use super::gemv::RowMajor;
-use super::probe::{ProbeBuilder, SubStepPeak, SubStepProbe, PROBED};
+use super::probe::{ProbeBuilder, SubStepPeak, SubStepProbe, TauRows, PROBED};
 use super::{ModalBasis, ModalState};
 
 /// Number of held inputs in the state: ḡ1 − ĝ1, ḡ2 − ĝ2, φ̄, ĝ1, ĝ2.
@@ -231,7 +231,8 @@ impl ExactStep {
             factors.push(compress(&(&d * &hilbert_root))?);
         }
         // the probe's rows: q(s) = Σ U_0j p_j/ω_j, θ(s) likewise, q̇(s) = Σ U_0j ζ_j, θ̇(s)
-        // likewise, τ1, τ2
+        // likewise; τ_c = −k_c(a x_c + b v_c) − ĝ_c from them (the output rows c_c are exactly
+        // this combination, [`closed_loop`])
         let tip_row = |c: usize| {
             let mut row = vec![0.0; len];
             for j in 0..n {
@@ -244,8 +245,13 @@ impl ExactStep {
             row[n..2 * n].copy_from_slice(&basis.tip[c][..n]);
             row
         };
-        let rows = [tip_row(0), tip_row(1), rate_row(0), rate_row(1), outputs[0].clone(), outputs[1].clone()];
-        let mut probe = ProbeBuilder::new(rows, s0, doublings);
+        let rows = [tip_row(0), tip_row(1), rate_row(0), rate_row(1)];
+        let tau = TauRows {
+            gain_x: [0, 1].map(|c| -co.gain[c] * co.a),
+            gain_v: [0, 1].map(|c| -co.gain[c] * co.b),
+            g_hat_at: [0, 1].map(|c| 2 * n + tip_states + 3 + c),
+        };
+        let mut probe = ProbeBuilder::new(rows, tau, s0, doublings);
         for level in 0..doublings {
             identity_plus(&f, &mut e);
             probe.level(level, &e);

@@ -14,21 +14,25 @@
 //! a = 0.01, b = 1000, q(s) peaks 35 µs after the jump at 5 ms, 2e-8 above every step end).
 //!
 //! The grid of sub-instants comes from the scaling-and-squaring chain that builds E(h): it
-//! passes through E(δ_i) for δ_i = s₀2^i, so the rows c_oᵀE(kδ_i) follow by k − 1 more products
-//! per level. The fine grid has [`FINE_PER_OCTAVE`] points per octave of s between s₀ and h
-//! (s = kδ_i, k = 16 … 31 at level i ≥ 1, k = 1 … 31 at level 0), plus s = 0 and s = h (the
-//! recorded instants); its points at s₀2^m are the coarse grid, one point per octave. A probe
-//! evaluates the coarse grid (6 × ≈ log₂(‖A‖h) dot products of length N); for each output whose
-//! largest coarse |y_o| comes within [`PROBE_MARGIN`] of the signal's running peak, the fine
-//! grid between the coarse neighbours of that point (two octaves), and the largest fine value,
-//! with the parabola through it and its fine neighbours giving how far the true maximum may lie
-//! above it ([`SubStepPeak::miss`]). Cost: measured 1.3–1.6 × the stepping of the explicit FTDO's
-//! default run without the probe (one step per sample period, so every step is probed).
+//! passes through E(δ_i) for δ_i = s₀2^i, so the rows c_oᵀE(kδ_i) follow by one product per
+//! point (level i's points stepped by E(δ_i) from c_oᵀE(Fδ_i), which the chain reaches log₂F
+//! levels later). The fine grid has [`FINE_PER_OCTAVE`] = F points per octave of s between s₀
+//! and h (s = kδ_i, k = 8 … 15 at level i ≥ 1, k = 1 … 15 at level 0), plus s = 0 and s = h
+//! (the recorded instants); its points at s₀4^m are the coarse grid, one point per two octaves.
+//! Rows are stored for q, θ, q̇, θ̇; τ_c = −k_c(a x_c + b v_c) − ĝ_c is formed from them. A probe
+//! evaluates the coarse grid (4 × ≈ ½ log₂(‖A‖h) dot products of length N); for each output
+//! whose largest coarse |y_o| may lie below the signal's running peak by less than the coarse
+//! grid can miss ([`PROBE_MARGIN`]), it climbs the fine grid from that point to a local maximum
+//! (within the coarse neighbours), and the parabola through it and its fine neighbours gives
+//! how far the true maximum may lie above it ([`SubStepPeak::miss`]). Cost: measured 1.4 × the
+//! stepping of the explicit FTDO's default run without the probe, 1.3 × the whole run (one
+//! step per sample period, so every step is probed).
 //!
 //! Every probed value is a value the exact solution of the scheme's loop takes (from the
 //! scheme's state at the step's start), so a probe can only raise a peak toward its true
 //! value. What it does not see: a sub-step maximum away from the coarse grid's largest value
-//! (two maxima within one step, or an oscillation faster than one point per octave of s), and
+//! (two maxima within one step, or an oscillation faster than one point per two octaves of s),
+//! and
 //! sub-step transients inside a sample period after the step means of ḡ and φ̄ change (steps
 //! other than the first; their input changes are O(dt·ġ), the jumps of ĝ are O(1) for the
 //! explicit FTDO).
@@ -39,18 +43,39 @@ use faer::{Accum, Mat, Par};
 use super::gemv::RowMajor;
 use super::scheme::dot;
 
-/// Fine grid points per octave of s (the fine grid's relative spacing is 1/16 to 1/32).
-pub const FINE_PER_OCTAVE: usize = 16;
+/// Fine grid points per octave of s (the fine grid's relative spacing is 1/8 to 1/16); a power
+/// of two.
+pub const FINE_PER_OCTAVE: usize = 8;
 
-/// The fine search runs where the coarse grid's largest |y_o| is at least (1 − this) × the
-/// signal's running peak: one point per octave misses the maximum of a peak of the shape
-/// s e^{−λs} (unit curvature in ln s) by ≤ 6 % (half gap ½ ln 2 in ln s), so 50 % leaves a wide
-/// margin for narrower ones; tests/sub_step.rs checks the screen against the whole fine grid.
-pub const PROBE_MARGIN: f64 = 0.5;
+/// The fine search runs where the coarse grid's largest |y_o| plus this × its range over the
+/// step's coarse points (largest − smallest |y_o|) reaches the signal's running peak: one point
+/// per two octaves misses the maximum of a peak of the shape s e^{−λs} (unit curvature in ln s)
+/// by ≤ 21 % of its height (half gap ln 2 in ln s), and the range is at least the rest of that
+/// height, so the whole range leaves a margin for narrower peaks; tests/sub_step.rs checks the
+/// screen and the climb against the whole fine grid. A slowly varying output (q, θ over one
+/// step) has a small range, so its fine search runs only where it is within that range of its
+/// peak.
+pub const PROBE_MARGIN: f64 = 1.0;
 
 /// Outputs probed, in the order of the rows: q(s), θ(s), q̇(s), θ̇(s), τ1, τ2 (the first six
 /// of [`crate::Peaks::signals`]; g̃ is the observer's, constant over a step).
 pub const PROBED: usize = 6;
+
+/// Rows stored per grid point: q(s), θ(s), q̇(s), θ̇(s); τ_c = −k_c(a x_c + b v_c) − ĝ_c is
+/// formed from them ([`TauRows`]), exactly as the control law (15) forms it.
+const ROWS: usize = 4;
+
+/// τ_c(s) = gain_x[c]·x_c(s) + gain_v[c]·v_c(s) − X[g_hat_at[c]]: the control law (15) on the
+/// probed tip values, with ĝ_c held in the state X.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct TauRows {
+    /// −k_c a (N/m, N m/rad).
+    pub(crate) gain_x: [f64; 2],
+    /// −k_c b (N s/m, N m s/rad).
+    pub(crate) gain_v: [f64; 2],
+    /// Index of ĝ_c in X.
+    pub(crate) g_hat_at: [usize; 2],
+}
 
 /// Index in [`crate::Peaks::signals`] of the probed output `o`.
 pub const fn probed_signal(o: usize) -> usize {
@@ -79,40 +104,72 @@ pub(crate) struct ProbeBuilder {
     s0: f64,
     doublings: u32,
     /// (s, rows c_oᵀE(s)) in ascending s.
-    points: Vec<(f64, [Vec<f64>; PROBED])>,
+    points: Vec<(f64, [Vec<f64>; ROWS])>,
+    tau: TauRows,
+    /// The chain's last log₂F + 1 level matrices E(s₀2^ℓ), oldest first.
+    recent: std::collections::VecDeque<Mat<f64>>,
 }
 
 impl ProbeBuilder {
     /// A builder for the output rows `outputs` (each of length N) of a chain starting at `s0`
     /// with `doublings` doublings.
-    pub(crate) fn new(outputs: [Vec<f64>; PROBED], s0: f64, doublings: u32) -> ProbeBuilder {
+    /// The rows are those of q, θ, q̇, θ̇; `tau` forms τ1, τ2 from them.
+    pub(crate) fn new(outputs: [Vec<f64>; ROWS], tau: TauRows, s0: f64, doublings: u32) -> ProbeBuilder {
         let len = outputs[0].len();
-        let m = Mat::from_fn(len, PROBED, |i, o| outputs[o][i]);
+        let m = Mat::from_fn(len, ROWS, |i, o| outputs[o][i]);
         let zero = outputs.clone();
-        ProbeBuilder { outputs: m, s0, doublings, points: vec![(0.0, zero)] }
+        ProbeBuilder { outputs: m, s0, doublings, points: vec![(0.0, zero)], tau, recent: Default::default() }
     }
 
-    /// Record the points of level `level` from e = E(s₀2^level).
+    /// Record the points the chain's level `level` completes, from e = E(s₀2^level): at level
+    /// 0 the points k s₀, k = 1 … 2F − 1 (F = [`FINE_PER_OCTAVE`]); at level ℓ ≥ log₂F the
+    /// points kδ_i of level i = ℓ − log₂F, k = F … 2F − 1, starting from c_oᵀE(Fδ_i) = c_oᵀe and
+    /// stepping by E(δ_i), kept from log₂F levels earlier (one product per point).
     pub(crate) fn level(&mut self, level: u32, e: &Mat<f64>) {
-        let delta = self.s0 * 2f64.powi(level as i32);
         let f = FINE_PER_OCTAVE as u64;
-        let k_lo = if level == 0 { 1 } else { f };
-        let k_hi = (2 * f - 1).min((1u64 << (self.doublings - level).min(62)) - 1);
-        if k_lo > k_hi {
-            return;
+        let lag = FINE_PER_OCTAVE.trailing_zeros();
+        self.recent.push_back(e.clone());
+        if self.recent.len() > lag as usize + 1 {
+            self.recent.pop_front();
         }
         let len = self.outputs.nrows();
-        let mut w = self.outputs.clone();
-        let mut next = Mat::<f64>::zeros(len, PROBED);
-        for k in 1..=k_hi {
-            // wᵀ ← wᵀE
-            matmul(next.as_mut(), Accum::Replace, e.transpose(), w.as_ref(), 1.0, Par::Seq);
-            std::mem::swap(&mut w, &mut next);
-            if k >= k_lo {
-                let rows = std::array::from_fn(|o| (0..len).map(|i| w[(i, o)]).collect());
-                self.points.push((k as f64 * delta, rows));
+        let mut next = Mat::<f64>::zeros(len, ROWS);
+        let doublings = self.doublings;
+        let k_hi = move |i: u32| (2 * f - 1).min((1u64 << (doublings - i).min(62)) - 1);
+        if level == 0 {
+            let mut w = self.outputs.clone();
+            for k in 1..=k_hi(0) {
+                // wᵀ ← wᵀE(s₀)
+                matmul(next.as_mut(), Accum::Replace, e.transpose(), w.as_ref(), 1.0, Par::Seq);
+                std::mem::swap(&mut w, &mut next);
+                self.push(k as f64 * self.s0, &w);
             }
+            return;
         }
+        if level < lag + 1 {
+            return;
+        }
+        let i = level - lag;
+        if f > k_hi(i) {
+            return;
+        }
+        let delta = self.s0 * 2f64.powi(i as i32);
+        let mut w = Mat::<f64>::zeros(len, ROWS);
+        matmul(w.as_mut(), Accum::Replace, e.transpose(), self.outputs.as_ref(), 1.0, Par::Seq);
+        self.push(f as f64 * delta, &w);
+        let step = &self.recent[0];
+        for k in f + 1..=k_hi(i) {
+            matmul(next.as_mut(), Accum::Replace, step.transpose(), w.as_ref(), 1.0, Par::Seq);
+            std::mem::swap(&mut w, &mut next);
+            let rows = std::array::from_fn(|o| (0..len).map(|r| w[(r, o)]).collect());
+            self.points.push((k as f64 * delta, rows));
+        }
+    }
+
+    /// Record the point s with the rows in the columns of w.
+    fn push(&mut self, s: f64, w: &Mat<f64>) {
+        let len = w.nrows();
+        self.points.push((s, std::array::from_fn(|o| (0..len).map(|r| w[(r, o)]).collect())));
     }
 
     /// The probe, with the last point s = h from e = E(h).
@@ -122,7 +179,7 @@ impl ProbeBuilder {
         self.points.push((h, std::array::from_fn(|o| (0..len).map(|i| w[(i, o)]).collect())));
         let times: Vec<f64> = self.points.iter().map(|p| p.0).collect();
         let rows = |idx: &[usize]| {
-            RowMajor::new(&Mat::from_fn(idx.len() * PROBED, len, |r, j| self.points[idx[r / PROBED]].1[r % PROBED][j]))
+            RowMajor::new(&Mat::from_fn(idx.len() * ROWS, len, |r, j| self.points[idx[r / ROWS]].1[r % ROWS][j]))
         };
         let all: Vec<usize> = (0..times.len()).collect();
         // coarse: the interior points with s/s₀ a power of two (exact in floating point), and
@@ -137,18 +194,18 @@ impl ProbeBuilder {
             .collect();
         let fine = rows(&all);
         let coarse_rows = rows(&coarse);
-        SubStepProbe { times, fine, coarse: coarse_rows, coarse_at: coarse }
+        SubStepProbe { times, fine, coarse: coarse_rows, coarse_at: coarse, tau: self.tau }
     }
 }
 
-/// s/s₀ = 2^m (exact for the grid's integer multiples of powers of two).
+/// s/s₀ = 4^m (exact for the grid's integer multiples of powers of two).
 fn is_coarse(ratio: f64) -> bool {
     let r = ratio.round() as u64;
     if r == 0 || (r as f64) != ratio {
         return false;
     }
     let odd = r >> r.trailing_zeros();
-    odd == 1
+    odd == 1 && r.trailing_zeros() % 2 == 0
 }
 
 /// The rows c_oᵀE(s) on the fine and coarse grids of one step h.
@@ -156,12 +213,13 @@ fn is_coarse(ratio: f64) -> bool {
 pub(crate) struct SubStepProbe {
     /// The fine grid's s (s), ascending, from 0 to h.
     times: Vec<f64>,
-    /// Row PROBED·j + o: c_oᵀE(times[j]).
+    /// Row 4j + o: c_oᵀE(times[j]) for q, θ, q̇, θ̇.
     fine: RowMajor,
     /// The same for the coarse points.
     coarse: RowMajor,
     /// Fine index of each coarse point.
     coarse_at: Vec<usize>,
+    tau: TauRows,
 }
 
 impl SubStepProbe {
@@ -176,7 +234,7 @@ impl SubStepProbe {
     }
 
     /// Probe the step starting from the state `x` (X_k of [`super::exact`], padded): for each
-    /// output o whose coarse maximum reaches (1 − [`PROBE_MARGIN`]) × `running[o]`, the largest
+    /// output o whose coarse maximum may reach `running[o]` ([`PROBE_MARGIN`]), the largest
     /// fine-grid value strictly inside the step, if it is not at the step's ends.
     /// With `exhaustive`, every output's whole fine grid instead (no screen; for testing it).
     pub(crate) fn probe(
@@ -192,32 +250,80 @@ impl SubStepProbe {
             if exhaustive {
                 return self.fine_maximum(x, o, 0, self.times.len() - 1);
             }
-            let (best, top) = (0..points).map(|j| (j, buf[PROBED * j + o].abs())).fold((0, -1.0), |acc, (j, v)| {
-                if v > acc.1 {
-                    (j, v)
-                } else {
-                    acc
-                }
-            });
-            let reaches = top >= (1.0 - PROBE_MARGIN) * running[o];
+            let coarse = |j: usize| self.value(|r| buf[ROWS * j + r], x, o);
+            let (best, top) =
+                (0..points).map(|j| (j, coarse(j).abs())).fold(
+                    (0, -1.0),
+                    |acc, (j, v)| {
+                        if v > acc.1 {
+                            (j, v)
+                        } else {
+                            acc
+                        }
+                    },
+                );
+            let bottom = (0..points).map(|j| coarse(j).abs()).fold(f64::INFINITY, f64::min);
+            let reaches = top + PROBE_MARGIN * (top - bottom) >= running[o];
             if !reaches || top == 0.0 {
                 return None;
             }
             let lo = self.coarse_at[best.saturating_sub(1)];
             let hi = self.coarse_at[(best + 1).min(points - 1)];
-            self.fine_maximum(x, o, lo, hi)
+            self.fine_climb(x, o, lo, hi, self.coarse_at[best])
         })
+    }
+
+    /// Output o from the stored rows' values `row(r)` (r = 0 … 3) and the state x.
+    #[inline]
+    fn value(&self, row: impl Fn(usize) -> f64, x: &[f64], o: usize) -> f64 {
+        if o < ROWS {
+            row(o)
+        } else {
+            let (c, t) = (o - ROWS, &self.tau);
+            t.gain_x[c] * row(c) + t.gain_v[c] * row(2 + c) - x[t.g_hat_at[c]]
+        }
+    }
+
+    /// A local maximum of |y_o| on the fine points lo..=hi, climbing from `start` (the coarse
+    /// grid's largest) toward larger values, if not at the step's ends, with its miss.
+    fn fine_climb(&self, x: &[f64], o: usize, lo: usize, hi: usize, start: usize) -> Option<SubStepPeak> {
+        let value = |j: usize| self.value(|r| dot(self.fine.row(ROWS * j + r), x), x, o).abs();
+        let (mut m, mut top) = (start, value(start));
+        for dir in [1isize, -1] {
+            let mut moved = false;
+            loop {
+                let next = m as isize + dir;
+                if next < lo as isize || next > hi as isize {
+                    break;
+                }
+                let v = value(next as usize);
+                if v <= top {
+                    break;
+                }
+                (m, top, moved) = (next as usize, v, true);
+            }
+            if moved {
+                break;
+            }
+        }
+        self.peak_at(x, o, m)
     }
 
     /// The largest |y_o| over the fine points lo..=hi from the state x, if not at the step's
     /// ends, with its miss.
     fn fine_maximum(&self, x: &[f64], o: usize, lo: usize, hi: usize) -> Option<SubStepPeak> {
-        let value = |j: usize| dot(self.fine.row(PROBED * j + o), x);
+        let value = |j: usize| self.value(|r| dot(self.fine.row(ROWS * j + r), x), x, o);
         let (m, _) =
             (lo..=hi).map(|j| (j, value(j).abs())).fold((lo, -1.0), |acc, (j, v)| if v > acc.1 { (j, v) } else { acc });
+        self.peak_at(x, o, m)
+    }
+
+    /// The value of output o at fine point m with its miss, if m is inside the step.
+    fn peak_at(&self, x: &[f64], o: usize, m: usize) -> Option<SubStepPeak> {
         if m == 0 || m + 1 == self.times.len() {
             return None; // the maximum is at a recorded instant
         }
+        let value = |j: usize| self.value(|r| dot(self.fine.row(ROWS * j + r), x), x, o);
         let (y0, y1, y2) = (value(m - 1), value(m), value(m + 1));
         let miss = 2.0 * parabola_rise(self.times[m - 1], self.times[m], self.times[m + 1], y0, y1, y2);
         Some(SubStepPeak { s: self.times[m], value: y1, miss })
@@ -263,10 +369,10 @@ mod tests {
     }
 
     #[test]
-    fn the_coarse_grid_is_one_point_per_octave() {
-        // Reference: k·2^i with k ∈ {16 … 31} is coarse for k = 16 only (by definition)
-        let coarse: Vec<u64> = (16..32).filter(|&k| is_coarse((k * 8) as f64)).collect();
-        assert_eq!(coarse, vec![16]);
-        assert!(is_coarse(1.0) && !is_coarse(3.0) && !is_coarse(5.0) && !is_coarse(0.5));
+    fn the_coarse_grid_is_one_point_per_two_octaves() {
+        // Reference: s/s₀ = k·2^i is coarse for the powers of four only (by definition)
+        let coarse: Vec<u64> = (1..=64).filter(|&k| is_coarse(k as f64)).collect();
+        assert_eq!(coarse, vec![1, 4, 16, 64]);
+        assert!(!is_coarse(0.5) && !is_coarse(2.0) && !is_coarse(12.0));
     }
 }

@@ -126,7 +126,7 @@ pub fn simulate_modal(
         full_rate: FullRate::new(crate::layer::layer_end(cfg)),
         progress: opts.progress,
         probe_next: false,
-        probe_on: opts.sub_step_probe != SubStepProbe::Off,
+        probe_on: opts.sub_step_probe != SubStepProbe::Off && lp.probe_points() > 0,
         exhaustive: opts.sub_step_probe == SubStepProbe::Exhaustive,
         probe_buf: lp.probe_buffer(),
         probes: 0,
