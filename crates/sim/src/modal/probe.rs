@@ -32,10 +32,9 @@
 //! scheme's state at the step's start), so a probe can only raise a peak toward its true
 //! value. What it does not see: a sub-step maximum away from the coarse grid's largest value
 //! (two maxima within one step, or an oscillation faster than one point per two octaves of s),
-//! and
-//! sub-step transients inside a sample period after the step means of ḡ and φ̄ change (steps
-//! other than the first; their input changes are O(dt·ġ), the jumps of ĝ are O(1) for the
-//! explicit FTDO).
+//! and sub-step transients inside a sample period after the step means of ḡ and φ̄ change
+//! (steps other than the first; their input changes are O(dt·ġ), the jumps of ĝ are O(1) for
+//! the explicit FTDO).
 
 use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, Par};
