@@ -6,7 +6,7 @@ mod common;
 
 use common::paper_with;
 use wingcheck_model::Config;
-use wingcheck_sim::{layer, simulate, simulate_with_error, RunOptions, SimOutput};
+use wingcheck_sim::{layer, simulate, RunOptions, SimOutput};
 
 /// Large-b configurations (b/a from 3.5e3 to 1e5, FE and FD), over 0.2 s: the layer is the
 /// first 2 ms; the rest of the horizon only has to exist.
@@ -75,22 +75,6 @@ fn estimated_peaks_cover_a_finer_grid_and_step() {
     // whose grid sequence does not converge says so (grid_converged = false) rather than
     // printing a Richardson bar.
     for (name, cfg) in configs() {
-        let est = simulate_with_error(&cfg, RunOptions::default()).unwrap();
-        let mut fine = wingcheck_model::work::refined_in_space(&cfg);
-        fine.discretisation.dt = 1e-5;
-        let reference = simulate(&fine, RunOptions::default()).unwrap();
-        let p = &est.peaks;
-        let printed = [p.q_tip, p.theta_tip, p.q_tip_rate, p.theta_tip_rate, p.tau1, p.tau2, p.g1_error, p.g2_error];
-        for (i, (e, r)) in printed.iter().zip(reference.peaks.signals()).enumerate() {
-            let diff = (e.abs_max.value - r.abs_max).abs();
-            assert!(
-                diff <= e.abs_max.error,
-                "{name}, signal {i}: {} ± {} vs finer {} (grid converged: {})",
-                e.abs_max.value,
-                e.abs_max.error,
-                r.abs_max,
-                e.grid_converged
-            );
-        }
+        common::assert_estimated_peaks_cover_a_finer_run(name, &cfg);
     }
 }

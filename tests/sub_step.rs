@@ -134,23 +134,7 @@ fn estimated_peaks_cover_a_finer_grid_and_step_after_later_jumps() {
     // Every full-rate peak with its printed error (grid, dt, layer, sub-step, round-off)
     // contains the value of a run on the doubled grid at dt = 1e-5 s.
     for (name, cfg) in configs() {
-        let est = simulate_with_error(&cfg, RunOptions::default()).unwrap();
-        let mut fine = wingcheck_model::work::refined_in_space(&cfg);
-        fine.discretisation.dt = 1e-5;
-        let reference = simulate(&fine, RunOptions::default()).unwrap();
-        let p = &est.peaks;
-        let printed = [p.q_tip, p.theta_tip, p.q_tip_rate, p.theta_tip_rate, p.tau1, p.tau2, p.g1_error, p.g2_error];
-        for (i, (e, r)) in printed.iter().zip(reference.peaks.signals()).enumerate() {
-            let diff = (e.abs_max.value - r.abs_max).abs();
-            assert!(
-                diff <= e.abs_max.error,
-                "{name}, signal {i}: {} ± {} vs finer {} (grid converged: {})",
-                e.abs_max.value,
-                e.abs_max.error,
-                r.abs_max,
-                e.grid_converged
-            );
-        }
+        common::assert_estimated_peaks_cover_a_finer_run(name, &cfg);
     }
 }
 

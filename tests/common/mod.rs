@@ -13,6 +13,29 @@ pub fn paper_with(sets: &[&str]) -> Config {
     apply_overrides(&Config::paper(), &sets).expect("valid overrides")
 }
 
+/// Every full-rate peak of `simulate_with_error(cfg)` with its printed error contains the value
+/// of a run on the doubled grid at dt = 1e-5 s (with its own initial layer and sub-step probe):
+/// the estimate covers h and dt. A peak whose grid sequence does not converge says so
+/// (grid_converged) rather than printing a Richardson bar.
+pub fn assert_estimated_peaks_cover_a_finer_run(name: &str, cfg: &Config) {
+    use wingcheck_sim::{simulate, simulate_with_error, RunOptions};
+    let est = simulate_with_error(cfg, RunOptions::default()).unwrap();
+    let mut fine = wingcheck_model::work::refined_in_space(cfg);
+    fine.discretisation.dt = 1e-5;
+    let reference = simulate(&fine, RunOptions::default()).unwrap();
+    for (i, (e, r)) in est.peaks.signals().iter().zip(reference.peaks.signals()).enumerate() {
+        let diff = (e.abs_max.value - r.abs_max).abs();
+        assert!(
+            diff <= e.abs_max.error,
+            "{name}, signal {i}: {} ± {} vs finer {} (grid converged: {})",
+            e.abs_max.value,
+            e.abs_max.error,
+            r.abs_max,
+            e.grid_converged
+        );
+    }
+}
+
 /// Observed convergence order from errors at successively halved grids: log2(e_k / e_{k+1}).
 pub fn orders(errors: &[f64]) -> Vec<f64> {
     errors.windows(2).map(|w| (w[0] / w[1]).log2()).collect()

@@ -137,6 +137,28 @@ fn refined_time(cfg: &Config) -> Config {
     wingcheck_model::work::refined_in_time(cfg)
 }
 
+impl PeakEstimates {
+    /// The eight estimates in the order of [`Peaks::signals`]: q, θ, q̇, θ̇, τ1, τ2, g̃1, g̃2.
+    pub fn signals(&self) -> [PeakEstimate; 8] {
+        [
+            self.q_tip,
+            self.theta_tip,
+            self.q_tip_rate,
+            self.theta_tip_rate,
+            self.tau1,
+            self.tau2,
+            self.g1_error,
+            self.g2_error,
+        ]
+    }
+
+    /// The same, to change.
+    fn signals_mut(&mut self) -> [&mut PeakEstimate; 8] {
+        let PeakEstimates { q_tip, theta_tip, q_tip_rate, theta_tip_rate, tau1, tau2, g1_error, g2_error } = self;
+        [q_tip, theta_tip, q_tip_rate, theta_tip_rate, tau1, tau2, g1_error, g2_error]
+    }
+}
+
 /// Each peak's error: Richardson in h and dt (the refined runs resolve their own initial
 /// layers; inside the layer the grid sequence is checked on 4N, see
 /// [`PeakEstimate::grid_converged`]), plus, for a peak inside the initial layer, the layer's own
@@ -267,14 +289,13 @@ impl EstimatedRun {
         };
         let layer_end = self.output.initial_layer.map_or(0.0, |l| l.t_end);
         let base = self.output.peaks.signals();
-        let p = &mut self.peaks;
-        let estimates =
-            [&mut p.q_tip, &mut p.theta_tip, &mut p.q_tip_rate, &mut p.theta_tip_rate, &mut p.tau1, &mut p.tau2];
         let mut raised = 0;
-        for (i, e) in estimates.into_iter().enumerate() {
-            let t = twin.peaks.signals()[i];
+        // the probe sees q, θ, q̇, θ̇, τ1, τ2 (the first six); g̃ is the observer's
+        let probed =
+            self.peaks.signals_mut().into_iter().zip(twin.peaks.signals()).zip(base).take(crate::modal::PROBED);
+        for ((e, t), b) in probed {
             let inside_a_step = t.sub_step_error > 0.0 && t.t > layer_end;
-            let excess = t.abs_max + t.sub_step_error - base[i].abs_max;
+            let excess = t.abs_max + t.sub_step_error - b.abs_max;
             if inside_a_step && excess > 0.0 {
                 e.abs_max.error += excess;
                 raised += 1;

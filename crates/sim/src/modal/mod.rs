@@ -33,7 +33,7 @@ use wingcheck_model::{Config, MODAL_MAX_UNKNOWNS};
 use crate::{Discretisation, SimError};
 
 pub use drive::{drive, Recorder, Signal};
-pub use probe::{probed_signal, SubStepPeak, FINE_PER_OCTAVE, PROBED, PROBE_MARGIN};
+pub use probe::{SubStepPeak, FINE_PER_OCTAVE, PROBED, PROBE_MARGIN};
 pub use run::simulate_modal;
 pub use scheme::{dot, ModalLoop, ModalState, StepInput};
 pub use signal::{ObserverSignal, RecordedSignal, Replay, SampleInput};

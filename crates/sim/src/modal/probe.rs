@@ -76,11 +76,6 @@ pub(crate) struct TauRows {
     pub(crate) g_hat_at: [usize; 2],
 }
 
-/// Index in [`crate::Peaks::signals`] of the probed output `o`.
-pub const fn probed_signal(o: usize) -> usize {
-    o
-}
-
 /// The largest value of one output found inside a step.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SubStepPeak {
@@ -141,7 +136,7 @@ impl ProbeBuilder {
                 // wᵀ ← wᵀE(s₀)
                 matmul(next.as_mut(), Accum::Replace, e.transpose(), w.as_ref(), 1.0, Par::Seq);
                 std::mem::swap(&mut w, &mut next);
-                self.push(k as f64 * self.s0, &w);
+                self.points.push((k as f64 * self.s0, columns(&w)));
             }
             return;
         }
@@ -155,33 +150,25 @@ impl ProbeBuilder {
         let delta = self.s0 * 2f64.powi(i as i32);
         let mut w = Mat::<f64>::zeros(len, ROWS);
         matmul(w.as_mut(), Accum::Replace, e.transpose(), self.outputs.as_ref(), 1.0, Par::Seq);
-        self.push(f as f64 * delta, &w);
+        self.points.push((f as f64 * delta, columns(&w)));
         let step = &self.recent[0];
         for k in f + 1..=k_hi(i) {
             matmul(next.as_mut(), Accum::Replace, step.transpose(), w.as_ref(), 1.0, Par::Seq);
             std::mem::swap(&mut w, &mut next);
-            let rows = std::array::from_fn(|o| (0..len).map(|r| w[(r, o)]).collect());
-            self.points.push((k as f64 * delta, rows));
+            self.points.push((k as f64 * delta, columns(&w)));
         }
-    }
-
-    /// Record the point s with the rows in the columns of w.
-    fn push(&mut self, s: f64, w: &Mat<f64>) {
-        let len = w.nrows();
-        self.points.push((s, std::array::from_fn(|o| (0..len).map(|r| w[(r, o)]).collect())));
     }
 
     /// The probe, with the last point s = h from e = E(h).
     pub(crate) fn finish(mut self, h: f64, e: &Mat<f64>) -> SubStepProbe {
         let len = self.outputs.nrows();
-        let w = e.transpose() * &self.outputs;
-        self.points.push((h, std::array::from_fn(|o| (0..len).map(|i| w[(i, o)]).collect())));
+        self.points.push((h, columns(&(e.transpose() * &self.outputs))));
         let times: Vec<f64> = self.points.iter().map(|p| p.0).collect();
         let rows = |idx: &[usize]| {
             RowMajor::new(&Mat::from_fn(idx.len() * ROWS, len, |r, j| self.points[idx[r / ROWS]].1[r % ROWS][j]))
         };
         let all: Vec<usize> = (0..times.len()).collect();
-        // coarse: the interior points with s/s₀ a power of two (exact in floating point), and
+        // coarse: the interior points with s/s₀ a power of four (exact in floating point), and
         // the two ends
         let coarse: Vec<usize> = all
             .iter()
@@ -195,6 +182,16 @@ impl ProbeBuilder {
         let coarse_rows = rows(&coarse);
         SubStepProbe { times, fine, coarse: coarse_rows, coarse_at: coarse, tau: self.tau }
     }
+}
+
+/// The columns of the N × 4 matrix w as rows.
+fn columns(w: &Mat<f64>) -> [Vec<f64>; ROWS] {
+    std::array::from_fn(|o| (0..w.nrows()).map(|r| w[(r, o)]).collect())
+}
+
+/// The index and value of the largest of `values` (the first of equals; (0, −1) if empty).
+fn argmax(values: impl Iterator<Item = (usize, f64)>) -> (usize, f64) {
+    values.fold((0, -1.0), |acc, (j, v)| if v > acc.1 { (j, v) } else { acc })
 }
 
 /// s/s₀ = 4^m (exact for the grid's integer multiples of powers of two).
@@ -249,19 +246,12 @@ impl SubStepProbe {
             if exhaustive {
                 return self.fine_maximum(x, o, 0, self.times.len() - 1);
             }
-            let coarse = |j: usize| self.value(|r| buf[ROWS * j + r], x, o);
-            let (best, top) =
-                (0..points).map(|j| (j, coarse(j).abs())).fold(
-                    (0, -1.0),
-                    |acc, (j, v)| {
-                        if v > acc.1 {
-                            (j, v)
-                        } else {
-                            acc
-                        }
-                    },
-                );
-            let bottom = (0..points).map(|j| coarse(j).abs()).fold(f64::INFINITY, f64::min);
+            let mut bottom = f64::INFINITY;
+            let (best, top) = argmax((0..points).map(|j| {
+                let v = self.value(|r| buf[ROWS * j + r], x, o).abs();
+                bottom = bottom.min(v);
+                (j, v)
+            }));
             let reaches = top + PROBE_MARGIN * (top - bottom) >= running[o];
             if !reaches || top == 0.0 {
                 return None;
@@ -283,10 +273,15 @@ impl SubStepProbe {
         }
     }
 
+    /// Output o at fine point j from the state x.
+    fn fine_value(&self, x: &[f64], o: usize, j: usize) -> f64 {
+        self.value(|r| dot(self.fine.row(ROWS * j + r), x), x, o)
+    }
+
     /// A local maximum of |y_o| on the fine points lo..=hi, climbing from `start` (the coarse
     /// grid's largest) toward larger values, if not at the step's ends, with its miss.
     fn fine_climb(&self, x: &[f64], o: usize, lo: usize, hi: usize, start: usize) -> Option<SubStepPeak> {
-        let value = |j: usize| self.value(|r| dot(self.fine.row(ROWS * j + r), x), x, o).abs();
+        let value = |j: usize| self.fine_value(x, o, j).abs();
         let (mut m, mut top) = (start, value(start));
         for dir in [1isize, -1] {
             let mut moved = false;
@@ -311,9 +306,7 @@ impl SubStepProbe {
     /// The largest |y_o| over the fine points lo..=hi from the state x, if not at the step's
     /// ends, with its miss.
     fn fine_maximum(&self, x: &[f64], o: usize, lo: usize, hi: usize) -> Option<SubStepPeak> {
-        let value = |j: usize| self.value(|r| dot(self.fine.row(ROWS * j + r), x), x, o);
-        let (m, _) =
-            (lo..=hi).map(|j| (j, value(j).abs())).fold((lo, -1.0), |acc, (j, v)| if v > acc.1 { (j, v) } else { acc });
+        let (m, _) = argmax((lo..=hi).map(|j| (j, self.fine_value(x, o, j).abs())));
         self.peak_at(x, o, m)
     }
 
@@ -322,8 +315,7 @@ impl SubStepProbe {
         if m == 0 || m + 1 == self.times.len() {
             return None; // the maximum is at a recorded instant
         }
-        let value = |j: usize| self.value(|r| dot(self.fine.row(ROWS * j + r), x), x, o);
-        let (y0, y1, y2) = (value(m - 1), value(m), value(m + 1));
+        let [y0, y1, y2] = [m - 1, m, m + 1].map(|j| self.fine_value(x, o, j));
         let miss = 2.0 * parabola_rise(self.times[m - 1], self.times[m], self.times[m + 1], y0, y1, y2);
         Some(SubStepPeak { s: self.times[m], value: y1, miss })
     }

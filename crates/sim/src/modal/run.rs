@@ -5,7 +5,7 @@ use std::time::Instant;
 
 use wingcheck_model::Config;
 
-use super::{dot, drive, probed_signal, ModalBasis, ModalLoop, ModalState, ObserverSignal, Recorder};
+use super::{dot, drive, ModalBasis, ModalLoop, ModalState, ObserverSignal, Recorder};
 use crate::run::{Envelope, Fields, RunOptions, RunStats, Series, SimOutput, SubStepProbe};
 use crate::stepper::FullRate;
 use crate::{Sample, SimError};
@@ -81,8 +81,8 @@ impl Recorder for Simulation<'_, '_> {
 impl Simulation<'_, '_> {
     /// Fold in the sub-step probe of the step from `start` (s) just made.
     fn probe(&mut self, lp: &ModalLoop<'_>, st: &ModalState, start: f64) {
-        let indices = std::array::from_fn(probed_signal);
-        let running = self.full_rate.running(start, indices);
+        // the probed outputs are the first PROBED signals of Peaks::signals
+        let running = self.full_rate.running(start, std::array::from_fn(|o| o));
         let Some(found) = lp.probe_last_step(st, running, &mut self.probe_buf, self.exhaustive) else {
             return;
         };
@@ -91,8 +91,8 @@ impl Simulation<'_, '_> {
         for (o, peak) in found.iter().enumerate() {
             if let Some(p) = peak {
                 let t = start + p.s;
-                raised |= p.value.abs() > self.full_rate.running(t, [indices[o]])[0];
-                self.full_rate.update_sub_step(indices[o], t, p.value, p.miss);
+                raised |= p.value.abs() > self.full_rate.running(t, [o])[0];
+                self.full_rate.update_sub_step(o, t, p.value, p.miss);
             }
         }
         self.raised += usize::from(raised);

@@ -55,20 +55,14 @@ pub struct Peaks {
 impl Peaks {
     /// Fold in the values [q, θ, q̇, θ̇, τ1, τ2, g̃1, g̃2] at time t.
     pub(crate) fn update(&mut self, t: f64, v: &[f64; 8]) {
-        self.q_tip.update(t, v[0]);
-        self.theta_tip.update(t, v[1]);
-        self.q_tip_rate.update(t, v[2]);
-        self.theta_tip_rate.update(t, v[3]);
-        self.tau1.update(t, v[4]);
-        self.tau2.update(t, v[5]);
-        self.g1_error.update(t, v[6]);
-        self.g2_error.update(t, v[7]);
+        for (i, v) in v.iter().enumerate() {
+            self.signal_mut(i).update(t, *v);
+        }
     }
 
-    /// Fold in the value v of signal `index` ([`Peaks::signals`]'s order) found inside a step
-    /// at time t, with its one-sided `sub_step_error`.
-    pub(crate) fn update_sub_step(&mut self, index: usize, t: f64, v: f64, sub_step_error: f64) {
-        let peak = match index {
+    /// Signal `index` in [`Peaks::signals`]'s order.
+    fn signal_mut(&mut self, index: usize) -> &mut Peak {
+        match index {
             0 => &mut self.q_tip,
             1 => &mut self.theta_tip,
             2 => &mut self.q_tip_rate,
@@ -77,8 +71,13 @@ impl Peaks {
             5 => &mut self.tau2,
             6 => &mut self.g1_error,
             _ => &mut self.g2_error,
-        };
-        peak.update_sub_step(t, v, sub_step_error);
+        }
+    }
+
+    /// Fold in the value v of signal `index` ([`Peaks::signals`]'s order) found inside a step
+    /// at time t, with its one-sided `sub_step_error`.
+    pub(crate) fn update_sub_step(&mut self, index: usize, t: f64, v: f64, sub_step_error: f64) {
+        self.signal_mut(index).update_sub_step(t, v, sub_step_error);
     }
 }
 
@@ -160,9 +159,8 @@ impl Default for IntervalRange {
 impl IntervalRange {
     /// Fold in the values [τ1, τ2, g̃1, g̃2] of one instant.
     pub fn update(&mut self, v: [f64; 4]) {
-        for c in 0..4 {
-            self.lo[c] = self.lo[c].min(v[c]);
-            self.hi[c] = self.hi[c].max(v[c]);
+        for (c, v) in v.into_iter().enumerate() {
+            self.include(c, v);
         }
         self.seen = true;
     }
