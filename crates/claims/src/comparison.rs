@@ -152,6 +152,9 @@ pub struct Computed {
     pub explicit_rms_tau: [(f64, f64); 2],
     /// The time scheme of the explicit-rule runs.
     pub explicit_stepper: String,
+    /// The largest eigenbasis round-off estimate (relative) of the explicit FTDO's error runs
+    /// ([`crate::Study::statistics`]); 0 where all of them stepped in the dense form.
+    pub error_runs_eigenbasis_roundoff: f64,
     /// The sweep around the configured (a, b).
     pub sweep: Vec<SweepPoint>,
     /// ζ1, ζ2 = sup |g1|, sup |g2| (N, N m).
@@ -274,13 +277,17 @@ pub const START_NUDGE: f64 = 1e-12;
 /// step, from its values on the doubled grid (`fine`), at dt/2 (`half_dt`) and from the
 /// [`START_NUDGE`]d starts (`nudged`): the grid part ([`EXPLICIT_RMS_GRID_FACTOR`]), the
 /// time-step part (F·|Δ|, F = [`wingcheck_sim::RICHARDSON_2`], order 2 in dt), the spread (the
-/// largest change over the nudged starts) and a round-off floor of 256 ulp of the value.
-pub fn explicit_rms_error(value: f64, fine: f64, half_dt: f64, nudged: [f64; 2]) -> f64 {
+/// largest change over the nudged starts) and a round-off floor of 256 ulp of the value, plus
+/// the eigenbasis round-off of the refined runs (`eigenbasis_roundoff`, relative, the largest
+/// of theirs; 0 where they stepped in the dense form) through the same factors, since each
+/// enters the error through its difference from `value`.
+pub fn explicit_rms_error(value: f64, fine: f64, half_dt: f64, nudged: [f64; 2], eigenbasis_roundoff: f64) -> f64 {
     let spread = nudged.iter().map(|n| (value - n).abs()).fold(0.0, f64::max);
     EXPLICIT_RMS_GRID_FACTOR * (value - fine).abs()
         + wingcheck_sim::RICHARDSON_2 * (value - half_dt).abs()
         + wingcheck_sim::layer::PEAK_ROUND_OFF * value.abs()
         + spread
+        + (EXPLICIT_RMS_GRID_FACTOR + wingcheck_sim::RICHARDSON_2 + 1.0) * eigenbasis_roundoff * value.abs()
 }
 
 /// The runs (through the study) and their metrics. Returns the facts and the two full outputs
@@ -296,15 +303,20 @@ pub fn compute(
     let other = study.simulate(&plan.other)?;
     let dobc = study.simulate(&plan.dobc)?;
     let explicit = if rule == ObserverRule::Explicit { &ftdo } else { &other };
-    let explicit_half = study.simulate(&plan.explicit_half)?;
-    let explicit_fine = study.simulate(&plan.explicit_fine)?;
-    let nudged = [study.simulate(&plan.explicit_nudged[0])?, study.simulate(&plan.explicit_nudged[1])?];
+    // the error runs serve RMS τ only: statistics runs (eigenbasis where it passes)
+    let explicit_half = study.statistics(&plan.explicit_half)?;
+    let explicit_fine = study.statistics(&plan.explicit_fine)?;
+    let nudged = [study.statistics(&plan.explicit_nudged[0])?, study.statistics(&plan.explicit_nudged[1])?];
+    let roundoff = [&explicit_half, &explicit_fine, &nudged[0], &nudged[1]]
+        .iter()
+        .filter_map(|o| o.stats.eigenbasis_roundoff)
+        .fold(0.0, f64::max);
     let whole = Window::whole(&explicit.series.t);
     let rms_tau = |o: &SimOutput, c| metrics::tau_rms_in(&o.series, c, whole).unwrap_or(0.0);
     let explicit_rms_tau = [0, 1].map(|c| {
         let v = rms_tau(explicit, c);
         let starts = [rms_tau(&nudged[0], c), rms_tau(&nudged[1], c)];
-        (v, explicit_rms_error(v, rms_tau(&explicit_fine, c), rms_tau(&explicit_half, c), starts))
+        (v, explicit_rms_error(v, rms_tau(&explicit_fine, c), rms_tau(&explicit_half, c), starts, roundoff))
     });
     let mut sweep = Vec::new();
     for (a, b, f_cfg, d_cfg) in &plan.sweep {
@@ -320,6 +332,7 @@ pub fn compute(
         dobc: metrics(&dobc, settings),
         explicit_rms_tau,
         explicit_stepper: explicit.stats.stepper.name().to_string(),
+        error_runs_eigenbasis_roundoff: roundoff,
         sweep,
         zetas: (zeta(&d.tip_bending), zeta(&d.tip_torsion)),
     };

@@ -13,6 +13,11 @@ use wingcheck_sim::{simulate, RunOptions, SimOutput};
 use crate::theory::{g_hmax, DisturbanceBounds};
 use crate::{config_sha256, ClaimsError};
 
+/// Round-off limit of [`Study::statistics`]'s eigenbasis form (relative of the state): the
+/// explicit FTDO's RMS τ errors it serves are of order 1e-2 relative, so its estimate (added
+/// to them) is negligible there ([`wingcheck_sim::MAX_EIGENBASIS_ROUNDOFF`]).
+pub const STATISTICS_ROUNDOFF: f64 = wingcheck_sim::MAX_EIGENBASIS_ROUNDOFF;
+
 /// A run's outcome, shared by everyone who asked for it.
 type Shared = Arc<OnceLock<Result<Arc<SimOutput>, Arc<wingcheck_sim::SimError>>>>;
 
@@ -20,6 +25,8 @@ type Shared = Arc<OnceLock<Result<Arc<SimOutput>, Arc<wingcheck_sim::SimError>>>
 #[derive(Default)]
 pub struct Study {
     runs: Mutex<HashMap<String, Shared>>,
+    /// The statistics-only runs ([`Study::statistics`]), apart from the full ones.
+    statistics: Mutex<HashMap<String, Shared>>,
     performed: Mutex<usize>,
 }
 
@@ -32,11 +39,37 @@ impl Study {
     /// The simulation of `cfg` with q(z,t), θ(z,t) on the output grid (run once per config;
     /// a second caller of a run in flight waits for it).
     pub fn simulate(&self, cfg: &Config) -> Result<Arc<SimOutput>, ClaimsError> {
+        self.cached(&self.runs, cfg, || simulate(cfg, RunOptions { fields: true, ..Default::default() }))
+    }
+
+    /// A run of `cfg` for its time series and interval statistics only (RMS τ, tip RMS): no
+    /// fields, no initial-layer re-run, no sub-step probe (peaks at the recorded instants), and
+    /// the exponential scheme in the closed loop's eigenbasis where its round-off estimate is at
+    /// most [`STATISTICS_ROUNDOFF`] (`stats.eigenbasis_roundoff` then states it; whoever uses
+    /// the run adds it to the quantity's error). Its series are those of [`Study::simulate`]
+    /// within that estimate (the layer and the probe change peaks only).
+    pub fn statistics(&self, cfg: &Config) -> Result<Arc<SimOutput>, ClaimsError> {
+        self.cached(&self.statistics, cfg, || {
+            let opts = RunOptions {
+                sub_step_probe: wingcheck_sim::SubStepProbe::Off,
+                eigenbasis: Some(STATISTICS_ROUNDOFF),
+                ..Default::default()
+            };
+            wingcheck_sim::simulate_base(cfg, opts)
+        })
+    }
+
+    fn cached(
+        &self,
+        map: &Mutex<HashMap<String, Shared>>,
+        cfg: &Config,
+        run: impl FnOnce() -> Result<SimOutput, wingcheck_sim::SimError>,
+    ) -> Result<Arc<SimOutput>, ClaimsError> {
         let key = config_sha256(cfg);
-        let cell = self.runs.lock().expect("study lock").entry(key).or_default().clone();
+        let cell = map.lock().expect("study lock").entry(key).or_default().clone();
         let out = cell.get_or_init(|| {
             *self.performed.lock().expect("study lock") += 1;
-            simulate(cfg, RunOptions { fields: true, ..Default::default() }).map(Arc::new).map_err(Arc::new)
+            run().map(Arc::new).map_err(Arc::new)
         });
         out.clone().map_err(ClaimsError::Sim)
     }
@@ -50,7 +83,11 @@ impl Study {
 
     /// The configuration hashes of every run asked for (in any order).
     pub fn keys(&self) -> Vec<String> {
-        self.runs.lock().expect("study lock").keys().cloned().collect()
+        let mut keys: Vec<String> = self.runs.lock().expect("study lock").keys().cloned().collect();
+        keys.extend(self.statistics.lock().expect("study lock").keys().cloned());
+        keys.sort();
+        keys.dedup();
+        keys
     }
 
     /// Number of simulations actually run (cache misses).

@@ -38,7 +38,7 @@ pub use error_estimate::{
 pub use estimate::Estimate;
 pub use run::{
     check_sample, resolved_basis, simulate, simulate_base, windowed_rms, Envelope, Fields, RunOptions, RunStats,
-    Series, SimOutput, SubStepProbe,
+    Series, SimOutput, SubStepProbe, MAX_EIGENBASIS_ROUNDOFF,
 };
 pub use stepper::{initial_tip_states, trbdf2, Channel, EnergyLedger, Peak, Peaks, Sample, SquareIntegral, Stepper};
 

@@ -148,6 +148,10 @@ pub struct ComparisonEvidence {
     pub explicit_rms_tau2: Quantity,
     /// Time scheme of the explicit-rule runs.
     pub explicit_stepper: Text,
+    /// How the explicit-rule FTDO's error runs (dt/2, doubled grid, nudged starts) were
+    /// stepped: the dense form, or the closed loop's eigenbasis with its round-off estimate
+    /// (which the RMS τ ± includes).
+    pub explicit_error_runs: Text,
     /// The sweep around the configured (a, b).
     pub ab_sweep: Table<SweepRecord>,
     /// max |relative difference| over every pair and tip metric.
@@ -167,6 +171,19 @@ pub struct ComparisonEvidence {
     /// (min, max) over the pairs of the four relative differences (context, not serialised).
     #[serde(skip)]
     pub ranges: [(f64, f64); 4],
+}
+
+/// The explicit-rule error runs' form, for [`ComparisonEvidence::explicit_error_runs`].
+fn error_runs_text(c: &Computed) -> String {
+    if c.error_runs_eigenbasis_roundoff > 0.0 {
+        format!(
+            "statistics runs (no layer re-run, no sub-step probe), in the closed loop's eigenbasis where its \
+             checks passed: round-off estimate at most {} relative of the state, included in the RMS τ ±",
+            wingcheck_model::quantity::format_value(c.error_runs_eigenbasis_roundoff, None)
+        )
+    } else {
+        format!("statistics runs (no layer re-run, no sub-step probe), {} scheme in its dense form", c.explicit_stepper)
+    }
 }
 
 fn evidence_of(c: &Computed, settings: &CheckSettings) -> ComparisonEvidence {
@@ -209,6 +226,7 @@ fn evidence_of(c: &Computed, settings: &CheckSettings) -> ComparisonEvidence {
         explicit_rms_tau1: tau(0),
         explicit_rms_tau2: tau(1),
         explicit_stepper: Text::text("time scheme of the explicit-rule runs", c.explicit_stepper.clone()),
+        explicit_error_runs: Text::text("how the explicit-rule error runs were stepped", error_runs_text(c)),
         ab_sweep: Table::new(
             format!(
                 "sweep: each weight × and ÷ {}",
@@ -339,11 +357,12 @@ impl Explain for ComparisonEvidence {
             ));
         }
         out.push(format!(
-            "The explicit-rule FTDO's full-rate RMS τ1 is {} and RMS τ2 {} ({} scheme; the ± covers {}); the tip disturbances are bounded by ζ1 = {}, ζ2 = {}.",
+            "The explicit-rule FTDO's full-rate RMS τ1 is {} and RMS τ2 {} ({} scheme; the ± covers {}; its error runs: {}); the tip disturbances are bounded by ζ1 = {}, ζ2 = {}.",
             self.explicit_rms_tau1.pm_text(),
             self.explicit_rms_tau2.pm_text(),
             self.explicit_stepper.value,
             self.explicit_rms_tau1.covers_text().unwrap_or_else(|| "nothing: no error estimate".into()),
+            self.explicit_error_runs.value,
             self.zeta1.value_text(),
             self.zeta2.value_text()
         ));

@@ -145,12 +145,15 @@ pub(crate) struct DiagonalStep {
 
 impl DiagonalStep {
     /// The eigenbasis step for step h (s) of the loop on `basis`, with checkpoints every
-    /// `interval` (s); [`Refused`] with the reason where the dense scheme must be used.
+    /// `interval` (s), accepted where its round-off estimate is at most `max_roundoff`
+    /// ([`MAX_ROUNDOFF`] for the search); [`Refused`] with the reason where the dense scheme
+    /// must be used.
     pub(crate) fn new(
         basis: &ModalBasis,
         co: &LoopCoefficients,
         h: f64,
         interval: f64,
+        max_roundoff: f64,
     ) -> Result<DiagonalStep, Refused> {
         let refuse = |s: String| Err(Refused(s));
         let n = basis.len();
@@ -225,9 +228,9 @@ impl DiagonalStep {
         let smallest = lambda.iter().map(|l| l.norm()).fold(f64::INFINITY, f64::min);
         let slow = omega.iter().copied().fold(smallest, f64::min);
         let roundoff = f64::EPSILON * (a.norm_l2() / slow + condition);
-        if !within(roundoff, MAX_ROUNDOFF) {
+        if !within(roundoff, max_roundoff) {
             return refuse(format!(
-                "eigenbasis round-off {roundoff:.1e} relative (ε‖A‖/{slow:.3e} 1/s + ε·cond V; limit {MAX_ROUNDOFF:.0e})"
+                "eigenbasis round-off {roundoff:.1e} relative (ε‖A‖/{slow:.3e} 1/s + ε·cond V; limit {max_roundoff:.0e})"
             ));
         }
         if !within(condition, MAX_CONDITION) {

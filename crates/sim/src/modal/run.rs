@@ -110,7 +110,10 @@ pub fn simulate_modal(
     opts: RunOptions<'_>,
 ) -> Result<SimOutput, SimError> {
     cfg.validate().map_err(SimError::Config)?;
-    let lp = ModalLoop::new(cfg, basis)?;
+    let lp = match opts.eigenbasis {
+        Some(limit) => ModalLoop::with_eigenbasis_within(cfg, basis, limit.min(crate::MAX_EIGENBASIS_ROUNDOFF))?,
+        None => ModalLoop::new(cfg, basis)?,
+    };
     let mut st = lp.initial_state(cfg, basis);
     let mut signal = ObserverSignal::new(cfg);
     let setup_seconds = start.elapsed().as_secs_f64();
@@ -149,6 +152,7 @@ pub fn simulate_modal(
             setup_seconds,
             stepping_seconds: start.elapsed().as_secs_f64(),
             sub_step_probes: [rec.probes, rec.raised],
+            eigenbasis_roundoff: lp.eigenbasis_roundoff(),
         },
     })
 }

@@ -109,7 +109,7 @@ impl<'a> ModalLoop<'a> {
     /// The loop of `cfg` on `basis` (built from the same wing and grid), with the scheme
     /// `cfg.discretisation.stepper` selects.
     pub fn new(cfg: &Config, basis: &'a ModalBasis) -> Result<ModalLoop<'a>, SimError> {
-        Self::build(cfg, basis, false)
+        Self::build(cfg, basis, None)
     }
 
     /// The loop of `cfg` as [`ModalLoop::new`], except that the exponential scheme steps in the
@@ -118,7 +118,18 @@ impl<'a> ModalLoop<'a> {
     /// relative of the state by construction; [`ModalLoop::eigenbasis_roundoff`]). The search
     /// steps this way; `simulate` keeps the dense form.
     pub fn with_eigenbasis(cfg: &Config, basis: &'a ModalBasis) -> Result<ModalLoop<'a>, SimError> {
-        Self::build(cfg, basis, true)
+        Self::build(cfg, basis, Some(super::diagonal::MAX_ROUNDOFF))
+    }
+
+    /// [`ModalLoop::with_eigenbasis`] with another limit on the eigenbasis's round-off estimate
+    /// (relative of the state): for runs whose quantities carry errors far above it
+    /// (`simulate`'s [`crate::RunOptions::eigenbasis`]).
+    pub fn with_eigenbasis_within(
+        cfg: &Config,
+        basis: &'a ModalBasis,
+        max_roundoff: f64,
+    ) -> Result<ModalLoop<'a>, SimError> {
+        Self::build(cfg, basis, Some(max_roundoff))
     }
 
     /// The relative round-off estimate of the state where the loop steps in the eigenbasis,
@@ -136,7 +147,8 @@ impl<'a> ModalLoop<'a> {
         self.eigenbasis_refused.as_deref()
     }
 
-    fn build(cfg: &Config, basis: &'a ModalBasis, eigenbasis: bool) -> Result<ModalLoop<'a>, SimError> {
+    /// `eigenbasis`: the round-off limit of the eigenbasis form, `None` for the dense one.
+    fn build(cfg: &Config, basis: &'a ModalBasis, eigenbasis: Option<f64>) -> Result<ModalLoop<'a>, SimError> {
         let h = cfg.discretisation.dt;
         let law = BoundaryLaw::of(cfg);
         let (a, b, xi, gain) = (law.a, law.b, cfg.wing.xi, law.gains);
@@ -154,7 +166,7 @@ impl<'a> ModalLoop<'a> {
             TimeScheme::Exponential => {
                 let co = LoopCoefficients { gain, a, b, xi, stiff, sign };
                 let interval = cfg.samples_per_output() as f64 * cfg.observer.sample_period;
-                match eigenbasis.then(|| DiagonalStep::new(basis, &co, h, interval)) {
+                match eigenbasis.map(|limit| DiagonalStep::new(basis, &co, h, interval, limit)) {
                     Some(Ok(diagonal)) => Stepping::Diagonal(Box::new(diagonal)),
                     other => {
                         eigenbasis_refused = other.and_then(Result::err).map(|why| why.0);
