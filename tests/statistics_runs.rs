@@ -60,7 +60,7 @@ fn statistics_runs_match_the_full_run_within_their_eigenbasis_roundoff() {
         match stats.stats.eigenbasis_roundoff {
             Some(estimate) => {
                 assert!(eigenbasis, "{sets:?}: the eigenbasis was expected to be refused");
-                assert!(estimate <= wingcheck_claims::study::STATISTICS_ROUNDOFF, "{sets:?}");
+                assert!(estimate <= wingcheck_sim::MAX_EIGENBASIS_ROUNDOFF, "{sets:?}");
                 let squares = interval_squares_difference(&stats, &full);
                 let whole: f64 = (0..2)
                     .map(|c| (whole_rms(&stats, c) - whole_rms(&full, c)).abs() / whole_rms(&full, c))

@@ -151,7 +151,7 @@ pub struct Computed {
     /// ([`explicit_rms_error`]: grid + time step + start spread + round-off).
     pub explicit_rms_tau: [(f64, f64); 2],
     /// The time scheme of the explicit-rule runs.
-    pub explicit_stepper: String,
+    pub explicit_stepper: wingcheck_model::TimeScheme,
     /// The largest eigenbasis round-off estimate (relative) of the explicit FTDO's error runs
     /// ([`crate::Study::statistics`]); 0 where all of them stepped in the dense form.
     pub error_runs_eigenbasis_roundoff: f64,
@@ -331,7 +331,7 @@ pub fn compute(
         ftdo_other: metrics(&other, settings),
         dobc: metrics(&dobc, settings),
         explicit_rms_tau,
-        explicit_stepper: explicit.stats.stepper.name().to_string(),
+        explicit_stepper: explicit.stats.stepper,
         error_runs_eigenbasis_roundoff: roundoff,
         sweep,
         zetas: (zeta(&d.tip_bending), zeta(&d.tip_torsion)),

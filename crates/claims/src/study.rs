@@ -13,11 +13,6 @@ use wingcheck_sim::{simulate, RunOptions, SimOutput};
 use crate::theory::{g_hmax, DisturbanceBounds};
 use crate::{config_sha256, ClaimsError};
 
-/// Round-off limit of [`Study::statistics`]'s eigenbasis form (relative of the state): the
-/// explicit FTDO's RMS τ errors it serves are of order 1e-2 relative, so its estimate (added
-/// to them) is negligible there ([`wingcheck_sim::MAX_EIGENBASIS_ROUNDOFF`]).
-pub const STATISTICS_ROUNDOFF: f64 = wingcheck_sim::MAX_EIGENBASIS_ROUNDOFF;
-
 /// A run's outcome, shared by everyone who asked for it.
 type Shared = Arc<OnceLock<Result<Arc<SimOutput>, Arc<wingcheck_sim::SimError>>>>;
 
@@ -45,14 +40,15 @@ impl Study {
     /// A run of `cfg` for its time series and interval statistics only (RMS τ, tip RMS): no
     /// fields, no initial-layer re-run, no sub-step probe (peaks at the recorded instants), and
     /// the exponential scheme in the closed loop's eigenbasis where its round-off estimate is at
-    /// most [`STATISTICS_ROUNDOFF`] (`stats.eigenbasis_roundoff` then states it; whoever uses
-    /// the run adds it to the quantity's error). Its series are those of [`Study::simulate`]
+    /// most [`wingcheck_sim::MAX_EIGENBASIS_ROUNDOFF`] (`stats.eigenbasis_roundoff` then states
+    /// it; whoever uses the run adds it to the quantity's error: the explicit FTDO's RMS τ
+    /// errors it serves are of order 1e-2 relative, so it is negligible there). Its series are those of [`Study::simulate`]
     /// within that estimate (the layer and the probe change peaks only).
     pub fn statistics(&self, cfg: &Config) -> Result<Arc<SimOutput>, ClaimsError> {
         self.cached(&self.statistics, cfg, || {
             let opts = RunOptions {
                 sub_step_probe: wingcheck_sim::SubStepProbe::Off,
-                eigenbasis: Some(STATISTICS_ROUNDOFF),
+                eigenbasis: Some(wingcheck_sim::MAX_EIGENBASIS_ROUNDOFF),
                 ..Default::default()
             };
             wingcheck_sim::simulate_base(cfg, opts)

@@ -175,15 +175,18 @@ pub struct ComparisonEvidence {
 
 /// The explicit-rule error runs' form, for [`ComparisonEvidence::explicit_error_runs`].
 fn error_runs_text(c: &Computed) -> String {
-    if c.error_runs_eigenbasis_roundoff > 0.0 {
+    let form = if c.error_runs_eigenbasis_roundoff > 0.0 {
         format!(
-            "statistics runs (no layer re-run, no sub-step probe), in the closed loop's eigenbasis where its \
-             checks passed: round-off estimate at most {} relative of the state, included in the RMS τ ±",
+            "in the closed loop's eigenbasis where its checks passed: round-off estimate at most {} relative \
+             of the state, included in the RMS τ ±",
             wingcheck_model::quantity::format_value(c.error_runs_eigenbasis_roundoff, None)
         )
+    } else if c.explicit_stepper == wingcheck_model::TimeScheme::Exponential {
+        "exponential scheme in its dense form".to_string()
     } else {
-        format!("statistics runs (no layer re-run, no sub-step probe), {} scheme in its dense form", c.explicit_stepper)
-    }
+        format!("{} scheme", c.explicit_stepper.name())
+    };
+    format!("statistics runs (no layer re-run, no sub-step probe), {form}")
 }
 
 fn evidence_of(c: &Computed, settings: &CheckSettings) -> ComparisonEvidence {
@@ -225,7 +228,7 @@ fn evidence_of(c: &Computed, settings: &CheckSettings) -> ComparisonEvidence {
             .map(|q| q.relabel(format!("late RMS g̃, DOBC / FTDO with the {other} rule"))),
         explicit_rms_tau1: tau(0),
         explicit_rms_tau2: tau(1),
-        explicit_stepper: Text::text("time scheme of the explicit-rule runs", c.explicit_stepper.clone()),
+        explicit_stepper: Text::text("time scheme of the explicit-rule runs", c.explicit_stepper.name()),
         explicit_error_runs: Text::text("how the explicit-rule error runs were stepped", error_runs_text(c)),
         ab_sweep: Table::new(
             format!(
