@@ -21,6 +21,7 @@
 //! The sum over every interval between two checkpoints is then the exact ∫τ² over it;
 //! the single steps' shares are not.
 //!
+//! The solver's eigendecomposition gets one Newton refinement ([`super::refine`]) before use.
 //! Refused (the caller falls back to the dense [`super::exact::ExactStep`]) where the
 //! eigenbasis would lose accuracy: a round-off estimate of the state above [`MAX_ROUNDOFF`]
 //! (stiff Kelvin–Voigt modes against slow ones), a nearly defective A (condition of V above
@@ -34,6 +35,8 @@ use faer::{c64, Mat};
 
 use super::exact::{closed_loop, LoopCoefficients, INPUTS};
 use super::gemv::RowMajor;
+use super::layout::Layout;
+use super::refine::RealEigen;
 use super::scheme::dot;
 use super::{ModalBasis, ModalState};
 
@@ -46,12 +49,19 @@ pub(crate) const MAX_CONDITION: f64 = 1e6;
 /// output intervals' worth of ∫τ², so their round-off is of order this × ε of an interval's
 /// integral.
 pub(crate) const MAX_TELESCOPE: f64 = 1e7;
-/// Largest accepted round-off estimate of the state, relative: ε(‖A‖_F/s + cond V) with s the
-/// slowest rate of the loop (min of ω₁ and the smallest |λ|). A dense eigen-solve is backward
-/// stable, so each eigenvector carries an error of order ε‖A‖ over its eigenvalue's distance
-/// from the others; the Kelvin–Voigt modes make ‖A‖ ≈ ξω_max² large, and the slow modes that
-/// carry the state feel it most. Measured against the dense scheme on eight wings (unit test
-/// in `scheme.rs`): the state error is 0.006–0.3 × this estimate.
+/// Largest accepted round-off estimate of the state, relative: ε(‖A‖_F·min(T, 1/s) + cond V)
+/// with T the run's horizon and s the loop's slowest decay rate min|Re λ|. A dense eigen-solve
+/// is backward stable: the eigenpairs are exact for A + E with ‖E‖ of order ε‖A‖, so the
+/// stepped trajectory is the exact one of that perturbed loop, and to first order its error is
+/// ∫₀ᵗ e^{A(t−τ)} E z(τ) dτ, at most ‖E‖·min(t, 1/s)·sup‖z‖ where the loop contracts at rate s
+/// (‖e^{Aτ}‖ ≤ e^{−sτ}, taken in the modal energy norm); the Kelvin–Voigt modes make
+/// ‖A‖ ≈ ξω_max² large. The held inputs' equilibrium, reached after 1/s, carries the t → ∞
+/// limit ε‖A‖/s of the same bound; reading the state through V and V⁻¹ adds ε·cond V.
+/// This is the estimate of the solver's decomposition; the step uses it after one Newton
+/// refinement ([`super::refine`]), which the estimate does not credit. Measured against the
+/// dense scheme over whole 20-s horizons (unit test in `scheme.rs`, eleven wings): at most
+/// 0.4 × this estimate with the refinement, 1e-5–1e-4 × it on the slow loops whose unrefined
+/// drift reached 1.2 × it.
 pub(crate) const MAX_ROUNDOFF: f64 = 1e-6;
 /// Tolerance of the relative residual ‖AV − VΛ‖_F/(‖A‖_F‖V‖_F) of the eigendecomposition.
 const RESIDUAL_TOLERANCE: f64 = 1e-10;
@@ -94,18 +104,27 @@ fn expm1(z: c64) -> c64 {
 /// The state of a run in the eigenbasis, kept in [`ModalState`].
 #[derive(Debug, Clone)]
 pub(crate) struct DiagonalState {
-    /// x̂ = V⁻¹z over the k representatives as (x̂_re, x̂_im), padded with zeros for
+    /// x̂ = V⁻¹z over the representatives in the [`Layout`] (N reals), padded with zeros for
     /// [`RowMajor`].
     x: Vec<f64>,
     /// The inputs of the latest step (0 before the first).
     inputs: [f64; INPUTS],
     /// e_cᵀP_c e_c at the latest checkpoint (e = z − z*(inputs)).
     boundary: [f64; 2],
-    /// Work buffers: z, ŝ and ê = x̂ − ŝ as (re, im), the start-of-step rows' values.
+    /// Work buffers: z, ŝ and ê = x̂ − ŝ in the layout, the start-of-step rows' values.
     z: Vec<f64>,
     relaxed: Vec<f64>,
     e: Vec<f64>,
     start: Vec<f64>,
+}
+
+/// The times a [`DiagonalStep`] is built for (s): the step h, the checkpoint interval (the
+/// output sampling) and the run's horizon T.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Timing {
+    pub(crate) h: f64,
+    pub(crate) interval: f64,
+    pub(crate) horizon: f64,
 }
 
 /// Why a loop is not stepped in its eigenbasis (the dense scheme is used instead).
@@ -119,8 +138,12 @@ pub(crate) struct DiagonalStep {
     tip_states: usize,
     h: f64,
     omega: Vec<f64>,
-    mu: Half,
-    one_minus_mu: Half,
+    /// Where the representatives sit in the real vectors the step carries ([`Layout`]).
+    layout: Layout,
+    /// e^{λh} and 1 − e^{λh} in that layout: the real eigenvalues' values, then the pairs'
+    /// real parts, then the pairs' imaginary parts.
+    mu: Vec<f64>,
+    one_minus_mu: Vec<f64>,
     /// ∫_0^h c̃ᵀe^{Λs}ẽ ds = Re(lin · x̂) − lin_input · u (lin in `start_rows`).
     lin_input: [[f64; DRIVING]; 2],
     /// τ*_c = tau_star_c · u.
@@ -133,11 +156,11 @@ pub(crate) struct DiagonalStep {
     /// jump[1][0..3], lin[0], lin[1]; and at its end: the four tip rows.
     start_rows: RowMajor,
     tip_rows: RowMajor,
-    /// The columns of S as (re, im) over the representatives.
+    /// The columns of S in the layout.
     s_flat: [Vec<f64>; DRIVING],
-    /// Rows of P_c's factor over ξ = (ê_re, ê_im): e_cᵀP_c e_c = Σ_j (f_j · ξ)².
+    /// Rows of P_c's factor over ê in the layout: e_cᵀP_c e_c = Σ_j (f_j · ê)².
     factor: [RowMajor; 2],
-    /// Rows of V⁻¹ giving (x̂_re, x̂_im) from z (2k × N).
+    /// Rows of V⁻¹ giving x̂ in the layout from z (N × N).
     v_inv: RowMajor,
     /// The relative round-off estimate of the state ([`MAX_ROUNDOFF`]).
     pub(crate) roundoff: f64,
@@ -145,16 +168,16 @@ pub(crate) struct DiagonalStep {
 
 impl DiagonalStep {
     /// The eigenbasis step for step h (s) of the loop on `basis`, with checkpoints every
-    /// `interval` (s), accepted where its round-off estimate is at most `max_roundoff`
-    /// ([`MAX_ROUNDOFF`] for the search); [`Refused`] with the reason where the dense scheme
-    /// must be used.
+    /// `interval` (s) over a run of `horizon` (s), accepted where its round-off estimate is at
+    /// most `max_roundoff` ([`MAX_ROUNDOFF`] for the search); [`Refused`] with the reason where
+    /// the dense scheme must be used.
     pub(crate) fn new(
         basis: &ModalBasis,
         co: &LoopCoefficients,
-        h: f64,
-        interval: f64,
+        step: Timing,
         max_roundoff: f64,
     ) -> Result<DiagonalStep, Refused> {
+        let Timing { h, interval, horizon } = step;
         let refuse = |s: String| Err(Refused(s));
         let n = basis.len();
         let omega: Vec<f64> = basis.omega2.iter().map(|w| w.sqrt()).collect();
@@ -193,44 +216,50 @@ impl DiagonalStep {
             ));
         }
         let k = reps.len();
-        let vc = |r: usize, rep: usize| evd.U()[(r, reps[rep].0)];
         // V_r: the representatives' (Re v) and, for pairs, (Im v) columns, from column
         // first_col[rep] on; z = Re(V x̂) = V_re x̂_re − V_im x̂_im with the weighted columns below.
         let first_col: Vec<usize> =
             reps.iter().scan(0, |col, &(_, w)| Some(std::mem::replace(col, *col + w as usize))).collect();
         let mut vr = Mat::<f64>::zeros(m, m);
-        for (rep, &(_, w)) in reps.iter().enumerate() {
+        for (rep, &(j, w)) in reps.iter().enumerate() {
             for r in 0..m {
-                vr[(r, first_col[rep])] = vc(r, rep).re;
+                vr[(r, first_col[rep])] = evd.U()[(r, j)].re;
                 if w == 2.0 {
-                    vr[(r, first_col[rep] + 1)] = vc(r, rep).im;
+                    vr[(r, first_col[rep] + 1)] = evd.U()[(r, j)].im;
                 }
             }
         }
-        // residual of A V_r = V_r Λ_r (Λ_r: λ or the 2×2 block [[α, β], [−β, α]])
-        let av = &a * &vr;
-        let mut defect = 0.0;
-        for (rep, &(j, w)) in reps.iter().enumerate() {
-            let (l, col) = (lambda[j], first_col[rep]);
-            for r in 0..m {
-                let v = vc(r, rep);
-                let d0 = av[(r, col)] - (l.re * v.re - l.im * v.im);
-                let d1 = if w == 2.0 { av[(r, col + 1)] - (l.im * v.re + l.re * v.im) } else { 0.0 };
-                defect += d0 * d0 + d1 * d1;
-            }
+        // one Newton step on the decomposition, and the next step's size as its error
+        let solved = RealEigen {
+            vr_inv: vr.partial_piv_lu().inverse(),
+            vr,
+            lambda: reps.iter().map(|&(j, _)| lambda[j]).collect(),
+            blocks: reps.iter().zip(&first_col).map(|(&(_, w), &c)| (c, w as usize)).collect(),
+        };
+        let step = solved.correction(&a);
+        if !within(step.residual, RESIDUAL_TOLERANCE) {
+            return refuse(format!("eigendecomposition residual {:.1e}", step.residual));
         }
-        let rel = defect.sqrt() / (a.norm_l2() * vr.norm_l2());
-        if !within(rel, RESIDUAL_TOLERANCE) {
-            return refuse(format!("eigendecomposition residual {rel:.1e}"));
+        let eig = solved.refined(&step);
+        if !eig.lambda.iter().all(|l| l.re.is_finite() && l.im.is_finite() && l.re < 0.0) {
+            return refuse("an eigenvalue with Re λ ≥ 0 after refinement".into());
         }
-        let vr_inv = vr.partial_piv_lu().inverse();
+        let after = eig.residual(&a);
+        if !within(after, RESIDUAL_TOLERANCE) {
+            return refuse(format!("eigendecomposition residual {after:.1e} after refinement"));
+        }
+        let (vr, vr_inv) = (&eig.vr, &eig.vr_inv);
+        let vc = |r: usize, rep: usize| {
+            let col = first_col[rep];
+            c64::new(vr[(r, col)], if reps[rep].1 == 2.0 { vr[(r, col + 1)] } else { 0.0 })
+        };
         let condition = vr.norm_l2() * vr_inv.norm_l2();
-        let smallest = lambda.iter().map(|l| l.norm()).fold(f64::INFINITY, f64::min);
-        let slow = omega.iter().copied().fold(smallest, f64::min);
-        let roundoff = f64::EPSILON * (a.norm_l2() / slow + condition);
+        let reach = horizon.min(1.0 / slowest);
+        let roundoff = f64::EPSILON * (a.norm_l2() * reach + condition);
         if !within(roundoff, max_roundoff) {
             return refuse(format!(
-                "eigenbasis round-off {roundoff:.1e} relative (ε‖A‖/{slow:.3e} 1/s + ε·cond V; limit {max_roundoff:.0e})"
+                "eigenbasis round-off {roundoff:.1e} relative (ε‖A‖·{reach:.3e} s + ε·cond V, the smaller of the \
+                 horizon and 1/(slowest decay rate {slowest:.3e} 1/s); limit {max_roundoff:.0e})"
             ));
         }
         if !within(condition, MAX_CONDITION) {
@@ -265,7 +294,7 @@ impl DiagonalStep {
             2 * k,
             |r, c| if c < k { vc(r, c).re * reps[c].1 } else { -vc(r, c - k).im * reps[c - k].1 },
         );
-        let lam: Vec<c64> = reps.iter().map(|&(j, _)| lambda[j]).collect();
+        let lam: Vec<c64> = eig.lambda.clone();
         // ŝ = V⁻¹ z*(u), z* = −A⁻¹Bu: S_ik = −(V⁻¹B)_ik/λ_i
         let s = [0, 1, 2].map(|kk| {
             let b: Vec<f64> = (0..m).map(|i| a_full[(i, m + kk)]).collect();
@@ -331,32 +360,34 @@ impl DiagonalStep {
             }
             factors.push(pivoted_cholesky(&p_r));
         }
+        let layout = Layout::new(&reps);
+        let flat = |h: &Half| layout.vector(&[h.re.as_slice(), h.im.as_slice()].concat());
         let step = DiagonalStep {
             n,
             tip_states,
             h,
             omega,
-            mu,
-            one_minus_mu,
+            mu: flat(&mu),
+            one_minus_mu: flat(&one_minus_mu),
             lin_input,
             tau_star,
             jump_input,
-            v: RowMajor::new(&v),
-            start_rows: RowMajor::new(&stack(&[&jump[0][..], &jump[1][..], &lin[..]].concat())),
-            tip_rows: RowMajor::new(&stack(&tip)),
-            s_flat,
-            factor: [RowMajor::new(&factors[0]), RowMajor::new(&factors[1])],
-            v_inv: RowMajor::new(&v_inv),
+            v: RowMajor::new(&layout.columns(&v)),
+            start_rows: RowMajor::new(&layout.columns(&stack(&[&jump[0][..], &jump[1][..], &lin[..]].concat()))),
+            tip_rows: RowMajor::new(&layout.columns(&stack(&tip))),
+            s_flat: s_flat.map(|s| layout.vector(&s)),
+            factor: [RowMajor::new(&layout.columns(&factors[0])), RowMajor::new(&layout.columns(&factors[1]))],
+            v_inv: RowMajor::new(&layout.rows(&v_inv)),
+            layout,
             roundoff,
         };
-        let finite = |h: &Half| h.re.iter().chain(&h.im).all(|x| x.is_finite());
         if !(step.v.is_finite()
             && step.start_rows.is_finite()
             && step.tip_rows.is_finite()
             && step.v_inv.is_finite()
             && step.factor.iter().all(RowMajor::is_finite)
             && step.s_flat.iter().flatten().all(|x| x.is_finite())
-            && [&step.mu, &step.one_minus_mu].iter().all(|h| finite(h)))
+            && step.mu.iter().chain(&step.one_minus_mu).all(|x| x.is_finite()))
         {
             return refuse("a coefficient is not finite".into());
         }
@@ -440,14 +471,16 @@ impl DiagonalStep {
         }
         // x̂ ← μ x̂ + (1 − μ) ŝ
         self.relaxed(&inputs, &mut ds.relaxed);
-        let k = self.mu.re.len();
-        let (mu, om) = (&self.mu, &self.one_minus_mu);
-        let (xr, xi) = ds.x.split_at_mut(k);
-        let (sr, si) = ds.relaxed.split_at(k);
-        for i in 0..k {
-            let (a, b) = (xr[i], xi[i]);
-            xr[i] = mu.re[i] * a - mu.im[i] * b + (om.re[i] * sr[i] - om.im[i] * si[i]);
-            xi[i] = mu.re[i] * b + mu.im[i] * a + (om.re[i] * si[i] + om.im[i] * sr[i]);
+        let (real, pairs) = (self.layout.real, self.layout.pairs);
+        let (mu, om, s, x) = (&self.mu, &self.one_minus_mu, &ds.relaxed, &mut ds.x);
+        for i in 0..real {
+            x[i] = mu[i] * x[i] + om[i] * s[i];
+        }
+        for p in 0..pairs {
+            let (r, i) = (real + p, real + pairs + p);
+            let (a, b) = (x[r], x[i]);
+            x[r] = mu[r] * a - mu[i] * b + (om[r] * s[r] - om[i] * s[i]);
+            x[i] = mu[r] * b + mu[i] * a + (om[r] * s[i] + om[i] * s[r]);
         }
         ds.inputs = inputs;
         let mut tips = [0.0; 4];

@@ -7,7 +7,7 @@ use wingcheck_model::{Config, TimeScheme};
 
 use crate::{Sample, SimError};
 
-use super::diagonal::{DiagonalState, DiagonalStep};
+use super::diagonal::{DiagonalState, DiagonalStep, Timing};
 use super::exact::{ExactStep, LoopCoefficients};
 use super::woodbury::{padded_len, total, StepSolve, LANES};
 use super::{ModalBasis, SampleInput};
@@ -165,8 +165,12 @@ impl<'a> ModalLoop<'a> {
             TimeScheme::Trapezoid => Stepping::Trapezoid(solve()?),
             TimeScheme::Exponential => {
                 let co = LoopCoefficients { gain, a, b, xi, stiff, sign };
-                let interval = cfg.samples_per_output() as f64 * cfg.observer.sample_period;
-                match eigenbasis.map(|limit| DiagonalStep::new(basis, &co, h, interval, limit)) {
+                let timing = Timing {
+                    h,
+                    interval: cfg.samples_per_output() as f64 * cfg.observer.sample_period,
+                    horizon: cfg.horizon.t_end,
+                };
+                match eigenbasis.map(|limit| DiagonalStep::new(basis, &co, timing, limit)) {
                     Some(Ok(diagonal)) => Stepping::Diagonal(Box::new(diagonal)),
                     other => {
                         eigenbasis_refused = other.and_then(Result::err).map(|why| why.0);
@@ -471,71 +475,84 @@ mod tests {
     }
 
     /// The exponential scheme in the eigenbasis against the dense one ([`ExactStep`], the same
-    /// exact transition computed by scaling and squaring, independently): 3000 steps with
-    /// chattering held inputs, a checkpoint every 10 steps. Tip values at every step, the modal
-    /// state at the checkpoints and ∫τ² over every interval agree within the eigenbasis's
-    /// round-off estimate on four wings (paper, FD, small ξ, a soft SI-scale wing); the loops it
-    /// refuses say why: a stiff SI-scale wing with a large gain, 48 elements (‖A‖ ≈ ξω_max²
-    /// 20 × the paper's) and a = 1, b = 3000 (slowest rate 3.5e-4 1/s) by their round-off
-    /// estimates, no
-    /// Kelvin–Voigt damping (an eigenvalue on the imaginary axis to round-off).
+    /// exact transition computed by scaling and squaring, independently) over the whole 20-s
+    /// horizon its round-off estimate is for: chattering held inputs, a checkpoint every 10
+    /// steps. Tip values at every step, the modal state at the checkpoints and ∫τ² over every
+    /// interval agree within the estimate on the wings it accepts (paper, FD, small ξ, and the
+    /// slow loops a = 1 b = 3000, a = 0.014 b = 190, a = 1e-4 b = 1400, slowest rates down to
+    /// 2.7e-5 1/s, where the unrefined eigen-solve's drift reached 1.2 × the estimate). The
+    /// loops it refuses say why: a stiff and a soft SI-scale wing and 48 elements by their
+    /// round-off estimates (with the limit lifted, the estimate still covers their differences:
+    /// the stiff wing's 3e-4 is 0.4 × it), no Kelvin–Voigt damping (an eigenvalue on the
+    /// imaginary axis to round-off), a = 1e-4 b = 1e4 by the telescoping limit.
     #[test]
     fn the_eigenbasis_step_matches_the_dense_exponential_step() {
-        let cases: [&[&str]; 8] = [
-            &[
-                "wing.span=6",
-                "wing.ei=1e7",
-                "wing.gj=1e6",
-                "wing.rho=100",
-                "wing.ip=10",
-                "wing.rho_xc=5",
-                "control.k1=2e4",
-                "control.k2=2e3",
-            ],
-            &[],
-            &["control.a=1", "control.b=3000"],
-            &["wing.xi=0", "control.b=2"],
-            &["discretisation.method=fd", "discretisation.grading=0", "control.k1=3", "wing.xi=0.3"],
-            &["discretisation.elements=48"],
-            &["wing.xi=1e-3", "control.a=0.2"],
-            &[
-                "wing.span=6",
-                "wing.ei=1e5",
-                "wing.gj=1e4",
-                "wing.rho=10",
-                "wing.ip=1",
-                "wing.rho_xc=0.5",
-                "wing.xi=0.01",
-            ],
+        let stiff_si: &[&str] = &[
+            "wing.span=6",
+            "wing.ei=1e7",
+            "wing.gj=1e6",
+            "wing.rho=100",
+            "wing.ip=10",
+            "wing.rho_xc=5",
+            "control.k1=2e4",
+            "control.k2=2e3",
         ];
-        let refused: [&[&str]; 4] = [cases[0], cases[2], cases[3], cases[5]];
-        let expected_reason = |sets: &[&str]| if sets == cases[3] { "Re λ ≥ 0" } else { "round-off" };
-        for sets in cases {
+        let soft_si: &[&str] = &[
+            "wing.span=6",
+            "wing.ei=1e5",
+            "wing.gj=1e4",
+            "wing.rho=10",
+            "wing.ip=1",
+            "wing.rho_xc=0.5",
+            "wing.xi=0.01",
+        ];
+        // (overrides, the reason it is refused at the search's limit, if it is)
+        let cases: [(&[&str], Option<&str>); 11] = [
+            (&[], None),
+            (&["control.a=1", "control.b=3000"], None),
+            (&["control.a=0.014", "control.b=190"], None),
+            (&["control.a=1e-4", "control.b=1400"], None),
+            (&["discretisation.method=fd", "discretisation.grading=0", "control.k1=3", "wing.xi=0.3"], None),
+            (&["wing.xi=1e-3", "control.a=0.2"], None),
+            (stiff_si, Some("round-off")),
+            (soft_si, Some("round-off")),
+            (&["discretisation.elements=48"], Some("round-off")),
+            (&["wing.xi=0", "control.b=2"], Some("Re λ ≥ 0")),
+            (&["control.a=1e-4", "control.b=1e4"], Some("slowest decay rate")),
+        ];
+        for (sets, refusal) in cases {
             let mut over: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
             over.push("discretisation.stepper=exponential".into());
             let cfg = wingcheck_model::apply_overrides(&Config::paper(), &over).unwrap();
             let basis = ModalBasis::new(&cfg).unwrap();
-            let diag = ModalLoop::with_eigenbasis(&cfg, &basis).unwrap();
+            let searched = ModalLoop::with_eigenbasis(&cfg, &basis).unwrap();
+            match (searched.eigenbasis_refusal(), refusal) {
+                (None, None) => {}
+                (Some(why), Some(expected)) => {
+                    println!("{sets:?}: refused ({why})");
+                    assert!(why.contains(expected), "{sets:?}: {why}");
+                    assert!(searched.eigenbasis_roundoff().is_none());
+                }
+                (why, _) => panic!("{sets:?}: refusal {why:?}, expected {refusal:?}"),
+            }
+            // the limit lifted: the estimate is compared where it refuses too
+            let diag = ModalLoop::with_eigenbasis_within(&cfg, &basis, f64::INFINITY).unwrap();
             let dense = ModalLoop::new(&cfg, &basis).unwrap();
             let Some(estimate) = diag.eigenbasis_roundoff() else {
-                let why = diag.eigenbasis_refusal().expect("a refusal names its reason");
-                println!("{sets:?}: refused ({why})");
-                assert!(refused.contains(&sets), "{sets:?} refused: {why}");
-                assert!(why.contains(expected_reason(sets)), "{sets:?}: {why}");
+                assert!(refusal.is_some_and(|r| !r.contains("round-off")), "{sets:?}: {:?}", diag.eigenbasis_refusal());
                 continue;
             };
-            assert!(!refused.contains(&sets), "{sets:?} was expected to be refused");
             assert!(dense.eigenbasis_roundoff().is_none() && dense.eigenbasis_refusal().is_none());
             let (mut a, mut b) = (diag.initial_state(&cfg, &basis), dense.initial_state(&cfg, &basis));
             let (mut sum_a, mut sum_b) = ([0.0; 2], [0.0; 2]);
             let (mut worst_tip, mut worst_state, mut worst_square) = (0.0f64, 0.0f64, 0.0f64);
             let (mut tip_scale, mut square_scale) = (0.0f64, 0.0f64);
-            for j in 0..3000 {
+            for j in 0..cfg.total_samples() * cfg.steps_per_sample() {
                 let s = j as f64 * cfg.discretisation.dt;
                 let sign = if (j * 7) % 3 == 0 { 1.0 } else { -1.0 };
                 let input = StepInput {
                     phi: (2.0 * s).cos(),
-                    tip_input: [0.1 * s.sin() - 0.3 * sign, -0.2 + 0.05 * sign],
+                    tip_input: [0.1 * s.sin() - 0.3 * sign + 0.2, -0.2 + 0.05 * sign],
                     g_hat: [0.3 * sign, -0.1 * sign],
                 };
                 let (qa, qb) = (diag.step(&mut a, &input).unwrap(), dense.step(&mut b, &input).unwrap());
@@ -570,7 +587,7 @@ mod tests {
                 "{sets:?}: tips {tip:.1e}, modal state {worst_state:.1e}, interval ∫τ² {square:.1e} relative \
                  (estimate {estimate:.1e})"
             );
-            // the estimate covers the measured differences (0.3 × at most, measured)
+            // the estimate covers the measured differences (0.4 × at most, measured)
             assert!(tip <= estimate && worst_state <= estimate && square <= estimate, "{sets:?}");
         }
     }
