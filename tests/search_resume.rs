@@ -81,11 +81,46 @@ fn a_killed_run_restarted_with_the_same_arguments_resumes() {
 fn two_identical_searches_started_together_both_finish() {
     let root = tempfile::tempdir().unwrap();
     let want = contents(&clean_run(root.path()));
-    let dir = root.path().join("both");
-    let (a, b) = (search(&dir).spawn().unwrap(), search(&dir).spawn().unwrap());
-    for c in [a, b] {
-        let o = c.wait_with_output().unwrap();
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // several rounds of four at once: the window between one run's look at the directory and
+    // another's manifest landing in it is a few microseconds wide
+    for round in 0..6 {
+        let dir = root.path().join(format!("together-{round}"));
+        let runs: Vec<_> = (0..4).map(|_| search(&dir).spawn().unwrap()).collect();
+        for c in runs {
+            let o = c.wait_with_output().unwrap();
+            assert!(o.status.success(), "round {round}: {}", String::from_utf8_lossy(&o.stderr));
+        }
+        assert_eq!(contents(&dir), want, "round {round}");
     }
-    assert_eq!(contents(&dir), want);
+}
+
+#[test]
+fn a_different_search_started_together_is_refused_and_the_first_one_kept() {
+    let root = tempfile::tempdir().unwrap();
+    let want = contents(&clean_run(root.path()));
+    for round in 0..4 {
+        let dir = root.path().join(format!("rivals-{round}"));
+        let ours = search(&dir).spawn().unwrap();
+        let mut rival = Command::new(BIN);
+        rival
+            .args(["search", "--over", "control.b=1,10", "--set", "horizon.t_end=0.2", "--out"])
+            .arg(&dir)
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped());
+        let rival = rival.spawn().unwrap();
+        let (a, b) = (ours.wait_with_output().unwrap(), rival.wait_with_output().unwrap());
+        // exactly one of them owns the directory, and it holds that search's files only
+        assert!(
+            a.status.success() != b.status.success(),
+            "round {round}: both or neither finished: {} / {}",
+            String::from_utf8_lossy(&a.stderr),
+            String::from_utf8_lossy(&b.stderr)
+        );
+        let refused = if a.status.success() { &b } else { &a };
+        let why = String::from_utf8_lossy(&refused.stderr);
+        assert!(why.contains("use another --out") || why.contains("use a new or empty --out"), "round {round}: {why}");
+        if a.status.success() {
+            assert_eq!(contents(&dir), want, "round {round}: the first search's files changed");
+        }
+    }
 }

@@ -22,7 +22,7 @@ mod lock;
 mod provenance;
 mod table;
 
-pub use lock::{lock_name, lock_owner, owner_alive, remove_stale_locks, DirLock};
+pub use lock::{is_lock_file, lock_name, lock_owner, owner_alive, remove_stale_locks, DirLock};
 pub use provenance::{
     build, set_build, sha256_hex, sidecar_path, BuildInfo, FileRecord, Provenance, TreeState, SCHEMA_VERSION,
 };

@@ -22,6 +22,20 @@ pub fn lock_owner(name: &str) -> Option<u32> {
     name.strip_prefix(".wingcheck-")?.strip_suffix(".lock")?.parse().ok()
 }
 
+/// Prefix of a lock file still under its temporary name ([`DirLock::acquire`] locks it, then
+/// renames it to [`lock_name`]).
+const STAGING_PREFIX: &str = ".wingcheck-lock-";
+
+/// A staging lock file that nobody holds is removed only once it is this old: between its
+/// creation and its lock (microseconds) it is unlocked but in use.
+const STAGING_STALE_AFTER: std::time::Duration = std::time::Duration::from_secs(10);
+
+/// Whether `name` is a lock file: `.wingcheck-{pid}.lock` or one still under its temporary
+/// name.
+pub fn is_lock_file(name: &str) -> bool {
+    lock_owner(name).is_some() || name.starts_with(STAGING_PREFIX)
+}
+
 /// Locks held by this process, by directory, with how many holders share each.
 static HELD: Mutex<Option<HashMap<PathBuf, (File, usize)>>> = Mutex::new(None);
 
@@ -43,7 +57,7 @@ impl DirLock {
             return Ok(DirLock { dir });
         }
         // Lock under a temporary name, then rename: whoever sees the final name sees it locked.
-        let tmp = tempfile::Builder::new().prefix(".wingcheck-lock-").tempfile_in(&dir)?;
+        let tmp = tempfile::Builder::new().prefix(STAGING_PREFIX).tempfile_in(&dir)?;
         FileExt::lock(tmp.as_file())?;
         let file = tmp.persist(dir.join(lock_name(std::process::id()))).map_err(|e| e.error)?;
         map.insert(dir.clone(), (file, 1));
@@ -91,13 +105,29 @@ pub fn owner_alive(dir: &Path, pid: u32) -> bool {
     }
 }
 
-/// Removes the lock files in `dir` of processes that have ended (left by a kill).
+/// Removes the lock files in `dir` of processes that have ended (left by a kill), also those
+/// killed before renaming their lock file: unlocked and older than [`STAGING_STALE_AFTER`].
 pub fn remove_stale_locks(dir: &Path) {
     let Ok(entries) = std::fs::read_dir(dir) else { return };
     for e in entries.flatten() {
         let name = e.file_name().to_string_lossy().to_string();
         if let Some(pid) = lock_owner(&name) {
             if !owner_alive(dir, pid) {
+                let _ = std::fs::remove_file(e.path());
+            }
+        } else if name.starts_with(STAGING_PREFIX) {
+            let old = e
+                .metadata()
+                .and_then(|m| m.modified())
+                .is_ok_and(|t| t.elapsed().is_ok_and(|age| age >= STAGING_STALE_AFTER));
+            let unheld = File::open(e.path()).is_ok_and(|f| match FileExt::try_lock(&f) {
+                Ok(()) => {
+                    let _ = FileExt::unlock(&f);
+                    true
+                }
+                Err(_) => false,
+            });
+            if old && unheld {
                 let _ = std::fs::remove_file(e.path());
             }
         }

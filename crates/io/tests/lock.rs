@@ -64,3 +64,24 @@ fn the_lock_is_shared_within_a_process_and_removed_with_its_last_holder() {
     let names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
     assert!(names.is_empty(), "nothing left behind: {names:?}");
 }
+
+#[test]
+fn a_lock_file_killed_before_its_rename_counts_as_a_lock_and_goes_once_old() {
+    // DirLock::acquire creates `.wingcheck-lock-XXXXXX`, locks it, renames it to lock_name(pid):
+    // a kill in between leaves the temporary name, which is neither the user's file nor kept
+    // forever
+    let dir = tempfile::tempdir().unwrap();
+    let staging = dir.path().join(".wingcheck-lock-Ab12Cd");
+    std::fs::write(&staging, "").unwrap();
+    assert!(wingcheck_io::is_lock_file(".wingcheck-lock-Ab12Cd"));
+    assert!(wingcheck_io::is_lock_file(&lock_name(42)));
+    assert!(!wingcheck_io::is_lock_file("wingcheck-lock-Ab12Cd"));
+    // fresh: it may be another process's lock between creation and locking
+    remove_stale_locks(dir.path());
+    assert!(staging.exists(), "a fresh staging lock file is kept");
+    let f = std::fs::File::options().write(true).open(&staging).unwrap();
+    f.set_modified(std::time::SystemTime::now() - Duration::from_secs(60)).unwrap();
+    drop(f);
+    remove_stale_locks(dir.path());
+    assert!(!staging.exists(), "an old unheld staging lock file is removed");
+}

@@ -32,56 +32,37 @@ enum Found {
 }
 
 /// Make `out` ready for the search with manifest `text`, refusing directories that are not a
-/// search's own.
+/// search's own. Two identical searches started together on one `out` both go on: the manifest
+/// is created without overwriting ([`store::write_new`]), and the one that finds it already
+/// there (or sees it appear while looking) takes the directory as its own.
 fn prepare_out(out: &Path, text: &str) -> Result<Found, SearchError> {
-    let found = if out.exists() {
-        if !out.is_dir() {
-            return Err(mismatch(out, "exists and is not a directory"));
+    // a manifest that appears while the directory is being looked at: look again (bounded, as
+    // a failing concurrent run may remove it again)
+    let mut found = None;
+    for _ in 0..3 {
+        found = classify(out, text)?;
+        if found.is_some() {
+            break;
         }
-        let manifest = out.join("manifest.json");
-        if manifest.exists() {
-            let have = store::read(&manifest)?;
-            if serde_json::from_str::<Manifest>(&have).is_err() {
-                return Err(mismatch(out, "manifest.json is not a wingcheck search manifest; use another --out"));
-            }
-            if have != text {
-                return Err(mismatch(
-                    out,
-                    "manifest.json describes a different search (config, axes or options); use another --out",
-                ));
-            }
-            Found::Ours
-        } else {
-            // empty, or holding only what a search killed while setting up leaves: temp files
-            // of the manifest's write and an empty chunks/ (the manifest is written first)
-            let entries = std::fs::read_dir(out)
-                .map_err(|e| SearchError::Io { path: out.display().to_string(), detail: e.to_string() })?;
-            for e in entries {
-                let e = e.map_err(|e| SearchError::Io { path: out.display().to_string(), detail: e.to_string() })?;
-                let name = e.file_name().to_string_lossy().to_string();
-                let empty_chunks = name == store::CHUNK_DIR
-                    && std::fs::read_dir(e.path()).is_ok_and(|mut d| {
-                        d.all(|x| x.is_ok_and(|x| store::is_temp(&x.file_name().to_string_lossy())))
-                    });
-                if !(store::is_temp(&name) || empty_chunks) {
-                    return Err(mismatch(
-                        out,
-                        "exists, is not empty and is not a wingcheck search directory (no manifest.json); use a new or empty --out",
-                    ));
-                }
-            }
-            Found::Empty
-        }
-    } else {
-        Found::Created
+    }
+    let Some(mut found) = found else {
+        return Err(mismatch(
+            out,
+            "its manifest.json keeps appearing and disappearing (another search is using it?); use another --out",
+        ));
     };
     // the manifest first: a run killed at any moment leaves a directory the next run takes
     // (no manifest: nothing but our temp files; a manifest: this search, resumed)
-    let setup = || -> Result<(), SearchError> {
+    let mut setup = || -> Result<(), SearchError> {
         store::mkdir(out)?;
         store::remove_stale_temps(out);
-        if found != Found::Ours {
-            store::write_atomic(&out.join("manifest.json"), text.as_bytes())?;
+        if found != Found::Ours && !store::write_new(&out.join("manifest.json"), text.as_bytes())? {
+            // another run created it since we looked: ours only if it is this search
+            // (either way the directory is that run's now: nothing here is ours to clean up)
+            found = Found::Ours;
+            if store::read(&out.join("manifest.json"))? != text {
+                return Err(mismatch(out, "another search started in it meanwhile; use another --out"));
+            }
         }
         store::mkdir(&out.join(store::CHUNK_DIR))?;
         store::remove_stale_temps(&out.join(store::CHUNK_DIR));
@@ -92,6 +73,55 @@ fn prepare_out(out: &Path, text: &str) -> Result<Found, SearchError> {
         return Err(e);
     }
     Ok(found)
+}
+
+/// How `out` stands for the search with manifest `text`; `None` when a manifest appeared while
+/// its entries were being read.
+fn classify(out: &Path, text: &str) -> Result<Option<Found>, SearchError> {
+    if !out.exists() {
+        return Ok(Some(Found::Created));
+    }
+    if !out.is_dir() {
+        return Err(mismatch(out, "exists and is not a directory"));
+    }
+    let manifest = out.join("manifest.json");
+    if manifest.exists() {
+        let have = store::read(&manifest)?;
+        if serde_json::from_str::<Manifest>(&have).is_err() {
+            return Err(mismatch(out, "manifest.json is not a wingcheck search manifest; use another --out"));
+        }
+        if have != text {
+            return Err(mismatch(
+                out,
+                "manifest.json describes a different search (config, axes or options); use another --out",
+            ));
+        }
+        return Ok(Some(Found::Ours));
+    }
+    // empty, or holding only what a search killed while setting up leaves: temp files of the
+    // manifest's write and an empty chunks/ (the manifest is written first)
+    let io = |e: std::io::Error| SearchError::Io { path: out.display().to_string(), detail: e.to_string() };
+    for e in std::fs::read_dir(out).map_err(io)? {
+        let e = e.map_err(io)?;
+        let name = e.file_name().to_string_lossy().to_string();
+        if name == "manifest.json" {
+            return Ok(None);
+        }
+        let empty_chunks = name == store::CHUNK_DIR
+            && std::fs::read_dir(e.path())
+                .is_ok_and(|mut d| d.all(|x| x.is_ok_and(|x| store::is_temp(&x.file_name().to_string_lossy()))));
+        if !(store::is_temp(&name) || empty_chunks) {
+            // a concurrent run's manifest and chunks may have arrived after the first look
+            if manifest.exists() {
+                return Ok(None);
+            }
+            return Err(mismatch(
+                out,
+                "exists, is not empty and is not a wingcheck search directory (no manifest.json); use a new or empty --out",
+            ));
+        }
+    }
+    Ok(Some(Found::Empty))
 }
 
 /// After a failure: remove what this invocation created in a directory it created or found

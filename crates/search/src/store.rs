@@ -50,6 +50,36 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), SearchError> {
     })
 }
 
+/// Create `path` holding `bytes` unless it exists, atomically and without overwriting: the
+/// bytes go to a temp file (as in [`write_atomic`]) that is then hard-linked to `path`, which
+/// fails if another process created `path` first. Returns whether this call created it.
+pub fn write_new(path: &Path, bytes: &[u8]) -> Result<bool, SearchError> {
+    use std::io::Write;
+    let err = |e: std::io::Error| SearchError::Io { path: path.display().to_string(), detail: e.to_string() };
+    let name = path.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
+    let tmp = path.with_file_name(format!(".{name}{}{}", TMP_TAGS[0], std::process::id()));
+    let dir = path.parent().unwrap_or(Path::new("."));
+    let _lock = wingcheck_io::DirLock::acquire(dir).map_err(err)?;
+    let write = || -> std::io::Result<bool> {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(bytes)?;
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            f.set_permissions(std::fs::Permissions::from_mode(0o644))?;
+        }
+        f.sync_all()?;
+        match std::fs::hard_link(&tmp, path) {
+            Ok(()) => Ok(true),
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => Ok(false),
+            Err(e) => Err(e),
+        }
+    };
+    let created = write();
+    let _ = std::fs::remove_file(&tmp);
+    created.map_err(err)
+}
+
 /// Removes the temp files ([`TMP_TAGS`]) in `dir` whose writer no longer holds its lock there
 /// (killed during a write or the final assembly), and such writers' lock files; those of live
 /// processes are left alone.
@@ -75,7 +105,7 @@ pub fn remove_stale_temps(dir: &Path) {
 pub fn is_temp(name: &str) -> bool {
     name.starts_with('.')
         && (TMP_TAGS.iter().any(|tag| name.rsplit_once(tag).is_some_and(|(_, p)| p.parse::<u32>().is_ok()))
-            || wingcheck_io::lock_owner(name).is_some())
+            || wingcheck_io::is_lock_file(name))
 }
 
 /// Read a file to a string.
