@@ -53,10 +53,10 @@ pub struct TipTrace {
     pub tau1: Vec<f64>,
     /// τ2 (N m).
     pub tau2: Vec<f64>,
-    /// Full-rate RMS of τ1 over each output interval (N), as `wingcheck_sim::Series::tau1_rms`.
-    pub tau1_rms: Vec<f64>,
-    /// The same for τ2 (N m).
-    pub tau2_rms: Vec<f64>,
+    /// Full-rate RMS of τ1 (N) and τ2 (N m) over [0, T]: √(∫τ² dt / T) from every integrator
+    /// step, as `wingcheck_sim::windowed_rms` of the series' interval values over the run
+    /// (|τ| at t = 0 for a run of zero length).
+    pub tau_rms: [f64; 2],
     /// Full-rate max |τ1| (N), |τ2| (N m) over [0, T]: every integrator step's end and both
     /// sides of every sample's jump, as `wingcheck_sim::Peaks` (never the output samples, which
     /// are phase-locked to the explicit observer's chatter).
@@ -81,8 +81,12 @@ impl TipTrace {
             theta_tip: s.theta_tip.clone(),
             tau1: s.tau1.clone(),
             tau2: s.tau2.clone(),
-            tau1_rms: s.tau1_rms.clone(),
-            tau2_rms: s.tau2_rms.clone(),
+            tau_rms: [&s.tau1_rms, &s.tau2_rms].map(|interval| {
+                let t_end = s.t.last().copied().unwrap_or(0.0);
+                wingcheck_sim::windowed_rms(&s.t, interval, 0.0, t_end)
+                    .or_else(|| interval.first().copied())
+                    .unwrap_or(0.0)
+            }),
             g1_tilde: tilde(&s.g1, &s.g1_hat),
             g2_tilde: tilde(&s.g2, &s.g2_hat),
             energy_end: s.energy.last().copied().unwrap_or(0.0),
@@ -91,7 +95,8 @@ impl TipTrace {
 }
 
 /// What the search records of a run: the tip trace at the output samples, the full-rate τ
-/// square integrals and max |τ| (the values `simulate` folds into its `Peaks` and RMS).
+/// square integral over the whole run and max |τ| (the values `simulate` folds into its `Peaks`
+/// and RMS).
 #[derive(Default)]
 struct Trace {
     trace: TipTrace,
@@ -112,15 +117,17 @@ impl Recorder for Trace {
         self.squares.add_squares(squares);
     }
 
+    fn interval_squares(&self) -> bool {
+        false
+    }
+
     fn output(&mut self, _: &ModalState, s: &Sample, _: usize) -> Result<(), SimError> {
-        let (tr, rms) = (&mut self.trace, self.squares.take_rms());
+        let tr = &mut self.trace;
         tr.t.push(s.t);
         tr.q_tip.push(s.q_tip);
         tr.theta_tip.push(s.theta_tip);
         tr.tau1.push(s.tau1);
         tr.tau2.push(s.tau2);
-        tr.tau1_rms.push(rms[0]);
-        tr.tau2_rms.push(rms[1]);
         tr.g1_tilde.push(s.g1 - s.g1_hat);
         tr.g2_tilde.push(s.g2 - s.g2_hat);
         tr.energy_end = s.energy;
@@ -139,6 +146,8 @@ pub fn run(cfg: &Config, basis: &ModalBasis, signal: &RecordedSignal) -> Result<
     let mut rec = Trace::default();
     drive(cfg, basis, &lp, &mut st, &mut signal.replay(), &mut rec)?;
     rec.trace.tau_peak = rec.peak;
+    // one interval: the whole run (the squares' start is t = 0, their end the last step's)
+    rec.trace.tau_rms = rec.squares.take_rms();
     Ok(rec.trace)
 }
 

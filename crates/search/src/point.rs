@@ -102,12 +102,6 @@ pub fn settling_time(s: &TipTrace) -> Option<f64> {
     metrics::joint_tip_settle_time(&s.t, &s.q_tip, &s.theta_tip)
 }
 
-/// RMS of τ(t) over the whole run at full rate ([`wingcheck_sim::windowed_rms`]).
-fn full_rate_rms(s: &TipTrace, interval_rms: &[f64]) -> Option<f64> {
-    let t_end = s.t.last().copied().unwrap_or(0.0);
-    wingcheck_sim::windowed_rms(&s.t, interval_rms, 0.0, t_end).or_else(|| interval_rms.first().copied())
-}
-
 /// The simulation metrics ([`Metric::SIMULATION`], in order).
 fn sim_metrics(s: &TipTrace, win: (f64, f64)) -> [Option<f64>; 12] {
     let w = metrics::window_indices(&s.t, metrics::Window { t0: win.0, t1: win.1 });
@@ -119,9 +113,9 @@ fn sim_metrics(s: &TipTrace, win: (f64, f64)) -> [Option<f64>; 12] {
         metrics::max_abs(th),
         settling_time(s),
         (!s.t.is_empty()).then_some(s.tau_peak[0]),
-        full_rate_rms(s, &s.tau1_rms),
+        (!s.t.is_empty()).then_some(s.tau_rms[0]),
         (!s.t.is_empty()).then_some(s.tau_peak[1]),
-        full_rate_rms(s, &s.tau2_rms),
+        (!s.t.is_empty()).then_some(s.tau_rms[1]),
         metrics::rms(&s.g1_tilde[w.clone()]),
         metrics::rms(&s.g2_tilde[w]),
         (!s.t.is_empty()).then_some(s.energy_end),

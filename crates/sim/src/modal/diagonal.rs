@@ -489,13 +489,15 @@ impl DiagonalStep {
     }
 
     /// Bring η, ζ and (ξ > 0) w up to date from x̂ and return the boundary terms
-    /// e_aᵀPe_a − e_bᵀPe_b of the interval since the previous checkpoint a (N² s, N² m² s).
+    /// e_aᵀPe_a − e_bᵀPe_b of the interval since the previous checkpoint a that formed them
+    /// (N² s, N² m² s); with `squares` false they are not formed ([0, 0], a stays).
     pub(crate) fn checkpoint(
         &self,
         ds: &mut DiagonalState,
         eta: &mut [f64],
         zeta: &mut [f64],
         w: &mut [f64; 2],
+        squares: bool,
     ) -> [f64; 2] {
         self.v.mul_into(&ds.x, &mut ds.z);
         let n = self.n;
@@ -504,6 +506,9 @@ impl DiagonalStep {
             zeta[i] = ds.z[n + i];
         }
         w[..self.tip_states].copy_from_slice(&ds.z[2 * n..]);
+        if !squares {
+            return [0.0; 2];
+        }
         let now = self.boundary(ds);
         let before = std::mem::replace(&mut ds.boundary, now);
         [before[0] - now[0], before[1] - now[1]]
