@@ -111,12 +111,17 @@ pub(crate) struct DiagonalState {
     inputs: [f64; INPUTS],
     /// e_cᵀP_c e_c at the latest checkpoint (e = z − z*(inputs)).
     boundary: [f64; 2],
-    /// Work buffers: z, ŝ and ê = x̂ − ŝ in the layout, the start-of-step rows' values.
+    /// Work buffers: z, ŝ and ê = x̂ − ŝ in the layout.
     z: Vec<f64>,
     relaxed: Vec<f64>,
     e: Vec<f64>,
-    start: Vec<f64>,
+    /// The [`DiagonalStep`]'s `rows` at the current x̂: the tip values, then the next step's
+    /// start-of-step values ([`START`] on).
+    rows: Vec<f64>,
 }
+
+/// Where the start-of-step values begin in the rows: after the four tip rows.
+const START: usize = 4;
 
 /// The times a [`DiagonalStep`] is built for (s): the step h, the checkpoint interval (the
 /// output sampling) and the run's horizon T.
@@ -144,18 +149,18 @@ pub(crate) struct DiagonalStep {
     /// real parts, then the pairs' imaginary parts.
     mu: Vec<f64>,
     one_minus_mu: Vec<f64>,
-    /// ∫_0^h c̃ᵀe^{Λs}ẽ ds = Re(lin · x̂) − lin_input · u (lin in `start_rows`).
+    /// ∫_0^h c̃ᵀe^{Λs}ẽ ds = Re(lin · x̂) − lin_input · u (lin in `rows`).
     lin_input: [[f64; DRIVING]; 2],
     /// τ*_c = tau_star_c · u.
     tau_star: [[f64; INPUTS]; 2],
-    /// Zᵀ P_c Z, Z = the columns of z*(u) (the rows Z_kᵀ P_c V are in `start_rows`).
+    /// Zᵀ P_c Z, Z = the columns of z*(u) (the rows Z_kᵀ P_c V are in `rows`).
     jump_input: [[[f64; DRIVING]; DRIVING]; 2],
     /// z = Re(V x̂) = [V_re, −V_im](x̂_re, x̂_im) (weighted columns).
     v: RowMajor,
-    /// The rows read at a step's start, Re(row · x̂) as [row_re, −row_im]: jump[0][0..3],
-    /// jump[1][0..3], lin[0], lin[1]; and at its end: the four tip rows.
-    start_rows: RowMajor,
-    tip_rows: RowMajor,
+    /// The rows read at every step's end, over x̂ in the layout: the four tip rows, then those
+    /// the next step reads at its start, jump[0][0..3], jump[1][0..3], lin[0], lin[1] — one
+    /// product per step for both.
+    rows: RowMajor,
     /// The columns of S in the layout.
     s_flat: [Vec<f64>; DRIVING],
     /// Rows of P_c's factor over ê in the layout: e_cᵀP_c e_c = Σ_j (f_j · ê)².
@@ -325,12 +330,15 @@ impl DiagonalStep {
         // φ_i = (e^{λh} − 1)/λ = ∫_0^h e^{λs} ds
         let phi: Vec<c64> = em1.iter().zip(&lam).map(|(e, l)| e / l).collect();
         // S's columns as (re, im): the vector the rows over ξ = (x̂_re, x̂_im) act on
-        let s_flat = [0, 1, 2].map(|kk| [s[kk].re.as_slice(), s[kk].im.as_slice()].concat());
+        let layout = Layout::new(&reps);
+        let slots = layout.len();
+        // S's columns in the layout: the vector the rows over x̂ act on
+        let s_flat = [0, 1, 2].map(|kk| layout.vector(&[s[kk].re.as_slice(), s[kk].im.as_slice()].concat()));
         let mut lin = [Half::zeros(k), Half::zeros(k)];
         let mut lin_input = [[0.0; DRIVING]; 2];
         let mut tau_star = [[0.0; INPUTS]; 2];
-        let mut jump =
-            [[Half::zeros(k), Half::zeros(k), Half::zeros(k)], [Half::zeros(k), Half::zeros(k), Half::zeros(k)]];
+        // the rows Z_kᵀ P_c over x̂ in the layout, channel by channel
+        let mut jump: [Vec<Vec<f64>>; 2] = [Vec::new(), Vec::new()];
         let mut jump_input = [[[0.0; DRIVING]; DRIVING]; 2];
         let mut factors: Vec<Mat<f64>> = Vec::with_capacity(2);
         for c in 0..2 {
@@ -347,20 +355,26 @@ impl DiagonalStep {
                 tau_star[c][kk] = through_state + outputs[c][m + kk];
             }
             // Φ = êᴴPê over all N eigenvalues, P_ij = −ḡ_i g_j/(λ̄_i + λ_j), as a real quadratic
-            // form ξᵀP_rξ in ξ = (x̂_re, x̂_im) over the representatives: a pair contributes
+            // form ξᵀP_rξ in the layout's real coordinates ξ of x̂: a pair contributes
             // ê_i = ξ_re + iξ_im and its conjugate.
-            let p_r = real_form(&g, &lam, &reps);
+            let p_r = real_form(&g, &lam, &reps, &layout);
             for kk in 0..DRIVING {
-                let row: Vec<f64> = (0..2 * k).map(|a| (0..2 * k).map(|b| p_r[(a, b)] * s_flat[kk][b]).sum()).collect();
-                // row·(x̂_re, x̂_im) = re·x_re − im·x_im with im = −row[k..]
-                jump[c][kk] = Half { re: row[..k].to_vec(), im: row[k..].iter().map(|v| -v).collect() };
+                let row: Vec<f64> = (0..slots).map(|a| (0..slots).map(|b| p_r[(a, b)] * s_flat[kk][b]).sum()).collect();
                 for ll in 0..DRIVING {
                     jump_input[c][kk][ll] = row.iter().zip(&s_flat[ll]).map(|(a, b)| a * b).sum();
                 }
+                jump[c].push(row);
             }
             factors.push(pivoted_cholesky(&p_r));
         }
-        let layout = Layout::new(&reps);
+        // the start rows: jump[0][0..3], jump[1][0..3], lin[0], lin[1]
+        let lin_rows = layout.columns(&stack(&lin));
+        let tip_rows = layout.columns(&stack(&tip));
+        let rows = Mat::from_fn(START + 2 * DRIVING + 2, slots, |i, j| match i {
+            _ if i < START => tip_rows[(i, j)],
+            _ if i < START + 2 * DRIVING => jump[(i - START) / DRIVING][(i - START) % DRIVING][j],
+            _ => lin_rows[(i - START - 2 * DRIVING, j)],
+        });
         let flat = |h: &Half| layout.vector(&[h.re.as_slice(), h.im.as_slice()].concat());
         let step = DiagonalStep {
             n,
@@ -373,17 +387,15 @@ impl DiagonalStep {
             tau_star,
             jump_input,
             v: RowMajor::new(&layout.columns(&v)),
-            start_rows: RowMajor::new(&layout.columns(&stack(&[&jump[0][..], &jump[1][..], &lin[..]].concat()))),
-            tip_rows: RowMajor::new(&layout.columns(&stack(&tip))),
-            s_flat: s_flat.map(|s| layout.vector(&s)),
-            factor: [RowMajor::new(&layout.columns(&factors[0])), RowMajor::new(&layout.columns(&factors[1]))],
+            rows: RowMajor::new(&rows),
+            s_flat,
+            factor: [RowMajor::new(&factors[0]), RowMajor::new(&factors[1])],
             v_inv: RowMajor::new(&layout.rows(&v_inv)),
             layout,
             roundoff,
         };
         if !(step.v.is_finite()
-            && step.start_rows.is_finite()
-            && step.tip_rows.is_finite()
+            && step.rows.is_finite()
             && step.v_inv.is_finite()
             && step.factor.iter().all(RowMajor::is_finite)
             && step.s_flat.iter().flatten().all(|x| x.is_finite())
@@ -430,7 +442,7 @@ impl DiagonalStep {
             z[n + i] = st.zeta[i];
         }
         z[2 * n..m].copy_from_slice(&st.w[..self.tip_states]);
-        let stride = self.start_rows.stride();
+        let stride = self.rows.stride();
         let mut x = vec![0.0; stride];
         self.v_inv.mul_into(&z, &mut x);
         let mut ds = DiagonalState {
@@ -440,8 +452,9 @@ impl DiagonalStep {
             z: vec![0.0; m],
             relaxed: vec![0.0; self.s_flat[0].len()],
             e: vec![0.0; stride],
-            start: vec![0.0; self.start_rows.rows()],
+            rows: vec![0.0; self.rows.rows()],
         };
+        self.rows.mul_into(&ds.x, &mut ds.rows);
         ds.boundary = self.boundary(&mut ds);
         ds
     }
@@ -453,20 +466,20 @@ impl DiagonalStep {
     pub(crate) fn advance(&self, ds: &mut DiagonalState, inputs: [f64; INPUTS]) -> ([f64; 2], [f64; 4]) {
         let old = ds.inputs;
         let du = [0, 1, 2].map(|kk| inputs[kk] - old[kk]);
-        self.start_rows.mul_into(&ds.x, &mut ds.start);
+        // the start-of-step rows were formed at the previous step's end (or the start)
         let mut square = [0.0; 2];
         for (c, sq) in square.iter_mut().enumerate() {
             // jump of eᵀPe at the step's start: −2Δz*ᵀP(z − z*(old)) + Δz*ᵀPΔz*
             let mut jump = 0.0;
             for kk in 0..DRIVING {
-                let pe = ds.start[DRIVING * c + kk]
+                let pe = ds.rows[START + DRIVING * c + kk]
                     - (0..DRIVING).map(|ll| self.jump_input[c][kk][ll] * old[ll]).sum::<f64>();
                 let quad = (0..DRIVING).map(|ll| self.jump_input[c][kk][ll] * du[ll]).sum::<f64>();
                 jump += du[kk] * (quad - 2.0 * pe);
             }
             let tau_star: f64 = (0..INPUTS).map(|kk| self.tau_star[c][kk] * inputs[kk]).sum();
-            let lin =
-                ds.start[2 * DRIVING + c] - (0..DRIVING).map(|kk| self.lin_input[c][kk] * inputs[kk]).sum::<f64>();
+            let lin = ds.rows[START + 2 * DRIVING + c]
+                - (0..DRIVING).map(|kk| self.lin_input[c][kk] * inputs[kk]).sum::<f64>();
             *sq = jump + 2.0 * tau_star * lin + self.h * tau_star * tau_star;
         }
         // x̂ ← μ x̂ + (1 − μ) ŝ
@@ -483,8 +496,8 @@ impl DiagonalStep {
             x[i] = mu[r] * b + mu[i] * a + (om[r] * s[i] + om[i] * s[r]);
         }
         ds.inputs = inputs;
-        let mut tips = [0.0; 4];
-        self.tip_rows.mul_into(&ds.x, &mut tips);
+        self.rows.mul_into(&ds.x, &mut ds.rows);
+        let tips = [ds.rows[0], ds.rows[1], ds.rows[2], ds.rows[3]];
         (square, tips)
     }
 
@@ -530,24 +543,29 @@ fn within(x: f64, limit: f64) -> bool {
     x <= limit
 }
 
-/// The real symmetric matrix P_r of ξ ↦ êᴴPê over all N eigenvalues, ξ = (x̂_re, x̂_im) over
-/// the k representatives (length 2k), P_ij = −ḡ_i g_j/(λ̄_i + λ_j) (the Lyapunov solution of
-/// Λᴴ P + PΛ = −ḡgᵀ): a real eigenvalue has ê = ξ_re, a pair ê = ξ_re ± iξ_im.
-fn real_form(g: &[c64], lam: &[c64], reps: &[(usize, f64)]) -> Mat<f64> {
+/// The real symmetric matrix P_r of ξ ↦ êᴴPê over all N eigenvalues, ξ the N real
+/// coordinates of x̂ in `layout` (the representatives' real parts and the pairs' imaginary
+/// parts), P_ij = −ḡ_i g_j/(λ̄_i + λ_j) (the Lyapunov solution of Λᴴ P + PΛ = −ḡgᵀ): a real
+/// eigenvalue has ê = ξ_re, a pair ê = ξ_re ± iξ_im.
+fn real_form(g: &[c64], lam: &[c64], reps: &[(usize, f64)], layout: &Layout) -> Mat<f64> {
     let k = g.len();
     let i1 = c64::new(0.0, 1.0);
+    let one = c64::new(1.0, 0.0);
+    let slot = |i: usize| layout.slot(i).expect("every representative's parts have a slot");
     // every eigenvalue: (λ, g, its ê as Σ t ξ_α)
     let mut full: Vec<Eigenvalue> = Vec::with_capacity(2 * k);
     for r in 0..k {
         let l = lam[r];
         if reps[r].1 == 2.0 {
-            full.push((l, g[r], vec![(r, c64::new(1.0, 0.0)), (k + r, i1)]));
-            full.push((l.conj(), g[r].conj(), vec![(r, c64::new(1.0, 0.0)), (k + r, -i1)]));
+            let (re, im) = (slot(r), slot(k + r));
+            full.push((l, g[r], vec![(re, one), (im, i1)]));
+            full.push((l.conj(), g[r].conj(), vec![(re, one), (im, -i1)]));
         } else {
-            full.push((l, g[r], vec![(r, c64::new(1.0, 0.0))]));
+            full.push((l, g[r], vec![(slot(r), one)]));
         }
     }
-    let mut p = Mat::<f64>::zeros(2 * k, 2 * k);
+    let n = layout.len();
+    let mut p = Mat::<f64>::zeros(n, n);
     for (li, gi, ti) in &full {
         for (lj, gj, tj) in &full {
             let pij = -(gi.conj() * gj) / (li.conj() + lj);
@@ -558,7 +576,7 @@ fn real_form(g: &[c64], lam: &[c64], reps: &[(usize, f64)]) -> Mat<f64> {
             }
         }
     }
-    Mat::from_fn(2 * k, 2 * k, |a, b| 0.5 * (p[(a, b)] + p[(b, a)]))
+    Mat::from_fn(n, n, |a, b| 0.5 * (p[(a, b)] + p[(b, a)]))
 }
 
 /// Rows f_j with ξᵀPξ = Σ_j (f_j·ξ)² up to the dropped remainder, for a positive semidefinite

@@ -27,6 +27,17 @@ impl Layout {
         Layout { real: real.len(), pairs: pairs.len(), from }
     }
 
+    /// Number of slots (N).
+    pub(crate) fn len(&self) -> usize {
+        self.from.len()
+    }
+
+    /// The slot of index `i` of the (re 0..k, im k..2k) layout, `None` for the imaginary part
+    /// of a real eigenvalue (dropped).
+    pub(crate) fn slot(&self, i: usize) -> Option<usize> {
+        self.from.iter().position(|&f| f == i)
+    }
+
     /// The entries of a (re, im) vector in this layout.
     pub(crate) fn vector(&self, full: &[f64]) -> Vec<f64> {
         self.from.iter().map(|&i| full[i]).collect()

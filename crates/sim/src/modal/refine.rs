@@ -90,12 +90,16 @@ impl RealEigen {
                     continue;
                 }
                 let bi = Self::block(li, wi);
-                let rhs: Vec<f64> =
-                    (0..wj).flat_map(|q| (0..wi).map(move |p| (p, q))).map(|(p, q)| -c[(ci + p, cj + q)]).collect();
+                let mut rhs = [0.0; 4];
+                for q in 0..wj {
+                    for p in 0..wi {
+                        rhs[q * wi + p] = -c[(ci + p, cj + q)];
+                    }
+                }
                 let Some(x) = sylvester(&bi, wi, &bj, wj, &rhs) else {
                     continue;
                 };
-                if x.iter().all(|v| v.abs() <= MAX_APPLIED) {
+                if x[..wi * wj].iter().all(|v| v.abs() <= MAX_APPLIED) {
                     for q in 0..wj {
                         for p in 0..wi {
                             t[(ci + p, cj + q)] = x[q * wi + p];
@@ -141,11 +145,17 @@ impl RealEigen {
     }
 }
 
-/// X (p × q, column-major) with B_I X − X B_J = rhs, the blocks row-major; `None` where the
-/// system is singular or the result not finite. By Gaussian elimination with partial pivoting
-/// on the pq × pq system (pq ≤ 4); written by hand because the system is tiny.
-fn sylvester(bi: &[[f64; 2]; 2], p: usize, bj: &[[f64; 2]; 2], q: usize, rhs: &[f64]) -> Option<Vec<f64>> {
+/// X (p × q, column-major, in the first pq entries) with B_I X − X B_J = rhs, the blocks
+/// row-major; `None` where the system is singular or the result not finite. By Gaussian
+/// elimination with partial pivoting on the pq × pq system (pq ≤ 4); written by hand because
+/// the system is tiny (and solved for every pair of blocks: no allocation).
+fn sylvester(bi: &[[f64; 2]; 2], p: usize, bj: &[[f64; 2]; 2], q: usize, rhs: &[f64; 4]) -> Option<[f64; 4]> {
     let n = p * q;
+    if n == 1 {
+        // the elimination below for one unknown, (b_i − b_j) x = rhs, without its loops
+        let x = rhs[0] / (bi[0][0] - bj[0][0]);
+        return (bi[0][0] - bj[0][0] != 0.0 && x.is_finite()).then_some([x, 0.0, 0.0, 0.0]);
+    }
     let mut k = [[0.0; 5]; 4];
     // unknown x_{r,s} at s*p + r; equation (r, s): Σ_t bi[r][t] x_{t,s} − Σ_t x_{r,t} bj[t][s]
     for s in 0..q {
@@ -174,12 +184,12 @@ fn sylvester(bi: &[[f64; 2]; 2], p: usize, bj: &[[f64; 2]; 2], q: usize, rhs: &[
             k[row][4] -= f * k[col][4];
         }
     }
-    let mut x = vec![0.0; n];
+    let mut x = [0.0; 4];
     for row in (0..n).rev() {
         let s: f64 = (row + 1..n).map(|c| k[row][c] * x[c]).sum();
         x[row] = (k[row][4] - s) / k[row][row];
     }
-    x.iter().all(|v| v.is_finite()).then_some(x)
+    x[..n].iter().all(|v| v.is_finite()).then_some(x)
 }
 
 #[cfg(test)]
