@@ -121,6 +121,10 @@ impl Recorder for Trace {
         false
     }
 
+    fn reads_state(&self) -> bool {
+        false
+    }
+
     fn output(&mut self, _: &ModalState, s: &Sample, _: usize) -> Result<(), SimError> {
         let tr = &mut self.trace;
         tr.t.push(s.t);

@@ -353,6 +353,17 @@ impl<'a> ModalLoop<'a> {
         }
     }
 
+    /// An upper bound of the mechanical energy (J) of `st`'s current state for the scheme that
+    /// carries it in the eigenbasis (O(N), without the O(N²) reconstruction a
+    /// [`ModalLoop::checkpoint`] does; `None` for the other schemes): ½‖V₁‖²_F‖x̂‖², V₁ the
+    /// rows of V that give (ω_iη_i, ζ_i). Not finite where the state is not.
+    pub fn energy_bound(&self, st: &ModalState) -> Option<f64> {
+        match (&self.stepping, &st.diagonal) {
+            (Stepping::Diagonal(diagonal), Some(ds)) => Some(diagonal.energy_bound(ds)),
+            _ => None,
+        }
+    }
+
     /// Tip forces of the right-hand side: ḡ − ĝ − k a x_tip (the displacement part of the
     /// control law is in K_c).
     fn tip_forces(&self, input: &StepInput, x_tip: [f64; 2]) -> [f64; 2] {
