@@ -433,15 +433,15 @@ fn simulate_nodal(
     })
 }
 
-/// Stop with a message saying when and why if the state is no longer finite or the energy
-/// has grown beyond any physical meaning (energy above 1e12 × (1 + E(0)), E in J). Public so
-/// that every runner of the closed loop (the nodal stepper, the modal driver) uses the same rule.
 /// The energy (J) above which a run with initial energy `e0` (J) counts as diverged:
 /// 1e12 × (1 + E(0)).
 pub(crate) fn energy_limit(e0: f64) -> f64 {
     DIVERGENCE_FACTOR * (1.0 + e0)
 }
 
+/// Stop with a message saying when and why if the state is no longer finite or the energy
+/// has grown beyond any physical meaning (energy above 1e12 × (1 + E(0)), E in J). Public so
+/// that every runner of the closed loop (the nodal stepper, the modal driver) uses the same rule.
 pub fn check_sample(s: &Sample, e0: f64) -> Result<(), SimError> {
     let values = [
         ("q(s,t)", s.q_tip),

@@ -19,9 +19,12 @@
 
 mod diagonal;
 mod drive;
+#[cfg(test)]
+mod eigenbasis_tests;
 mod exact;
 mod gemv;
 mod layout;
+mod lyapunov;
 mod probe;
 mod refine;
 mod run;

@@ -11,7 +11,7 @@
 //! 2 × 2 block [[α, β], [−β, α]] of a pair α ± iβ, whose corrected block is brought back to
 //! that form).
 //!
-//! Measured against the dense scheme over 20-s horizons (`scheme.rs` tests): the step takes the
+//! Measured against the dense scheme over 20-s horizons (`eigenbasis_tests.rs`): the step takes the
 //! state error from up to 1.2 ε‖A‖·T (4.8e-7 at a = 0.014, b = 190) to 1e-11, the level at
 //! which two exact computations of the same transition differ. The refined decomposition is
 //! checked like the first ([`RealEigen::residual`]); its normwise residual stays at round-off
