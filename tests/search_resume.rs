@@ -56,7 +56,7 @@ fn a_killed_run_restarted_with_the_same_arguments_resumes() {
     let root = tempfile::tempdir().unwrap();
     let want = contents(&clean_run(root.path()));
     // killed at moments from before the manifest exists to the final assembly
-    for (k, ms) in [0u64, 1, 3, 8, 20, 60, 150, 400].into_iter().enumerate() {
+    for (k, ms) in [0u64, 1, 2, 3, 4, 5, 6, 8, 12, 20, 60, 150, 400].into_iter().enumerate() {
         let dir = root.path().join(format!("killed-{k}"));
         let mut child = search(&dir).spawn().unwrap();
         std::thread::sleep(Duration::from_millis(ms));

@@ -56,13 +56,57 @@ impl DirLock {
             *n += 1;
             return Ok(DirLock { dir });
         }
-        // Lock under a temporary name, then rename: whoever sees the final name sees it locked.
-        let tmp = tempfile::Builder::new().prefix(STAGING_PREFIX).tempfile_in(&dir)?;
-        FileExt::lock(tmp.as_file())?;
-        let file = tmp.persist(dir.join(lock_name(std::process::id()))).map_err(|e| e.error)?;
+        let file = create_locked(&dir, &dir.join(lock_name(std::process::id())))?;
         map.insert(dir.clone(), (file, 1));
         Ok(DirLock { dir })
     }
+}
+
+/// Creates `path` already locked, so that whoever sees the name sees it locked.
+///
+/// On Linux the file is born unnamed (`O_TMPFILE`), locked, then linked to `path`: a kill at
+/// any instant leaves either nothing or `path`, which a later run removes once the lock is gone
+/// ([`remove_stale_locks`]). Where the file system has no unnamed files (and off Linux) it is
+/// locked under a staging name ([`STAGING_PREFIX`]) and renamed; a kill between the two leaves
+/// a staging file that is removed only after [`STAGING_STALE_AFTER`].
+fn create_locked(dir: &Path, path: &Path) -> std::io::Result<File> {
+    #[cfg(target_os = "linux")]
+    if let Some(file) = create_locked_unnamed(dir, path)? {
+        return Ok(file);
+    }
+    let tmp = tempfile::Builder::new().prefix(STAGING_PREFIX).tempfile_in(dir)?;
+    FileExt::lock(tmp.as_file())?;
+    tmp.persist(path).map_err(|e| e.error)
+}
+
+/// [`create_locked`] through an `O_TMPFILE` file; `Ok(None)` where the file system or kernel
+/// cannot (then the caller uses a staging name).
+#[cfg(target_os = "linux")]
+fn create_locked_unnamed(dir: &Path, path: &Path) -> std::io::Result<Option<File>> {
+    use rustix::fs::{linkat, openat, AtFlags, Mode, OFlags, CWD};
+    use rustix::io::Errno;
+    use std::os::fd::AsRawFd;
+    let flags = OFlags::TMPFILE | OFlags::RDWR | OFlags::CLOEXEC;
+    let fd = match openat(CWD, dir, flags, Mode::from_raw_mode(0o644)) {
+        Ok(fd) => fd,
+        Err(e) if [Errno::OPNOTSUPP, Errno::ISDIR, Errno::INVAL, Errno::NOSYS].contains(&e) => return Ok(None),
+        Err(e) => return Err(e.into()),
+    };
+    let file = File::from(fd);
+    FileExt::lock(&file)?;
+    let fd_path = format!("/proc/self/fd/{}", file.as_raw_fd());
+    // A lock file under this pid already there is a dead process's (a reused pid), as `rename`
+    // over it in the staging route would assume: replace it.
+    for replace in [true, false] {
+        match linkat(CWD, fd_path.as_str(), CWD, path, AtFlags::SYMLINK_FOLLOW) {
+            Ok(()) => return Ok(Some(file)),
+            Err(Errno::EXIST) if replace => std::fs::remove_file(path)?,
+            // no /proc to name the file by
+            Err(Errno::NOENT) if !Path::new("/proc/self/fd").exists() => return Ok(None),
+            Err(e) => return Err(e.into()),
+        }
+    }
+    Err(std::io::Error::new(std::io::ErrorKind::AlreadyExists, format!("{} keeps reappearing", path.display())))
 }
 
 impl Drop for DirLock {

@@ -67,6 +67,7 @@ fn the_lock_is_shared_within_a_process_and_removed_with_its_last_holder() {
 
 #[test]
 fn a_lock_file_killed_before_its_rename_counts_as_a_lock_and_goes_once_old() {
+    // Where there are no unnamed files (off Linux, or a file system without O_TMPFILE),
     // DirLock::acquire creates `.wingcheck-lock-XXXXXX`, locks it, renames it to lock_name(pid):
     // a kill in between leaves the temporary name, which is neither the user's file nor kept
     // forever
@@ -84,4 +85,63 @@ fn a_lock_file_killed_before_its_rename_counts_as_a_lock_and_goes_once_old() {
     drop(f);
     remove_stale_locks(dir.path());
     assert!(!staging.exists(), "an old unheld staging lock file is removed");
+}
+
+/// Run as a child (by `a_writer_killed_at_any_instant_leaves_only_removable_files`): take and
+/// drop the lock in the directory without pause until killed.
+#[test]
+fn helper_takes_and_drops_the_lock_until_killed() {
+    let Ok(dir) = std::env::var(SPIN_DIR) else { return };
+    println!("spinning");
+    loop {
+        drop(DirLock::acquire(std::path::Path::new(&dir)).unwrap());
+    }
+}
+
+const SPIN_DIR: &str = "WINGCHECK_LOCK_SPIN_DIR";
+
+/// On Linux the lock file is born locked and unnamed (`O_TMPFILE`) and then linked to its
+/// name, so a kill at any instant leaves nothing a later run must keep: every kill below is
+/// followed by `remove_stale_locks`, which must empty the directory at once. (With a staging
+/// name, a kill between creation and rename left `.wingcheck-lock-XXXXXX`, kept for 10 s: in
+/// the search resume test that was 4 of 12 loaded runs.)
+#[cfg(target_os = "linux")]
+#[test]
+fn a_writer_killed_at_any_instant_leaves_only_removable_files() {
+    use std::io::BufRead;
+    for round in 0..24u64 {
+        let dir = tempfile::tempdir().unwrap();
+        let mut child = Command::new(std::env::current_exe().unwrap())
+            .args(["--exact", "helper_takes_and_drops_the_lock_until_killed", "--nocapture", "--test-threads=1"])
+            .env(SPIN_DIR, dir.path())
+            .stdout(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let mut line = String::new();
+        let mut out = std::io::BufReader::new(child.stdout.take().unwrap());
+        while !line.contains("spinning") {
+            line.clear();
+            assert!(out.read_line(&mut line).unwrap() > 0, "the helper ended before spinning");
+        }
+        std::thread::sleep(Duration::from_micros(200 + 150 * round));
+        child.kill().unwrap();
+        child.wait().unwrap();
+        remove_stale_locks(dir.path());
+        let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
+        assert!(left.is_empty(), "round {round}: a killed writer left {left:?}");
+    }
+}
+
+#[test]
+fn a_dead_processs_lock_file_under_this_pid_is_replaced_by_a_held_one() {
+    use fs4::FileExt;
+    let dir = tempfile::tempdir().unwrap();
+    let lock = dir.path().join(lock_name(std::process::id()));
+    std::fs::write(&lock, "left by an earlier process with this pid").unwrap();
+    let held = DirLock::acquire(dir.path()).unwrap();
+    // another open file description of the lock file cannot take it: it is held
+    let other = std::fs::File::open(&lock).unwrap();
+    assert!(matches!(FileExt::try_lock(&other), Err(fs4::TryLockError::WouldBlock)));
+    drop(held);
+    assert!(!lock.exists());
 }
