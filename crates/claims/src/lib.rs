@@ -137,21 +137,22 @@ fn certificate_files(cfg: &Config) -> Result<Vec<(ClaimId, String)>, String> {
 /// A row whose computation fails becomes `inconclusive` with the reason; the other rows are
 /// still computed, so this only returns `Ok`.
 pub fn check_all_with(cfg: &Config, study: &Study, settings: &CheckSettings) -> Result<Ledger, ClaimsError> {
-    // Two independent groups of rows on two threads (each row is deterministic, so the
-    // ledger does not depend on the schedule; the study's cache is thread-safe).
-    let ((theory, extra, certificates), sims) = std::thread::scope(|scope| {
-        let sims = scope.spawn(|| simulation_rows(cfg, study, settings));
-        let (theory, extra) = theory_rows(cfg, study, settings);
-        let certificates = certificate_files(cfg);
-        let sims = sims.join().unwrap_or_else(|_| {
-            [ClaimId::FiniteTime1, ClaimId::FiniteTime2, ClaimId::FtdoVsDobc]
-                .map(|id| {
-                    let row = ClaimRow::inconclusive(id, Basis::Computation, "Not decided: the computation panicked.");
-                    (row, WallTime { what: id.name().into(), seconds: 0.0 })
-                })
-                .into()
-        });
-        ((theory, extra, certificates), sims)
+    // Two independent groups of rows side by side (each row is deterministic, so the ledger
+    // does not depend on the schedule; the study's cache is thread-safe).
+    let (sims, (theory, extra, certificates)) = beside(
+        || simulation_rows(cfg, study, settings),
+        || {
+            let (theory, extra) = theory_rows(cfg, study, settings);
+            (theory, extra, certificate_files(cfg))
+        },
+    );
+    let sims = sims.unwrap_or_else(|_| {
+        [ClaimId::FiniteTime1, ClaimId::FiniteTime2, ClaimId::FtdoVsDobc]
+            .map(|id| {
+                let row = ClaimRow::inconclusive(id, Basis::Computation, "Not decided: the computation panicked.");
+                (row, WallTime { what: id.name().into(), seconds: 0.0 })
+            })
+            .into()
     });
     let mut by_id: Vec<(ClaimRow, WallTime)> = theory.into_iter().chain(sims).collect();
     by_id.sort_by_key(|(r, _)| r.id);
@@ -181,6 +182,20 @@ pub fn check_all_with(cfg: &Config, study: &Study, settings: &CheckSettings) -> 
     };
     reject_unlabelled_or_non_finite(&mut ledger);
     Ok(ledger)
+}
+
+/// Runs `side` beside `main` on the rayon pool and returns both results, `side`'s panic as an
+/// `Err` (recorded by the caller, never fatal). Not on threads of their own: the computations
+/// use the pool themselves (the enclosure's inertia counts), and a pool worker blocked joining
+/// an OS thread that waits for a free worker never wakes — `report` hung with one worker
+/// (`RAYON_NUM_THREADS=1` or a one-core machine) and two reports in one process hung with two.
+/// A worker waiting in `rayon::join` takes other work instead.
+pub(crate) fn beside<S: Send, M: Send>(
+    side: impl FnOnce() -> S + Send,
+    main: impl FnOnce() -> M + Send,
+) -> (std::thread::Result<S>, M) {
+    let (m, s) = rayon::join(main, || std::panic::catch_unwind(std::panic::AssertUnwindSafe(side)));
+    (s, m)
 }
 
 /// A non-finite value, or evidence that is not made of labelled leaves, is a bug of the row

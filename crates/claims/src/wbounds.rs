@@ -250,17 +250,17 @@ pub fn decide(enclosure: &EnclosureSummary, float: Decision) -> Decision {
 }
 
 /// Compute everything; the SDP cross-check and the ω₁ enclosure (independent of the rest) run
-/// on threads of their own beside it, and their failure is recorded, never fatal.
+/// beside it on the thread pool ([`crate::beside`]), and their failure is recorded, never fatal.
 pub fn compute(cfg: &Config, settings: &CheckSettings) -> Result<Computed, ClaimsError> {
-    std::thread::scope(|scope| {
-        let sdp = scope.spawn(|| {
-            let start = Instant::now();
-            (sdp_cross_check(cfg, Coupling::Corrected, &settings.sdp_grids), start.elapsed().as_secs_f64())
-        });
-        let enclosure = scope.spawn(|| {
-            let start = Instant::now();
-            (EnclosureSummary::deciding(cfg), start.elapsed().as_secs_f64())
-        });
+    let sdp = || {
+        let start = Instant::now();
+        (sdp_cross_check(cfg, Coupling::Corrected, &settings.sdp_grids), start.elapsed().as_secs_f64())
+    };
+    let enclosure = || {
+        let start = Instant::now();
+        (EnclosureSummary::deciding(cfg), start.elapsed().as_secs_f64())
+    };
+    let rest = || -> Result<Computed, ClaimsError> {
         let (a, b) = (cfg.control.a, cfg.control.b);
         let (mut neg, mut cond, mut total) = (0usize, 0usize, 0usize);
         for i in 0..25 {
@@ -274,7 +274,7 @@ pub fn compute(cfg: &Config, settings: &CheckSettings) -> Result<Computed, Claim
         let grids = &settings.w_grids;
         let finest = grids[grids.len() - 1];
         let witness = indefinite_witness(cfg, 4)?.map(|w| (w.1, w.2));
-        let computed = Computed {
+        Ok(Computed {
             printed: printed_constants(cfg, a, b),
             printed_grid: (total, neg, cond),
             corrected: tight_study(cfg, Coupling::Corrected, grids)?,
@@ -287,21 +287,17 @@ pub fn compute(cfg: &Config, settings: &CheckSettings) -> Result<Computed, Claim
             enclosure_seconds: 0.0,
             sdp: Vec::new(),
             sdp_seconds: 0.0,
-        };
-        let (rows, seconds) = sdp.join().unwrap_or_else(|_| {
-            (
-                settings.sdp_grids.iter().map(|&n| PencilSdpRow::not_run(n, "the SDP computation panicked")).collect(),
-                0.0,
-            )
-        });
-        let mut computed = computed;
-        computed.sdp = rows;
-        computed.sdp_seconds = seconds;
-        (computed.enclosure, computed.enclosure_seconds) = enclosure.join().unwrap_or_else(|_| {
-            (EnclosureSummary::NotCertified { reason: "the enclosure computation panicked".into() }, 0.0)
-        });
-        Ok(computed)
-    })
+        })
+    };
+    let (sdp, (enclosure, computed)) = crate::beside(sdp, || crate::beside(enclosure, rest));
+    let mut computed = computed?;
+    (computed.sdp, computed.sdp_seconds) = sdp.unwrap_or_else(|_| {
+        (settings.sdp_grids.iter().map(|&n| PencilSdpRow::not_run(n, "the SDP computation panicked")).collect(), 0.0)
+    });
+    (computed.enclosure, computed.enclosure_seconds) = enclosure.unwrap_or_else(|_| {
+        (EnclosureSummary::NotCertified { reason: "the enclosure computation panicked".into() }, 0.0)
+    });
+    Ok(computed)
 }
 
 /// The SDP cross-check's and the enclosure's wall times (the SDP's per N too).
