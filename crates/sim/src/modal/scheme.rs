@@ -165,11 +165,7 @@ impl<'a> ModalLoop<'a> {
             TimeScheme::Trapezoid => Stepping::Trapezoid(solve()?),
             TimeScheme::Exponential => {
                 let co = LoopCoefficients { gain, a, b, xi, stiff, sign };
-                let timing = Timing {
-                    h,
-                    interval: cfg.samples_per_output() as f64 * cfg.observer.sample_period,
-                    horizon: cfg.horizon.t_end,
-                };
+                let timing = Timing { h, horizon: cfg.horizon.t_end };
                 match eigenbasis.map(|limit| DiagonalStep::new(basis, &co, timing, limit)) {
                     Some(Ok(diagonal)) => Stepping::Diagonal(Box::new(diagonal)),
                     other => {
