@@ -436,21 +436,21 @@ fn bench_search(cfg: &wingcheck_model::Config, as_json: bool) -> anyhow::Result<
     for r in &b.rules {
         let cpu = r.cpu_seconds_per_point.map_or("-".into(), |c| format!("{:.2}", 1e3 * c));
         println!(
-            "observer.rule={} ({} scheme), {} points: {:.2} ms wall, {cpu} ms CPU per point",
+            "observer.rule={} ({} scheme), {} points: {:.2} ms wall, {cpu} ms CPU per point (median of {} runs)",
             r.rule,
             r.scheme,
             r.points,
-            1e3 * r.wall_seconds_per_point
+            1e3 * r.wall_seconds_per_point,
+            wingcheck_search::bench::RULE_ROUNDS
         );
     }
-    if let [i, e] = &b.rules[..] {
-        let cpu =
-            i.cpu_seconds_per_point.zip(e.cpu_seconds_per_point).map_or("-".into(), |(i, e)| format!("{:.2}", e / i));
-        println!(
-            "ratio: explicit / implicit observer per point = {:.2} (wall), {cpu} (CPU)",
-            e.wall_seconds_per_point / i.wall_seconds_per_point
-        );
-    }
+    let cpu = b.explicit_over_implicit_cpu.map_or("-".into(), |c| format!("{c:.2}"));
+    println!(
+        "ratio: explicit / implicit observer per point = {:.2} (wall), {cpu} (CPU); medians of the ratios of {} \
+         back-to-back pairs",
+        b.explicit_over_implicit_wall,
+        wingcheck_search::bench::RULE_ROUNDS
+    );
     println!(
         "once per search: modal basis {:.2} ms, observer signal {:.2} ms; final files {:.2} s",
         1e3 * b.modal_basis_seconds,

@@ -74,10 +74,20 @@ pub struct SearchBench {
     pub wall_over_simulate_runs: f64,
     /// The implicit and the explicit observer on a smaller grid of the same axes.
     pub rules: Vec<RuleTiming>,
+    /// Explicit / implicit observer cost per point, wall time: the median over
+    /// [`RULE_ROUNDS`] rounds of the ratio within each round (the two searches back to back,
+    /// so a change of the machine's load between rounds cancels).
+    pub explicit_over_implicit_wall: f64,
+    /// The same ratio of CPU time, where measurable.
+    pub explicit_over_implicit_cpu: Option<f64>,
 }
 
+/// Rounds of the observer-rule comparison: each runs both rules' searches back to back, in
+/// alternating order.
+pub const RULE_ROUNDS: usize = 5;
+
 /// A search with one observer rule (`observer.rule`), on the 8 × 8 grid of the same axes with
-/// the most threads: its cost per point.
+/// the most threads: its cost per point, median over [`RULE_ROUNDS`] runs.
 #[derive(Debug, Clone, Serialize, schemars::JsonSchema)]
 pub struct RuleTiming {
     /// `implicit` or `explicit`.
@@ -154,20 +164,41 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
     let simulator_point_seconds = median(simulator);
     let most = thread_counts.iter().copied().max().unwrap_or(1);
     let small = vec!["control.a=1e-4..10:log:8".to_string(), "control.b=1e-2..1e4:log:8".to_string()];
-    let mut rules = Vec::new();
-    for rule in ["implicit", "explicit"] {
-        let c = apply_overrides(base, &[format!("observer.rule={rule}")])
-            .map_err(|e| SearchError::Options(e.to_string()))?;
-        let (wall, cpu, s) = timed_run(&c, &small, most, &tmp.path().join(format!("rule-{rule}")))?;
-        let points = s.evaluated.max(1) as f64;
-        rules.push(RuleTiming {
-            rule: rule.into(),
-            scheme: c.time_scheme(true).name().into(),
-            points: s.evaluated,
-            wall_seconds_per_point: wall / points,
-            cpu_seconds_per_point: cpu.map(|c| c / points),
-        });
+    let rule_cfgs = ["implicit", "explicit"].map(|rule| {
+        apply_overrides(base, &[format!("observer.rule={rule}")]).map_err(|e| SearchError::Options(e.to_string()))
+    });
+    let [implicit, explicit] = rule_cfgs;
+    let rule_cfgs = [implicit?, explicit?];
+    // per rule: (wall, CPU) per point of each round, and the points
+    let mut per_point: [Vec<(f64, Option<f64>)>; 2] = [Vec::new(), Vec::new()];
+    let mut evaluated = [0usize; 2];
+    for round in 0..RULE_ROUNDS {
+        let order = if round % 2 == 0 { [0, 1] } else { [1, 0] };
+        for r in order {
+            let dir = tmp.path().join(format!("rule-{r}-{round}"));
+            let (wall, cpu, s) = timed_run(&rule_cfgs[r], &small, most, &dir)?;
+            let points = s.evaluated.max(1) as f64;
+            per_point[r].push((wall / points, cpu.map(|c| c / points)));
+            evaluated[r] = s.evaluated;
+        }
     }
+    let cpu_of = |v: &[(f64, Option<f64>)]| v.iter().map(|p| p.1).collect::<Option<Vec<f64>>>();
+    let rules: Vec<RuleTiming> = (0..2)
+        .map(|r| RuleTiming {
+            rule: ["implicit", "explicit"][r].into(),
+            scheme: rule_cfgs[r].time_scheme(true).name().into(),
+            points: evaluated[r],
+            wall_seconds_per_point: median(per_point[r].iter().map(|p| p.0).collect()),
+            cpu_seconds_per_point: cpu_of(&per_point[r]).map(median),
+        })
+        .collect();
+    let paired = |f: &dyn Fn(&(f64, Option<f64>)) -> Option<f64>| -> Option<f64> {
+        let ratios: Option<Vec<f64>> =
+            per_point[0].iter().zip(&per_point[1]).map(|(i, e)| Some(f(e)? / f(i)?)).collect();
+        ratios.map(median)
+    };
+    let explicit_over_implicit_wall = paired(&|p| Some(p.0)).unwrap_or(0.0);
+    let explicit_over_implicit_cpu = paired(&|p| p.1);
     let start = Instant::now();
     let basis = ModalBasis::new(&cfg).map_err(|e| SearchError::Options(e.to_string()))?;
     let modal_basis_seconds = start.elapsed().as_secs_f64();
@@ -197,5 +228,7 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
         simulator_point_seconds,
         wall_over_simulate_runs,
         rules,
+        explicit_over_implicit_wall,
+        explicit_over_implicit_cpu,
     })
 }
