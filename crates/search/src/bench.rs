@@ -104,6 +104,9 @@ pub struct RuleTiming {
 
 use wingcheck_sim::bench::median;
 
+/// One rule's cost per point in one round: wall time and, where measurable, CPU time (s).
+type PerPoint = (f64, Option<f64>);
+
 /// One timed whole search of `axes` on `base` with `threads` threads in a new directory under
 /// `tmp`: (wall s, CPU s, summary).
 fn timed_run(
@@ -170,7 +173,7 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
     let [implicit, explicit] = rule_cfgs;
     let rule_cfgs = [implicit?, explicit?];
     // per rule: (wall, CPU) per point of each round, and the points
-    let mut per_point: [Vec<(f64, Option<f64>)>; 2] = [Vec::new(), Vec::new()];
+    let mut per_point: [Vec<PerPoint>; 2] = [Vec::new(), Vec::new()];
     let mut evaluated = [0usize; 2];
     for round in 0..RULE_ROUNDS {
         let order = if round % 2 == 0 { [0, 1] } else { [1, 0] };
@@ -182,7 +185,7 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
             evaluated[r] = s.evaluated;
         }
     }
-    let cpu_of = |v: &[(f64, Option<f64>)]| v.iter().map(|p| p.1).collect::<Option<Vec<f64>>>();
+    let cpu_of = |v: &[PerPoint]| v.iter().map(|p| p.1).collect::<Option<Vec<f64>>>();
     let rules: Vec<RuleTiming> = (0..2)
         .map(|r| RuleTiming {
             rule: ["implicit", "explicit"][r].into(),
@@ -192,7 +195,7 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
             cpu_seconds_per_point: cpu_of(&per_point[r]).map(median),
         })
         .collect();
-    let paired = |f: &dyn Fn(&(f64, Option<f64>)) -> Option<f64>| -> Option<f64> {
+    let paired = |f: &dyn Fn(&PerPoint) -> Option<f64>| -> Option<f64> {
         let ratios: Option<Vec<f64>> =
             per_point[0].iter().zip(&per_point[1]).map(|(i, e)| Some(f(e)? / f(i)?)).collect();
         ratios.map(median)
