@@ -67,10 +67,13 @@ pub struct SearchBench {
     /// One point's closed loop as the search runs it (shared basis and signal), median of 5 (s).
     pub modal_point_seconds: f64,
     /// The same point with the simulator (`simulate` of the base configuration: modal basis,
-    /// observer signal, full series and peaks), median of 5 before and 5 after the search runs
-    /// (s): the unit of the search's ratio.
+    /// observer signal, full series and peaks), median of 5 before the search runs and 5 after
+    /// each run with the most threads (s): the unit of the search's ratio.
     pub simulator_point_seconds: f64,
-    /// Wall time of the run with the most threads / (points × `simulator_point_seconds`).
+    /// Wall times of the runs with the most threads (s): the one in `runs` and
+    /// [`SEARCH_REPEATS`] − 1 more, each followed by 5 `simulate` timings.
+    pub most_threads_wall_seconds: Vec<f64>,
+    /// Median of `most_threads_wall_seconds` / (points × `simulator_point_seconds`).
     pub wall_over_simulate_runs: f64,
     /// The implicit and the explicit observer on a smaller grid of the same axes.
     pub rules: Vec<RuleTiming>,
@@ -81,6 +84,10 @@ pub struct SearchBench {
     /// The same ratio of CPU time, where measurable.
     pub explicit_over_implicit_cpu: Option<f64>,
 }
+
+/// Runs of the whole search with the most threads, interleaved with `simulate` timings, for
+/// the search's ratio (a single run moved it by ±25 % with the machine's load).
+pub const SEARCH_REPEATS: usize = 3;
 
 /// Rounds of the observer-rule comparison: each runs both rules' searches back to back, in
 /// alternating order.
@@ -164,8 +171,15 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
         finalize_seconds = start.elapsed().as_secs_f64();
     }
     simulator.extend(simulate_seconds(&cfg, 5)?);
-    let simulator_point_seconds = median(simulator);
     let most = thread_counts.iter().copied().max().unwrap_or(1);
+    let mut most_threads_wall_seconds: Vec<f64> =
+        runs.iter().filter(|r| r.threads == most).map(|r| r.wall_seconds).take(1).collect();
+    for k in 1..SEARCH_REPEATS {
+        let (wall, _, _) = timed_run(base, &axes, most, &tmp.path().join(format!("repeat-{k}")))?;
+        most_threads_wall_seconds.push(wall);
+        simulator.extend(simulate_seconds(&cfg, 5)?);
+    }
+    let simulator_point_seconds = median(simulator);
     let small = vec!["control.a=1e-4..10:log:8".to_string(), "control.b=1e-2..1e4:log:8".to_string()];
     let rule_cfgs = ["implicit", "explicit"].map(|rule| {
         apply_overrides(base, &[format!("observer.rule={rule}")]).map_err(|e| SearchError::Options(e.to_string()))
@@ -216,8 +230,11 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
         modal.push(start.elapsed().as_secs_f64());
     }
     drop((basis, signal));
-    let wall_over_simulate_runs =
-        runs.last().map_or(0.0, |r| r.wall_seconds / (search.points() as f64 * simulator_point_seconds));
+    let wall_over_simulate_runs = if most_threads_wall_seconds.is_empty() {
+        0.0
+    } else {
+        median(most_threads_wall_seconds.clone()) / (search.points() as f64 * simulator_point_seconds)
+    };
     Ok(SearchBench {
         axes,
         points: search.points(),
@@ -229,6 +246,7 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
         finalize_seconds,
         modal_point_seconds: median(modal),
         simulator_point_seconds,
+        most_threads_wall_seconds,
         wall_over_simulate_runs,
         rules,
         explicit_over_implicit_wall,

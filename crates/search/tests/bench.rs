@@ -1,0 +1,42 @@
+//! `wingcheck bench --what search` on a small grid: every repeat it promises is run, and the
+//! ratios are formed from the medians and pairs it reports (recomputed here from the
+//! published fields), finite and positive.
+
+use wingcheck_model::Config;
+use wingcheck_search::bench::{bench_search, RULE_ROUNDS, SEARCH_REPEATS};
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    }
+}
+
+#[test]
+fn the_search_bench_runs_its_repeats_and_forms_its_ratios_from_them() {
+    let b = bench_search(&Config::paper(), 3, &[1, 2]).unwrap();
+    assert_eq!(b.points, 9);
+    assert_eq!(b.runs.len(), 2);
+    assert!(b.runs.iter().all(|r| r.failed == 0 && r.wall_seconds > 0.0));
+    // the run in `runs` with the most threads is the first of the repeats
+    assert_eq!(b.most_threads_wall_seconds.len(), SEARCH_REPEATS);
+    assert_eq!(b.most_threads_wall_seconds[0], b.runs[1].wall_seconds);
+    let ratio = median(b.most_threads_wall_seconds.clone()) / (b.points as f64 * b.simulator_point_seconds);
+    assert!((b.wall_over_simulate_runs - ratio).abs() <= 1e-12 * ratio, "{} vs {ratio}", b.wall_over_simulate_runs);
+    // both observer rules on the 8 × 8 grid, their pairs' median ratio positive and finite
+    assert_eq!(b.rules.len(), 2);
+    assert!(b.rules.iter().all(|r| r.points == 64 && r.wall_seconds_per_point > 0.0));
+    assert_eq!((b.rules[0].rule.as_str(), b.rules[1].rule.as_str()), ("implicit", "explicit"));
+    assert_eq!(b.rules[1].scheme, "exponential");
+    assert!(b.explicit_over_implicit_wall.is_finite() && b.explicit_over_implicit_wall > 0.0);
+    // the median of the RULE_ROUNDS paired ratios and the ratio of the two rules' medians
+    // measure the same thing: of the same order however loaded the machine
+    let of_medians = b.rules[1].wall_seconds_per_point / b.rules[0].wall_seconds_per_point;
+    assert!(RULE_ROUNDS >= 3 && (0.2..5.0).contains(&(b.explicit_over_implicit_wall / of_medians)));
+    // on Linux every optional timing (load average, CPU times) is measured: no null in the JSON
+    #[cfg(target_os = "linux")]
+    assert!(!serde_json::to_string(&b).unwrap().contains("null"));
+}
