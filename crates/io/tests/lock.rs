@@ -9,6 +9,17 @@ use wingcheck_io::{lock_name, owner_alive, remove_stale_locks, DirLock};
 
 const HELPER_DIR: &str = "WINGCHECK_LOCK_TEST_DIR";
 
+/// This test binary run as a child for the helper test `name` alone, with `var` set to `dir`
+/// (the helpers do nothing without it).
+fn helper(name: &str, var: &str, dir: &std::path::Path, stdout: Stdio) -> std::process::Child {
+    Command::new(std::env::current_exe().unwrap())
+        .args(["--exact", name, "--nocapture", "--test-threads=1"])
+        .env(var, dir)
+        .stdout(stdout)
+        .spawn()
+        .unwrap()
+}
+
 /// Run as a child (by `a_live_writer_is_alive_and_a_killed_one_is_not`): hold the lock in the
 /// directory, say so on stdout, and sleep until killed.
 #[test]
@@ -22,12 +33,7 @@ fn helper_holds_a_lock_until_killed() {
 #[test]
 fn a_live_writer_is_alive_and_a_killed_one_is_not() {
     let dir = tempfile::tempdir().unwrap();
-    let mut child = Command::new(std::env::current_exe().unwrap())
-        .args(["--exact", "helper_holds_a_lock_until_killed", "--nocapture", "--test-threads=1"])
-        .env(HELPER_DIR, dir.path())
-        .stdout(Stdio::null())
-        .spawn()
-        .unwrap();
+    let mut child = helper("helper_holds_a_lock_until_killed", HELPER_DIR, dir.path(), Stdio::null());
     let pid = child.id();
     let lock = dir.path().join(lock_name(pid));
     let start = Instant::now();
@@ -111,12 +117,7 @@ fn a_writer_killed_at_any_instant_leaves_only_removable_files() {
     use std::io::BufRead;
     for round in 0..24u64 {
         let dir = tempfile::tempdir().unwrap();
-        let mut child = Command::new(std::env::current_exe().unwrap())
-            .args(["--exact", "helper_takes_and_drops_the_lock_until_killed", "--nocapture", "--test-threads=1"])
-            .env(SPIN_DIR, dir.path())
-            .stdout(Stdio::piped())
-            .spawn()
-            .unwrap();
+        let mut child = helper("helper_takes_and_drops_the_lock_until_killed", SPIN_DIR, dir.path(), Stdio::piped());
         let mut line = String::new();
         let mut out = std::io::BufReader::new(child.stdout.take().unwrap());
         while !line.contains("spinning") {

@@ -89,6 +89,9 @@ pub struct SearchBench {
 /// the search's ratio (a single run moved it by ±25 % with the machine's load).
 pub const SEARCH_REPEATS: usize = 3;
 
+/// The observer rules compared (`observer.rule`), in the order of [`SearchBench::rules`].
+const RULES: [&str; 2] = ["implicit", "explicit"];
+
 /// Rounds of the observer-rule comparison: each runs both rules' searches back to back, in
 /// alternating order.
 pub const RULE_ROUNDS: usize = 5;
@@ -181,11 +184,10 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
     }
     let simulator_point_seconds = median(simulator);
     let small = vec!["control.a=1e-4..10:log:8".to_string(), "control.b=1e-2..1e4:log:8".to_string()];
-    let rule_cfgs = ["implicit", "explicit"].map(|rule| {
+    let rule_cfg = |rule: &str| {
         apply_overrides(base, &[format!("observer.rule={rule}")]).map_err(|e| SearchError::Options(e.to_string()))
-    });
-    let [implicit, explicit] = rule_cfgs;
-    let rule_cfgs = [implicit?, explicit?];
+    };
+    let rule_cfgs = [rule_cfg(RULES[0])?, rule_cfg(RULES[1])?];
     // per rule: (wall, CPU) per point of each round, and the points
     let mut per_point: [Vec<PerPoint>; 2] = [Vec::new(), Vec::new()];
     let mut evaluated = [0usize; 2];
@@ -202,7 +204,7 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
     let cpu_of = |v: &[PerPoint]| v.iter().map(|p| p.1).collect::<Option<Vec<f64>>>();
     let rules: Vec<RuleTiming> = (0..2)
         .map(|r| RuleTiming {
-            rule: ["implicit", "explicit"][r].into(),
+            rule: RULES[r].into(),
             scheme: rule_cfgs[r].time_scheme(true).name().into(),
             points: evaluated[r],
             wall_seconds_per_point: median(per_point[r].iter().map(|p| p.0).collect()),

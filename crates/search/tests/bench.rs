@@ -4,16 +4,7 @@
 
 use wingcheck_model::Config;
 use wingcheck_search::bench::{bench_search, RULE_ROUNDS, SEARCH_REPEATS};
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    }
-}
+use wingcheck_sim::bench::median;
 
 #[test]
 fn the_search_bench_runs_its_repeats_and_forms_its_ratios_from_them() {

@@ -118,7 +118,7 @@ mod avx {
         let mut i = 0;
         while i < m.rows {
             // rows i..i + BLOCK, the ones past the end replaced by row i (results discarded)
-            let row = |b: usize| m.data.as_ptr().add(if i + b < m.rows { i + b } else { i } * stride);
+            let row = |b: usize| m.data.as_ptr().add((if i + b < m.rows { i + b } else { i }) * stride);
             let r = [row(0), row(1), row(2), row(3)];
             let mut lo = [_mm256_setzero_pd(); BLOCK];
             let mut hi = [_mm256_setzero_pd(); BLOCK];
