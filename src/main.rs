@@ -7,6 +7,7 @@ mod cli;
 use clap::Parser;
 
 fn main() {
+    wingcheck_io::tune_allocator();
     // `wingcheck check | head` closes stdout early: end quietly like other CLI tools instead of
     // reporting println!'s broken-pipe panic.
     let default_hook = std::panic::take_hook();

@@ -18,10 +18,12 @@
 
 #![warn(missing_docs)]
 
+mod allocator;
 mod lock;
 mod provenance;
 mod table;
 
+pub use allocator::{tune_allocator, HEAP_LIMITS};
 pub use lock::{is_lock_file, lock_name, lock_owner, owner_alive, remove_stale_locks, DirLock};
 pub use provenance::{
     build, set_build, sha256_hex, sidecar_path, BuildInfo, FileRecord, Provenance, TreeState, SCHEMA_VERSION,

@@ -32,10 +32,11 @@
 use faer::linalg::solvers::DenseSolveCore;
 use faer::{c64, Mat};
 
+use super::eigen_solve::real_eigen;
 use super::exact::{closed_loop, LoopCoefficients, INPUTS};
 use super::gemv::RowMajor;
 use super::layout::Layout;
-use super::lyapunov::{pivoted_cholesky, real_form};
+use super::lyapunov::{pivoted_cholesky, real_forms};
 use super::refine::RealEigen;
 use super::scheme::dot;
 use super::{ModalBasis, ModalState};
@@ -189,11 +190,11 @@ impl DiagonalStep {
         let m = 2 * n + tip_states;
         let (a_full, outputs) = closed_loop(basis, co, &omega, tip_states);
         let a = a_full.as_ref().submatrix(0, 0, m, m).to_owned();
-        let evd = match a.eigen() {
+        let evd = match real_eigen(&a) {
             Ok(e) => e,
             Err(e) => return refuse(format!("eigen-solve failed: {e:?}")),
         };
-        let lambda: Vec<c64> = (0..m).map(|i| evd.S()[i]).collect();
+        let lambda = evd.values;
         // representatives: faer puts a conjugate pair in adjacent columns, +Im first
         let mut reps: Vec<(usize, f64)> = Vec::with_capacity(m);
         let mut j = 0;
@@ -218,15 +219,9 @@ impl DiagonalStep {
         // first_col[rep] on; z = Re(V x̂) = V_re x̂_re − V_im x̂_im with the weighted columns below.
         let first_col: Vec<usize> =
             reps.iter().scan(0, |col, &(_, w)| Some(std::mem::replace(col, *col + w as usize))).collect();
-        let mut vr = Mat::<f64>::zeros(m, m);
-        for (rep, &(j, w)) in reps.iter().enumerate() {
-            for r in 0..m {
-                vr[(r, first_col[rep])] = evd.U()[(r, j)].re;
-                if w == 2.0 {
-                    vr[(r, first_col[rep] + 1)] = evd.U()[(r, j)].im;
-                }
-            }
-        }
+        // faer's real form is V_r itself: a pair's (Re v, Im v) in its two columns (the solver's
+        // columns are the representatives' first_col)
+        let vr = evd.vectors;
         // one Newton step on the decomposition, and the next step's size as its error
         let solved = RealEigen {
             vr_inv: vr.partial_piv_lu().inverse(),
@@ -336,23 +331,23 @@ impl DiagonalStep {
         let mut jump: [Vec<Vec<f64>>; 2] = [Vec::new(), Vec::new()];
         let mut jump_input = [[[0.0; DRIVING]; DRIVING]; 2];
         let mut factors: Vec<Mat<f64>> = Vec::with_capacity(2);
-        for c in 0..2 {
-            let cz = &outputs[c][..m];
-            // g = c·V weighted; unweighted g_i for P
-            let gw = row_times_v(cz);
-            let g: Vec<c64> = (0..k).map(|r| c64::new(gw.re[r], gw.im[r]) / reps[r].1).collect();
-            lin[c] = Half::from_fn(k, |r| c64::new(gw.re[r], gw.im[r]) * phi[r]);
+        // g = c·V weighted per channel; unweighted g_i for P
+        let gw = [0, 1].map(|c| row_times_v(&outputs[c][..m]));
+        let g =
+            [0, 1].map(|c| -> Vec<c64> { (0..k).map(|r| c64::new(gw[c].re[r], gw[c].im[r]) / reps[r].1).collect() });
+        // Φ = êᴴPê over all N eigenvalues, P_ij = −ḡ_i g_j/(λ̄_i + λ_j), as a real quadratic
+        // form ξᵀP_rξ in the layout's real coordinates ξ of x̂: a pair contributes
+        // ê_i = ξ_re + iξ_im and its conjugate.
+        let p_rs = real_forms([&g[0], &g[1]], &lam, &reps, &layout);
+        for (c, p_r) in p_rs.iter().enumerate() {
+            lin[c] = Half::from_fn(k, |r| c64::new(gw[c].re[r], gw[c].im[r]) * phi[r]);
             for kk in 0..DRIVING {
                 lin_input[c][kk] = lin[c].re_dot(&s[kk]);
             }
             for kk in 0..INPUTS {
-                let through_state = if kk < DRIVING { gw.re_dot(&s[kk]) } else { 0.0 };
+                let through_state = if kk < DRIVING { gw[c].re_dot(&s[kk]) } else { 0.0 };
                 tau_star[c][kk] = through_state + outputs[c][m + kk];
             }
-            // Φ = êᴴPê over all N eigenvalues, P_ij = −ḡ_i g_j/(λ̄_i + λ_j), as a real quadratic
-            // form ξᵀP_rξ in the layout's real coordinates ξ of x̂: a pair contributes
-            // ê_i = ξ_re + iξ_im and its conjugate.
-            let p_r = real_form(&g, &lam, &reps, &layout);
             for kk in 0..DRIVING {
                 let row: Vec<f64> = (0..slots).map(|a| (0..slots).map(|b| p_r[(a, b)] * s_flat[kk][b]).sum()).collect();
                 for ll in 0..DRIVING {
@@ -360,7 +355,7 @@ impl DiagonalStep {
                 }
                 jump[c].push(row);
             }
-            factors.push(pivoted_cholesky(&p_r));
+            factors.push(pivoted_cholesky(p_r));
         }
         // the start rows: jump[0][0..3], jump[1][0..3], lin[0], lin[1]
         let lin_rows = layout.columns(&stack(&lin));

@@ -19,6 +19,7 @@
 
 mod diagonal;
 mod drive;
+mod eigen_solve;
 #[cfg(test)]
 mod eigenbasis_tests;
 mod exact;
