@@ -220,6 +220,20 @@ impl Distributed {
             + self.cos_amp * (self.cos_freq * mid).cos() * dt * sinc(0.5 * self.cos_freq * dt)
             + self.sin_amp * (self.sin_freq * mid).sin() * dt * sinc(0.5 * self.sin_freq * dt)
     }
+    /// The factors sinc(ω h/2) of the cosine and the sine term by which a step of length h (s)
+    /// averages them, for [`Distributed::step_mean`] (once per run instead of at every step).
+    pub fn step_factors(&self, h: f64) -> [f64; 2] {
+        [sinc(0.5 * self.cos_freq * h), sinc(0.5 * self.sin_freq * h)]
+    }
+    /// Exact mean (1/h)∫_{t0}^{t0+h} φ(t) dt with `factors` = [`Distributed::step_factors`]`(h)`:
+    /// the value of [`Distributed::phi_integral`]`(t0, t0 + h)/h` up to round-off, with two
+    /// trigonometric calls instead of four.
+    pub fn step_mean(&self, t0: f64, h: f64, factors: [f64; 2]) -> f64 {
+        let mid = t0 + 0.5 * h;
+        self.mean
+            + self.cos_amp * (self.cos_freq * mid).cos() * factors[0]
+            + self.sin_amp * (self.sin_freq * mid).sin() * factors[1]
+    }
     /// sup over z ∈ [0,s], t ≥ 0 of |g_h| = (|mean| + |cos_amp| + |sin_amp|)·|slope|·s: Assumption 1's g_hmax
     /// (an upper bound; attained for the paper's data at t = 0 … up to the phase alignment).
     pub fn sup_abs(&self, span: f64) -> f64 {
@@ -257,6 +271,17 @@ impl TipDisturbance {
     pub fn mean_over(&self, t0: f64, t1: f64) -> f64 {
         let mid = 0.5 * (t0 + t1);
         self.mean + self.amp * (self.freq * mid).sin() * sinc(0.5 * self.freq * (t1 - t0))
+    }
+    /// The factor sinc(ω h/2) by which a step of length h (s) averages the sine, for
+    /// [`TipDisturbance::step_mean`] (once per run instead of at every step).
+    pub fn step_factor(&self, h: f64) -> f64 {
+        sinc(0.5 * self.freq * h)
+    }
+    /// Exact mean of g over [t0, t0 + h] with `factor` = [`TipDisturbance::step_factor`]`(h)`:
+    /// [`TipDisturbance::mean_over`]`(t0, t0 + h)` up to round-off, with one trigonometric call
+    /// instead of two.
+    pub fn step_mean(&self, t0: f64, h: f64, factor: f64) -> f64 {
+        self.mean + self.amp * (self.freq * (t0 + 0.5 * h)).sin() * factor
     }
     /// Time derivative at t.
     pub fn rate(&self, t: f64) -> f64 {

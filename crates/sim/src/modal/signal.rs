@@ -27,6 +27,10 @@ pub struct ObserverSignal {
     observers: [ChannelObserver; 2],
     tips: [TipDisturbance; 2],
     distributed: wingcheck_model::Distributed,
+    /// The step-mean factors of the distributed load's two terms and of the two tip
+    /// disturbances for steps of length `h` (`step_factors`, `step_factor`).
+    load_factors: [f64; 2],
+    tip_factors: [f64; 2],
     h: f64,
     period: f64,
     steps_per_sample: usize,
@@ -61,6 +65,9 @@ impl ObserverSignal {
         let mut signal = ObserverSignal {
             tips: [cfg.disturbance.tip_bending.clone(), cfg.disturbance.tip_torsion.clone()],
             distributed: cfg.disturbance.distributed.clone(),
+            load_factors: cfg.disturbance.distributed.step_factors(cfg.discretisation.dt),
+            tip_factors: [&cfg.disturbance.tip_bending, &cfg.disturbance.tip_torsion]
+                .map(|d| d.step_factor(cfg.discretisation.dt)),
             h: cfg.discretisation.dt,
             period: cfg.observer.sample_period,
             steps_per_sample: cfg.steps_per_sample(),
@@ -102,9 +109,9 @@ impl ObserverSignal {
         let h = self.h;
         for j in 0..self.steps_per_sample {
             let t = t0 + j as f64 * h;
-            let g_mean = [self.tips[0].mean_over(t, t + h), self.tips[1].mean_over(t, t + h)];
+            let g_mean = [0, 1].map(|c| self.tips[c].step_mean(t, h, self.tip_factors[c]));
             let input = StepInput {
-                phi: self.distributed.phi_integral(t, t + h) / h,
+                phi: self.distributed.step_mean(t, h, self.load_factors),
                 tip_input: [g_mean[0] - self.g_hat[0], g_mean[1] - self.g_hat[1]],
                 g_hat: self.g_hat,
             };
