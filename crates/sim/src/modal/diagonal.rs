@@ -14,10 +14,13 @@
 //! ∫_0^h τ² = e₀ᵀPe₀ − e_hᵀPe_h + 2τ* ∫_0^h c̃ᵀe^{Λs}ẽ₀ ds + hτ*².
 //!
 //! The first two terms telescope over consecutive steps except where u jumps (at every step
-//! start): the jump of eᵀPe is −2Δz*ᵀPe + Δz*ᵀPΔz*, O(N) with the rows Zᵀ P V precomputed.
-//! So each step returns its jump, linear and constant terms, and [`DiagonalStep::checkpoint`]
-//! adds the boundary terms eᵀPe at the previous and the current checkpoint (every output
-//! sample; one O(N²) reconstruction of z and an O(N r) quadratic form with P's low-rank factor).
+//! start): the jump of eᵀPe is −2Δz*ᵀPe + Δz*ᵀPΔz*. Its part in the inputs is a 3 × 3 form;
+//! its part in the state, −2Δz*ᵀPVx̂ = −2Σ_k Δu_k (Z_kᵀPV)·x̂, is linear in x̂, so the steps sum
+//! Σ Δu_k x̂ (three O(N) sums) and the checkpoint takes the six products once. So each step
+//! returns its jump's input part, linear and constant terms, and [`DiagonalStep::checkpoint`]
+//! adds the jumps' state part and the boundary terms eᵀPe at the previous and the current
+//! checkpoint (every output sample; one O(N²) reconstruction of z and an O(N r) quadratic form
+//! with P's low-rank factor).
 //! The sum over every interval between two checkpoints is then the exact ∫τ² over it;
 //! the single steps' shares are not.
 //!
@@ -115,6 +118,10 @@ pub(crate) struct DiagonalState {
     /// The [`DiagonalStep`]'s `rows` at the current x̂: the tip values, then the next step's
     /// start-of-step values ([`START`] on).
     rows: Vec<f64>,
+    /// Σ Δu_k x̂ over the steps since the checkpoint that last added the jumps' state part, one
+    /// sum per driving input k (x̂ at each step's start): the jumps' −2Δz*ᵀP_c V x̂ summed is
+    /// −2 Σ_k (Z_kᵀP_c V) · jump_sums[k], formed at that checkpoint.
+    jump_sums: [Vec<f64>; DRIVING],
 }
 
 /// Where the start-of-step values begin in the rows: after the four tip rows.
@@ -153,9 +160,12 @@ pub(crate) struct DiagonalStep {
     /// z = Re(V x̂) = [V_re, −V_im](x̂_re, x̂_im) (weighted columns).
     v: RowMajor,
     /// The rows read at every step's end, over x̂ in the layout: the four tip rows, then those
-    /// the next step reads at its start, jump[0][0..3], jump[1][0..3], lin[0], lin[1] — one
-    /// product per step for both.
+    /// the next step reads at its start, lin[0], lin[1] — one product per step for both.
     rows: RowMajor,
+    /// The rows Z_kᵀP_cV over x̂ in the layout, jump[0][0..3], jump[1][0..3]: read at the
+    /// checkpoints against the state's [`DiagonalState::jump_sums`] (three O(N) sums a step
+    /// instead of six products).
+    jump_rows: RowMajor,
     /// The columns of S in the layout.
     s_flat: [Vec<f64>; DRIVING],
     /// Rows of P_c's factor over ê in the layout: e_cᵀP_c e_c = Σ_j (f_j · ê)².
@@ -357,14 +367,12 @@ impl DiagonalStep {
             }
             factors.push(pivoted_cholesky(p_r));
         }
-        // the start rows: jump[0][0..3], jump[1][0..3], lin[0], lin[1]
+        // the rows read at every step: the tips, then lin[0], lin[1]; the jump rows apart
         let lin_rows = layout.columns(&stack(&lin));
         let tip_rows = layout.columns(&stack(&tip));
-        let rows = Mat::from_fn(START + 2 * DRIVING + 2, slots, |i, j| match i {
-            _ if i < START => tip_rows[(i, j)],
-            _ if i < START + 2 * DRIVING => jump[(i - START) / DRIVING][(i - START) % DRIVING][j],
-            _ => lin_rows[(i - START - 2 * DRIVING, j)],
-        });
+        let rows =
+            Mat::from_fn(START + 2, slots, |i, j| if i < START { tip_rows[(i, j)] } else { lin_rows[(i - START, j)] });
+        let jump_rows = Mat::from_fn(2 * DRIVING, slots, |i, j| jump[i / DRIVING][i % DRIVING][j]);
         let flat = |h: &Half| layout.vector(&[h.re.as_slice(), h.im.as_slice()].concat());
         let v = RowMajor::new(&layout.columns(&v));
         let half_energy_norm2 = 0.5 * (0..2 * n).map(|i| v.row(i).iter().map(|x| x * x).sum::<f64>()).sum::<f64>();
@@ -380,6 +388,7 @@ impl DiagonalStep {
             jump_input,
             v,
             rows: RowMajor::new(&rows),
+            jump_rows: RowMajor::new(&jump_rows),
             s_flat,
             factor: [RowMajor::new(&factors[0]), RowMajor::new(&factors[1])],
             v_inv: RowMajor::new(&layout.rows(&v_inv)),
@@ -393,6 +402,7 @@ impl DiagonalStep {
         };
         if !(step.v.is_finite()
             && step.rows.is_finite()
+            && step.jump_rows.is_finite()
             && step.v_inv.is_finite()
             && step.factor.iter().all(RowMajor::is_finite)
             && step.s_flat.iter().flatten().all(|x| x.is_finite())
@@ -407,10 +417,17 @@ impl DiagonalStep {
         2 * self.n + self.tip_states
     }
 
-    /// x̂ ← μ x̂ + (1 − μ) ŝ with ŝ = S u (element by element: the same bits however wide the
-    /// vector instructions the compiler picks, [`DiagonalStep::relax_avx`]).
+    /// jump_sums[k] += Δu_k x̂, then x̂ ← μ x̂ + (1 − μ) ŝ with ŝ = S u (element by element: the
+    /// same bits however wide the vector instructions the compiler picks,
+    /// [`DiagonalStep::relax_avx`]).
     #[inline(always)]
-    fn relax(&self, inputs: &[f64; INPUTS], ds: &mut DiagonalState) {
+    fn relax(&self, inputs: &[f64; INPUTS], du: &[f64; DRIVING], ds: &mut DiagonalState) {
+        let [s0, s1, s2] = &mut ds.jump_sums;
+        for (i, &x) in ds.x.iter().enumerate().take(self.layout.len()) {
+            s0[i] += du[0] * x;
+            s1[i] += du[1] * x;
+            s2[i] += du[2] * x;
+        }
         self.relaxed(inputs, &mut ds.relaxed);
         let (real, pairs) = (self.layout.real, self.layout.pairs);
         let (mu, om, s, x) = (&self.mu, &self.one_minus_mu, &ds.relaxed, &mut ds.x);
@@ -432,8 +449,8 @@ impl DiagonalStep {
     /// The CPU must have AVX.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx")]
-    unsafe fn relax_avx(&self, inputs: &[f64; INPUTS], ds: &mut DiagonalState) {
-        self.relax(inputs, ds)
+    unsafe fn relax_avx(&self, inputs: &[f64; INPUTS], du: &[f64; DRIVING], ds: &mut DiagonalState) {
+        self.relax(inputs, du, ds)
     }
 
     /// ŝ = S u as (re, im) into `out`.
@@ -444,6 +461,19 @@ impl DiagonalStep {
         for (i, o) in out.iter_mut().enumerate().take(s0.len()) {
             *o = s0[i] * u0 + s1[i] * u1 + s2[i] * u2;
         }
+    }
+
+    /// The jumps' deferred part −2 Σ_k (Z_kᵀP_cV) · jump_sums[k] per channel since the sums
+    /// were last cleared, and clear them.
+    fn jump_state_parts(&self, ds: &mut DiagonalState) -> [f64; 2] {
+        let mut parts = [0.0; 2];
+        for (kk, sums) in ds.jump_sums.iter_mut().enumerate() {
+            for (c, part) in parts.iter_mut().enumerate() {
+                *part -= 2.0 * dot(self.jump_rows.row(DRIVING * c + kk), sums);
+            }
+            sums.iter_mut().for_each(|v| *v = 0.0);
+        }
+        parts
     }
 
     /// e_cᵀP_c e_c of both channels at x̂ with the inputs `inputs` (e = z − z*(u)).
@@ -480,6 +510,7 @@ impl DiagonalStep {
             relaxed: vec![0.0; self.s_flat[0].len()],
             e: vec![0.0; stride],
             rows: vec![0.0; self.rows.rows()],
+            jump_sums: std::array::from_fn(|_| vec![0.0; stride]),
         };
         self.rows.mul_into(&ds.x, &mut ds.rows);
         ds.boundary = self.boundary(&mut ds);
@@ -496,29 +527,28 @@ impl DiagonalStep {
         // the start-of-step rows were formed at the previous step's end (or the start)
         let mut square = [0.0; 2];
         for (c, sq) in square.iter_mut().enumerate() {
-            // jump of eᵀPe at the step's start: −2Δz*ᵀP(z − z*(old)) + Δz*ᵀPΔz*
+            // jump of eᵀPe at the step's start: −2Δz*ᵀP(z − z*(old)) + Δz*ᵀPΔz*, its part
+            // −2Δz*ᵀP V x̂ deferred to the checkpoint (jump_sums)
             let mut jump = 0.0;
             for kk in 0..DRIVING {
-                let pe = ds.rows[START + DRIVING * c + kk]
-                    - (0..DRIVING).map(|ll| self.jump_input[c][kk][ll] * old[ll]).sum::<f64>();
+                let pe_input = (0..DRIVING).map(|ll| self.jump_input[c][kk][ll] * old[ll]).sum::<f64>();
                 let quad = (0..DRIVING).map(|ll| self.jump_input[c][kk][ll] * du[ll]).sum::<f64>();
-                jump += du[kk] * (quad - 2.0 * pe);
+                jump += du[kk] * (quad + 2.0 * pe_input);
             }
             let tau_star: f64 = (0..INPUTS).map(|kk| self.tau_star[c][kk] * inputs[kk]).sum();
-            let lin = ds.rows[START + 2 * DRIVING + c]
-                - (0..DRIVING).map(|kk| self.lin_input[c][kk] * inputs[kk]).sum::<f64>();
+            let lin = ds.rows[START + c] - (0..DRIVING).map(|kk| self.lin_input[c][kk] * inputs[kk]).sum::<f64>();
             *sq = jump + 2.0 * tau_star * lin + self.h * tau_star * tau_star;
         }
-        // x̂ ← μ x̂ + (1 − μ) ŝ
+        // the jumps' state part at x̂ (this step's start), then x̂ ← μ x̂ + (1 − μ) ŝ
         #[cfg(target_arch = "x86_64")]
         if self.avx {
             // SAFETY: the CPU has AVX (`avx`).
-            unsafe { self.relax_avx(&inputs, ds) };
+            unsafe { self.relax_avx(&inputs, &du, ds) };
         } else {
-            self.relax(&inputs, ds);
+            self.relax(&inputs, &du, ds);
         }
         #[cfg(not(target_arch = "x86_64"))]
-        self.relax(&inputs, ds);
+        self.relax(&inputs, &du, ds);
         ds.inputs = inputs;
         self.rows.mul_into(&ds.x, &mut ds.rows);
         let tips = [ds.rows[0], ds.rows[1], ds.rows[2], ds.rows[3]];
@@ -555,7 +585,8 @@ impl DiagonalStep {
         }
         let now = self.boundary(ds);
         let before = std::mem::replace(&mut ds.boundary, now);
-        [before[0] - now[0], before[1] - now[1]]
+        let jumps = self.jump_state_parts(ds);
+        [before[0] - now[0] + jumps[0], before[1] - now[1] + jumps[1]]
     }
 }
 
