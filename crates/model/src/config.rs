@@ -189,6 +189,47 @@ pub struct Disturbance {
     pub tip_torsion: TipDisturbance,
 }
 
+impl Disturbance {
+    /// The exact means of the disturbances over integrator steps of length h (s): what every
+    /// step of every time scheme holds ([`StepMeans::over_step`]).
+    pub fn step_means(&self, h: f64) -> StepMeans {
+        StepMeans {
+            load_factors: self.distributed.step_factors(h),
+            tip_factors: [&self.tip_bending, &self.tip_torsion].map(|d| d.step_factor(h)),
+            disturbance: self.clone(),
+            h,
+        }
+    }
+}
+
+/// The disturbances' exact means over steps of one length h, their sinc factors computed once
+/// ([`Disturbance::step_means`]).
+#[derive(Debug, Clone)]
+pub struct StepMeans {
+    disturbance: Disturbance,
+    h: f64,
+    load_factors: [f64; 2],
+    tip_factors: [f64; 2],
+}
+
+impl StepMeans {
+    /// (φ̄, [ḡ1, ḡ2]): the means of φ (1) and of the tip force (N) and moment (N m) over
+    /// [t0, t0 + h] (t0 in s), exact ([`Distributed::step_mean`], [`TipDisturbance::step_mean`]).
+    pub fn over_step(&self, t0: f64) -> (f64, [f64; 2]) {
+        let d = &self.disturbance;
+        let tips = [&d.tip_bending, &d.tip_torsion];
+        (
+            d.distributed.step_mean(t0, self.h, self.load_factors),
+            [0, 1].map(|c| tips[c].step_mean(t0, self.h, self.tip_factors[c])),
+        )
+    }
+
+    /// The disturbances these means are of.
+    pub fn disturbance(&self) -> &Disturbance {
+        &self.disturbance
+    }
+}
+
 /// Distributed disturbance g_h(z,t) = φ(t)·slope·z with φ(t) = mean + cos_amp cos(cos_freq t) + sin_amp sin(sin_freq t) (N/m).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]

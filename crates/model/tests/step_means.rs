@@ -1,9 +1,10 @@
 //! The disturbances' exact step means (what every integrator step's held inputs are) against
 //! an independent quadrature, and the per-step forms with the factors computed once against
-//! the forms from the step's ends.
+//! the forms from the step's ends; `Disturbance::step_means`, which every time scheme holds, is
+//! these per-step forms.
 
 use proptest::prelude::*;
-use wingcheck_model::{Distributed, TipDisturbance};
+use wingcheck_model::{Distributed, Disturbance, TipDisturbance};
 
 /// (1/(b − a))∫_a^b f by 5-point Gauss–Legendre on 64 panels: the error is of order
 /// (ω(b − a)/64)^10 / 10! relative, below 1e-16 for ω(b − a) ≤ 20.
@@ -50,11 +51,16 @@ proptest! {
         let g = tip.step_mean(t0, h, tip.step_factor(h));
         let reference = quadrature_mean(|t| tip.at(t), t0, t0 + h);
         prop_assert!((g - reference).abs() <= tol, "g mean {g} against quadrature {reference}");
-        // and the forms from the step's ends, which the nodal steppers use: the same to
+        // and the general-interval forms from the step's ends: the same to
         // round-off, which there includes the rounding of t0 + h (their interval
         // fl(t0 + h) − t0 differs from h by up to ε(t0 + h), relative ε(t0 + h)/h)
         let ends = tol + 2.0 * f64::EPSILON * (t0 + h) / h * scale;
         prop_assert!((phi - load.phi_integral(t0, t0 + h) / h).abs() <= ends);
         prop_assert!((g - tip.mean_over(t0, t0 + h)).abs() <= ends);
+        // what the time schemes hold: the same per-step forms, bit for bit
+        let d = Disturbance { distributed: load.clone(), tip_bending: tip.clone(), tip_torsion: tip.clone() };
+        let (phi_held, g_held) = d.step_means(h).over_step(t0);
+        prop_assert_eq!(phi_held.to_bits(), phi.to_bits());
+        prop_assert_eq!(g_held.map(f64::to_bits), [g.to_bits(); 2]);
     }
 }

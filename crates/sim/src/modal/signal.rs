@@ -6,7 +6,7 @@
 //! `ChannelObserver::sigma` measures it, then accumulated step by step.
 
 use wingcheck_control::{ChannelObserver, TipChannel};
-use wingcheck_model::{Config, TipDisturbance};
+use wingcheck_model::{Config, StepMeans};
 
 use super::{Signal, StepInput};
 
@@ -25,12 +25,8 @@ pub struct SampleInput {
 #[derive(Debug, Clone)]
 pub struct ObserverSignal {
     observers: [ChannelObserver; 2],
-    tips: [TipDisturbance; 2],
-    distributed: wingcheck_model::Distributed,
-    /// The step-mean factors of the distributed load's two terms and of the two tip
-    /// disturbances for steps of length `h` (`step_factors`, `step_factor`).
-    load_factors: [f64; 2],
-    tip_factors: [f64; 2],
+    /// The disturbances' means over steps of length `h`.
+    means: StepMeans,
     h: f64,
     period: f64,
     steps_per_sample: usize,
@@ -63,11 +59,7 @@ impl ObserverSignal {
             [ChannelObserver::new(cfg, TipChannel::Bending), ChannelObserver::new(cfg, TipChannel::Torsion)];
         let sigma = [observers[0].sigma(w0[0]), observers[1].sigma(w0[1])];
         let mut signal = ObserverSignal {
-            tips: [cfg.disturbance.tip_bending.clone(), cfg.disturbance.tip_torsion.clone()],
-            distributed: cfg.disturbance.distributed.clone(),
-            load_factors: cfg.disturbance.distributed.step_factors(cfg.discretisation.dt),
-            tip_factors: [&cfg.disturbance.tip_bending, &cfg.disturbance.tip_torsion]
-                .map(|d| d.step_factor(cfg.discretisation.dt)),
+            means: cfg.disturbance.step_means(cfg.discretisation.dt),
             h: cfg.discretisation.dt,
             period: cfg.observer.sample_period,
             steps_per_sample: cfg.steps_per_sample(),
@@ -99,7 +91,8 @@ impl ObserverSignal {
     /// The observer's output at the current sample t_k.
     pub fn current(&self) -> SampleInput {
         let t = self.k as f64 * self.period;
-        SampleInput { g_hat: self.g_hat, sigma: self.sigma, g: [self.tips[0].at(t), self.tips[1].at(t)] }
+        let d = self.means.disturbance();
+        SampleInput { g_hat: self.g_hat, sigma: self.sigma, g: [d.tip_bending.at(t), d.tip_torsion.at(t)] }
     }
 
     /// Advance one sample period: call `step(t_j, input)` for each integrator step
@@ -109,12 +102,9 @@ impl ObserverSignal {
         let h = self.h;
         for j in 0..self.steps_per_sample {
             let t = t0 + j as f64 * h;
-            let g_mean = [0, 1].map(|c| self.tips[c].step_mean(t, h, self.tip_factors[c]));
-            let input = StepInput {
-                phi: self.distributed.step_mean(t, h, self.load_factors),
-                tip_input: [g_mean[0] - self.g_hat[0], g_mean[1] - self.g_hat[1]],
-                g_hat: self.g_hat,
-            };
+            let (phi, g_mean) = self.means.over_step(t);
+            let input =
+                StepInput { phi, tip_input: [g_mean[0] - self.g_hat[0], g_mean[1] - self.g_hat[1]], g_hat: self.g_hat };
             step(t, &input);
             for c in 0..2 {
                 self.sigma[c] += h * input.tip_input[c];

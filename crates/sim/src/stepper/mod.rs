@@ -121,6 +121,8 @@ pub struct Stepper {
     /// M/α and K_c = K + a·diag(k)|tip, fused for the right-hand side (M/α) v − K_c x.
     rhs_operator: BandedPair,
     h: f64,
+    /// The disturbances' means over steps of length `h`.
+    means: wingcheck_model::StepMeans,
     /// Scheme and its stage coefficient α (h/2 trapezoid, (1 − 1/√2)h TR-BDF2).
     scheme: TimeScheme,
     alpha: f64,
@@ -193,6 +195,7 @@ impl Stepper {
             solver,
             rhs_operator,
             h,
+            means: cfg.disturbance.step_means(h),
             scheme,
             alpha,
             x_stage: vec![0.0; n],
@@ -346,9 +349,7 @@ impl Stepper {
     /// One trapezoidal step of length h starting at time t.
     fn substep_trapezoid(&mut self, t: f64) {
         let h = self.h;
-        let t1 = t + h;
-        let phi_mean = self.cfg.disturbance.distributed.phi_integral(t, t1) / h;
-        let g_mean = [self.tip_disturbance(0).mean_over(t, t1), self.tip_disturbance(1).mean_over(t, t1)];
+        let (phi_mean, g_mean) = self.means.over_step(t);
         // rhs = (2/h) M v − K_c x + f̄, with f̄ = φ̄ f_h + e(ḡ − ĝ).
         self.rhs_operator.mul_diff_into(&self.v, &self.x, &mut self.rhs);
         for (r, f) in self.rhs.iter_mut().zip(&self.disc.load) {

@@ -60,9 +60,7 @@ impl Stepper {
     pub(super) fn substep_trbdf2(&mut self, t: f64) {
         let h = self.h;
         let alpha = self.alpha;
-        let t1 = t + h;
-        let phi_mean = self.cfg.disturbance.distributed.phi_integral(t, t1) / h;
-        let g_mean = [self.tip_disturbance(0).mean_over(t, t1), self.tip_disturbance(1).mean_over(t, t1)];
+        let (phi_mean, g_mean) = self.means.over_step(t);
         let tau_n = self.taus_at(&self.x, &self.v);
         let power_n = self.track_energy.then(|| self.stage_power(&self.v, tau_n, phi_mean, g_mean));
         // Stage 1: trapezoid to t + γh.
