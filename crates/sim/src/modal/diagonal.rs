@@ -38,7 +38,7 @@ use faer::{c64, Mat};
 use super::eigen_solve::real_eigen;
 use super::exact::{closed_loop, LoopCoefficients, INPUTS};
 use super::gemv::RowMajor;
-use super::layout::Layout;
+use super::layout::{stack, Half, Layout};
 use super::lyapunov::{pivoted_cholesky, real_forms};
 use super::refine::RealEigen;
 use super::scheme::dot;
@@ -68,31 +68,6 @@ pub(crate) const MAX_CONDITION: f64 = 1e6;
 pub(crate) const MAX_ROUNDOFF: f64 = 1e-6;
 /// Tolerance of the relative residual ‖AV − VΛ‖_F/(‖A‖_F‖V‖_F) of the eigendecomposition.
 const RESIDUAL_TOLERANCE: f64 = 1e-10;
-
-/// A complex vector over the eigenvalue representatives (one per real eigenvalue, one per
-/// conjugate pair), real and imaginary parts apart. As a row it carries the weight of its
-/// representative (1 real, 2 pair), so Σ over all N eigenvalues of a_i x_i for conjugate-closed
-/// a, x is [`Half::re_dot`].
-#[derive(Debug, Clone)]
-struct Half {
-    re: Vec<f64>,
-    im: Vec<f64>,
-}
-
-impl Half {
-    fn zeros(k: usize) -> Half {
-        Half { re: vec![0.0; k], im: vec![0.0; k] }
-    }
-    fn from_fn(k: usize, f: impl Fn(usize) -> c64) -> Half {
-        let v: Vec<c64> = (0..k).map(f).collect();
-        Half { re: v.iter().map(|c| c.re).collect(), im: v.iter().map(|c| c.im).collect() }
-    }
-    /// Re Σ a_i x_i = Σ (a_re x_re − a_im x_im).
-    #[inline]
-    fn re_dot(&self, x: &Half) -> f64 {
-        dot(&self.re, &x.re) - dot(&self.im, &x.im)
-    }
-}
 
 /// e^{z} − 1 for complex z without cancellation at small |z|.
 fn expm1(z: c64) -> c64 {
@@ -588,13 +563,6 @@ impl DiagonalStep {
         let jumps = self.jump_state_parts(ds);
         [before[0] - now[0] + jumps[0], before[1] - now[1] + jumps[1]]
     }
-}
-
-/// The rows Re(a · x̂) of the [`Half`] vectors `rows` as a matrix over (x̂_re, x̂_im):
-/// [a_re, −a_im].
-fn stack(rows: &[Half]) -> Mat<f64> {
-    let k = rows.first().map_or(0, |r| r.re.len());
-    Mat::from_fn(rows.len(), 2 * k, |i, j| if j < k { rows[i].re[j] } else { -rows[i].im[j - k] })
 }
 
 /// x ≤ limit, false for NaN (a refusal).

@@ -1,7 +1,10 @@
-//! The real vectors of the eigenbasis step ([`super::diagonal`]): which slot holds which part
-//! of which representative eigenvalue.
+//! The vectors of the eigenbasis step ([`super::diagonal`]): the complex vectors over the
+//! representative eigenvalues its construction works with ([`Half`]), and the real vectors it
+//! carries (which slot holds which part of which representative, [`Layout`]).
 
-use faer::Mat;
+use faer::{c64, Mat};
+
+use super::scheme::dot;
 
 /// The real vectors the step carries: the k representatives' (re, im) pairs of the
 /// construction with the imaginary parts of the real eigenvalues dropped (they are 0 in every
@@ -52,4 +55,36 @@ impl Layout {
     pub(crate) fn rows(&self, full: &Mat<f64>) -> Mat<f64> {
         Mat::from_fn(self.from.len(), full.ncols(), |i, j| full[(self.from[i], j)])
     }
+}
+
+/// A complex vector over the eigenvalue representatives (one per real eigenvalue, one per
+/// conjugate pair), real and imaginary parts apart. As a row it carries the weight of its
+/// representative (1 real, 2 pair), so Σ over all N eigenvalues of a_i x_i for conjugate-closed
+/// a, x is [`Half::re_dot`].
+#[derive(Debug, Clone)]
+pub(crate) struct Half {
+    pub(crate) re: Vec<f64>,
+    pub(crate) im: Vec<f64>,
+}
+
+impl Half {
+    pub(crate) fn zeros(k: usize) -> Half {
+        Half { re: vec![0.0; k], im: vec![0.0; k] }
+    }
+    pub(crate) fn from_fn(k: usize, f: impl Fn(usize) -> c64) -> Half {
+        let v: Vec<c64> = (0..k).map(f).collect();
+        Half { re: v.iter().map(|c| c.re).collect(), im: v.iter().map(|c| c.im).collect() }
+    }
+    /// Re Σ a_i x_i = Σ (a_re x_re − a_im x_im).
+    #[inline]
+    pub(crate) fn re_dot(&self, x: &Half) -> f64 {
+        dot(&self.re, &x.re) - dot(&self.im, &x.im)
+    }
+}
+
+/// The rows Re(a · x̂) of the [`Half`] vectors `rows` as a matrix over (x̂_re, x̂_im):
+/// [a_re, −a_im].
+pub(crate) fn stack(rows: &[Half]) -> Mat<f64> {
+    let k = rows.first().map_or(0, |r| r.re.len());
+    Mat::from_fn(rows.len(), 2 * k, |i, j| if j < k { rows[i].re[j] } else { -rows[i].im[j - k] })
 }
