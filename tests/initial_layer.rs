@@ -78,3 +78,43 @@ fn estimated_peaks_cover_a_finer_grid_and_step() {
         common::assert_estimated_peaks_cover_a_finer_run(name, &cfg);
     }
 }
+
+/// `simulate` steps its initial-layer runs in the base run's modal basis instead of building it
+/// for each (the layer runs change only dt, the horizon and the sampling). The reference is
+/// the definition: the base run at the configured step, then `layer::resolve` over runs that
+/// each build their own discretisation and basis (`simulate_base`). Both must give the same
+/// bits — peaks, the layer's record, the samples — on modal wings (the paper's, an SI-scale
+/// one, the exponential scheme) and on a nodal one (which builds its own as before).
+#[test]
+fn the_layer_runs_in_the_shared_basis_are_the_runs_that_build_their_own() {
+    let si = [
+        "wing.span=6",
+        "wing.ei=1e7",
+        "wing.gj=1e6",
+        "wing.rho=100",
+        "wing.ip=10",
+        "control.a=2",
+        "control.b=50",
+        "horizon.t_end=0.5",
+    ];
+    let cases: Vec<(&str, Config)> = vec![
+        ("paper wing, 0.5 s", paper_with(&["horizon.t_end=0.5"])),
+        ("SI-scale wing", paper_with(&si)),
+        (
+            "exponential scheme, explicit FTDO",
+            paper_with(&["horizon.t_end=0.5", "discretisation.stepper=exponential", "observer.rule=explicit"]),
+        ),
+        ("nodal basis", paper_with(&["horizon.t_end=0.5", "discretisation.basis=nodal"])),
+    ];
+    for (name, cfg) in cases {
+        let shared = simulate(&cfg, RunOptions::default()).unwrap();
+        let mut own = wingcheck_sim::simulate_base(&cfg, RunOptions::default()).unwrap();
+        let record =
+            layer::resolve(&cfg, &mut own, |c| wingcheck_sim::simulate_base(c, RunOptions::default())).unwrap();
+        assert_eq!(shared.initial_layer, Some(record), "{name}: the layer's record");
+        assert!(shared.initial_layer.unwrap().runs >= 2, "{name}: the layer was resolved by one run only");
+        assert_eq!(shared.peaks, own.peaks, "{name}: peaks");
+        assert_eq!(format!("{:?}", shared.series), format!("{:?}", own.series), "{name}: the series");
+        assert_eq!(format!("{:?}", shared.envelope), format!("{:?}", own.envelope), "{name}: the envelope");
+    }
+}

@@ -265,7 +265,9 @@ impl WorkEstimate {
         Self::run(cfg, false, None, 0.0, 1)
     }
 
-    fn run(cfg: &Config, fields: bool, json_output: Option<bool>, layer_steps: f64, setups: usize) -> WorkEstimate {
+    /// `runs`: the base run and its initial-layer re-runs, which share one modal basis (sim's
+    /// `simulate` builds it once) but each set up their own time scheme.
+    fn run(cfg: &Config, fields: bool, json_output: Option<bool>, layer_steps: f64, runs: usize) -> WorkEstimate {
         let base_steps = (cfg.horizon.t_end / cfg.discretisation.dt).ceil();
         let steps = base_steps + layer_steps;
         let samples = (cfg.horizon.t_end / cfg.horizon.sample_every).floor() + 1.0;
@@ -282,7 +284,7 @@ impl WorkEstimate {
         // of every sample period with its rows (≈ 16 points per octave of s × 6 outputs)
         let is_exponential = cfg.expected_time_scheme() == crate::TimeScheme::Exponential;
         let exponential = if is_exponential {
-            let layer_periods = (LAYER_SAMPLES * (setups - 1)) as f64;
+            let layer_periods = (LAYER_SAMPLES * (runs - 1)) as f64;
             let periods = (cfg.horizon.t_end / cfg.observer.sample_period).ceil() + layer_periods;
             exponential_seconds(steps, n) + sub_step_probe_seconds(periods, n)
         } else {
@@ -292,14 +294,15 @@ impl WorkEstimate {
         WorkEstimate {
             what: "simulate".into(),
             steps,
-            seconds: steps * n * SECONDS_PER_UNKNOWN_STEP + exponential + setups as f64 * Self::setup_seconds(cfg),
+            seconds: steps * n * SECONDS_PER_UNKNOWN_STEP + exponential + Self::setup_seconds(cfg),
             memory_bytes: memory,
             output_bytes: output,
         }
     }
 
     /// Seconds of one run's set-up beyond its steps: the modal basis's dense eigenproblems
-    /// (O(unknowns³)) when the run is expected in the modal basis.
+    /// (O(unknowns³)) when the run is expected in the modal basis (once per `simulate`: its
+    /// initial-layer re-runs step in the same basis).
     pub fn setup_seconds(cfg: &Config) -> f64 {
         if cfg.expected_modal() {
             (cfg.unknowns() as f64).powi(3) * SECONDS_PER_MODAL_SETUP_CUBE

@@ -352,9 +352,28 @@ pub fn resolved_basis(cfg: &Config, disc: &Discretisation) -> Result<(StepBasis,
 /// which).
 pub fn simulate(cfg: &Config, opts: RunOptions<'_>) -> Result<SimOutput, SimError> {
     let sub_step_probe = opts.sub_step_probe;
-    let mut out = simulate_base(cfg, opts)?;
+    cfg.validate().map_err(SimError::Config)?;
+    let start = Instant::now();
+    let disc = Discretisation::new(cfg);
+    let (_, basis) = resolved_basis(cfg, &disc)?;
+    let mut out = match &basis {
+        Some(basis) => crate::modal::simulate_modal(cfg, basis, start, opts)?,
+        None => simulate_nodal(cfg, disc, start, opts)?,
+    };
+    // The layer runs change the step, horizon and output sampling only, none of which the
+    // basis depends on: a layer run whose basis key (`ModalBasis::key`, which also fixes the
+    // choice of basis) is the base run's is stepped in the base run's modal basis instead of
+    // building it again (the same bits: the basis is a deterministic function of the key's
+    // inputs). Any other layer run is a run of its own.
+    let base_key = basis.as_ref().map(|_| ModalBasis::key(cfg));
     let layer = crate::layer::resolve(cfg, &mut out, |c| {
-        simulate_base(c, RunOptions { sub_step_probe, ..Default::default() })
+        let opts = RunOptions { sub_step_probe, ..Default::default() };
+        match (&basis, &base_key) {
+            (Some(basis), Some(key)) if ModalBasis::key(c) == *key => {
+                crate::modal::simulate_modal(c, basis, Instant::now(), opts)
+            }
+            _ => simulate_base(c, opts),
+        }
     })?;
     out.initial_layer = Some(layer);
     Ok(out)
