@@ -20,15 +20,17 @@
 
 mod allocator;
 mod lock;
+mod number;
 mod provenance;
 mod table;
 
 pub use allocator::{tune_allocator, HEAP_LIMITS};
 pub use lock::{is_lock_file, lock_name, lock_owner, owner_alive, remove_stale_locks, DirLock};
+pub use number::{number, push_number};
 pub use provenance::{
     build, set_build, sha256_hex, sidecar_path, BuildInfo, FileRecord, Provenance, TreeState, SCHEMA_VERSION,
 };
-pub use table::{column_name, csv_record, csv_text, grid_number, is_column_name, key_column, number, CsvWriter};
+pub use table::{column_name, csv_numbers, csv_record, csv_text, grid_number, is_column_name, key_column, CsvWriter};
 
 use std::collections::BTreeSet;
 use std::io::Write;

@@ -11,6 +11,8 @@
 
 use std::io::Write;
 
+use crate::number;
+
 /// A CSV writer over any `Write` (a file being staged, a `Vec<u8>`).
 pub struct CsvWriter<W: Write> {
     inner: csv::Writer<W>,
@@ -68,6 +70,29 @@ where
     String::from_utf8(w.finish().expect("writing to memory cannot fail")).expect("the fields are UTF-8")
 }
 
+/// A table of numbers as CSV text (header, then one record per row, each number in the form
+/// of [`number`]): the text [`csv_text`] writes for the numbers' texts, with the records
+/// joined directly, since a number never needs quoting (digits, `-`, `.`, `NaN`, `inf`).
+pub fn csv_numbers<H, S, R, F>(header: H, rows: R) -> String
+where
+    H: IntoIterator<Item = S>,
+    S: AsRef<[u8]>,
+    R: IntoIterator<Item = F>,
+    F: IntoIterator<Item = f64>,
+{
+    let mut text = csv_record(header);
+    for row in rows {
+        for (i, v) in row.into_iter().enumerate() {
+            if i > 0 {
+                text.push(',');
+            }
+            crate::push_number(&mut text, v);
+        }
+        text.push('\n');
+    }
+    text
+}
+
 /// A column name: `base` followed by `_` and the unit suffix (`t_s`, `q_tip_m`, `tau2_N_m`),
 /// or `base` alone for a dimensionless column (`suffix` empty).
 pub fn column_name(base: &str, suffix: &str) -> String {
@@ -89,12 +114,6 @@ pub fn key_column(key: &str) -> String {
 pub fn is_column_name(name: &str) -> bool {
     name.chars().next().is_some_and(|c| c.is_ascii_alphabetic())
         && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
-}
-
-/// A number as written in every CSV: Rust's shortest round-trip form (re-reads to the same
-/// f64, bit-reproducible).
-pub fn number(x: f64) -> String {
-    format!("{x}")
 }
 
 /// A coordinate of a regular grid (a sample time, a grid point) as written in a CSV: rounded to

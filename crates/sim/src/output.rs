@@ -41,8 +41,8 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
 /// file is bit-reproducible and re-reads to the same f64 values.
 pub fn series_csv(series: &Series) -> String {
     let cols = series.columns();
-    let rows = (0..series.len()).map(|i| cols.iter().map(|c| wingcheck_io::number(c[i])).collect::<Vec<_>>());
-    wingcheck_io::csv_text(Series::csv_header(), rows)
+    let rows = (0..series.len()).map(|i| cols.iter().map(move |c| c[i]));
+    wingcheck_io::csv_numbers(Series::csv_header(), rows)
 }
 
 /// The full JSON document of a run (`run.json`): config, series, fields, statistics.
