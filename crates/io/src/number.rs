@@ -22,29 +22,30 @@ const MAX_LAID_OUT: usize = 48;
 /// `format!("{x}")`, including `NaN`, `inf`, `-inf` and `-0`).
 pub fn push_number(out: &mut String, x: f64) {
     use std::fmt::Write;
+    if !x.is_finite() {
+        return write!(out, "{x}").expect("writing to a String cannot fail");
+    }
     let mut buffer = ryu::Buffer::new();
-    if x.is_finite() {
-        let text = buffer.format_finite(x);
-        // ryu's positional form (|x| from 1e-5 to 1e16) is the standard library's, except that
-        // an integer ends in ".0" and a tie may round the other way
-        if !text.as_bytes().contains(&b'e') {
-            if let Some(integer) = text.strip_suffix(".0") {
-                // no tie: one needs |x| = (D + ½)10^k with k ≥ 1 (x an integer ending in 5
-                // after the digits), which makes D·10^k and (D + 1)·10^k both round-trip only
-                // where the spacing of f64s exceeds 10, above 2⁵⁵ > 1e16
-                out.push_str(integer);
-                return;
-            }
-            let place = text.find('.').map_or(0, |dot| -((text.len() - dot - 1) as i32));
-            if binary_exponent(x) + 1 != place {
-                out.push_str(text);
-                return;
-            }
+    let text = buffer.format_finite(x);
+    // ryu's positional form (|x| from 1e-5 to 1e16) is the standard library's, except that an
+    // integer ends in ".0" and a tie may round the other way
+    if !text.as_bytes().contains(&b'e') {
+        if let Some(integer) = text.strip_suffix(".0") {
+            // no tie: one needs |x| = (D + ½)10^k with k ≥ 1 (x an integer ending in 5 after
+            // the digits), which makes D·10^k and (D + 1)·10^k both round-trip only where the
+            // spacing of f64s exceeds 10, above 2⁵⁵ > 1e16
+            out.push_str(integer);
+            return;
+        }
+        // a tie at the last digit's place 10^k needs e + 1 = k ([`is_tie_above`])
+        let place = text.find('.').map_or(0, |dot| -((text.len() - dot - 1) as i32));
+        if odd_mantissa(x).1 + 1 != place {
+            out.push_str(text);
+            return;
         }
     }
-    let laid_out = x.is_finite().then(|| lay_out(x, buffer.format_finite(x).as_bytes())).flatten();
-    match laid_out {
-        Some((text, len)) => out.push_str(std::str::from_utf8(&text[..len]).expect("ASCII")),
+    match lay_out(x, text.as_bytes()) {
+        Some((laid_out, len)) => out.push_str(std::str::from_utf8(&laid_out[..len]).expect("ASCII")),
         None => write!(out, "{x}").expect("writing to a String cannot fail"),
     }
 }
@@ -179,12 +180,6 @@ fn odd_mantissa(x: f64) -> (u64, i32) {
     }
     let zeros = m.trailing_zeros();
     (m >> zeros, e + zeros as i32)
-}
-
-/// e of [`odd_mantissa`]: a tie at the last digit's place 10^k needs e + 1 = k
-/// ([`is_tie_above`]).
-fn binary_exponent(x: f64) -> i32 {
-    odd_mantissa(x).1
 }
 
 /// A number as written in every CSV: [`push_number`] into a new `String`.

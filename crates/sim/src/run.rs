@@ -352,14 +352,7 @@ pub fn resolved_basis(cfg: &Config, disc: &Discretisation) -> Result<(StepBasis,
 /// which).
 pub fn simulate(cfg: &Config, opts: RunOptions<'_>) -> Result<SimOutput, SimError> {
     let sub_step_probe = opts.sub_step_probe;
-    cfg.validate().map_err(SimError::Config)?;
-    let start = Instant::now();
-    let disc = Discretisation::new(cfg);
-    let (_, basis) = resolved_basis(cfg, &disc)?;
-    let mut out = match &basis {
-        Some(basis) => crate::modal::simulate_modal(cfg, basis, start, opts)?,
-        None => simulate_nodal(cfg, disc, start, opts)?,
-    };
+    let (mut out, basis) = base_run(cfg, opts)?;
     // The layer runs change the step, horizon and output sampling only, none of which the
     // basis depends on: a layer run whose basis key (`ModalBasis::key`, which also fixes the
     // choice of basis) is the base run's is stepped in the base run's modal basis instead of
@@ -381,13 +374,21 @@ pub fn simulate(cfg: &Config, opts: RunOptions<'_>) -> Result<SimOutput, SimErro
 
 /// [`simulate`] without resolving the initial layer: the run at the configured step only.
 pub fn simulate_base(cfg: &Config, opts: RunOptions<'_>) -> Result<SimOutput, SimError> {
+    base_run(cfg, opts).map(|(out, _)| out)
+}
+
+/// The run at the configured step in the basis [`resolved_basis`] selects, and that modal
+/// basis where it is the modal one.
+fn base_run(cfg: &Config, opts: RunOptions<'_>) -> Result<(SimOutput, Option<ModalBasis>), SimError> {
     cfg.validate().map_err(SimError::Config)?;
     let start = Instant::now();
     let disc = Discretisation::new(cfg);
-    match resolved_basis(cfg, &disc)? {
-        (_, Some(basis)) => crate::modal::simulate_modal(cfg, &basis, start, opts),
-        _ => simulate_nodal(cfg, disc, start, opts),
-    }
+    let (_, basis) = resolved_basis(cfg, &disc)?;
+    let out = match &basis {
+        Some(basis) => crate::modal::simulate_modal(cfg, basis, start, opts)?,
+        None => simulate_nodal(cfg, disc, start, opts)?,
+    };
+    Ok((out, basis))
 }
 
 /// [`simulate`] in the nodal basis (banded Cholesky of the step matrix).
