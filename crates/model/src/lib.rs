@@ -10,6 +10,7 @@
 //! and the allowed range.
 
 mod config;
+mod disturbance;
 mod error;
 pub mod json;
 mod overrides;
@@ -19,6 +20,7 @@ mod validate;
 pub mod work;
 
 pub use config::*;
+pub use disturbance::{Distributed, Disturbance, StepMeans, TipDisturbance};
 pub use error::ConfigError;
 pub use overrides::{apply_override, apply_overrides};
 pub use quantity::{Accuracy, ErrorSource, Estimate, Quantity, Unit, ValueBasis};

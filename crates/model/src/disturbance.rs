@@ -1,0 +1,161 @@
+//! The disturbances (56) and their exact means over an integrator step, which every time
+//! scheme holds ([`StepMeans`]). Units are SI (N/m, N, N m, s, rad/s).
+
+use serde::{Deserialize, Serialize};
+
+/// Disturbances (56), generalised only in their coefficients.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Disturbance {
+    /// Distributed load g_h(z,t) = (mean + cos_amp cos(cos_freq t) + sin_amp sin(sin_freq t)) · slope · z.
+    pub distributed: Distributed,
+    /// Tip bending force g1(t) = mean + amp sin(freq t).
+    pub tip_bending: TipDisturbance,
+    /// Tip torsion moment g2(t) = mean + amp sin(freq t).
+    pub tip_torsion: TipDisturbance,
+}
+
+impl Disturbance {
+    /// The exact means of the disturbances over integrator steps of length h (s): what every
+    /// step of every time scheme holds ([`StepMeans::over_step`]).
+    pub fn step_means(&self, h: f64) -> StepMeans {
+        StepMeans {
+            load_factors: self.distributed.step_factors(h),
+            tip_factors: [&self.tip_bending, &self.tip_torsion].map(|d| d.step_factor(h)),
+            disturbance: self.clone(),
+            h,
+        }
+    }
+}
+
+/// The disturbances' exact means over steps of one length h, their sinc factors computed once
+/// ([`Disturbance::step_means`]).
+#[derive(Debug, Clone)]
+pub struct StepMeans {
+    disturbance: Disturbance,
+    h: f64,
+    load_factors: [f64; 2],
+    tip_factors: [f64; 2],
+}
+
+impl StepMeans {
+    /// (φ̄, [ḡ1, ḡ2]): the means of φ (1) and of the tip force (N) and moment (N m) over
+    /// [t0, t0 + h] (t0 in s), exact ([`Distributed::step_mean`], [`TipDisturbance::step_mean`]).
+    pub fn over_step(&self, t0: f64) -> (f64, [f64; 2]) {
+        let d = &self.disturbance;
+        let tips = [&d.tip_bending, &d.tip_torsion];
+        (
+            d.distributed.step_mean(t0, self.h, self.load_factors),
+            [0, 1].map(|c| tips[c].step_mean(t0, self.h, self.tip_factors[c])),
+        )
+    }
+
+    /// The disturbances these means are of.
+    pub fn disturbance(&self) -> &Disturbance {
+        &self.disturbance
+    }
+}
+
+/// Distributed disturbance g_h(z,t) = φ(t)·slope·z with φ(t) = mean + cos_amp cos(cos_freq t) + sin_amp sin(sin_freq t) (N/m).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Distributed {
+    /// Constant part of φ (paper: 1).
+    pub mean: f64,
+    /// Cosine amplitude (paper: 3).
+    pub cos_amp: f64,
+    /// Cosine angular frequency (rad/s) (paper: 3π).
+    pub cos_freq: f64,
+    /// Sine amplitude (paper: 1).
+    pub sin_amp: f64,
+    /// Sine angular frequency (rad/s) (paper: π).
+    pub sin_freq: f64,
+    /// Spatial slope (1/m) (paper: 1/30).
+    pub slope: f64,
+}
+
+impl Distributed {
+    /// Time factor φ(t) of g_h(z,t) = φ(t)·slope·z.
+    pub fn phi(&self, t: f64) -> f64 {
+        self.mean + self.cos_amp * (self.cos_freq * t).cos() + self.sin_amp * (self.sin_freq * t).sin()
+    }
+    /// Exact integral ∫_{t0}^{t1} φ(t) dt (product forms, no cancellation for short steps).
+    pub fn phi_integral(&self, t0: f64, t1: f64) -> f64 {
+        let dt = t1 - t0;
+        let mid = 0.5 * (t0 + t1);
+        self.mean * dt
+            + self.cos_amp * (self.cos_freq * mid).cos() * dt * sinc(0.5 * self.cos_freq * dt)
+            + self.sin_amp * (self.sin_freq * mid).sin() * dt * sinc(0.5 * self.sin_freq * dt)
+    }
+    /// The factors sinc(ω h/2) of the cosine and the sine term by which a step of length h (s)
+    /// averages them, for [`Distributed::step_mean`] (once per run instead of at every step).
+    pub fn step_factors(&self, h: f64) -> [f64; 2] {
+        [sinc(0.5 * self.cos_freq * h), sinc(0.5 * self.sin_freq * h)]
+    }
+    /// Exact mean (1/h)∫_{t0}^{t0+h} φ(t) dt with `factors` = [`Distributed::step_factors`]`(h)`:
+    /// the value of [`Distributed::phi_integral`]`(t0, t0 + h)/h` up to round-off, with two
+    /// trigonometric calls instead of four.
+    pub fn step_mean(&self, t0: f64, h: f64, factors: [f64; 2]) -> f64 {
+        let mid = t0 + 0.5 * h;
+        self.mean
+            + self.cos_amp * (self.cos_freq * mid).cos() * factors[0]
+            + self.sin_amp * (self.sin_freq * mid).sin() * factors[1]
+    }
+    /// sup over z ∈ [0,s], t ≥ 0 of |g_h| = (|mean| + |cos_amp| + |sin_amp|)·|slope|·s: Assumption 1's g_hmax
+    /// (an upper bound; attained for the paper's data at t = 0 … up to the phase alignment).
+    pub fn sup_abs(&self, span: f64) -> f64 {
+        (self.mean.abs() + self.cos_amp.abs() + self.sin_amp.abs()) * self.slope.abs() * span
+    }
+}
+
+/// sin(x)/x with sinc(0) = 1: ∫ of sin/cos over [m − δ, m + δ] is 2δ·sinc(ωδ)·(value at m).
+fn sinc(x: f64) -> f64 {
+    if x.abs() < 1e-4 {
+        1.0 - x * x / 6.0
+    } else {
+        x.sin() / x
+    }
+}
+
+/// Tip disturbance mean + amp·sin(freq·t).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct TipDisturbance {
+    /// Constant part.
+    pub mean: f64,
+    /// Amplitude of the sine.
+    pub amp: f64,
+    /// Angular frequency (rad/s).
+    pub freq: f64,
+}
+
+impl TipDisturbance {
+    /// Value at time t.
+    pub fn at(&self, t: f64) -> f64 {
+        self.mean + self.amp * (self.freq * t).sin()
+    }
+    /// Exact mean (1/(t1 − t0))∫_{t0}^{t1} g dt over a step (t1 = t0 gives g(t0)).
+    pub fn mean_over(&self, t0: f64, t1: f64) -> f64 {
+        let mid = 0.5 * (t0 + t1);
+        self.mean + self.amp * (self.freq * mid).sin() * sinc(0.5 * self.freq * (t1 - t0))
+    }
+    /// The factor sinc(ω h/2) by which a step of length h (s) averages the sine, for
+    /// [`TipDisturbance::step_mean`] (once per run instead of at every step).
+    pub fn step_factor(&self, h: f64) -> f64 {
+        sinc(0.5 * self.freq * h)
+    }
+    /// Exact mean of g over [t0, t0 + h] with `factor` = [`TipDisturbance::step_factor`]`(h)`:
+    /// [`TipDisturbance::mean_over`]`(t0, t0 + h)` up to round-off, with one trigonometric call
+    /// instead of two.
+    pub fn step_mean(&self, t0: f64, h: f64, factor: f64) -> f64 {
+        self.mean + self.amp * (self.freq * (t0 + 0.5 * h)).sin() * factor
+    }
+    /// Time derivative at t.
+    pub fn rate(&self, t: f64) -> f64 {
+        self.amp * self.freq * (self.freq * t).cos()
+    }
+    /// sup_t |g(t)| = |mean| + |amp| (Assumption 1's ζ for this channel; tight when the sine reaches ±1).
+    pub fn sup_abs(&self) -> f64 {
+        self.mean.abs() + self.amp.abs()
+    }
+}
