@@ -262,6 +262,39 @@ mod avx {
         total(&a)
     }
 
+    /// The [`LANES`] partial sums of (Σ u0 y, Σ u1 y) as four named registers (lanes 0–3 and
+    /// 4–7 of each), so that they stay in registers: an array indexed by the pack's half
+    /// was kept on the stack, and every addition then waited for the previous one's store.
+    struct Dots {
+        u0_lo: __m256d,
+        u0_hi: __m256d,
+        u1_lo: __m256d,
+        u1_hi: __m256d,
+    }
+
+    impl Dots {
+        #[inline(always)]
+        unsafe fn new() -> Dots {
+            let z = _mm256_setzero_pd();
+            Dots { u0_lo: z, u0_hi: z, u1_lo: z, u1_hi: z }
+        }
+
+        /// Add u·v for the modes i + half .. i + half + 4 of the pack at i (half 0 or 4).
+        #[inline(always)]
+        unsafe fn accumulate(&mut self, s: &StepSolve, i: usize, half: usize, v: __m256d) {
+            let j = i + half;
+            let (a0, a1) =
+                if half == 0 { (&mut self.u0_lo, &mut self.u1_lo) } else { (&mut self.u0_hi, &mut self.u1_hi) };
+            *a0 = add(*a0, mul(get(&s.u0, j), v));
+            *a1 = add(*a1, mul(get(&s.u1, j), v));
+        }
+
+        #[inline(always)]
+        unsafe fn totals(&self) -> [f64; 2] {
+            [sum(self.u0_lo, self.u0_hi), sum(self.u1_lo, self.u1_hi)]
+        }
+    }
+
     /// cz ζ − ce η + φ ld + z0 f0 + z1 f1 at i, in the portable loops' order.
     #[inline(always)]
     unsafe fn rhs_at(s: &StepSolve, i: usize, zt: __m256d, et: __m256d, phi: __m256d, f: [__m256d; 2]) -> __m256d {
@@ -285,15 +318,16 @@ mod avx {
         y: &mut [f64],
     ) -> [f64; 2] {
         let (phi, f) = (_mm256_set1_pd(phi), [_mm256_set1_pd(f[0]), _mm256_set1_pd(f[1])]);
-        let mut acc = [_mm256_setzero_pd(); 4];
-        for i in (0..y.len()).step_by(4) {
-            let v = rhs_at(s, i, get(zeta, i), get(eta, i), phi, f);
-            put(y, i, v);
-            let half = (i / 4) % 2;
-            acc[half] = add(acc[half], mul(get(&s.u0, i), v));
-            acc[2 + half] = add(acc[2 + half], mul(get(&s.u1, i), v));
+        let mut acc = Dots::new();
+        // one pack of LANES modes per pass: lanes 0–3 and 4–7 in two registers each
+        for i in (0..y.len()).step_by(LANES) {
+            for half in [0, 4] {
+                let v = rhs_at(s, i + half, get(zeta, i + half), get(eta, i + half), phi, f);
+                put(y, i + half, v);
+                acc.accumulate(s, i, half, v);
+            }
         }
-        [sum(acc[0], acc[1]), sum(acc[2], acc[3])]
+        acc.totals()
     }
 
     #[target_feature(enable = "avx")]
@@ -328,20 +362,21 @@ mod avx {
         let c = [_mm256_set1_pd(c[0]), _mm256_set1_pd(c[1])];
         let [eta_u, zeta_u, zeta_z] = k.map(|x| _mm256_set1_pd(x));
         let (phi, f) = (_mm256_set1_pd(phi), [_mm256_set1_pd(f2[0]), _mm256_set1_pd(f2[1])]);
-        let mut acc = [_mm256_setzero_pd(); 4];
-        for i in (0..y.len()).step_by(4) {
-            let us = corrected(s, i, get(y, i), c);
-            let eh = add(get(eta, i), mul(eta_u, us));
-            let zh = sub(mul(zeta_u, us), mul(zeta_z, get(zeta, i)));
-            put(eta, i, eh);
-            put(zeta, i, zh);
-            let v = rhs_at(s, i, zh, eh, phi, f);
-            put(y, i, v);
-            let half = (i / 4) % 2;
-            acc[half] = add(acc[half], mul(get(&s.u0, i), v));
-            acc[2 + half] = add(acc[2 + half], mul(get(&s.u1, i), v));
+        let mut acc = Dots::new();
+        for i in (0..y.len()).step_by(LANES) {
+            for half in [0, 4] {
+                let j = i + half;
+                let us = corrected(s, j, get(y, j), c);
+                let eh = add(get(eta, j), mul(eta_u, us));
+                let zh = sub(mul(zeta_u, us), mul(zeta_z, get(zeta, j)));
+                put(eta, j, eh);
+                put(zeta, j, zh);
+                let v = rhs_at(s, j, zh, eh, phi, f);
+                put(y, j, v);
+                acc.accumulate(s, i, half, v);
+            }
         }
-        [sum(acc[0], acc[1]), sum(acc[2], acc[3])]
+        acc.totals()
     }
 
     #[target_feature(enable = "avx")]
