@@ -60,6 +60,14 @@ pub trait Recorder {
     fn reads_state(&self) -> bool {
         true
     }
+
+    /// Whether the recorder reads the tip boundary states w (q'''(s), θ'(s): the samples'
+    /// `q_tip_shear`, `theta_tip_slope`; the default). With false, TR-BDF2 does not advance
+    /// them ([`ModalLoop::step_with`]): they do not feed back, so every other value is the
+    /// same, and the samples carry w(0) in their place.
+    fn reads_tip_states(&self) -> bool {
+        true
+    }
 }
 
 /// Run the loop `lp` of `cfg` on `basis` over [0, T] from the state `st`, with the observer
@@ -77,6 +85,7 @@ pub fn drive<S: Signal, R: Recorder>(
     let h = cfg.discretisation.dt;
     let e0 = basis.energy(&st.eta, &st.zeta);
     let lean = !rec.reads_state() && !rec.interval_squares();
+    let tip_states = rec.reads_tip_states();
     let output = |st: &mut ModalState, obs: &SampleInput, t: f64, k: usize, rec: &mut R| {
         if lean && k != total {
             // margin 1e-10 relative: far above the bound's and the energy's round-off
@@ -100,7 +109,7 @@ pub fn drive<S: Signal, R: Recorder>(
     crate::cpu::clear_upper_vector_state();
     for k in 1..=total {
         signal.advance(|t, input| {
-            let exact = lp.step(st, input);
+            let exact = lp.step_with(st, input, tip_states);
             rec.instant(lp, st, t + h, input.g_hat, exact);
         });
         let now = signal.current();

@@ -6,7 +6,8 @@
 //! - **Modal basis** ([`ModalBasis`], per wing): K Φ = M Φ Ω², ΦᵀMΦ = I (Cholesky of M,
 //!   symmetric eigenproblem of L⁻¹KL⁻ᵀ). With x = Φη, v = Φζ the step matrix becomes
 //!   D + β UTUᵀ with D = diag(1/α + (ξ + α)ω_i²), β = b + αa and U the tip rows of Φ (n×2):
-//!   diagonal plus rank 2, solved by the Woodbury identity ([`scheme`]).
+//!   diagonal plus rank 2, solved by the Woodbury identity ([`scheme`]); TR-BDF2's two
+//!   solves in one pass over the modes per step (`trbdf2_pass`).
 //! - **Observer signal** ([`ObserverSignal`]): σ obeys σ_{n+1} − σ_n = h(ḡ − ĝ_k) whatever the
 //!   plant, for either scheme (the tip boundary condition cancels τ and w in the scheme's own
 //!   quadrature, see `wingcheck_control::ChannelObserver`), so ĝ_k and the tip input ḡ − ĝ of
@@ -31,6 +32,7 @@ mod refine;
 mod run;
 pub mod scheme;
 mod signal;
+mod trbdf2_pass;
 mod woodbury;
 
 use faer::{Mat, Side};

@@ -9,6 +9,7 @@ use crate::{Sample, SimError};
 
 use super::diagonal::{DiagonalState, DiagonalStep, Timing};
 use super::exact::{ExactStep, LoopCoefficients};
+use super::trbdf2_pass::{StateSums, Trbdf2Pass};
 use super::woodbury::{padded_len, total, StepSolve, LANES};
 use super::{ModalBasis, SampleInput};
 
@@ -25,6 +26,27 @@ pub fn dot(x: &[f64], y: &[f64]) -> f64 {
     }
     let tail = n - n % LANES;
     x[tail..].iter().zip(&y[tail..]).fold(total(&s), |acc, (a, b)| acc + a * b)
+}
+
+/// [u0·η, u1·η, u0·ζ, u1·ζ] over the modes of u (u: the tip rows), each exactly as [`dot`]
+/// sums it, in one pass over the state instead of four.
+fn tip_dots(u: &[Vec<f64>; 2], eta: &[f64], zeta: &[f64]) -> [f64; 4] {
+    let n = u[0].len().min(u[1].len()).min(eta.len()).min(zeta.len());
+    let (u0, u1, eta, zeta) = (&u[0][..n], &u[1][..n], &eta[..n], &zeta[..n]);
+    let mut s = [[0.0; LANES]; 4];
+    for i in (0..n - n % LANES).step_by(LANES) {
+        for l in 0..LANES {
+            let j = i + l;
+            s[0][l] += u0[j] * eta[j];
+            s[1][l] += u1[j] * eta[j];
+            s[2][l] += u0[j] * zeta[j];
+            s[3][l] += u1[j] * zeta[j];
+        }
+    }
+    let tail = n - n % LANES;
+    let finish =
+        |k: usize, a: &[f64], b: &[f64]| a[tail..].iter().zip(&b[tail..]).fold(total(&s[k]), |acc, (x, y)| acc + x * y);
+    [finish(0, u0, eta), finish(1, u1, eta), finish(2, u0, zeta), finish(3, u1, zeta)]
 }
 
 /// The modal state of the closed loop: x = Φη, v = Φζ, with the tip values and tip boundary
@@ -50,6 +72,9 @@ pub struct ModalState {
     /// The exponential scheme's state in the closed loop's eigenbasis (its diagonal form only;
     /// η, ζ and w are then brought up to date at every checkpoint, [`ModalLoop::checkpoint`]).
     pub(crate) diagonal: Option<DiagonalState>,
+    /// TR-BDF2's tip sums of η, ζ for the next step ([`Trbdf2Pass`]), formed by the pass that
+    /// made them: a state is stepped by the loop that made it.
+    pub(crate) sums: StateSums,
 }
 
 impl ModalState {
@@ -58,8 +83,8 @@ impl ModalState {
     /// every output sample, so the recorded tip equals the field at the tip and no drift
     /// accumulates.
     pub fn sync_tip(&mut self, basis: &ModalBasis) {
-        self.x_tip = [dot(&basis.tip[0], &self.eta), dot(&basis.tip[1], &self.eta)];
-        self.v_tip = [dot(&basis.tip[0], &self.zeta), dot(&basis.tip[1], &self.zeta)];
+        let [x0, x1, v0, v1] = tip_dots(&basis.tip, &self.eta, &self.zeta);
+        (self.x_tip, self.v_tip) = ([x0, x1], [v0, v1]);
     }
 }
 
@@ -79,7 +104,7 @@ pub struct StepInput {
 #[derive(Debug)]
 enum Stepping {
     Trapezoid(StepSolve),
-    Trbdf2(StepSolve),
+    Trbdf2(Trbdf2Pass),
     Exponential(ExactStep),
     /// The exponential scheme in the closed loop's eigenbasis ([`DiagonalStep`]): the same
     /// exact transition, O(N) per step; used where the loop is built by
@@ -209,7 +234,7 @@ impl<'a> ModalLoop<'a> {
                     }
                 }
             }
-            _ => Stepping::Trbdf2(solve()?),
+            _ => Stepping::Trbdf2(Trbdf2Pass::new(basis, alpha, xi, b + alpha * a, gain)?),
         };
         let tip_stages = [0, 1].map(|ch| TipStages::new(xi, alpha, stiff[ch], sign[ch]));
         Ok(ModalLoop { u: &basis.tip, stepping, eigenbasis_refused, h, alpha, law, xi, stiff, sign, tip_stages })
@@ -271,10 +296,12 @@ impl<'a> ModalLoop<'a> {
             exact_x: Vec::new(),
             exact_y: Vec::new(),
             diagonal: None,
+            sums: StateSums::default(),
         };
         match &self.stepping {
             Stepping::Exponential(exact) => (st.exact_x, st.exact_y) = exact.buffers(),
             Stepping::Diagonal(diagonal) => st.diagonal = Some(diagonal.start(&st)),
+            Stepping::Trbdf2(pass) => st.sums = pass.sums_of(&st.zeta, &st.eta),
             _ => {}
         }
         st
@@ -310,6 +337,15 @@ impl<'a> ModalLoop<'a> {
     /// the step's ends only).
     #[inline]
     pub fn step(&self, st: &mut ModalState, input: &StepInput) -> Option<[f64; 2]> {
+        self.step_with(st, input, true)
+    }
+
+    /// [`ModalLoop::step`]; with `tip_states` false, TR-BDF2 leaves the tip boundary states w
+    /// as they are instead of advancing them (they do not feed back: every other value is the
+    /// same bits), for a run that never reads them (the search, [`super::Recorder`]'s
+    /// `reads_tip_states`). The other schemes advance them either way.
+    #[inline]
+    pub fn step_with(&self, st: &mut ModalState, input: &StepInput, tip_states: bool) -> Option<[f64; 2]> {
         match &self.stepping {
             Stepping::Exponential(exact) => Some(self.exponential_step(exact, st, input)),
             Stepping::Diagonal(diagonal) => Some(self.diagonal_step(diagonal, st, input)),
@@ -317,8 +353,8 @@ impl<'a> ModalLoop<'a> {
                 self.trapezoid_step(solve, st, input);
                 None
             }
-            Stepping::Trbdf2(solve) => {
-                self.trbdf2_step(solve, st, input);
+            Stepping::Trbdf2(pass) => {
+                self.trbdf2_step(pass, st, input, tip_states);
                 None
             }
         }
@@ -328,8 +364,10 @@ impl<'a> ModalLoop<'a> {
     /// same bits: see [`super::woodbury`]).
     #[cfg(test)]
     pub(crate) fn without_avx(mut self) -> Self {
-        if let Stepping::Trapezoid(s) | Stepping::Trbdf2(s) = &mut self.stepping {
-            s.avx = false;
+        match &mut self.stepping {
+            Stepping::Trapezoid(s) => s.avx = false,
+            Stepping::Trbdf2(p) => p.solve.avx = false,
+            _ => {}
         }
         self
     }
@@ -398,6 +436,7 @@ impl<'a> ModalLoop<'a> {
 
     /// Tip forces of the right-hand side: ḡ − ĝ − k a x_tip (the displacement part of the
     /// control law is in K_c).
+    #[inline(always)]
     fn tip_forces(&self, input: &StepInput, x_tip: [f64; 2]) -> [f64; 2] {
         [0, 1].map(|c| input.tip_input[c] - self.law.stiffness(c) * x_tip[c])
     }
@@ -433,37 +472,47 @@ impl<'a> ModalLoop<'a> {
 
     /// One TR-BDF2 step (α = γh/2), as `crate::Stepper`'s. Stage 1 (trapezoid to
     /// t + γh): S u = ζ/α − Ω²η + f̄, (η_γ, ζ_γ) = (η + 2αu, 2u − ζ). Stage 2 (BDF2 to t + h):
-    /// (η̂, ζ̂) = A(η_γ, ζ_γ) − B(η, ζ), S ζ₁ = ζ̂/α − Ω²η̂ + f̄, η₁ = η̂ + αζ₁. The stage-2
-    /// right-hand side is formed in the pass that finishes stage 1 (its tip forces need only
-    /// the tip values of stage 1); the tip states by the same stages.
+    /// (η̂, ζ̂) = A(η_γ, ζ_γ) − B(η, ζ), S ζ₁ = ζ̂/α − Ω²η̂ + f̄, η₁ = η̂ + αζ₁. Both solves'
+    /// tip sums come from the sums the previous pass carried, so the modes are visited once
+    /// ([`Trbdf2Pass`]); the tip values by the Woodbury identity Uᵀu = t − Q c, the tip states
+    /// by the same stages where `tip_states` ([`ModalLoop::step_with`]).
     #[inline(always)]
-    fn trbdf2_step(&self, sv: &StepSolve, st: &mut ModalState, input: &StepInput) {
+    fn trbdf2_step(&self, pass: &Trbdf2Pass, st: &mut ModalState, input: &StepInput, tip_states: bool) {
         use crate::trbdf2::{A, B};
-        let alpha = self.alpha;
+        let (alpha, sv) = (self.alpha, &pass.solve);
         let (xn, vn) = (st.x_tip, st.v_tip);
         // Stage 1.
         let f = self.tip_forces(input, xn);
-        let t = sv.rhs(&st.zeta, &st.eta, input.phi, f, &mut st.y);
-        let (c, u_tip) = sv.correct(t);
+        let (c, u_tip) = sv.correct(pass.stage1_sum(&st.sums, input.phi, f));
         let xg = [0, 1].map(|ch| xn[ch] + 2.0 * alpha * u_tip[ch]);
         let vg = [0, 1].map(|ch| 2.0 * u_tip[ch] - vn[ch]);
         let x_hat = [0, 1].map(|ch| A * xg[ch] - B * xn[ch]);
-        // η̂ = A(η + 2αu) − Bη = η + 2αA u and ζ̂ = A(2u − ζ) − Bζ = 2A u − (A + B)ζ (A − B = 1)
-        let f2 = self.tip_forces(input, x_hat);
-        let t2 =
-            sv.trbdf2_middle(c, [2.0 * alpha * A, 2.0 * A, A + B], input.phi, f2, &mut st.y, &mut st.zeta, &mut st.eta);
         // Stage 2.
-        let (c2, v1) = sv.correct(t2);
-        sv.trbdf2_finish(&st.y, c2, alpha, &mut st.zeta, &mut st.eta);
+        let e = [f[0] - c[0], f[1] - c[1]];
+        let f2 = self.tip_forces(input, x_hat);
+        let (c2, v1) = sv.correct(pass.stage2_sum(&st.sums, input.phi, e, f2));
+        let e2 = [f2[0] - c2[0], f2[1] - c2[1]];
+        st.sums = pass.pass(input.phi, e, e2, &mut st.zeta, &mut st.eta);
         let x1 = [0, 1].map(|ch| x_hat[ch] + alpha * v1[ch]);
-        // Tip boundary states: ξ S ẇ = s(τ + g) − S w by the same two stages.
-        let xi = self.xi;
+        if tip_states {
+            self.trbdf2_tip_states(st, input, [xn, xg, x1], [vn, vg, v1]);
+        }
+        st.x_tip = x1;
+        st.v_tip = v1;
+    }
+
+    /// The tip boundary states ξ S ẇ = s(τ + g) − S w over a TR-BDF2 step by its two stages,
+    /// from the tip values at the step's start, stage 1's end and the step's end.
+    #[inline(always)]
+    fn trbdf2_tip_states(&self, st: &mut ModalState, input: &StepInput, x: [[f64; 2]; 3], v: [[f64; 2]; 3]) {
+        use crate::trbdf2::{A, B};
+        let alpha = self.alpha;
         for ch in 0..2 {
             let g_mean = input.tip_input[ch] + input.g_hat[ch];
-            let force = |x: f64, v: f64| self.tau(ch, x, v, input.g_hat[ch]) + g_mean;
-            let (fn_, fg, f1) = (force(xn[ch], vn[ch]), force(xg[ch], vg[ch]), force(x1[ch], v1[ch]));
+            let force = |k: usize| self.tau(ch, x[k][ch], v[k][ch], input.g_hat[ch]) + g_mean;
+            let (fn_, fg, f1) = (force(0), force(1), force(2));
             let (s, sg, w) = (self.stiff[ch], self.sign[ch], st.w[ch]);
-            st.w[ch] = if xi > 0.0 {
+            st.w[ch] = if self.xi > 0.0 {
                 let k = &self.tip_stages[ch];
                 let wg = (k.xi_stiff * w + alpha * (sg * (fn_ + fg) - s * w)) * k.trapezoid_scale;
                 (A * wg - B * w + k.bdf2_force * f1) * k.bdf2_scale
@@ -471,8 +520,6 @@ impl<'a> ModalLoop<'a> {
                 sg * f1 / s
             };
         }
-        st.x_tip = x1;
-        st.v_tip = v1;
     }
 }
 
@@ -518,6 +565,45 @@ mod tests {
             assert_eq!(bits(&a.zeta), bits(&b.zeta), "{scheme}");
             assert_eq!((a.x_tip, a.v_tip, a.w), (b.x_tip, b.v_tip, b.w), "{scheme}");
             assert!(a.eta.iter().any(|x| *x != 0.0));
+        }
+    }
+
+    /// Without the tip states (the search's steps), TR-BDF2 leaves w at its start and every
+    /// other value is the same bits as with them (w does not feed back); with them, w moves.
+    #[test]
+    fn steps_without_tip_states_change_nothing_else() {
+        let cfg = Config::paper();
+        let basis = ModalBasis::new(&cfg).unwrap();
+        let lp = ModalLoop::new(&cfg, &basis).unwrap();
+        let (mut a, mut b) = (lp.initial_state(&cfg, &basis), lp.initial_state(&cfg, &basis));
+        let w0 = b.w;
+        for j in 0..500 {
+            let s = j as f64 * 1e-3;
+            let input = StepInput { phi: s.cos(), tip_input: [0.1 * s.sin(), -0.2], g_hat: [0.3, (-1f64).powi(j)] };
+            lp.step_with(&mut a, &input, true);
+            lp.step_with(&mut b, &input, false);
+        }
+        assert_eq!(b.w, w0);
+        assert_ne!(a.w, w0);
+        b.w = a.w;
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&a.eta), bits(&b.eta));
+        assert_eq!(bits(&a.zeta), bits(&b.zeta));
+        assert_eq!((a.x_tip, a.v_tip), (b.x_tip, b.v_tip));
+    }
+
+    /// The fused tip sums are [`dot`]'s sums bit for bit, with and without a tail beyond the
+    /// last full pack of [`LANES`].
+    #[test]
+    fn tip_dots_are_dots() {
+        for n in [3, 8, 16, 21, 72, 75] {
+            let v = |k: f64| {
+                (0..n).map(|i| ((i as f64 + 1.0) * k).sin() * 10f64.powi(i % 7 - 3)).collect::<Vec<_>>()
+            };
+            let (u, eta, zeta) = ([v(0.7), v(1.3)], v(2.1), v(0.37));
+            let fused = tip_dots(&u, &eta, &zeta);
+            let single = [dot(&u[0], &eta), dot(&u[1], &eta), dot(&u[0], &zeta), dot(&u[1], &zeta)];
+            assert_eq!(fused.map(f64::to_bits), single.map(f64::to_bits), "n = {n}");
         }
     }
 }

@@ -1,4 +1,5 @@
-//! The Woodbury step solve of the implicit schemes in the modal basis, laid out for vector
+//! The Woodbury step solve of the implicit schemes in the modal basis (the trapezoidal rule's
+//! steps, and the factors of TR-BDF2's one-pass step, `super::trbdf2_pass`), laid out for vector
 //! instructions: the coefficients of every mode in one interleaved array of [`Pack`]s of
 //! [`LANES`] modes, the state padded with zero modes to a multiple of [`LANES`], and each sum
 //! over the modes accumulated in [`LANES`] partial sums combined in one fixed order.
@@ -31,23 +32,23 @@ pub(crate) fn padded_len(n: usize) -> usize {
 #[derive(Debug)]
 pub(crate) struct StepSolve {
     /// D⁻¹/α: the factor of ζ in D⁻¹ r.
-    cz: Vec<f64>,
+    pub(crate) cz: Vec<f64>,
     /// D⁻¹Ω²: the factor of η in D⁻¹ r.
-    ce: Vec<f64>,
+    pub(crate) ce: Vec<f64>,
     /// D⁻¹Φᵀf_h: the distributed load's shape.
-    ld: Vec<f64>,
+    pub(crate) ld: Vec<f64>,
     /// D⁻¹U, bending column.
-    z0: Vec<f64>,
+    pub(crate) z0: Vec<f64>,
     /// D⁻¹U, torsion column.
-    z1: Vec<f64>,
+    pub(crate) z1: Vec<f64>,
     /// U (tip rows of Φ), bending.
-    u0: Vec<f64>,
+    pub(crate) u0: Vec<f64>,
     /// U, torsion.
-    u1: Vec<f64>,
+    pub(crate) u1: Vec<f64>,
     /// Q = Uᵀ D⁻¹ U.
-    q: [[f64; 2]; 2],
+    pub(crate) q: [[f64; 2]; 2],
     /// H = (I + βT Q)⁻¹ βT.
-    hm: [[f64; 2]; 2],
+    pub(crate) hm: [[f64; 2]; 2],
     /// Run the loops with AVX instructions ([`avx`]; the CPU has them).
     pub(crate) avx: bool,
 }
@@ -164,7 +165,10 @@ impl StepSolve {
 
     /// TR-BDF2 between its stages: stage 1's solution u = y − D⁻¹U c gives (η, ζ) ←
     /// (η̂, ζ̂) = (η + 2αA u, 2A u − (A + B)ζ), and stage 2's D⁻¹ r into y; returns Uᵀy.
-    /// `k` = (2αA, 2A, A + B).
+    /// `k` = (2αA, 2A, A + B). The two-pass form of TR-BDF2 (with [`StepSolve::rhs`] and
+    /// [`StepSolve::trbdf2_finish`]), kept as the reference the one-pass form
+    /// ([`super::trbdf2_pass`]) is tested against.
+    #[cfg(test)]
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn trbdf2_middle(
         &self,
@@ -177,11 +181,6 @@ impl StepSolve {
         eta: &mut [f64],
     ) -> [f64; 2] {
         self.check(&[y, zeta, eta]);
-        #[cfg(target_arch = "x86_64")]
-        if self.avx {
-            // SAFETY: as in `rhs`.
-            return unsafe { avx::trbdf2_middle(self, c, k, phi, f2, y, zeta, eta) };
-        }
         let (eta_u, zeta_u, zeta_z) = (k[0], k[1], k[2]);
         for (((y, (zt, et)), (cz, ce)), (ld, (z0, z1))) in y
             .iter_mut()
@@ -198,14 +197,11 @@ impl StepSolve {
         dots(&self.u0, &self.u1, y)
     }
 
-    /// TR-BDF2's end: ζ₁ = y − D⁻¹U c, η₁ = η̂ + αζ₁.
+    /// TR-BDF2's end: ζ₁ = y − D⁻¹U c, η₁ = η̂ + αζ₁ (the two-pass reference, as
+    /// [`StepSolve::trbdf2_middle`]).
+    #[cfg(test)]
     pub(crate) fn trbdf2_finish(&self, y: &[f64], c: [f64; 2], alpha: f64, zeta: &mut [f64], eta: &mut [f64]) {
         self.check(&[y, zeta, eta]);
-        #[cfg(target_arch = "x86_64")]
-        if self.avx {
-            // SAFETY: as in `rhs`.
-            return unsafe { avx::trbdf2_finish(self, y, c, alpha, zeta, eta) };
-        }
         for ((y, (zt, et)), (z0, z1)) in
             y.iter().zip(zeta.iter_mut().zip(eta.iter_mut())).zip(self.z0.iter().zip(&self.z1))
         {
@@ -344,55 +340,6 @@ mod avx {
             let zbar = corrected(s, i, get(y, i), c);
             put(eta, i, add(get(eta, i), mul(h, zbar)));
             put(zeta, i, sub(mul(two, zbar), get(zeta, i)));
-        }
-    }
-
-    #[target_feature(enable = "avx")]
-    #[allow(clippy::too_many_arguments)]
-    pub(super) unsafe fn trbdf2_middle(
-        s: &StepSolve,
-        c: [f64; 2],
-        k: [f64; 3],
-        phi: f64,
-        f2: [f64; 2],
-        y: &mut [f64],
-        zeta: &mut [f64],
-        eta: &mut [f64],
-    ) -> [f64; 2] {
-        let c = [_mm256_set1_pd(c[0]), _mm256_set1_pd(c[1])];
-        let [eta_u, zeta_u, zeta_z] = k.map(|x| _mm256_set1_pd(x));
-        let (phi, f) = (_mm256_set1_pd(phi), [_mm256_set1_pd(f2[0]), _mm256_set1_pd(f2[1])]);
-        let mut acc = Dots::new();
-        for i in (0..y.len()).step_by(LANES) {
-            for half in [0, 4] {
-                let j = i + half;
-                let us = corrected(s, j, get(y, j), c);
-                let eh = add(get(eta, j), mul(eta_u, us));
-                let zh = sub(mul(zeta_u, us), mul(zeta_z, get(zeta, j)));
-                put(eta, j, eh);
-                put(zeta, j, zh);
-                let v = rhs_at(s, j, zh, eh, phi, f);
-                put(y, j, v);
-                acc.accumulate(s, i, half, v);
-            }
-        }
-        acc.totals()
-    }
-
-    #[target_feature(enable = "avx")]
-    pub(super) unsafe fn trbdf2_finish(
-        s: &StepSolve,
-        y: &[f64],
-        c: [f64; 2],
-        alpha: f64,
-        zeta: &mut [f64],
-        eta: &mut [f64],
-    ) {
-        let (c, alpha) = ([_mm256_set1_pd(c[0]), _mm256_set1_pd(c[1])], _mm256_set1_pd(alpha));
-        for i in (0..y.len()).step_by(4) {
-            let z = corrected(s, i, get(y, i), c);
-            put(zeta, i, z);
-            put(eta, i, add(get(eta, i), mul(alpha, z)));
         }
     }
 }
