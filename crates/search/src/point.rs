@@ -175,7 +175,7 @@ pub fn evaluate(
     // the shared FTDO observer signal, whatever the point's controller.
     let mut ftdo = cfg.clone();
     ftdo.control.kind = ControllerKind::Ftdo;
-    let zetas = Some(crate::modal::sup_tilde(&runs.signal(&ftdo), &ftdo));
+    let zetas = Some(runs.sup_tilde(&ftdo));
     r.sim_seconds = start.elapsed().as_secs_f64();
 
     let start = Instant::now();
