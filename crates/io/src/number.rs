@@ -28,8 +28,11 @@ pub fn push_number(out: &mut String, x: f64) {
     let mut buffer = ryu::Buffer::new();
     let text = buffer.format_finite(x);
     // ryu's positional form (|x| from 1e-5 to 1e16) is the standard library's, except that an
-    // integer ends in ".0" and a tie may round the other way
-    if !text.as_bytes().contains(&b'e') {
+    // integer ends in ".0" and a tie may round the other way. Decided from x, not by searching
+    // the text for an 'e' (≈ 2 % of a default `simulate`): 1e-5 ≤ |x| < 1e15 is positional for
+    // certain (the shortest digits of such an x stay within [1e-5, 1e16)); elsewhere, and at
+    // 0, `lay_out` below writes either form.
+    if (1e-5..1e15).contains(&x.abs()) {
         if let Some(integer) = text.strip_suffix(".0") {
             // no tie: one needs |x| = (D + ½)10^k with k ≥ 1 (x an integer ending in 5 after
             // the digits), which makes D·10^k and (D + 1)·10^k both round-trip only where the

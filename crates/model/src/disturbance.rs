@@ -3,6 +3,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::oscillator::Oscillator;
+
 /// Disturbances (56), generalised only in their coefficients.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
@@ -16,6 +18,14 @@ pub struct Disturbance {
 }
 
 impl Disturbance {
+    /// The tip force and moment at times a step h (s) apart ([`TipValues`]).
+    pub fn tip_values(&self, h: f64) -> TipValues {
+        TipValues {
+            oscillators: [Oscillator::new(self.tip_bending.freq, h), Oscillator::new(self.tip_torsion.freq, h)],
+            tips: [self.tip_bending.clone(), self.tip_torsion.clone()],
+        }
+    }
+
     /// The exact means of the disturbances over integrator steps of length h (s): what every
     /// step of every time scheme holds ([`StepMeans::over_step`]).
     pub fn step_means(&self, h: f64) -> StepMeans {
@@ -53,6 +63,91 @@ impl StepMeans {
     /// The disturbances these means are of.
     pub fn disturbance(&self) -> &Disturbance {
         &self.disturbance
+    }
+
+    /// A cursor for consecutive steps ([`MeanSteps`]): these means with the sinusoids by
+    /// rotation from one step to the next.
+    pub fn steps(&self) -> MeanSteps {
+        let (d, h) = (&self.disturbance, self.h);
+        MeanSteps {
+            load: [Oscillator::new(d.distributed.cos_freq, h), Oscillator::new(d.distributed.sin_freq, h)],
+            tips: [Oscillator::new(d.tip_bending.freq, h), Oscillator::new(d.tip_torsion.freq, h)],
+            means: self.clone(),
+        }
+    }
+}
+
+/// [`StepMeans::over_step`] for steps that follow one another: the same expressions with the
+/// sines and cosines at the steps' midpoints from [`Oscillator`]s (exact at every
+/// [`crate::oscillator::ANCHOR_EVERY`]-th step and wherever a step does not follow the
+/// previous one, where the values are `over_step`'s bits; within
+/// [`MeanSteps::error_bound`] of them in between).
+#[derive(Debug, Clone)]
+pub struct MeanSteps {
+    means: StepMeans,
+    /// cos(cos_freq t), sin(sin_freq t) of the distributed load.
+    load: [Oscillator; 2],
+    /// sin(freq t) of the tip force and moment.
+    tips: [Oscillator; 2],
+}
+
+impl MeanSteps {
+    /// (φ̄, [ḡ1, ḡ2]) over [t0, t0 + h] as [`StepMeans::over_step`].
+    #[inline]
+    pub fn over_step(&mut self, t0: f64) -> (f64, [f64; 2]) {
+        let m = &self.means;
+        let (d, mid) = (&m.disturbance, t0 + 0.5 * m.h);
+        let l = &d.distributed;
+        let phi = l.mean
+            + l.cos_amp * self.load[0].at(mid).0 * m.load_factors[0]
+            + l.sin_amp * self.load[1].at(mid).1 * m.load_factors[1];
+        let tips = [&d.tip_bending, &d.tip_torsion];
+        let mut g = [0.0; 2];
+        for c in 0..2 {
+            g[c] = tips[c].mean + tips[c].amp * self.tips[c].at(mid).1 * m.tip_factors[c];
+        }
+        (phi, g)
+    }
+
+    /// A bound on |φ̄ − φ̄_exact| (1) and on the tip means' errors (N, N m) against
+    /// [`StepMeans::over_step`] for steps up to `t_max` (s): the amplitudes times
+    /// [`Oscillator::error_bound`].
+    pub fn error_bound(&self, t_max: f64) -> (f64, [f64; 2]) {
+        let d = &self.means.disturbance;
+        let l = &d.distributed;
+        let phi = l.cos_amp.abs() * self.load[0].error_bound(t_max) + l.sin_amp.abs() * self.load[1].error_bound(t_max);
+        let tips = [&d.tip_bending, &d.tip_torsion];
+        (phi, [0, 1].map(|c| tips[c].amp.abs() * self.tips[c].error_bound(t_max)))
+    }
+
+    /// The disturbances these means are of.
+    pub fn disturbance(&self) -> &Disturbance {
+        &self.means.disturbance
+    }
+}
+
+/// The tip force and moment g1(t), g2(t) (N, N m) at times that advance one step h at a time
+/// ([`Disturbance::tip_values`]): [`TipDisturbance::at`] with the sines from [`Oscillator`]s.
+#[derive(Debug, Clone)]
+pub struct TipValues {
+    tips: [TipDisturbance; 2],
+    oscillators: [Oscillator; 2],
+}
+
+impl TipValues {
+    /// [g1(t), g2(t)] (exact where the [`Oscillator`]s evaluate exactly).
+    #[inline]
+    pub fn at(&mut self, t: f64) -> [f64; 2] {
+        let mut g = [0.0; 2];
+        for c in 0..2 {
+            g[c] = self.tips[c].mean + self.tips[c].amp * self.oscillators[c].at(t).1;
+        }
+        g
+    }
+
+    /// A bound on each channel's error against [`TipDisturbance::at`] at times up to `t_max`.
+    pub fn error_bound(&self, t_max: f64) -> [f64; 2] {
+        [0, 1].map(|c| self.tips[c].amp.abs() * self.oscillators[c].error_bound(t_max))
     }
 }
 

@@ -13,6 +13,7 @@ mod config;
 mod disturbance;
 mod error;
 pub mod json;
+pub mod oscillator;
 mod overrides;
 pub mod quantity;
 mod scheme;
@@ -20,7 +21,7 @@ mod validate;
 pub mod work;
 
 pub use config::*;
-pub use disturbance::{Distributed, Disturbance, StepMeans, TipDisturbance};
+pub use disturbance::{Distributed, Disturbance, MeanSteps, StepMeans, TipDisturbance, TipValues};
 pub use error::ConfigError;
 pub use overrides::{apply_override, apply_overrides};
 pub use quantity::{Accuracy, ErrorSource, Estimate, Quantity, Unit, ValueBasis};

@@ -64,3 +64,48 @@ proptest! {
         prop_assert_eq!(g_held.map(f64::to_bits), [g.to_bits(); 2]);
     }
 }
+
+proptest! {
+    /// The step-after-step means ([`wingcheck_model::MeanSteps`], the modal observer signal's)
+    /// and tip values ([`wingcheck_model::TipValues`]) against the exact per-step forms over a
+    /// run of consecutive steps t_n = k·T + j·h as the runs form them: within their stated
+    /// bounds everywhere, and the same bits at the anchors (every 16th step).
+    #[test]
+    fn step_after_step_values_are_the_exact_ones_within_their_bound(
+        h in prop_oneof![1e-5f64..1e-3, 1e-3f64..2e-2],
+        freq in 0.1f64..40.0,
+        amp in -5.0f64..5.0,
+        mean in -2.0f64..2.0,
+    ) {
+        let load = Distributed { mean, cos_amp: amp, cos_freq: 3.0 * freq, sin_amp: 0.5 - amp, sin_freq: freq, slope: 1.0 / 30.0 };
+        let tip = TipDisturbance { mean, amp, freq };
+        let d = Disturbance { distributed: load, tip_bending: tip.clone(), tip_torsion: TipDisturbance { freq: 0.7 * freq, ..tip } };
+        let exact = d.step_means(h);
+        let mut steps = exact.steps();
+        let mut values = d.tip_values(h);
+        let steps_total = 4000;
+        let t_max = steps_total as f64 * h;
+        let (phi_bound, g_bound) = steps.error_bound(t_max);
+        let value_bound = values.error_bound(t_max);
+        for n in 0..steps_total {
+            // 5 steps per sample period, as ObserverSignal::advance forms the times
+            let t = (n / 5) as f64 * (5.0 * h) + (n % 5) as f64 * h;
+            let (phi, g) = steps.over_step(t);
+            let (phi_exact, g_exact) = exact.over_step(t);
+            prop_assert!((phi - phi_exact).abs() <= phi_bound, "φ̄ at step {n}: {phi} against {phi_exact}");
+            for c in 0..2 {
+                prop_assert!((g[c] - g_exact[c]).abs() <= g_bound[c], "ḡ{c} at step {n}");
+            }
+            if n % 16 == 0 {
+                prop_assert_eq!((phi.to_bits(), g.map(f64::to_bits)), (phi_exact.to_bits(), g_exact.map(f64::to_bits)));
+            }
+            let v = values.at(t + h);
+            let v_exact = [d.tip_bending.at(t + h), d.tip_torsion.at(t + h)];
+            for c in 0..2 {
+                prop_assert!((v[c] - v_exact[c]).abs() <= value_bound[c], "g{c}({}) at step {n}", t + h);
+            }
+        }
+        // the bounds are small against the disturbances
+        prop_assert!(phi_bound <= 1e-9 * (amp.abs() + 1.0) && g_bound[0] <= 1e-9 * (amp.abs() + 1.0));
+    }
+}

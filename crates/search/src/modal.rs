@@ -102,7 +102,15 @@ struct Trace {
 }
 
 impl Recorder for Trace {
-    fn instant(&mut self, lp: &ModalLoop<'_>, st: &ModalState, t: f64, g_hat: [f64; 2], exact: Option<[f64; 2]>) {
+    fn instant(
+        &mut self,
+        lp: &ModalLoop<'_>,
+        st: &ModalState,
+        t: f64,
+        g_hat: [f64; 2],
+        _: Option<[f64; 2]>,
+        exact: Option<[f64; 2]>,
+    ) {
         let tau = [0, 1].map(|c| lp.tau(c, st.x_tip[c], st.v_tip[c], g_hat[c]));
         for c in 0..2 {
             self.peak[c] = self.peak[c].max(tau[c].abs());

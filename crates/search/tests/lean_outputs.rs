@@ -15,7 +15,15 @@ struct Outputs {
 }
 
 impl Recorder for Outputs {
-    fn instant(&mut self, _: &ModalLoop<'_>, _: &ModalState, _: f64, _: [f64; 2], exact: Option<[f64; 2]>) {
+    fn instant(
+        &mut self,
+        _: &ModalLoop<'_>,
+        _: &ModalState,
+        _: f64,
+        _: [f64; 2],
+        _: Option<[f64; 2]>,
+        exact: Option<[f64; 2]>,
+    ) {
         let e = exact.unwrap_or([0.0; 2]);
         self.squares = [self.squares[0] + e[0], self.squares[1] + e[1]];
     }

@@ -25,8 +25,18 @@ pub trait Recorder {
     /// Called at every recorded instant: t = 0, the end of every integrator step (`exact`: the
     /// scheme's exact ∫τ_c² dt over that step, N² s and N² m² s, where it has one) and the far
     /// side of every sample's jump of the held estimate (same t, new `g_hat`, `exact` None).
-    /// Full-rate statistics (peaks, ∫τ² dt) are folded in here.
-    fn instant(&mut self, lp: &ModalLoop<'_>, st: &ModalState, t: f64, g_hat: [f64; 2], exact: Option<[f64; 2]>);
+    /// Full-rate statistics (peaks, ∫τ² dt) are folded in here. `g`: the disturbance g(t)
+    /// where the driver has it (t = 0 and the samples: the observer's g(t_k), the value the
+    /// samples carry), `None` at the step ends.
+    fn instant(
+        &mut self,
+        lp: &ModalLoop<'_>,
+        st: &ModalState,
+        t: f64,
+        g_hat: [f64; 2],
+        g: Option<[f64; 2]>,
+        exact: Option<[f64; 2]>,
+    );
 
     /// Called at each output sample k (t_k = k T, every `samples_per_output` samples and the
     /// last), after the tip values were recomputed from the modal state and `sample` passed the
@@ -104,17 +114,17 @@ pub fn drive<S: Signal, R: Recorder>(
         rec.output(st, &sample, k)
     };
     let first = signal.current();
-    rec.instant(lp, st, 0.0, first.g_hat, None);
+    rec.instant(lp, st, 0.0, first.g_hat, Some(first.g), None);
     output(st, &first, 0.0, 0, rec)?;
     crate::cpu::clear_upper_vector_state();
     for k in 1..=total {
         signal.advance(|t, input| {
             let exact = lp.step_with(st, input, tip_states);
-            rec.instant(lp, st, t + h, input.g_hat, exact);
+            rec.instant(lp, st, t + h, input.g_hat, None, exact);
         });
         let now = signal.current();
         let t = k as f64 * period;
-        rec.instant(lp, st, t, now.g_hat, None);
+        rec.instant(lp, st, t, now.g_hat, Some(now.g), None);
         if k % every == 0 || k == total {
             output(st, &now, t, k, rec)?;
         }

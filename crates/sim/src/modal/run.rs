@@ -3,7 +3,7 @@
 
 use std::time::Instant;
 
-use wingcheck_model::Config;
+use wingcheck_model::{Config, TipValues};
 
 use super::{dot, drive, ModalBasis, ModalLoop, ModalState, ObserverSignal, Recorder};
 use crate::run::{Envelope, Fields, RunOptions, RunStats, Series, SimOutput, SubStepProbe};
@@ -45,14 +45,25 @@ struct Simulation<'c, 'o> {
     /// Steps probed, and probes that raised a running peak.
     probes: usize,
     raised: usize,
+    /// g(t) at the step ends, by rotation from step to step ([`TipValues`]).
+    tip_values: TipValues,
 }
 
 impl Recorder for Simulation<'_, '_> {
-    fn instant(&mut self, lp: &ModalLoop<'_>, st: &ModalState, t: f64, g_hat: [f64; 2], exact: Option<[f64; 2]>) {
+    fn instant(
+        &mut self,
+        lp: &ModalLoop<'_>,
+        st: &ModalState,
+        t: f64,
+        g_hat: [f64; 2],
+        g: Option<[f64; 2]>,
+        exact: Option<[f64; 2]>,
+    ) {
         if exact.is_some() && std::mem::take(&mut self.probe_next) {
             self.probe(lp, st, t - self.cfg.discretisation.dt);
         }
-        self.full_rate.update_step(t, &peak_values(lp, st, g_hat, signal_g(self.cfg, t)), exact);
+        let g = g.unwrap_or_else(|| self.tip_values.at(t));
+        self.full_rate.update_step(t, &peak_values(lp, st, g_hat, g), exact);
         if exact.is_none() {
             self.probe_next = self.probe_on;
         }
@@ -134,6 +145,7 @@ pub fn simulate_modal(
         probe_buf: lp.probe_buffer(),
         probes: 0,
         raised: 0,
+        tip_values: cfg.disturbance.tip_values(cfg.discretisation.dt),
     };
     drive(cfg, basis, &lp, &mut st, &mut signal, &mut rec)?;
     Ok(SimOutput {
@@ -155,9 +167,4 @@ pub fn simulate_modal(
             eigenbasis_roundoff: lp.eigenbasis_roundoff(),
         },
     })
-}
-
-/// g(t) of both channels (N, N m).
-fn signal_g(cfg: &Config, t: f64) -> [f64; 2] {
-    [cfg.disturbance.tip_bending.at(t), cfg.disturbance.tip_torsion.at(t)]
 }

@@ -597,9 +597,7 @@ mod tests {
     #[test]
     fn tip_dots_are_dots() {
         for n in [3, 8, 16, 21, 72, 75] {
-            let v = |k: f64| {
-                (0..n).map(|i| ((i as f64 + 1.0) * k).sin() * 10f64.powi(i % 7 - 3)).collect::<Vec<_>>()
-            };
+            let v = |k: f64| (0..n).map(|i| ((i as f64 + 1.0) * k).sin() * 10f64.powi(i % 7 - 3)).collect::<Vec<_>>();
             let (u, eta, zeta) = ([v(0.7), v(1.3)], v(2.1), v(0.37));
             let fused = tip_dots(&u, &eta, &zeta);
             let single = [dot(&u[0], &eta), dot(&u[1], &eta), dot(&u[0], &zeta), dot(&u[1], &zeta)];

@@ -6,7 +6,7 @@
 //! `ChannelObserver::sigma` measures it, then accumulated step by step.
 
 use wingcheck_control::{ChannelObserver, TipChannel};
-use wingcheck_model::{Config, StepMeans};
+use wingcheck_model::{Config, MeanSteps, TipValues};
 
 use super::{Signal, StepInput};
 
@@ -25,8 +25,12 @@ pub struct SampleInput {
 #[derive(Debug, Clone)]
 pub struct ObserverSignal {
     observers: [ChannelObserver; 2],
-    /// The disturbances' means over steps of length `h`.
-    means: StepMeans,
+    /// The disturbances' means over steps of length `h`, step after step.
+    means: MeanSteps,
+    /// g(t) at the samples, sample after sample.
+    tip_values: TipValues,
+    /// g(t_k) at the current sample.
+    g: [f64; 2],
     h: f64,
     period: f64,
     steps_per_sample: usize,
@@ -58,8 +62,11 @@ impl ObserverSignal {
         let observers =
             [ChannelObserver::new(cfg, TipChannel::Bending), ChannelObserver::new(cfg, TipChannel::Torsion)];
         let sigma = [observers[0].sigma(w0[0]), observers[1].sigma(w0[1])];
+        let mut tip_values = cfg.disturbance.tip_values(cfg.observer.sample_period);
         let mut signal = ObserverSignal {
-            means: cfg.disturbance.step_means(cfg.discretisation.dt),
+            means: cfg.disturbance.step_means(cfg.discretisation.dt).steps(),
+            g: tip_values.at(0.0),
+            tip_values,
             h: cfg.discretisation.dt,
             period: cfg.observer.sample_period,
             steps_per_sample: cfg.steps_per_sample(),
@@ -90,9 +97,7 @@ impl ObserverSignal {
 
     /// The observer's output at the current sample t_k.
     pub fn current(&self) -> SampleInput {
-        let t = self.k as f64 * self.period;
-        let d = self.means.disturbance();
-        SampleInput { g_hat: self.g_hat, sigma: self.sigma, g: [d.tip_bending.at(t), d.tip_torsion.at(t)] }
+        SampleInput { g_hat: self.g_hat, sigma: self.sigma, g: self.g }
     }
 
     /// Advance one sample period: call `step(t_j, input)` for each integrator step
@@ -111,6 +116,7 @@ impl ObserverSignal {
             }
         }
         self.k += 1;
+        self.g = self.tip_values.at(self.k as f64 * self.period);
         self.update_estimates();
     }
 }

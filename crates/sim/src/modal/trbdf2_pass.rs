@@ -185,41 +185,14 @@ fn totals(acc: &[[f64; WIDTH]; 4]) -> StateSums {
 }
 
 /// [`Trbdf2Pass::pass`] with AVX instructions, 4 modes per instruction: the same operations in
-/// the same order (lanes 0–3 and 4–7 of each partial sum in two registers), no fused
-/// multiply-add, so the same bits as the portable loop.
+/// the same order (lane l of each partial-sum register is the portable loop's partial sum l),
+/// no fused multiply-add, so the same bits as the portable loop.
 #[cfg(target_arch = "x86_64")]
 mod avx {
-    use std::arch::x86_64::{
-        __m256d, _mm256_add_pd, _mm256_loadu_pd, _mm256_mul_pd, _mm256_set1_pd, _mm256_setzero_pd, _mm256_storeu_pd,
-        _mm256_sub_pd,
-    };
+    use std::arch::x86_64::{__m256d, _mm256_set1_pd, _mm256_setzero_pd, _mm256_storeu_pd};
 
+    use super::super::woodbury::avx::{add, get, mul, put, sub};
     use super::{StateSums, Trbdf2Pass, WIDTH};
-
-    #[inline(always)]
-    unsafe fn get(v: &[f64], i: usize) -> __m256d {
-        _mm256_loadu_pd(v.as_ptr().add(i))
-    }
-
-    #[inline(always)]
-    unsafe fn put(v: &mut [f64], i: usize, x: __m256d) {
-        _mm256_storeu_pd(v.as_mut_ptr().add(i), x)
-    }
-
-    #[inline(always)]
-    unsafe fn mul(a: __m256d, b: __m256d) -> __m256d {
-        _mm256_mul_pd(a, b)
-    }
-
-    #[inline(always)]
-    unsafe fn add(a: __m256d, b: __m256d) -> __m256d {
-        _mm256_add_pd(a, b)
-    }
-
-    #[inline(always)]
-    unsafe fn sub(a: __m256d, b: __m256d) -> __m256d {
-        _mm256_sub_pd(a, b)
-    }
 
     #[target_feature(enable = "avx")]
     pub(super) unsafe fn pass(

@@ -213,9 +213,10 @@ impl StepSolve {
 
 /// The loops above with AVX instructions, 4 modes per instruction: the same operations in the
 /// same order (each lane of a partial sum is one of the [`LANES`] sums), no fused
-/// multiply-add, so the same bits as the portable loops.
+/// multiply-add, so the same bits as the portable loops. Its element helpers (`get`, `put`,
+/// `mul`, `add`, `sub`) serve the one-pass TR-BDF2 loop too.
 #[cfg(target_arch = "x86_64")]
-mod avx {
+pub(super) mod avx {
     use std::arch::x86_64::{
         __m256d, _mm256_add_pd, _mm256_loadu_pd, _mm256_mul_pd, _mm256_set1_pd, _mm256_setzero_pd, _mm256_storeu_pd,
         _mm256_sub_pd,
@@ -225,27 +226,28 @@ mod avx {
 
     /// 4 values from index i (i + 4 ≤ len: every caller iterates below the checked length).
     #[inline(always)]
-    unsafe fn get(v: &[f64], i: usize) -> __m256d {
+    pub(in crate::modal) unsafe fn get(v: &[f64], i: usize) -> __m256d {
         _mm256_loadu_pd(v.as_ptr().add(i))
     }
 
+    /// Store 4 values at index i (i + 4 ≤ len, as for [`get`]).
     #[inline(always)]
-    unsafe fn put(v: &mut [f64], i: usize, x: __m256d) {
+    pub(in crate::modal) unsafe fn put(v: &mut [f64], i: usize, x: __m256d) {
         _mm256_storeu_pd(v.as_mut_ptr().add(i), x)
     }
 
     #[inline(always)]
-    unsafe fn mul(a: __m256d, b: __m256d) -> __m256d {
+    pub(in crate::modal) unsafe fn mul(a: __m256d, b: __m256d) -> __m256d {
         _mm256_mul_pd(a, b)
     }
 
     #[inline(always)]
-    unsafe fn add(a: __m256d, b: __m256d) -> __m256d {
+    pub(in crate::modal) unsafe fn add(a: __m256d, b: __m256d) -> __m256d {
         _mm256_add_pd(a, b)
     }
 
     #[inline(always)]
-    unsafe fn sub(a: __m256d, b: __m256d) -> __m256d {
+    pub(in crate::modal) unsafe fn sub(a: __m256d, b: __m256d) -> __m256d {
         _mm256_sub_pd(a, b)
     }
 
