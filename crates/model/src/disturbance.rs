@@ -119,11 +119,6 @@ impl MeanSteps {
         let tips = [&d.tip_bending, &d.tip_torsion];
         (phi, [0, 1].map(|c| tips[c].amp.abs() * self.tips[c].error_bound(t_max)))
     }
-
-    /// The disturbances these means are of.
-    pub fn disturbance(&self) -> &Disturbance {
-        &self.means.disturbance
-    }
 }
 
 /// The tip force and moment g1(t), g2(t) (N, N m) at times that advance one step h at a time

@@ -234,7 +234,7 @@ impl<'a> ModalLoop<'a> {
                     }
                 }
             }
-            _ => Stepping::Trbdf2(Trbdf2Pass::new(basis, alpha, xi, b + alpha * a, gain)?),
+            _ => Stepping::Trbdf2(Trbdf2Pass::new(solve()?, alpha)),
         };
         let tip_stages = [0, 1].map(|ch| TipStages::new(xi, alpha, stiff[ch], sign[ch]));
         Ok(ModalLoop { u: &basis.tip, stepping, eigenbasis_refused, h, alpha, law, xi, stiff, sign, tip_stages })

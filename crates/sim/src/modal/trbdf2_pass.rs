@@ -26,10 +26,8 @@
 //! combined in one fixed order, and the AVX loop does the portable loop's operations in the
 //! same order (no fused multiply-add): the same bits on every x86-64 machine.
 
-use super::woodbury::{padded_len, StepSolve};
-use super::ModalBasis;
+use super::woodbury::StepSolve;
 use crate::trbdf2::{A, B};
-use crate::SimError;
 
 /// The TR-BDF2 step of a modal loop: the Woodbury solve of its step matrix (α = γh/2) and
 /// the per-mode factors of the one-pass form. Every vector has the padded length.
@@ -62,16 +60,9 @@ pub(crate) struct StateSums {
 }
 
 impl Trbdf2Pass {
-    /// The step of TR-BDF2 with α = γh/2 on `basis`, for the tip feedback β = b + αa, T =
-    /// diag(k1, k2) of the law (15), ξ the Kelvin–Voigt factor (s).
-    pub(crate) fn new(
-        basis: &ModalBasis,
-        alpha: f64,
-        xi: f64,
-        beta: f64,
-        gain: [f64; 2],
-    ) -> Result<Trbdf2Pass, SimError> {
-        let solve = StepSolve::new(basis, alpha, xi, beta, gain)?;
+    /// The step of TR-BDF2 on the Woodbury solve `solve` of its step matrix, built with
+    /// α = γh/2 (s), the same `alpha`.
+    pub(crate) fn new(solve: StepSolve, alpha: f64) -> Trbdf2Pass {
         let n = solve.cz.len();
         let k1: Vec<f64> = (0..n).map(|i| 2.0 * A * (solve.cz[i] - alpha * solve.ce[i])).collect();
         let k2: Vec<f64> = (0..n).map(|i| (A + B) * solve.cz[i]).collect();
@@ -83,9 +74,7 @@ impl Trbdf2Pass {
         let lu = [0, 1].map(|c| dot(u[c], &solve.ld));
         let g_ld = [0, 1].map(|c| dot(u[c], &k1_ld));
         let g_z = [0, 1].map(|c| [0, 1].map(|d| dot(u[c], &k1_z[d])));
-        let pass = Trbdf2Pass { solve, k1, k2, alpha, eta_u: 2.0 * alpha * A, lu, g_ld, g_z };
-        debug_assert_eq!(pass.k1.len(), padded_len(basis.len()));
-        Ok(pass)
+        Trbdf2Pass { solve, k1, k2, alpha, eta_u: 2.0 * alpha * A, lu, g_ld, g_z }
     }
 
     /// Stage 1's tip sum t = Uᵀ(D⁻¹ r) for the step from a state with sums `sums`, the step
@@ -245,6 +234,7 @@ mod avx {
 mod tests {
     use wingcheck_model::{apply_overrides, Config};
 
+    use super::super::woodbury::padded_len;
     use super::super::{ModalBasis, ModalLoop, StepInput};
     use super::*;
     use crate::trbdf2::ALPHA;
@@ -331,7 +321,8 @@ mod tests {
         let basis = ModalBasis::new(&cfg).unwrap();
         let law = wingcheck_control::BoundaryLaw::of(&cfg);
         let alpha = ALPHA * cfg.discretisation.dt;
-        let pass = Trbdf2Pass::new(&basis, alpha, cfg.wing.xi, law.b + alpha * law.a, law.gains).unwrap();
+        let solve = StepSolve::new(&basis, alpha, cfg.wing.xi, law.b + alpha * law.a, law.gains).unwrap();
+        let pass = Trbdf2Pass::new(solve, alpha);
         let n = padded_len(basis.len());
         let (mut eta, mut zeta) = (vec![0.0; n], vec![0.0; n]);
         eta[..basis.len()].copy_from_slice(&basis.eta0);

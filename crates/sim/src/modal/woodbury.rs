@@ -48,7 +48,7 @@ pub(crate) struct StepSolve {
     /// Q = Uᵀ D⁻¹ U.
     pub(crate) q: [[f64; 2]; 2],
     /// H = (I + βT Q)⁻¹ βT.
-    pub(crate) hm: [[f64; 2]; 2],
+    hm: [[f64; 2]; 2],
     /// Run the loops with AVX instructions ([`avx`]; the CPU has them).
     pub(crate) avx: bool,
 }
