@@ -68,7 +68,7 @@ proptest! {
             "horizon.t_end=4".into(),
         ];
         let cfg = apply_overrides(&Config::paper(), &sets).unwrap();
-        let run = digital_run(&cfg, ObserverRule::Implicit, period, 2.0, 0.5, None).unwrap();
+        let run = digital_run(&cfg, None, ObserverRule::Implicit, period, 2.0, 0.5, None).unwrap();
         let o = &cfg.observer;
         let gs = [&cfg.disturbance.tip_bending, &cfg.disturbance.tip_torsion];
         for (i, ch) in run.channels.iter().enumerate() {

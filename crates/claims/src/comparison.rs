@@ -10,6 +10,7 @@
 
 mod explain;
 
+use rayon::prelude::*;
 use wingcheck_model::{Config, ControllerKind, ObserverRule};
 use wingcheck_sim::metrics::{self, Window};
 use wingcheck_sim::SimOutput;
@@ -299,6 +300,17 @@ pub fn compute(
 ) -> Result<(Computed, std::sync::Arc<SimOutput>, std::sync::Arc<SimOutput>), ClaimsError> {
     let rule = cfg.observer.rule;
     let plan = Runs::of(cfg, settings);
+    // Every run of the row at once on the pool, the longest first (the study keeps each result,
+    // failures included; the reads below find them done).
+    let runs: Vec<&Config> = [&plan.other, &plan.ftdo, &plan.dobc]
+        .into_iter()
+        .chain(plan.sweep.iter().flat_map(|(_, _, f, d)| [f, d]))
+        .collect();
+    let error_runs = [&plan.explicit_fine, &plan.explicit_half, &plan.explicit_nudged[0], &plan.explicit_nudged[1]];
+    rayon::join(
+        || runs.par_iter().for_each(|c| drop(study.simulate(c))),
+        || error_runs.par_iter().for_each(|c| drop(study.statistics(c))),
+    );
     let ftdo = study.simulate(&plan.ftdo)?;
     let other = study.simulate(&plan.other)?;
     let dobc = study.simulate(&plan.dobc)?;

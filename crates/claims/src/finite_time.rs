@@ -14,6 +14,7 @@
 mod explain;
 pub mod reach;
 
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use wingcheck_control::ObserverGain;
 use wingcheck_model::{Config, ObserverRule, TipDisturbance};
@@ -22,7 +23,7 @@ use crate::settings::CheckSettings;
 use crate::{ClaimsError, Line, PlotData};
 use reach::{bound_38, bound_38_literal, digital_run, filippov_reach, zeta, DigitalRun};
 
-pub use explain::{check, DigitalRecord, FiniteTimeEvidence};
+pub use explain::{check, check_with, DigitalRecord, FiniteTimeEvidence};
 
 /// Which observer channel.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
@@ -88,8 +89,55 @@ pub fn reference_period(settings: &CheckSettings) -> f64 {
     settings.hold_periods[1]
 }
 
-/// Compute the facts of one channel's finite-time claim.
-pub fn compute(cfg: &Config, channel: Channel, settings: &CheckSettings) -> Result<Computed, ClaimsError> {
+/// The digital runs both finite-time rows read: FTDO with each sampling rule at each hold period
+/// of [`CheckSettings::hold_periods`], over one horizon long enough for both channels.
+pub struct DigitalRuns {
+    /// Horizon of the runs (s): 1.25 × the largest of both channels' bounds (38)/(39) and
+    /// Filippov reaching times, plus two chatter windows, rounded up to 0.01 s and capped at
+    /// [`wingcheck_model::work::finite_time_horizon_max`].
+    pub t_end: f64,
+    /// The runs, implicit rule first, each rule in the order of the hold periods.
+    pub runs: Vec<DigitalRun>,
+}
+
+/// The digital runs of the finite-time rows, computed once for both channels (the runs simulate
+/// both channels together, so one set serves both rows). The six runs are independent and run on
+/// the rayon pool; each is deterministic, so the result does not depend on the schedule.
+pub fn digital_runs(cfg: &Config, settings: &CheckSettings) -> Result<DigitalRuns, ClaimsError> {
+    let mut longest = 0.0f64;
+    for channel in [Channel::Bending, Channel::Torsion] {
+        let ix = channel_index(channel);
+        let (gain, a1, a2, g) = channel_data(cfg, channel);
+        let sigma0 = sigma0_other(cfg, ix)? + 0.0;
+        let fil = filippov_reach(&gain, &|t: f64| g.at(t), sigma0, 60.0, settings.filippov_steps)?;
+        longest = longest.max(bound_38(gain.linear, gain.fractional, a1, a2, sigma0)?).max(fil.reach_s.unwrap_or(0.0));
+    }
+    let window = settings.chatter_window_s;
+    let t_end = (((longest * 1.25 + 2.0 * window) / 0.01).ceil() * 0.01)
+        .min(wingcheck_model::work::finite_time_horizon_max(cfg));
+    let reference = reference_period(settings);
+    let plan: Vec<(ObserverRule, f64)> = [ObserverRule::Implicit, ObserverRule::Explicit]
+        .into_iter()
+        .flat_map(|rule| settings.hold_periods.iter().map(move |&t| (rule, t)))
+        .collect();
+    // the simulator's choice of basis; the runs differ from `cfg` in the step, horizon and
+    // sampling only, which the basis does not depend on, so one basis serves all six
+    let (_, basis) = wingcheck_sim::resolved_basis(cfg, &wingcheck_sim::Discretisation::new(cfg))?;
+    let runs = plan
+        .into_par_iter()
+        .map(|(rule, t)| digital_run(cfg, basis.as_ref(), rule, t, t_end, window, (t == reference).then_some(0.0)))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(DigitalRuns { t_end, runs })
+}
+
+/// Compute the facts of one channel's finite-time claim, reading the shared digital `runs`
+/// ([`digital_runs`] of the same `cfg` and `settings`).
+pub fn compute(
+    cfg: &Config,
+    channel: Channel,
+    settings: &CheckSettings,
+    runs: &DigitalRuns,
+) -> Result<Computed, ClaimsError> {
     let ix = channel_index(channel);
     let (gain, a1, a2, g) = channel_data(cfg, channel);
     let sigma0 = sigma0_other(cfg, ix)? + 0.0;
@@ -98,21 +146,6 @@ pub fn compute(cfg: &Config, channel: Channel, settings: &CheckSettings) -> Resu
     let gfun = |t: f64| g.at(t);
     let steps = settings.filippov_steps;
     let fil = filippov_reach(&gain, &gfun, sigma0, 60.0, steps)?;
-    // Both channels run together; horizon long enough for both bounds, plus the chatter window.
-    let window = settings.chatter_window_s;
-    let other = channel_data(cfg, if ix == 0 { Channel::Torsion } else { Channel::Bending });
-    let other_s0 = sigma0_other(cfg, 1 - ix)?;
-    let other_bound = bound_38(other.0.linear, other.0.fractional, other.1, other.2, other_s0)?;
-    let t_end = (((bound.max(other_bound).max(fil.reach_s.unwrap_or(0.0)) * 1.25 + 2.0 * window) / 0.01).ceil() * 0.01)
-        .min(wingcheck_model::work::finite_time_horizon_max(cfg));
-    let reference = reference_period(settings);
-    let mut runs: Vec<DigitalRun> = Vec::new();
-    for rule in [ObserverRule::Implicit, ObserverRule::Explicit] {
-        for &t in &settings.hold_periods {
-            let trace = (t == reference).then_some(0.0);
-            runs.push(digital_run(cfg, rule, t, t_end, window, trace)?);
-        }
-    }
     // Sharpness: constant g = κ_sw sign σ0 (the hypothesis at equality) attains the bound.
     let s_ref = if sigma0 != 0.0 { sigma0 } else { 1.0 };
     let gsharp = gain.switching * s_ref.signum();
@@ -143,8 +176,8 @@ pub fn compute(cfg: &Config, channel: Channel, settings: &CheckSettings) -> Resu
         fil,
         sharp_ratio,
         sweep,
-        runs,
-        run_t_end: t_end,
+        runs: runs.runs.clone(),
+        run_t_end: runs.t_end,
         g,
     })
 }

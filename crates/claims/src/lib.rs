@@ -41,7 +41,7 @@ pub use study::Study;
 use wingcheck_model::Config;
 
 /// Errors of the claim checker (a failed claim is a verdict, not an error).
-#[derive(Debug, thiserror::Error)]
+#[derive(Debug, Clone, thiserror::Error)]
 pub enum ClaimsError {
     /// A simulation needed as evidence failed (shared: the study runs each simulation once).
     #[error(transparent)]
@@ -80,23 +80,51 @@ fn timed(id: ClaimId, f: impl FnOnce() -> Result<ClaimRow, ClaimsError>) -> (Cla
     (row, WallTime { what: id.name().into(), seconds: start.elapsed().as_secs_f64() })
 }
 
-/// The rows that rest on simulation, on their own thread.
-fn simulation_rows(cfg: &Config, study: &Study, settings: &CheckSettings) -> Vec<(ClaimRow, WallTime)> {
-    vec![
-        timed(ClaimId::FiniteTime1, || finite_time::check(cfg, finite_time::Channel::Bending, settings)),
-        timed(ClaimId::FiniteTime2, || finite_time::check(cfg, finite_time::Channel::Torsion, settings)),
-        timed(ClaimId::FtdoVsDobc, || comparison::check(cfg, study, settings)),
-    ]
+/// The rows that rest on simulation, on their own thread, and the wall time of the finite-time
+/// rows' digital runs (computed once for both rows).
+fn simulation_rows(cfg: &Config, study: &Study, settings: &CheckSettings) -> (Vec<(ClaimRow, WallTime)>, WallTime) {
+    let finite_rows = || {
+        let start = Instant::now();
+        let digital = finite_time::digital_runs(cfg, settings);
+        let shared = WallTime { what: "finite-time digital runs".into(), seconds: start.elapsed().as_secs_f64() };
+        let finite = |id: ClaimId, channel: finite_time::Channel| {
+            timed(id, || finite_time::check_with(cfg, channel, settings, digital.as_ref().map_err(Clone::clone)?))
+        };
+        (
+            [
+                finite(ClaimId::FiniteTime1, finite_time::Channel::Bending),
+                finite(ClaimId::FiniteTime2, finite_time::Channel::Torsion),
+            ],
+            shared,
+        )
+    };
+    // independent computations side by side, so that either thread of the pool can take them
+    let (([ft1, ft2], shared), comparison) =
+        rayon::join(finite_rows, || timed(ClaimId::FtdoVsDobc, || comparison::check(cfg, study, settings)));
+    (vec![ft1, ft2, comparison], shared)
+}
+
+/// `f()` and its wall time (s).
+fn seconds<T>(f: impl FnOnce() -> T) -> (T, f64) {
+    let start = Instant::now();
+    (f(), start.elapsed().as_secs_f64())
 }
 
 /// The rows that rest on theory (W-bounds, mu-conditions, UUB, lemmas), and their wall times.
 fn theory_rows(cfg: &Config, study: &Study, settings: &CheckSettings) -> (Vec<(ClaimRow, WallTime)>, Vec<WallTime>) {
-    let start = Instant::now();
-    let w = wbounds::check(cfg, settings);
-    let w_time = WallTime { what: ClaimId::WBounds.name().into(), seconds: start.elapsed().as_secs_f64() };
-    let start = Instant::now();
-    let m = mu::check(cfg, study, settings);
-    let m_time = WallTime { what: ClaimId::MuConditions.name().into(), seconds: start.elapsed().as_secs_f64() };
+    // W-bounds, mu-conditions and lemmas are independent: side by side on the pool; UUB needs
+    // the first two.
+    let ((w, w_seconds), ((m, m_seconds), lemmas)) = rayon::join(
+        || seconds(|| wbounds::check(cfg, settings)),
+        || {
+            rayon::join(
+                || seconds(|| mu::check(cfg, study, settings)),
+                || timed(ClaimId::Lemmas, || lemmas::check(cfg, settings)),
+            )
+        },
+    );
+    let w_time = WallTime { what: ClaimId::WBounds.name().into(), seconds: w_seconds };
+    let m_time = WallTime { what: ClaimId::MuConditions.name().into(), seconds: m_seconds };
     let uub = match (&w, &m) {
         (Ok(w), Ok(m)) => timed(ClaimId::Uub, || uub::check(cfg, w, m, study, settings)),
         _ => (
@@ -115,7 +143,7 @@ fn theory_rows(cfg: &Config, study: &Study, settings: &CheckSettings) -> (Vec<(C
         (w.as_ref().map_or_else(|e| fail(ClaimId::WBounds, e), |w| w.row.clone()), w_time),
         (m.as_ref().map_or_else(|e| fail(ClaimId::MuConditions, e), |m| m.row.clone()), m_time),
         uub,
-        timed(ClaimId::Lemmas, || lemmas::check(cfg, settings)),
+        lemmas,
     ];
     (rows, extra)
 }
@@ -142,17 +170,19 @@ pub fn check_all_with(cfg: &Config, study: &Study, settings: &CheckSettings) -> 
     let (sims, (theory, extra, certificates)) = beside(
         || simulation_rows(cfg, study, settings),
         || {
-            let (theory, extra) = theory_rows(cfg, study, settings);
-            (theory, extra, certificate_files(cfg))
+            let ((theory, extra), certificates) =
+                rayon::join(|| theory_rows(cfg, study, settings), || certificate_files(cfg));
+            (theory, extra, certificates)
         },
     );
-    let sims = sims.unwrap_or_else(|_| {
-        [ClaimId::FiniteTime1, ClaimId::FiniteTime2, ClaimId::FtdoVsDobc]
+    let (sims, shared) = sims.unwrap_or_else(|_| {
+        let rows = [ClaimId::FiniteTime1, ClaimId::FiniteTime2, ClaimId::FtdoVsDobc]
             .map(|id| {
                 let row = ClaimRow::inconclusive(id, Basis::Computation, "Not decided: the computation panicked.");
                 (row, WallTime { what: id.name().into(), seconds: 0.0 })
             })
-            .into()
+            .into();
+        (rows, WallTime { what: "finite-time digital runs".into(), seconds: 0.0 })
     });
     let mut by_id: Vec<(ClaimRow, WallTime)> = theory.into_iter().chain(sims).collect();
     by_id.sort_by_key(|(r, _)| r.id);
@@ -171,6 +201,7 @@ pub fn check_all_with(cfg: &Config, study: &Study, settings: &CheckSettings) -> 
         rows.push(row);
         wall_seconds.push(time);
     }
+    wall_seconds.push(shared);
     wall_seconds.extend(extra);
     let mut ledger = Ledger {
         schema_version: wingcheck_io::SCHEMA_VERSION,
@@ -182,6 +213,15 @@ pub fn check_all_with(cfg: &Config, study: &Study, settings: &CheckSettings) -> 
     };
     reject_unlabelled_or_non_finite(&mut ledger);
     Ok(ledger)
+}
+
+/// [`beside`] with the roles turned: `first` starts at once on this thread (its panic returned
+/// as an `Err`), `then` waits on the pool for a free thread. For the longest sequential chain.
+pub(crate) fn first_beside<F: Send, T: Send>(
+    first: impl FnOnce() -> F + Send,
+    then: impl FnOnce() -> T + Send,
+) -> (std::thread::Result<F>, T) {
+    rayon::join(|| std::panic::catch_unwind(std::panic::AssertUnwindSafe(first)), then)
 }
 
 /// Runs `side` beside `main` on the rayon pool and returns both results, `side`'s panic as an
@@ -201,8 +241,9 @@ pub(crate) fn beside<S: Send, M: Send>(
 /// A non-finite value, or evidence that is not made of labelled leaves, is a bug of the row
 /// that produced it: never print it, say so instead.
 fn reject_unlabelled_or_non_finite(ledger: &mut Ledger) {
-    for i in 0..ledger.rows.len() {
-        let r = &ledger.rows[i];
+    use rayon::prelude::*;
+    // the rows are independent: checked side by side (each serialises its evidence and plots)
+    ledger.rows.par_iter_mut().for_each(|r| {
         let bad = ledger::non_finite_paths(r);
         let problem = if !bad.is_empty() {
             Some(format!("the computation produced non-finite values at {}", bad.join(", ")))
@@ -210,7 +251,7 @@ fn reject_unlabelled_or_non_finite(ledger: &mut Ledger) {
             r.evidence.nodes().err().map(|e| format!("evidence without a label at {e}"))
         };
         if let Some(p) = problem {
-            ledger.rows[i] = ClaimRow::inconclusive(r.id, Basis::Computation, format!("Internal error: {p}."));
+            *r = ClaimRow::inconclusive(r.id, Basis::Computation, format!("Internal error: {p}."));
         }
-    }
+    });
 }

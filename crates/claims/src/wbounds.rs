@@ -57,28 +57,69 @@ fn q(x: f64) -> BigRational {
     parse_rational(&lyapunov::decimal(x)).expect("finite config value")
 }
 
+/// The wing's part of the printed constants of (26)–(28), exactly: what [`PrintedWing::at`]
+/// combines with each (a, b).
+#[derive(Debug, Clone)]
+pub struct PrintedWing {
+    /// max{EI, I_p, GJ, ρ}.
+    max: BigRational,
+    /// min{EI, I_p, GJ, ρ}.
+    min: BigRational,
+    /// ρx_c.
+    rho_xc: BigRational,
+    /// ρ + ρx_c.
+    rho_sum: BigRational,
+    /// (ρ + ρx_c)s⁴.
+    rho_sum_s4: BigRational,
+    /// I_p + ρx_c.
+    ip_sum: BigRational,
+    /// (I_p + ρx_c)s².
+    ip_sum_s2: BigRational,
+}
+
+impl PrintedWing {
+    /// The wing of `cfg`, its values read exactly from their shortest decimal texts.
+    pub fn of(cfg: &Config) -> Self {
+        let w = &cfg.wing;
+        let (rho, rho_xc, ei, gj, ip, s) = (q(w.rho), q(w.rho_xc), q(w.ei), q(w.gj), q(w.ip), q(w.span));
+        let all = [ei, ip.clone(), gj, rho.clone()];
+        let s2 = &s * &s;
+        let rho_sum = &rho + &rho_xc;
+        let ip_sum = &ip + &rho_xc;
+        PrintedWing {
+            max: all.iter().max().expect("four values").clone(),
+            min: all.iter().min().expect("four values").clone(),
+            rho_sum_s4: &rho_sum * &s2 * &s2,
+            ip_sum_s2: &ip_sum * &s2,
+            rho_sum,
+            ip_sum,
+            rho_xc,
+        }
+    }
+
+    /// The printed constants at weights (a, b), exactly.
+    pub fn at(&self, a: f64, b: f64) -> PrintedConstants {
+        let (a, b) = (q(a), q(b));
+        let b_rho_xc = &b * &self.rho_xc;
+        let y3 = [
+            &a * &self.rho_sum + &b_rho_xc,
+            &a * &self.rho_sum_s4,
+            &a * &self.ip_sum + &b_rho_xc,
+            &a * &self.ip_sum_s2,
+        ]
+        .into_iter()
+        .max()
+        .expect("four values");
+        // b > 2y3/min ⇔ b·min > 2y3 (min > 0: the configuration's values are positive)
+        let condition_holds = &b * &self.min > BigRational::from_integer(2.into()) * &y3;
+        let half = BigRational::new(1.into(), 2.into());
+        PrintedConstants { y1: &half * &b * &self.max, y2: &half * &b * &self.min, y3, condition_holds }
+    }
+}
+
 /// Evaluate the printed constants exactly for the configuration's parameters and (a, b).
 pub fn printed_constants(cfg: &Config, a: f64, b: f64) -> PrintedConstants {
-    let w = &cfg.wing;
-    let (rho, rxc, ei, gj, ip, s) = (q(w.rho), q(w.rho_xc), q(w.ei), q(w.gj), q(w.ip), q(w.span));
-    let (a, b) = (q(a), q(b));
-    let half = BigRational::new(1.into(), 2.into());
-    let all = [ei.clone(), ip.clone(), gj.clone(), rho.clone()];
-    let max = all.iter().max().unwrap().clone();
-    let min = all.iter().min().unwrap().clone();
-    let s2 = &s * &s;
-    let s4 = &s2 * &s2;
-    let y3 = [
-        &a * &rho + &a * &rxc + &b * &rxc,
-        (&a * &rho + &a * &rxc) * &s4,
-        &a * &ip + &a * &rxc + &b * &rxc,
-        (&a * &ip + &a * &rxc) * &s2,
-    ]
-    .into_iter()
-    .max()
-    .unwrap();
-    let condition_holds = b > BigRational::from_integer(2.into()) * &y3 / &min;
-    PrintedConstants { y1: &half * &b * max, y2: &half * &b * min, y3, condition_holds }
+    PrintedWing::of(cfg).at(a, b)
 }
 
 /// Tight constants on V_N for both cross-term variants.
@@ -263,9 +304,10 @@ pub fn compute(cfg: &Config, settings: &CheckSettings) -> Result<Computed, Claim
     let rest = || -> Result<Computed, ClaimsError> {
         let (a, b) = (cfg.control.a, cfg.control.b);
         let (mut neg, mut cond, mut total) = (0usize, 0usize, 0usize);
+        let wing = PrintedWing::of(cfg);
         for i in 0..25 {
             for j in 0..25 {
-                let p = printed_constants(cfg, 10f64.powf(-4.0 + 0.35 * i as f64), 10f64.powf(-2.0 + 0.25 * j as f64));
+                let p = wing.at(10f64.powf(-4.0 + 0.35 * i as f64), 10f64.powf(-2.0 + 0.25 * j as f64));
                 total += 1;
                 neg += usize::from(p.y2 < p.y3);
                 cond += usize::from(p.condition_holds);
@@ -275,7 +317,7 @@ pub fn compute(cfg: &Config, settings: &CheckSettings) -> Result<Computed, Claim
         let finest = grids[grids.len() - 1];
         let witness = indefinite_witness(cfg, 4)?.map(|w| (w.1, w.2));
         Ok(Computed {
-            printed: printed_constants(cfg, a, b),
+            printed: wing.at(a, b),
             printed_grid: (total, neg, cond),
             corrected: tight_study(cfg, Coupling::Corrected, grids)?,
             printed_cross: tight_study(cfg, Coupling::Printed, grids)?,
@@ -289,7 +331,8 @@ pub fn compute(cfg: &Config, settings: &CheckSettings) -> Result<Computed, Claim
             sdp_seconds: 0.0,
         })
     };
-    let (sdp, (enclosure, computed)) = crate::beside(sdp, || crate::beside(enclosure, rest));
+    // The SDP ladder is the ledger's longest sequential chain: it starts at once on this thread.
+    let (sdp, (enclosure, computed)) = crate::first_beside(sdp, || crate::beside(enclosure, rest));
     let mut computed = computed?;
     (computed.sdp, computed.sdp_seconds) = sdp.unwrap_or_else(|_| {
         (settings.sdp_grids.iter().map(|&n| PencilSdpRow::not_run(n, "the SDP computation panicked")).collect(), 0.0)

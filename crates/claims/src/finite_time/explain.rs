@@ -297,7 +297,18 @@ impl Explain for FiniteTimeEvidence {
 
 /// Check the finite-time claim of one channel ((38) with Theorem 3, or (39) with Theorem 4).
 pub fn check(cfg: &Config, channel: Channel, settings: &CheckSettings) -> Result<ClaimRow, ClaimsError> {
-    let c = compute(cfg, channel, settings)?;
+    check_with(cfg, channel, settings, &super::digital_runs(cfg, settings)?)
+}
+
+/// [`check`] reading the digital `runs` ([`super::digital_runs`] of the same `cfg` and
+/// `settings`), which the ledger computes once for both rows.
+pub fn check_with(
+    cfg: &Config,
+    channel: Channel,
+    settings: &CheckSettings,
+    runs: &super::DigitalRuns,
+) -> Result<ClaimRow, ClaimsError> {
+    let c = compute(cfg, channel, settings, runs)?;
     let reference = reference_period(settings);
     if c.run(ObserverRule::Implicit, reference).is_none() || c.run(ObserverRule::Explicit, reference).is_none() {
         return Err(super::reach::num_err("finite_time", "the runs at the reference hold period are missing".into()));

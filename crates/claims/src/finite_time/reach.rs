@@ -2,10 +2,11 @@
 //! continuous-time (Filippov) limit of σ̇ = g(t) − φ(σ), and the digital observers of the
 //! simulator (explicit and implicit sampling) across hold periods T.
 
-use wingcheck_control::ObserverGain;
+use wingcheck_control::{ChannelObserver, ObserverGain, TipChannel};
 use wingcheck_model::{Config, ObserverRule, TipDisturbance};
 use wingcheck_sim::metrics::max_abs;
-use wingcheck_sim::Stepper;
+use wingcheck_sim::modal::{drive, ModalBasis, ModalLoop, ModalState, ObserverSignal, Recorder};
+use wingcheck_sim::{Sample, Stepper};
 
 use crate::ClaimsError;
 
@@ -232,9 +233,13 @@ pub fn digital_config(cfg: &Config, rule: ObserverRule, period: f64, t_end: f64)
 
 /// Run the closed loop (FTDO, `rule`, hold `period`) over [0, `t_end`] sample by sample and
 /// measure σ's reaching time and the chatter of ĝ and τ over the last `window` seconds.
-/// `trace_from`: keep per-sample traces from this time on (None: no traces).
+/// `trace_from`: keep per-sample traces from this time on (None: no traces). `basis`: the modal
+/// basis of `cfg`'s discretisation when the simulator steps `cfg` in it
+/// ([`wingcheck_sim::run::resolved_basis`]), None for the nodal stepper: the same discrete
+/// equations either way, so the samples agree to round-off.
 pub fn digital_run(
     cfg: &Config,
+    basis: Option<&ModalBasis>,
     rule: ObserverRule,
     period: f64,
     t_end: f64,
@@ -248,63 +253,149 @@ pub fn digital_run(
         ));
     }
     let c = digital_config(cfg, rule, period, t_end);
-    let mut st = Stepper::new(&c)?;
     let n = c.total_samples();
-    let w0 = t_end - window;
-    let gs = [&c.disturbance.tip_bending, &c.disturbance.tip_torsion];
-    let mut out: [DigitalChannel; 2] = Default::default();
-    // Implicit: the last sample outside the band; explicit: the first crossing.
-    let mut first_out = [None::<usize>; 2];
-    let mut prev = st.sample();
-    let mut sig_hist: [Vec<f64>; 2] = [Vec::with_capacity(n + 1), Vec::with_capacity(n + 1)];
-    for (i, ch) in out.iter_mut().enumerate() {
-        ch.sigma0 = [prev.sigma1, prev.sigma2][i];
+    let bands =
+        [TipChannel::Bending, TipChannel::Torsion].map(|ch| period * ChannelObserver::new(&c, ch).gain.switching);
+    let mut run = Analysis {
+        rule,
+        window_start: t_end - window,
+        trace_from,
+        bands,
+        g: [c.disturbance.tip_bending.clone(), c.disturbance.tip_torsion.clone()],
+        out: Default::default(),
+        first_out: [None; 2],
+        sig_hist: [Vec::with_capacity(n + 1), Vec::with_capacity(n + 1)],
+        prev: None,
+    };
+    match basis {
+        Some(basis) => {
+            // every sample an output; the scheme the nodal stepper would take (`auto`: TR-BDF2)
+            let mut m = c.clone();
+            m.horizon.sample_every = period;
+            m.discretisation.stepper = c.time_scheme(false);
+            m.validate().map_err(wingcheck_sim::SimError::Config)?;
+            let lp = ModalLoop::new(&m, basis)?;
+            let mut st = lp.initial_state(&m, basis);
+            let mut rec = EachSample { analysis: &mut run, k: 0 };
+            drive(&m, basis, &lp, &mut st, &mut ObserverSignal::new(&m), &mut rec)?;
+        }
+        None => {
+            let mut st = Stepper::new(&c)?;
+            for k in 0..=n {
+                if k > 0 {
+                    st.advance_sample();
+                }
+                run.push(k, &st.sample());
+            }
+        }
     }
-    for k in 0..=n {
-        let s = if k == 0 { prev } else { st.sample() };
+    let Analysis { mut out, first_out, sig_hist, .. } = run;
+    reach_and_overshoot(&mut out, rule, period, &first_out, &sig_hist, n);
+    Ok(DigitalRun { rule, period, window: (t_end - window, t_end), channels: out })
+}
+
+/// What a digital run measures, sample by sample.
+struct Analysis {
+    rule: ObserverRule,
+    window_start: f64,
+    trace_from: Option<f64>,
+    /// The implicit rule's deadbeat bands T·κ_sw per channel (units of g).
+    bands: [f64; 2],
+    g: [TipDisturbance; 2],
+    out: [DigitalChannel; 2],
+    /// Implicit: the last sample outside the band; explicit: the first crossing.
+    first_out: [Option<usize>; 2],
+    sig_hist: [Vec<f64>; 2],
+    prev: Option<Sample>,
+}
+
+impl Analysis {
+    /// Fold in sample `k` (at t_k = k T, after the held estimate's jump).
+    fn push(&mut self, k: usize, s: &Sample) {
+        let prev = *self.prev.get_or_insert(*s);
         let sig = [s.sigma1, s.sigma2];
         let gh = [s.g1_hat, s.g2_hat];
         let tau = [s.tau1, s.tau2];
         let pgh = [prev.g1_hat, prev.g2_hat];
         let ptau = [prev.tau1, prev.tau2];
+        let w0 = self.window_start;
         for i in 0..2 {
-            let ch = &mut out[i];
-            sig_hist[i].push(sig[i]);
-            let band = period * st.channels[i].observer.gain.switching;
-            match rule {
+            let ch = &mut self.out[i];
+            if k == 0 {
+                ch.sigma0 = sig[i];
+            }
+            self.sig_hist[i].push(sig[i]);
+            match self.rule {
                 ObserverRule::Implicit => {
-                    if sig[i].abs() > band {
-                        first_out[i] = Some(k);
+                    if sig[i].abs() > self.bands[i] {
+                        self.first_out[i] = Some(k);
                     }
                 }
                 ObserverRule::Explicit => {
                     if ch.reach_s.is_none() && (sig[i] == 0.0 || sig[i].signum() != ch.sigma0.signum()) {
                         ch.reach_s = Some(s.t);
-                        first_out[i] = Some(k);
+                        self.first_out[i] = Some(k);
                     }
                 }
             }
             if s.t >= w0 - 1e-12 {
-                ch.gtilde_max = ch.gtilde_max.max((gs[i].at(s.t) - gh[i]).abs());
+                ch.gtilde_max = ch.gtilde_max.max((self.g[i].at(s.t) - gh[i]).abs());
                 if k > 0 && prev.t >= w0 - 1e-12 {
                     ch.ghat_jump_max = ch.ghat_jump_max.max((gh[i] - pgh[i]).abs());
                     ch.tau_jump_max = ch.tau_jump_max.max((tau[i] - ptau[i]).abs());
                 }
             }
-            if trace_from.is_some_and(|t0| s.t >= t0 - 1e-12) {
+            if self.trace_from.is_some_and(|t0| s.t >= t0 - 1e-12) {
                 ch.t.push(s.t);
                 ch.sigma.push(sig[i]);
                 ch.g_hat.push(gh[i]);
                 ch.tau.push(tau[i]);
             }
         }
-        prev = s;
-        if k < n {
-            st.advance_sample();
-        }
+        self.prev = Some(*s);
     }
-    reach_and_overshoot(&mut out, rule, period, &first_out, &sig_hist, n);
-    Ok(DigitalRun { rule, period, window: (w0, t_end), channels: out })
+}
+
+/// The modal driver's recorder of a digital run: every output sample (every observer sample)
+/// into the [`Analysis`]; nothing else is read, so the driver skips the state's reconstruction
+/// and the tip boundary states (neither feeds back).
+struct EachSample<'a> {
+    analysis: &'a mut Analysis,
+    k: usize,
+}
+
+impl Recorder for EachSample<'_> {
+    fn instant(
+        &mut self,
+        _: &ModalLoop<'_>,
+        _: &ModalState,
+        _: f64,
+        _: [f64; 2],
+        _: Option<[f64; 2]>,
+        _: Option<[f64; 2]>,
+    ) {
+    }
+
+    fn output(&mut self, _: &ModalState, sample: &Sample, k: usize) -> Result<(), wingcheck_sim::SimError> {
+        debug_assert_eq!(k, self.k, "every sample is an output");
+        self.analysis.push(k, sample);
+        self.k += 1;
+        Ok(())
+    }
+
+    fn deferred_squares(&mut self, _: [f64; 2]) {}
+
+    fn interval_squares(&self) -> bool {
+        false
+    }
+
+    fn reads_state(&self) -> bool {
+        false
+    }
+
+    fn reads_tip_states(&self) -> bool {
+        false
+    }
 }
 
 /// Each channel's reach time (implicit: the sample after the last one outside the band T·k_sw;
