@@ -86,7 +86,8 @@ pub struct ReportOptions<'a> {
     pub command_line: Option<&'a str>,
 }
 
-/// Stage weights of the overall fraction (the first three run concurrently).
+/// Stage weights of the overall fraction (the first three run concurrently, with the
+/// certificates, which report no progress).
 const WEIGHTS: [(&str, f64); 6] =
     [("ledger", 0.35), ("simulations", 0.15), ("region map", 0.35), ("charts", 0.1), ("html", 0.04), ("write", 0.01)];
 
@@ -130,7 +131,7 @@ impl<'a> Tracker<'a> {
 pub struct StageTiming {
     /// Stage name.
     pub name: String,
-    /// Wall time (s). `ledger` and `simulations` run concurrently.
+    /// Wall time (s). `ledger`, `simulations`, `region map` and `certificates` run concurrently.
     pub seconds: f64,
 }
 
@@ -179,16 +180,20 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     let tracker = Tracker::new(opts);
     let on_progress = |p: Progress| tracker.update(p);
     let progress: Option<&(dyn Fn(Progress) + Sync)> = Some(&on_progress);
-    let (ledger, runs, region, mut timings) = compute(cfg, progress)?;
+    let (Computed { ledger, runs, region, proofs }, mut timings) = compute(cfg, progress)?;
 
-    // Figure data and captions.
+    // Figure data and captions, the independent groups side by side.
     let t = Instant::now();
-    let region_fig = region.as_ref().map(|r| r.figure());
-    let groups = paper::paper_figures(cfg, &runs, paper::ftdo_bounds(&ledger));
-    let comparison = paper::comparison_figures(cfg, &runs);
-    let (acc_fig, acc_rows) = accuracy::accuracy(&runs.accuracy);
     let omega1 = region.as_ref().map(|r| r.omega1).or_else(|| paper::omega1(cfg));
-    let row_figs = row_figures(cfg, &ledger, omega1);
+    let ((region_fig, groups), ((comparison, (acc_fig, acc_rows)), row_figs)) = rayon::join(
+        || (region.as_ref().map(|r| r.figure()), paper::paper_figures(cfg, &runs, paper::ftdo_bounds(&ledger))),
+        || {
+            rayon::join(
+                || (paper::comparison_figures(cfg, &runs), accuracy::accuracy(&runs.accuracy)),
+                || row_figures(cfg, &ledger, omega1),
+            )
+        },
+    );
     timings.push(StageTiming { name: "figure data".into(), seconds: t.elapsed().as_secs_f64() });
 
     // SVG + CSV of every figure, in parallel.
@@ -201,16 +206,10 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
         .chain(region_fig.iter())
         .chain(row_figs.iter().flatten())
         .collect();
-    // The charts, and beside them the certificate set for the configured point (re-checkable
-    // with `wingcheck verify proofs`).
-    let (charts, (proofs, pt)) = rayon::join(
-        || render_charts(&all, &staging, progress),
-        || timed(|| wingcheck_claims::certify::render_set(cfg)),
-    );
-    let (mut files, csv_records) = charts?;
+    let (mut files, csv_records) = render_charts(&all, &staging, progress)?;
+    // the certificate set for the configured point (re-checkable with `wingcheck verify proofs`)
     let proofs = write_proofs(proofs, &staging, &mut files)?;
     timings.push(StageTiming { name: "charts".into(), seconds: t.elapsed().as_secs_f64() });
-    timings.push(StageTiming { name: "certificates (beside the charts)".into(), seconds: pt });
 
     // The page.
     let t = Instant::now();
@@ -286,16 +285,26 @@ fn write_proofs(
     }
 }
 
-type Computed = (Ledger, runs::Runs, Option<region::RegionMap>, Vec<StageTiming>);
+/// What the report's first stage computes.
+struct Computed {
+    ledger: Ledger,
+    runs: runs::Runs,
+    region: Option<region::RegionMap>,
+    /// `certify`'s set for the configured point, or why it could not be made.
+    proofs: Result<Vec<(String, String)>, wingcheck_claims::certify::CertifyError>,
+}
 
-/// The ledger, the simulations and the region map, concurrently; the ledger and the figures
-/// share one study, so every simulation runs once. (The certificate set is made afterwards,
-/// beside the charts: during the ledger it would compete with the SDP cross-check, whose
-/// answer has a wall-time budget.)
-fn compute(cfg: &Config, progress: Option<&(dyn Fn(Progress) + Sync)>) -> Result<Computed, ReportError> {
+/// The ledger, the simulations, the region map and the certificate set, concurrently; the
+/// ledger and the figures share one study, so every simulation runs once. (The ledger's SDP
+/// cross-check is bounded by an iteration budget, not by wall time, so sharing the threads
+/// changes no result.)
+fn compute(
+    cfg: &Config,
+    progress: Option<&(dyn Fn(Progress) + Sync)>,
+) -> Result<(Computed, Vec<StageTiming>), ReportError> {
     let study = Study::new();
     let settings = CheckSettings::default();
-    let ((ledger, lt), ((runs, st), (region, rt))) = rayon::join(
+    let ((ledger, lt), (((runs, st), (region, rt)), (proofs, pt))) = rayon::join(
         || {
             report(progress, "ledger", 0, 1);
             let t = Instant::now();
@@ -303,15 +312,26 @@ fn compute(cfg: &Config, progress: Option<&(dyn Fn(Progress) + Sync)>) -> Result
             report(progress, "ledger", 1, 1);
             (l, t.elapsed().as_secs_f64())
         },
-        || rayon::join(|| timed(|| runs::run_all(cfg, &study, progress)), || timed(|| region_stage(cfg, progress))),
+        || {
+            rayon::join(
+                || {
+                    rayon::join(
+                        || timed(|| runs::run_all(cfg, &study, progress)),
+                        || timed(|| region_stage(cfg, progress)),
+                    )
+                },
+                || timed(|| wingcheck_claims::certify::render_set(cfg)),
+            )
+        },
     );
     let timings = vec![
         StageTiming { name: "ledger".into(), seconds: lt },
         StageTiming { name: "simulations".into(), seconds: st },
         StageTiming { name: "region map".into(), seconds: rt },
+        StageTiming { name: "certificates".into(), seconds: pt },
     ];
     report(progress, "region map", 1, 1);
-    Ok((ledger?, runs?, region?, timings))
+    Ok((Computed { ledger: ledger?, runs: runs?, region: region?, proofs }, timings))
 }
 
 /// `f()` and its wall time (s).

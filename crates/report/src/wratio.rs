@@ -4,8 +4,9 @@
 //! that W is linear in (a, b): the tight ratio depends on a/b alone.
 
 use num_traits::ToPrimitive;
+use rayon::prelude::*;
 use wingcheck_claims::theory::WPencil;
-use wingcheck_claims::wbounds::printed_constants;
+use wingcheck_claims::wbounds::PrintedWing;
 use wingcheck_model::Config;
 
 use crate::chart::{tick, LineChart, LineStyle};
@@ -28,14 +29,19 @@ fn sweep(cfg: &Config, pencil: &WPencil, omega1: f64) -> Option<Sweep> {
     let here = cfg.control.a / b;
     let (lo, hi) = (omega1.min(if here > 0.0 { here } else { omega1 }) / 100.0, omega1.max(here) * 100.0);
     let ratios: Vec<f64> = (0..POINTS).map(|k| lo * (hi / lo).powf(k as f64 / (POINTS - 1) as f64)).collect();
-    let (mut tight, mut printed) = (Vec::with_capacity(POINTS), Vec::with_capacity(POINTS));
-    for &r in &ratios {
-        let (l2, l1) = pencil.constants(r * b, b).ok()?;
-        tight.push(l2 / l1);
-        let p = printed_constants(cfg, r * b, b);
-        let (l2p, l1p) = ((&p.y2 - &p.y3).to_f64()?, (&p.y1 + &p.y3).to_f64()?);
-        printed.push(l2p / l1p);
-    }
+    // the points are independent: in parallel, collected in order
+    let wing = PrintedWing::of(cfg);
+    let (tight, printed): (Vec<f64>, Vec<f64>) = ratios
+        .par_iter()
+        .map(|&r| {
+            let (l2, l1) = pencil.constants(r * b, b).ok()?;
+            let p = wing.at(r * b, b);
+            let (l2p, l1p) = ((&p.y2 - &p.y3).to_f64()?, (&p.y1 + &p.y3).to_f64()?);
+            Some((l2 / l1, l2p / l1p))
+        })
+        .collect::<Option<Vec<_>>>()?
+        .into_iter()
+        .unzip();
     let crossing =
         ratios.windows(2).zip(tight.windows(2)).find(|(_, t)| t[0] > 0.0 && t[1] <= 0.0).and_then(|(r, _)| {
             let (mut x0, mut x1) = (r[0].ln(), r[1].ln());
