@@ -1,13 +1,14 @@
 //! Statistics runs (`Study::statistics`, `RunOptions::eigenbasis`): the explicit FTDO's error
 //! runs of `check` (dt/2, the doubled grid, the nudged starts) step the exponential scheme in
-//! the closed loop's eigenbasis where its round-off estimate allows, with no layer re-run and
-//! no sub-step probe, and serve RMS τ only.
+//! the closed loop's eigenbasis where its round-off estimate allows, with no layer re-run, no
+//! sub-step probe and one output interval [0, t_end], and serve the whole-run RMS τ only.
 //!
 //! Independent truth: the full `simulate` of the same configuration, stepped by the dense
 //! scaling-and-squaring transition (a second computation of the same exact transition), whose
-//! series the layer and the probe leave unchanged (they change peaks only). The statistics run
-//! must agree with it within its own stated round-off estimate where it stepped in the
-//! eigenbasis, and bit for bit where it did not.
+//! series the layer and the probe leave unchanged (they change peaks only), output every
+//! `sample_every`. The statistics run must agree with it within its own stated round-off
+//! estimate where it stepped in the eigenbasis, and to the round-off of summing the same steps'
+//! ∫τ² in other groups where it did not.
 
 mod common;
 
@@ -21,18 +22,14 @@ fn whole_rms(o: &SimOutput, c: usize) -> f64 {
     windowed_rms(&s.t, interval, 0.0, *s.t.last().unwrap()).unwrap()
 }
 
-/// Largest |RMS_a² − RMS_b²| over the output intervals, relative to the largest RMS_b² (each
-/// interval's ∫τ² over its length, as the eigenbasis unit test compares them), both channels.
-fn interval_squares_difference(a: &SimOutput, b: &SimOutput) -> f64 {
-    let mut worst: f64 = 0.0;
-    for (x, y) in [(&a.series.tau1_rms, &b.series.tau1_rms), (&a.series.tau2_rms, &b.series.tau2_rms)] {
-        assert_eq!(x.len(), y.len());
-        let scale = y.iter().map(|v| v * v).fold(0.0, f64::max);
-        for (p, q) in x.iter().zip(y) {
-            worst = worst.max((p * p - q * q).abs() / scale);
-        }
-    }
-    worst
+/// Largest relative difference of the whole-run RMS τ (both channels) and of the final tip
+/// values q(s, t_end), θ(s, t_end) (relative to the full run's largest |q|, |θ|).
+fn difference(stats: &SimOutput, full: &SimOutput) -> f64 {
+    let rms = (0..2).map(|c| (whole_rms(stats, c) - whole_rms(full, c)).abs() / whole_rms(full, c)).fold(0.0, f64::max);
+    let tip = |a: &[f64], b: &[f64]| {
+        (a.last().unwrap() - b.last().unwrap()).abs() / b.iter().map(|v| v.abs()).fold(0.0, f64::max)
+    };
+    rms.max(tip(&stats.series.q_tip, &full.series.q_tip)).max(tip(&stats.series.theta_tip, &full.series.theta_tip))
 }
 
 #[test]
@@ -41,7 +38,7 @@ fn statistics_runs_match_the_full_run_within_their_eigenbasis_roundoff() {
     // with the explicit FTDO; the doubled grid (48 elements: estimate 8.5e-7 over this 2-s
     // horizon, 7.4e-6 over 20 s, where the search's 1e-6 refuses it and the statistics runs'
     // 1e-4 accepts it); the slow loop a = 1, b = 3000 (4.0e-8); and the stiff SI-scale wing
-    // with a large gain (refused: dense form, the same bits).
+    // with a large gain (refused: dense form).
     let stiff: Vec<&str> = [&SI_WING[..], &["wing.rho_xc=5", "control.k1=2e4", "control.k2=2e3"]].concat();
     let cases: [(&[&str], bool); 4] = [
         (&[], true),
@@ -55,34 +52,27 @@ fn statistics_runs_match_the_full_run_within_their_eigenbasis_roundoff() {
         let stats = study.statistics(&cfg).unwrap();
         let full = simulate(&cfg, RunOptions::default()).unwrap();
         assert!(full.stats.eigenbasis_roundoff.is_none(), "{sets:?}: simulate steps the dense form");
-        assert_eq!(stats.series.t, full.series.t, "{sets:?}");
+        assert_eq!(stats.series.t, [0.0, 2.0], "{sets:?}: one output interval, [0, t_end]");
+        assert!(full.series.t.len() > 100, "{sets:?}: the reference is output every sample_every");
         assert!(stats.fields.is_none() && stats.initial_layer.is_none(), "{sets:?}");
         assert_eq!(stats.stats.sub_step_probes, [0, 0], "{sets:?}: no probe");
+        let d = difference(&stats, &full);
         match stats.stats.eigenbasis_roundoff {
             Some(estimate) => {
                 assert!(eigenbasis, "{sets:?}: the eigenbasis was expected to be refused");
                 assert!(estimate <= wingcheck_sim::MAX_EIGENBASIS_ROUNDOFF, "{sets:?}");
-                let squares = interval_squares_difference(&stats, &full);
-                let whole: f64 = (0..2)
-                    .map(|c| (whole_rms(&stats, c) - whole_rms(&full, c)).abs() / whole_rms(&full, c))
-                    .fold(0.0, f64::max);
-                let tips =
-                    stats.series.q_tip.iter().zip(&full.series.q_tip).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max)
-                        / full.series.q_tip.iter().map(|v| v.abs()).fold(0.0, f64::max);
-                println!(
-                    "{sets:?}: estimate {estimate:.1e}; interval ∫τ² {squares:.1e}, whole-run RMS τ {whole:.1e}, \
-                     q tip {tips:.1e} relative"
-                );
-                assert!(squares <= estimate && whole <= estimate && tips <= estimate, "{sets:?}");
+                println!("{sets:?}: estimate {estimate:.1e}; whole-run RMS τ and final tips {d:.1e} relative");
+                assert!(d <= estimate, "{sets:?}: {d:e} beyond the estimate {estimate:e}");
                 // not the same computation: the comparison can fail
-                assert_ne!(stats.series.tau1_rms, full.series.tau1_rms, "{sets:?}");
+                assert_ne!(whole_rms(&stats, 0), whole_rms(&full, 0), "{sets:?}");
             }
             None => {
                 assert!(!eigenbasis, "{sets:?}: the eigenbasis was expected to pass");
-                // the dense form without layer and probe: the full run's series, bit for bit
-                assert_eq!(stats.series.tau1_rms, full.series.tau1_rms, "{sets:?}");
-                assert_eq!(stats.series.tau2_rms, full.series.tau2_rms, "{sets:?}");
-                assert_eq!(stats.series.q_tip, full.series.q_tip, "{sets:?}");
+                // the dense form without layer and probe: the full run's steps, their ∫τ² summed
+                // in one group instead of one per output interval (1e-12: ~2000 additions of
+                // positive terms, ε each, with margin)
+                println!("{sets:?}: dense form; {d:.1e} relative");
+                assert!(d <= 1e-12, "{sets:?}: {d:e}");
             }
         }
     }
@@ -91,11 +81,13 @@ fn statistics_runs_match_the_full_run_within_their_eigenbasis_roundoff() {
 #[test]
 fn the_implicit_observer_and_trbdf2_runs_are_untouched_by_statistics_runs() {
     // Only the exponential scheme has an eigenbasis form: a TR-BDF2 statistics run is the
-    // plain base run (same bits as simulate's series), and says it did not use the eigenbasis.
+    // plain base run with one output interval, and says it did not use the eigenbasis. The same
+    // steps, to round-off: each output re-forms the tip values from the modal state (measured
+    // 1.4e-13 relative on θ(s, 1 s)), and the ∫τ² are summed in other groups.
     let cfg = paper_with(&["horizon.t_end=1"]);
     let stats = Study::new().statistics(&cfg).unwrap();
     let full = simulate(&cfg, RunOptions::default()).unwrap();
     assert!(stats.stats.eigenbasis_roundoff.is_none());
-    assert_eq!(stats.series.tau1_rms, full.series.tau1_rms);
-    assert_eq!(stats.series.theta_tip, full.series.theta_tip);
+    let d = difference(&stats, &full);
+    assert!(d <= 1e-12, "{d:e}");
 }

@@ -250,14 +250,19 @@ impl Runs {
         }
     }
 
-    /// Every configuration, in order.
-    pub fn all(&self) -> Vec<&Config> {
-        let mut v = vec![&self.ftdo, &self.other, &self.dobc, &self.explicit_half, &self.explicit_fine];
-        v.extend(&self.explicit_nudged);
+    /// The runs simulated in full ([`Study::simulate`]), the explicit FTDO's first.
+    pub fn full(&self) -> Vec<&Config> {
+        let mut v = vec![&self.other, &self.ftdo, &self.dobc];
         for (_, _, f, d) in &self.sweep {
             v.extend([f, d]);
         }
         v
+    }
+
+    /// The explicit FTDO's error runs, simulated as statistics runs ([`Study::statistics`]),
+    /// the doubled grid's first.
+    pub fn error_runs(&self) -> [&Config; 4] {
+        [&self.explicit_fine, &self.explicit_half, &self.explicit_nudged[0], &self.explicit_nudged[1]]
     }
 }
 
@@ -302,14 +307,9 @@ pub fn compute(
     let plan = Runs::of(cfg, settings);
     // Every run of the row at once on the pool, the longest first (the study keeps each result,
     // failures included; the reads below find them done).
-    let runs: Vec<&Config> = [&plan.other, &plan.ftdo, &plan.dobc]
-        .into_iter()
-        .chain(plan.sweep.iter().flat_map(|(_, _, f, d)| [f, d]))
-        .collect();
-    let error_runs = [&plan.explicit_fine, &plan.explicit_half, &plan.explicit_nudged[0], &plan.explicit_nudged[1]];
     rayon::join(
-        || runs.par_iter().for_each(|c| drop(study.simulate(c))),
-        || error_runs.par_iter().for_each(|c| drop(study.statistics(c))),
+        || plan.full().par_iter().for_each(|c| drop(study.simulate(c))),
+        || plan.error_runs().par_iter().for_each(|c| drop(study.statistics(c))),
     );
     let ftdo = study.simulate(&plan.ftdo)?;
     let other = study.simulate(&plan.other)?;

@@ -22,7 +22,9 @@ pub fn check_runs(cfg: &Config, settings: &CheckSettings) -> Vec<Config> {
         runs.push(crate::uub::operating_run(cfg, a, b));
     }
     // ftdo-vs-dobc
-    runs.extend(crate::comparison::Runs::of(cfg, settings).all().into_iter().cloned());
+    let comparison = crate::comparison::Runs::of(cfg, settings);
+    runs.extend(comparison.full().into_iter().cloned());
+    runs.extend(comparison.error_runs().map(wingcheck_model::work::one_output_interval));
     distinct(runs)
 }
 

@@ -37,21 +37,27 @@ impl Study {
         self.cached(&self.runs, cfg, || simulate(cfg, RunOptions { fields: true, ..Default::default() }))
     }
 
-    /// A run of `cfg` for its time series and interval statistics only (RMS τ, tip RMS): no
-    /// fields, no initial-layer re-run, no sub-step probe (peaks at the recorded instants), and
-    /// the exponential scheme in the closed loop's eigenbasis where its round-off estimate is at
-    /// most [`wingcheck_sim::MAX_EIGENBASIS_ROUNDOFF`] (`stats.eigenbasis_roundoff` then states
-    /// it; whoever uses the run adds it to the quantity's error: the explicit FTDO's RMS τ
-    /// errors it serves are of order 1e-2 relative, so it is negligible there). Its series are those of [`Study::simulate`]
-    /// within that estimate (the layer and the probe change peaks only).
+    /// A run of `cfg` for its whole-run statistics only (RMS τ over [0, t_end], the final tip
+    /// values): one output interval ([`wingcheck_model::work::one_output_interval`]: the series holds t = 0
+    /// and t_end, and the interval's ∫τ² is the run's: the per-step values summed, nothing is
+    /// reconstructed at intermediate outputs), no fields, no initial-layer re-run, no sub-step
+    /// probe (peaks at the recorded instants), and the exponential scheme in the closed loop's
+    /// eigenbasis where its round-off estimate is at most
+    /// [`wingcheck_sim::MAX_EIGENBASIS_ROUNDOFF`] (`stats.eigenbasis_roundoff` then states it;
+    /// whoever uses the run adds it to the quantity's error: the explicit FTDO's RMS τ errors it
+    /// serves are of order 1e-2 relative, so it is negligible there). Its whole-run RMS τ is that
+    /// of [`Study::simulate`] within that estimate (the layer and the probe change peaks only).
+    /// Divergence is checked at its outputs, so at the end: the error runs' configurations differ
+    /// from a full run's only in dt, the grid or ν(0), and that run checks every output.
     pub fn statistics(&self, cfg: &Config) -> Result<Arc<SimOutput>, ClaimsError> {
-        self.cached(&self.statistics, cfg, || {
+        let one_interval = wingcheck_model::work::one_output_interval(cfg);
+        self.cached(&self.statistics, &one_interval, || {
             let opts = RunOptions {
                 sub_step_probe: wingcheck_sim::SubStepProbe::Off,
                 eigenbasis: Some(wingcheck_sim::MAX_EIGENBASIS_ROUNDOFF),
                 ..Default::default()
             };
-            wingcheck_sim::simulate_base(cfg, opts)
+            wingcheck_sim::simulate_base(&one_interval, opts)
         })
     }
 

@@ -163,6 +163,15 @@ pub fn refined_in_space(cfg: &Config) -> Config {
     c
 }
 
+/// `cfg` with one output interval, [0, t_end] (`horizon.sample_every = t_end`, a whole number of
+/// sample periods as t_end is): the configuration of a statistics run, which serves whole-run
+/// quantities only (`wingcheck_claims::Study::statistics`, the run the work estimate counts).
+pub fn one_output_interval(cfg: &Config) -> Config {
+    let mut c = cfg.clone();
+    c.horizon.sample_every = cfg.horizon.t_end;
+    c
+}
+
 /// `cfg` with the time step halved: the time refinement of `simulate --error-estimate`.
 pub fn refined_in_time(cfg: &Config) -> Config {
     let mut c = cfg.clone();
