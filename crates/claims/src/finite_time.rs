@@ -7,9 +7,11 @@
 //! (φ1, φ2, φ3) = (2κ1, 2^p κ3, p) gives exactly the printed (38)/(50): the bound is right as
 //! read, and sharp (attained for g ≡ κ2·sign σ(0), where the dropped term vanishes).
 //!
-//! [`compute`] gathers the facts (the bound, the Filippov reaching time t_reach of the
-//! continuous-time limit with its error, a σ(0) sweep, and digital runs of the observer at the
-//! hold periods of [`CheckSettings::hold_periods`]); [`explain`] turns them into the row.
+//! [`digital_runs`] runs the observer digitally at the hold periods of
+//! [`CheckSettings::hold_periods`] with both sampling rules, once for both rows (the runs
+//! simulate both channels); [`compute`] gathers one channel's facts (the bound, the Filippov
+//! reaching time t_reach of the continuous-time limit with its error, a σ(0) sweep, and what
+//! the digital runs measured); [`explain`] turns them into the row.
 
 mod explain;
 pub mod reach;
@@ -75,8 +77,8 @@ pub struct Computed {
     /// The σ(0) sweep: |σ(0)| and the worst ratio time / bound over both signs (None: some σ0
     /// not reached within 60 s).
     pub sweep: Vec<(f64, Option<f64>)>,
-    /// The digital runs (rule × hold period).
-    pub runs: Vec<DigitalRun>,
+    /// The digital runs (rule × hold period), shared by both rows.
+    pub runs: std::sync::Arc<[DigitalRun]>,
     /// Horizon of the digital runs (s).
     pub run_t_end: f64,
     /// The tip disturbance of the channel.
@@ -97,7 +99,7 @@ pub struct DigitalRuns {
     /// [`wingcheck_model::work::finite_time_horizon_max`].
     pub t_end: f64,
     /// The runs, implicit rule first, each rule in the order of the hold periods.
-    pub runs: Vec<DigitalRun>,
+    pub runs: std::sync::Arc<[DigitalRun]>,
 }
 
 /// The digital runs of the finite-time rows, computed once for both channels (the runs simulate
@@ -127,7 +129,7 @@ pub fn digital_runs(cfg: &Config, settings: &CheckSettings) -> Result<DigitalRun
         .into_par_iter()
         .map(|(rule, t)| digital_run(cfg, basis.as_ref(), rule, t, t_end, window, (t == reference).then_some(0.0)))
         .collect::<Result<Vec<_>, _>>()?;
-    Ok(DigitalRuns { t_end, runs })
+    Ok(DigitalRuns { t_end, runs: runs.into() })
 }
 
 /// Compute the facts of one channel's finite-time claim, reading the shared digital `runs`
@@ -200,7 +202,7 @@ pub fn channel_index(channel: Channel) -> usize {
 
 /// σ(0) of channel `ix` (0: bending, 1: torsion) from the configured initial state.
 pub fn sigma0_other(cfg: &Config, ix: usize) -> Result<f64, ClaimsError> {
-    let c = reach::digital_config(cfg, cfg.observer.rule, cfg.observer.sample_period, 1.0);
+    let c = reach::digital_config(cfg, cfg.observer.rule, cfg.observer.sample_period, cfg.horizon.t_end);
     Ok(wingcheck_sim::Stepper::new(&c)?.channels[ix].sigma)
 }
 

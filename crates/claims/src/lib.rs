@@ -80,13 +80,16 @@ fn timed(id: ClaimId, f: impl FnOnce() -> Result<ClaimRow, ClaimsError>) -> (Cla
     (row, WallTime { what: id.name().into(), seconds: start.elapsed().as_secs_f64() })
 }
 
-/// The rows that rest on simulation, on their own thread, and the wall time of the finite-time
-/// rows' digital runs (computed once for both rows).
+/// The name of the finite-time rows' shared digital runs among [`Ledger::wall_seconds`].
+pub const DIGITAL_RUNS: &str = "finite-time digital runs";
+
+/// The rows that rest on simulation (their computations side by side on the pool), and the
+/// wall time of the finite-time rows' digital runs (computed once for both rows).
 fn simulation_rows(cfg: &Config, study: &Study, settings: &CheckSettings) -> (Vec<(ClaimRow, WallTime)>, WallTime) {
     let finite_rows = || {
         let start = Instant::now();
         let digital = finite_time::digital_runs(cfg, settings);
-        let shared = WallTime { what: "finite-time digital runs".into(), seconds: start.elapsed().as_secs_f64() };
+        let shared = WallTime { what: DIGITAL_RUNS.into(), seconds: start.elapsed().as_secs_f64() };
         let finite = |id: ClaimId, channel: finite_time::Channel| {
             timed(id, || finite_time::check_with(cfg, channel, settings, digital.as_ref().map_err(Clone::clone)?))
         };
@@ -182,7 +185,7 @@ pub fn check_all_with(cfg: &Config, study: &Study, settings: &CheckSettings) -> 
                 (row, WallTime { what: id.name().into(), seconds: 0.0 })
             })
             .into();
-        (rows, WallTime { what: "finite-time digital runs".into(), seconds: 0.0 })
+        (rows, WallTime { what: DIGITAL_RUNS.into(), seconds: 0.0 })
     });
     let mut by_id: Vec<(ClaimRow, WallTime)> = theory.into_iter().chain(sims).collect();
     by_id.sort_by_key(|(r, _)| r.id);

@@ -135,7 +135,8 @@ pub const REGION_MAP_MAX_POINTS: usize = 14 * 7;
 
 /// The configuration of one digital FTDO run of the finite-time rows: `cfg` with the given
 /// sampling rule and hold period T (s), integrator step dt = T / ⌈T/dt_cfg⌉ (≤ the configured
-/// dt, a whole fraction of T), horizon `t_end` (s).
+/// dt, a whole fraction of T), horizon `t_end` (s), an output at every sample (the runs
+/// measure σ, ĝ and τ sample by sample; sample_every = T is valid whatever the configured one).
 pub fn finite_time_config(cfg: &Config, rule: crate::ObserverRule, period: f64, t_end: f64) -> Config {
     let mut c = cfg.clone();
     c.control.kind = crate::ControllerKind::Ftdo;
@@ -143,7 +144,7 @@ pub fn finite_time_config(cfg: &Config, rule: crate::ObserverRule, period: f64, 
     c.observer.sample_period = period;
     c.discretisation.dt = period / (period / cfg.discretisation.dt).ceil().max(1.0);
     c.horizon.t_end = t_end;
-    c.horizon.sample_every = c.horizon.sample_every.max(period);
+    c.horizon.sample_every = period;
     c
 }
 

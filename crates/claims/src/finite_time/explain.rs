@@ -90,7 +90,7 @@ fn digital_records(c: &Computed) -> (Vec<DigitalRecord>, bool, f64) {
     let mut stays_band = true;
     let mut excess: f64 = 0.0;
     let mut digital = Vec::new();
-    for r in &c.runs {
+    for r in c.runs.iter() {
         let ch = &r.channels[ix];
         digital.push(DigitalRecord {
             rule: Text::text("sampling rule", r.rule.name()),

@@ -267,26 +267,38 @@ pub fn digital_run(
         sig_hist: [Vec::with_capacity(n + 1), Vec::with_capacity(n + 1)],
         prev: None,
     };
-    match basis {
+    let fresh = run.clone();
+    let modal = match basis {
         Some(basis) => {
-            // every sample an output; the scheme the nodal stepper would take (`auto`: TR-BDF2)
+            // every sample is an output (the config's sample_every is T); the scheme the nodal
+            // stepper would take (`auto`: TR-BDF2)
             let mut m = c.clone();
-            m.horizon.sample_every = period;
             m.discretisation.stepper = c.time_scheme(false);
             m.validate().map_err(wingcheck_sim::SimError::Config)?;
             let lp = ModalLoop::new(&m, basis)?;
             let mut st = lp.initial_state(&m, basis);
             let mut rec = EachSample { analysis: &mut run, k: 0 };
-            drive(&m, basis, &lp, &mut st, &mut ObserverSignal::new(&m), &mut rec)?;
-        }
-        None => {
-            let mut st = Stepper::new(&c)?;
-            for k in 0..=n {
-                if k > 0 {
-                    st.advance_sample();
+            match drive(&m, basis, &lp, &mut st, &mut ObserverSignal::new(&m), &mut rec) {
+                Ok(()) => true,
+                // The driver stops a run whose energy explodes; a digital run measures what the
+                // observer does even then (e.g. the explicit rule with κ_lin·T > 2, unstable
+                // by design), as the nodal stepper always has: that run is stepped there.
+                Err(wingcheck_sim::SimError::Diverged { .. }) => {
+                    run = fresh;
+                    false
                 }
-                run.push(k, &st.sample());
+                Err(e) => return Err(e.into()),
             }
+        }
+        None => false,
+    };
+    if !modal {
+        let mut st = Stepper::new(&c)?;
+        for k in 0..=n {
+            if k > 0 {
+                st.advance_sample();
+            }
+            run.push(k, &st.sample());
         }
     }
     let Analysis { mut out, first_out, sig_hist, .. } = run;
@@ -295,6 +307,7 @@ pub fn digital_run(
 }
 
 /// What a digital run measures, sample by sample.
+#[derive(Clone)]
 struct Analysis {
     rule: ObserverRule,
     window_start: f64,
