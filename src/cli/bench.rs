@@ -434,7 +434,7 @@ fn bench_search(cfg: &wingcheck_model::Config, as_json: bool) -> anyhow::Result<
     if let Some(r) = b.runs.last() {
         let walls: Vec<String> = b.most_threads_wall_seconds.iter().map(|w| format!("{w:.3}")).collect();
         println!(
-            "ratio: search wall at {} threads (median of {} s) / ({} × one default simulate run, median {:.2} ms) = {:.3}",
+            "ratio: search wall at {} threads ({} s) / ({} × one default simulate run timed just before and after each, median {:.2} ms overall) = {:.3}, the median of the runs' ratios",
             r.threads,
             walls.join(", "),
             b.points,

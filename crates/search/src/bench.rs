@@ -67,13 +67,18 @@ pub struct SearchBench {
     /// One point's closed loop as the search runs it (shared basis and signal), median of 5 (s).
     pub modal_point_seconds: f64,
     /// The same point with the simulator (`simulate` of the base configuration: modal basis,
-    /// observer signal, full series and peaks), median of 5 before the search runs and 5 after
-    /// each run with the most threads (s): the unit of the search's ratio.
+    /// observer signal, full series and peaks), median of all its timings: 5 before the thread
+    /// runs, and 5 before and 5 after each of the [`SEARCH_REPEATS`] runs with the most threads
+    /// (s): the unit of the search's ratio.
     pub simulator_point_seconds: f64,
-    /// Wall times of the runs with the most threads (s): the one in `runs` and
-    /// [`SEARCH_REPEATS`] − 1 more, each followed by 5 `simulate` timings.
+    /// Wall times of the [`SEARCH_REPEATS`] runs with the most threads (s), each between 5
+    /// `simulate` timings before and 5 after it.
     pub most_threads_wall_seconds: Vec<f64>,
-    /// Median of `most_threads_wall_seconds` / (points × `simulator_point_seconds`).
+    /// Per run of `most_threads_wall_seconds`: the median of the 10 `simulate` timings around
+    /// it (s).
+    pub simulate_around_seconds: Vec<f64>,
+    /// The median over those runs of wall / (points × the `simulate_around_seconds` of the run):
+    /// each ratio within one stretch of time.
     pub wall_over_simulate_runs: f64,
     /// The implicit and the explicit observer on a smaller grid of the same axes.
     pub rules: Vec<RuleTiming>,
@@ -173,15 +178,25 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
         finalize(&dir)?;
         finalize_seconds = start.elapsed().as_secs_f64();
     }
-    simulator.extend(simulate_seconds(&cfg, 5)?);
     let most = thread_counts.iter().copied().max().unwrap_or(1);
-    let mut most_threads_wall_seconds: Vec<f64> =
-        runs.iter().filter(|r| r.threads == most).map(|r| r.wall_seconds).take(1).collect();
-    for k in 1..SEARCH_REPEATS {
+    // Each ratio from one search run and the `simulate` timings just before and after it, so
+    // that a change of the machine's speed between runs (this VM's neighbours) cancels; the
+    // median of the ratios is reported. (The quotient of two medians over the whole bench moved
+    // from 0.255 to 0.329 between two runs 12 minutes apart, its `simulate` from 8.0 to 5.7 ms.)
+    let (mut most_threads_wall_seconds, mut simulate_around_seconds) = (Vec::new(), Vec::new());
+    for k in 0..SEARCH_REPEATS {
+        let mut around = simulate_seconds(&cfg, 5)?;
         let (wall, _, _) = timed_run(base, &axes, most, &tmp.path().join(format!("repeat-{k}")))?;
+        around.extend(simulate_seconds(&cfg, 5)?);
         most_threads_wall_seconds.push(wall);
-        simulator.extend(simulate_seconds(&cfg, 5)?);
+        simulate_around_seconds.push(median(around.clone()));
+        simulator.extend(around);
     }
+    let ratios: Vec<f64> = most_threads_wall_seconds
+        .iter()
+        .zip(&simulate_around_seconds)
+        .map(|(wall, sim)| wall / (search.points() as f64 * sim))
+        .collect();
     let simulator_point_seconds = median(simulator);
     let small = vec!["control.a=1e-4..10:log:8".to_string(), "control.b=1e-2..1e4:log:8".to_string()];
     let rule_cfg = |rule: &str| {
@@ -232,11 +247,7 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
         modal.push(start.elapsed().as_secs_f64());
     }
     drop((basis, signal));
-    let wall_over_simulate_runs = if most_threads_wall_seconds.is_empty() {
-        0.0
-    } else {
-        median(most_threads_wall_seconds.clone()) / (search.points() as f64 * simulator_point_seconds)
-    };
+    let wall_over_simulate_runs = median(ratios);
     Ok(SearchBench {
         axes,
         points: search.points(),
@@ -249,6 +260,7 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
         modal_point_seconds: median(modal),
         simulator_point_seconds,
         most_threads_wall_seconds,
+        simulate_around_seconds,
         wall_over_simulate_runs,
         rules,
         explicit_over_implicit_wall,
