@@ -100,6 +100,11 @@ pub struct DigitalRuns {
     pub t_end: f64,
     /// The runs, implicit rule first, each rule in the order of the hold periods.
     pub runs: std::sync::Arc<[DigitalRun]>,
+    /// σ(0) of each channel from the configured initial state (units of g), which the horizon
+    /// and each row's facts start from.
+    pub sigma0: [f64; 2],
+    /// The Filippov limit of each channel from `sigma0` with the configured g.
+    pub filippov: [reach::Filippov; 2],
 }
 
 /// The digital runs of the finite-time rows, computed once for both channels (the runs simulate
@@ -107,13 +112,17 @@ pub struct DigitalRuns {
 /// the rayon pool; each is deterministic, so the result does not depend on the schedule.
 pub fn digital_runs(cfg: &Config, settings: &CheckSettings) -> Result<DigitalRuns, ClaimsError> {
     let mut longest = 0.0f64;
+    let (mut sigma0, mut filippov) = ([0.0; 2], Vec::with_capacity(2));
     for channel in [Channel::Bending, Channel::Torsion] {
         let ix = channel_index(channel);
         let (gain, a1, a2, g) = channel_data(cfg, channel);
-        let sigma0 = sigma0_other(cfg, ix)? + 0.0;
-        let fil = filippov_reach(&gain, &|t: f64| g.at(t), sigma0, 60.0, settings.filippov_steps)?;
-        longest = longest.max(bound_38(gain.linear, gain.fractional, a1, a2, sigma0)?).max(fil.reach_s.unwrap_or(0.0));
+        sigma0[ix] = sigma0_other(cfg, ix)? + 0.0;
+        let fil = filippov_reach(&gain, &|t: f64| g.at(t), sigma0[ix], 60.0, settings.filippov_steps)?;
+        longest =
+            longest.max(bound_38(gain.linear, gain.fractional, a1, a2, sigma0[ix])?).max(fil.reach_s.unwrap_or(0.0));
+        filippov.push(fil);
     }
+    let filippov: [reach::Filippov; 2] = filippov.try_into().expect("one per channel");
     let window = settings.chatter_window_s;
     let t_end = (((longest * 1.25 + 2.0 * window) / 0.01).ceil() * 0.01)
         .min(wingcheck_model::work::finite_time_horizon_max(cfg));
@@ -129,7 +138,7 @@ pub fn digital_runs(cfg: &Config, settings: &CheckSettings) -> Result<DigitalRun
         .into_par_iter()
         .map(|(rule, t)| digital_run(cfg, basis.as_ref(), rule, t, t_end, window, (t == reference).then_some(0.0)))
         .collect::<Result<Vec<_>, _>>()?;
-    Ok(DigitalRuns { t_end, runs: runs.into() })
+    Ok(DigitalRuns { t_end, runs: runs.into(), sigma0, filippov })
 }
 
 /// Compute the facts of one channel's finite-time claim, reading the shared digital `runs`
@@ -142,12 +151,12 @@ pub fn compute(
 ) -> Result<Computed, ClaimsError> {
     let ix = channel_index(channel);
     let (gain, a1, a2, g) = channel_data(cfg, channel);
-    let sigma0 = sigma0_other(cfg, ix)? + 0.0;
+    let sigma0 = runs.sigma0[ix];
     let bound = bound_38(gain.linear, gain.fractional, a1, a2, sigma0)?;
     let literal = bound_38_literal(gain.linear, gain.fractional, a1, a2, sigma0);
     let gfun = |t: f64| g.at(t);
     let steps = settings.filippov_steps;
-    let fil = filippov_reach(&gain, &gfun, sigma0, 60.0, steps)?;
+    let fil = runs.filippov[ix].clone();
     // Sharpness: constant g = κ_sw sign σ0 (the hypothesis at equality) attains the bound.
     let s_ref = if sigma0 != 0.0 { sigma0 } else { 1.0 };
     let gsharp = gain.switching * s_ref.signum();

@@ -75,9 +75,9 @@ pub fn check_all(cfg: &Config) -> Result<Ledger, ClaimsError> {
 
 /// A row's outcome with its wall time; a failed computation becomes `inconclusive`.
 fn timed(id: ClaimId, f: impl FnOnce() -> Result<ClaimRow, ClaimsError>) -> (ClaimRow, WallTime) {
-    let start = Instant::now();
-    let row = f().unwrap_or_else(|e| ClaimRow::inconclusive(id, Basis::Computation, format!("Not decided: {e}.")));
-    (row, WallTime { what: id.name().into(), seconds: start.elapsed().as_secs_f64() })
+    let (row, seconds) = seconds(f);
+    let row = row.unwrap_or_else(|e| ClaimRow::inconclusive(id, Basis::Computation, format!("Not decided: {e}.")));
+    (row, WallTime { what: id.name().into(), seconds })
 }
 
 /// The name of the finite-time rows' shared digital runs among [`Ledger::wall_seconds`].
@@ -87,9 +87,8 @@ pub const DIGITAL_RUNS: &str = "finite-time digital runs";
 /// wall time of the finite-time rows' digital runs (computed once for both rows).
 fn simulation_rows(cfg: &Config, study: &Study, settings: &CheckSettings) -> (Vec<(ClaimRow, WallTime)>, WallTime) {
     let finite_rows = || {
-        let start = Instant::now();
-        let digital = finite_time::digital_runs(cfg, settings);
-        let shared = WallTime { what: DIGITAL_RUNS.into(), seconds: start.elapsed().as_secs_f64() };
+        let (digital, seconds) = seconds(|| finite_time::digital_runs(cfg, settings));
+        let shared = WallTime { what: DIGITAL_RUNS.into(), seconds };
         let finite = |id: ClaimId, channel: finite_time::Channel| {
             timed(id, || finite_time::check_with(cfg, channel, settings, digital.as_ref().map_err(Clone::clone)?))
         };
@@ -108,7 +107,7 @@ fn simulation_rows(cfg: &Config, study: &Study, settings: &CheckSettings) -> (Ve
 }
 
 /// `f()` and its wall time (s).
-fn seconds<T>(f: impl FnOnce() -> T) -> (T, f64) {
+pub(crate) fn seconds<T>(f: impl FnOnce() -> T) -> (T, f64) {
     let start = Instant::now();
     (f(), start.elapsed().as_secs_f64())
 }

@@ -23,8 +23,6 @@
 
 mod explain;
 
-use std::time::Instant;
-
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 use wingcheck_cert::exact::{parse_rational, to_f64};
@@ -293,14 +291,8 @@ pub fn decide(enclosure: &EnclosureSummary, float: Decision) -> Decision {
 /// Compute everything; the SDP cross-check and the ω₁ enclosure (independent of the rest) run
 /// beside it on the thread pool ([`crate::beside`]), and their failure is recorded, never fatal.
 pub fn compute(cfg: &Config, settings: &CheckSettings) -> Result<Computed, ClaimsError> {
-    let sdp = || {
-        let start = Instant::now();
-        (sdp_cross_check(cfg, Coupling::Corrected, &settings.sdp_grids), start.elapsed().as_secs_f64())
-    };
-    let enclosure = || {
-        let start = Instant::now();
-        (EnclosureSummary::deciding(cfg), start.elapsed().as_secs_f64())
-    };
+    let sdp = || crate::seconds(|| sdp_cross_check(cfg, Coupling::Corrected, &settings.sdp_grids));
+    let enclosure = || crate::seconds(|| EnclosureSummary::deciding(cfg));
     let rest = || -> Result<Computed, ClaimsError> {
         let (a, b) = (cfg.control.a, cfg.control.b);
         let (mut neg, mut cond, mut total) = (0usize, 0usize, 0usize);

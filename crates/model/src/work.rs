@@ -189,9 +189,10 @@ pub const SERIES_BYTES_PER_SAMPLE: f64 = 16.0 * 8.0;
 /// Bytes per number in pretty JSON output (digits, punctuation and indentation), measured on
 /// run.json files of the default configuration (≈ 30) and rounded up.
 pub const JSON_BYTES_PER_NUMBER: f64 = 32.0;
-/// Stepper set-ups `check` makes for σ(0) (the finite-time rows and Lemma 3), each building the
-/// modal basis when the run would be modal.
-pub const CHECK_SIGMA0_SETUPS: f64 = 4.0;
+/// Stepper set-ups `check` makes for σ(0): one per channel for the finite-time rows (shared by
+/// both rows with their digital runs) and one for Lemma 3, each building the modal basis when
+/// the run would be modal.
+pub const CHECK_SIGMA0_SETUPS: f64 = 3.0;
 /// Element counts of the report's accuracy study.
 pub const REPORT_ACCURACY_GRIDS: [usize; 4] = [8, 16, 32, 64];
 

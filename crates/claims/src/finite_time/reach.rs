@@ -256,7 +256,7 @@ pub fn digital_run(
     let n = c.total_samples();
     let bands =
         [TipChannel::Bending, TipChannel::Torsion].map(|ch| period * ChannelObserver::new(&c, ch).gain.switching);
-    let mut run = Analysis {
+    let fresh = || Analysis {
         rule,
         window_start: t_end - window,
         trace_from,
@@ -267,7 +267,7 @@ pub fn digital_run(
         sig_hist: [Vec::with_capacity(n + 1), Vec::with_capacity(n + 1)],
         prev: None,
     };
-    let fresh = run.clone();
+    let mut run = fresh();
     let modal = match basis {
         Some(basis) => {
             // every sample is an output (the config's sample_every is T); the scheme the nodal
@@ -277,14 +277,14 @@ pub fn digital_run(
             m.validate().map_err(wingcheck_sim::SimError::Config)?;
             let lp = ModalLoop::new(&m, basis)?;
             let mut st = lp.initial_state(&m, basis);
-            let mut rec = EachSample { analysis: &mut run, k: 0 };
+            let mut rec = EachSample(&mut run);
             match drive(&m, basis, &lp, &mut st, &mut ObserverSignal::new(&m), &mut rec) {
                 Ok(()) => true,
                 // The driver stops a run whose energy explodes; a digital run measures what the
                 // observer does even then (e.g. the explicit rule with κ_lin·T > 2, unstable
                 // by design), as the nodal stepper always has: that run is stepped there.
                 Err(wingcheck_sim::SimError::Diverged { .. }) => {
-                    run = fresh;
+                    run = fresh();
                     false
                 }
                 Err(e) => return Err(e.into()),
@@ -307,7 +307,6 @@ pub fn digital_run(
 }
 
 /// What a digital run measures, sample by sample.
-#[derive(Clone)]
 struct Analysis {
     rule: ObserverRule,
     window_start: f64,
@@ -372,10 +371,7 @@ impl Analysis {
 /// The modal driver's recorder of a digital run: every output sample (every observer sample)
 /// into the [`Analysis`]; nothing else is read, so the driver skips the state's reconstruction
 /// and the tip boundary states (neither feeds back).
-struct EachSample<'a> {
-    analysis: &'a mut Analysis,
-    k: usize,
-}
+struct EachSample<'a>(&'a mut Analysis);
 
 impl Recorder for EachSample<'_> {
     fn instant(
@@ -390,9 +386,8 @@ impl Recorder for EachSample<'_> {
     }
 
     fn output(&mut self, _: &ModalState, sample: &Sample, k: usize) -> Result<(), wingcheck_sim::SimError> {
-        debug_assert_eq!(k, self.k, "every sample is an output");
-        self.analysis.push(k, sample);
-        self.k += 1;
+        debug_assert_eq!(k, self.0.sig_hist[0].len(), "every sample is an output");
+        self.0.push(k, sample);
         Ok(())
     }
 
