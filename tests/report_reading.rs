@@ -10,7 +10,8 @@
 //! - with the explicit observer the τ and |g̃| figures are drawn from envelopes: their data
 //!   files carry min and max columns that bracket the samples and show the chatter;
 //! - the folder is at most 4 MB;
-//! - `wingcheck verify proofs --config config.json` passes in the folder.
+//! - `wingcheck verify proofs --config config.json` passes in the folder, and the ω₁ enclosure it
+//!   verifies is the one the W-bounds row quotes.
 
 use std::io::Read;
 use std::path::Path;
@@ -259,8 +260,19 @@ fn check(name: &str, sets: &[&str], tmp: &Path) {
     let bytes = folder_bytes(&out);
     assert!(bytes <= 4_000_000, "{name}: the report folder holds {bytes} bytes");
 
-    // a folder a referee can re-check
-    wingcheck(&out, &["verify", "proofs", "--config", "config.json"]);
+    // a folder a referee can re-check, whose ω₁ enclosure is the one the W-bounds row quotes
+    // (the verifier's own statement of the bounds, re-derived from the file's data, against the
+    // ledger's evidence)
+    let verified = wingcheck(&out, &["verify", "proofs", "--config", "config.json"]);
+    let verified = String::from_utf8_lossy(&verified.stdout);
+    let ledger: Value = serde_json::from_str(&std::fs::read_to_string(out.join("ledger.json")).unwrap()).unwrap();
+    let w_bounds = ledger["rows"].as_array().unwrap().iter().find(|r| r["id"] == "W-bounds").unwrap();
+    let quoted = w_bounds["evidence"]["omega1_enclosure"]["exact"]["value"].as_str().unwrap();
+    let (lower, upper) = quoted.split_once(" ≤ ω₁ ≤ ").unwrap();
+    assert!(
+        verified.contains(&format!("ω̲₁ = {lower} ≤ ω₁ ≤ ω̄₁ = {upper} rad/s")),
+        "{name}: the row quotes {quoted}; verify says {verified}"
+    );
     assert!(html.contains("wingcheck verify proofs"), "{name}: the verify command is in the provenance");
 }
 

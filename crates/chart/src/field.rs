@@ -48,9 +48,10 @@ impl Heatmap {
     pub fn to_csv_with(&self, value: impl Fn(f64) -> String) -> String {
         let spacing = |v: &[f64]| v.windows(2).map(|w| w[1] - w[0]).fold(f64::INFINITY, f64::min);
         let (dt, dz) = (spacing(&self.t), spacing(&self.z));
+        let z: Vec<String> = self.z.iter().map(|z| wingcheck_io::grid_number(*z, dz)).collect();
         let rows = self.t.iter().zip(&self.values).flat_map(|(t, row)| {
             let (value, t) = (&value, wingcheck_io::grid_number(*t, dt));
-            self.z.iter().zip(row).map(move |(z, v)| [t.clone(), wingcheck_io::grid_number(*z, dz), value(*v)])
+            z.iter().zip(row).map(move |(z, v)| [t.clone(), z.clone(), value(*v)])
         });
         wingcheck_io::csv_text(["t_s", "z_m", "value"], rows)
     }

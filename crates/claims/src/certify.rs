@@ -389,10 +389,22 @@ fn wing_text(cfg: &Config) -> WingText {
 
 /// The manifest and file texts of the set for `cfg`: `(file name, text)` pairs, index last.
 pub fn render_set(cfg: &Config) -> Result<Vec<(String, String)>, CertifyError> {
-    render_files(cfg, &certificates(cfg)?)
+    render_files(cfg, &certificates(cfg)?, &omega1::compute(cfg)?)
 }
 
-fn render_files(cfg: &Config, certs: &[CertificateFile]) -> Result<Vec<(String, String)>, CertifyError> {
+/// [`render_set`] with the ω₁ enclosure the W-bounds row quotes ([`omega1::deciding`]: the
+/// coarsest that decides where the configured a/b lies) instead of the tightest: the set a
+/// report carries, so that its `proofs/` proves what its ledger states. The other files are
+/// [`render_set`]'s.
+pub fn render_deciding_set(cfg: &Config) -> Result<Vec<(String, String)>, CertifyError> {
+    render_files(cfg, &certificates(cfg)?, &omega1::deciding(cfg)?)
+}
+
+fn render_files(
+    cfg: &Config,
+    certs: &[CertificateFile],
+    enclosure: &omega1::Computed,
+) -> Result<Vec<(String, String)>, CertifyError> {
     let mut files = Vec::new();
     let mut entries = Vec::new();
     for c in certs {
@@ -402,7 +414,6 @@ fn render_files(cfg: &Config, certs: &[CertificateFile]) -> Result<Vec<(String, 
         files.push((name, text));
     }
     // The ω₁ enclosure (its own file format), after the others.
-    let enclosure = omega1::compute(cfg)?;
     let text = enclosure.0.to_text();
     let name = format!("{}.json", omega1::ID);
     entries.push(FileEntry {
@@ -456,7 +467,7 @@ pub struct WrittenSet {
 /// files it lists); anything else is refused and left untouched.
 pub fn write_set(cfg: &Config, dir: &Path) -> Result<WrittenSet, CertifyError> {
     let (certs, notes) = certificate_set(cfg)?;
-    let files = render_files(cfg, &certs)?;
+    let files = render_files(cfg, &certs, &omega1::compute(cfg)?)?;
     let staging = wingcheck_io::StagingDir::new(dir)?;
     for (name, text) in &files {
         staging.write(name, text.as_bytes())?;

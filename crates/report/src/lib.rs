@@ -180,33 +180,38 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     let tracker = Tracker::new(opts);
     let on_progress = |p: Progress| tracker.update(p);
     let progress: Option<&(dyn Fn(Progress) + Sync)> = Some(&on_progress);
-    let (Computed { ledger, runs, region, proofs }, mut timings) = compute(cfg, progress)?;
+    let (Computed { ledger, runs, proofs, early }, mut timings) = compute(cfg, &staging, progress)?;
+    let Early {
+        fields,
+        comparison,
+        accuracy: (acc_fig, acc_rows),
+        region_fig,
+        w_ratio,
+        mut files,
+        records: mut csv_records,
+    } = early;
 
-    // Figure data and captions, the independent groups side by side.
+    // The figures that need the ledger, side by side.
     let t = Instant::now();
-    let omega1 = region.as_ref().map(|r| r.omega1).or_else(|| paper::omega1(cfg));
-    let ((region_fig, groups), ((comparison, (acc_fig, acc_rows)), row_figs)) = rayon::join(
-        || (region.as_ref().map(|r| r.figure()), paper::paper_figures(cfg, &runs, paper::ftdo_bounds(&ledger))),
-        || {
-            rayon::join(
-                || (paper::comparison_figures(cfg, &runs), accuracy::accuracy(&runs.accuracy)),
-                || row_figures(cfg, &ledger, omega1),
-            )
-        },
+    let (series, mut row_figs) = rayon::join(
+        || paper::series_figures(cfg, &runs, paper::ftdo_bounds(&ledger)),
+        || ledger.rows.iter().enumerate().map(|(i, r)| claim_figures(i, r)).collect::<Vec<_>>(),
     );
     timings.push(StageTiming { name: "figure data".into(), seconds: t.elapsed().as_secs_f64() });
 
-    // SVG + CSV of every figure, in parallel.
+    // SVG + CSV of each of them, in parallel.
     let t = Instant::now();
-    let all: Vec<&Figure> = groups
-        .iter()
-        .flat_map(|g| g.figures.iter())
-        .chain(comparison.iter())
-        .chain(std::iter::once(&acc_fig))
-        .chain(region_fig.iter())
-        .chain(row_figs.iter().flatten())
-        .collect();
-    let (mut files, csv_records) = render_charts(&all, &staging, progress)?;
+    let late: Vec<&Figure> = series.0.iter().chain(&series.1).chain(row_figs.iter().flatten()).collect();
+    let (late_files, late_records) = render_charts(&late, &staging, progress)?;
+    files.extend(late_files);
+    csv_records.extend(late_records);
+    csv_records.sort_by(|a, b| a.file.cmp(&b.file));
+    let groups = paper::paper_groups(cfg, fields, series);
+    let region_fig = region_fig.map(|(f, _)| f);
+    // the W-bounds row's λ2/λ1 against a/b (drawn early: it needs no ledger)
+    if let Some(i) = ledger.rows.iter().position(|r| r.id == wingcheck_claims::ClaimId::WBounds) {
+        row_figs[i].extend(w_ratio);
+    }
     // the certificate set for the configured point (re-checkable with `wingcheck verify proofs`)
     let proofs = write_proofs(proofs, &staging, &mut files)?;
     timings.push(StageTiming { name: "charts".into(), seconds: t.elapsed().as_secs_f64() });
@@ -252,18 +257,10 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     Ok(ReportSummary { out_dir: out_dir.to_path_buf(), timings, files, ledger })
 }
 
-/// The report's certificate directory (`wingcheck certify`'s set for the configured point).
+/// The report's certificate directory: `wingcheck certify`'s set for the configured point, with
+/// the ω₁ enclosure the W-bounds row quotes (the coarsest that decides the configured a/b,
+/// [`wingcheck_claims::certify::render_deciding_set`]) instead of the tightest.
 pub const PROOFS: &str = "proofs";
-
-/// The rows' figures: each row's plots, and the W-bounds row's λ2/λ1 against a/b (through
-/// zero at ω₁), drawn by the report.
-fn row_figures(cfg: &Config, ledger: &Ledger, omega1: Option<f64>) -> Vec<Vec<Figure>> {
-    let mut row_figs: Vec<Vec<Figure>> = ledger.rows.iter().enumerate().map(|(i, r)| claim_figures(i, r)).collect();
-    if let (Some(i), Some(w)) = (ledger.rows.iter().position(|r| r.id == wingcheck_claims::ClaimId::WBounds), omega1) {
-        row_figs[i].extend(wratio::w_ratio_figure(cfg, w, CheckSettings::default().uub_lambda2_elements));
-    }
-    row_figs
-}
 
 /// The certificate set into `proofs/` of the staging directory (names appended to `files`);
 /// the set's file names, or why `certify` could not make it.
@@ -289,22 +286,70 @@ fn write_proofs(
 struct Computed {
     ledger: Ledger,
     runs: runs::Runs,
-    region: Option<region::RegionMap>,
-    /// `certify`'s set for the configured point, or why it could not be made.
+    /// The certificate set for the configured point ([`PROOFS`]), or why it could not be made.
     proofs: Result<Vec<(String, String)>, wingcheck_claims::certify::CertifyError>,
+    early: Early,
+}
+
+/// The figures that need no ledger, drawn and written while the ledger is being checked.
+struct Early {
+    fields: paper::FieldFigures,
+    comparison: Vec<Figure>,
+    accuracy: (Figure, Vec<accuracy::AccuracyRow>),
+    /// The region map's figure and the ω₁ (rad/s) it was drawn with.
+    region_fig: Option<(Figure, f64)>,
+    /// The W-bounds row's λ2/λ1 against a/b, through zero at ω₁ ([`wratio`]).
+    w_ratio: Option<Figure>,
+    /// The files written.
+    files: Vec<String>,
+    /// Their CSVs' records for provenance.json.
+    records: Vec<wingcheck_io::FileRecord>,
+}
+
+/// The figures of the runs and the region map (data, then SVG and CSV), in parallel.
+fn early_figures(
+    cfg: &Config,
+    runs: &runs::Runs,
+    region: Option<&region::RegionMap>,
+    staging: &atomic::Staging,
+    progress: Option<&(dyn Fn(Progress) + Sync)>,
+) -> Result<Early, ReportError> {
+    let omega1 = region.map(|r| r.omega1).or_else(|| paper::omega1(cfg));
+    let elements = CheckSettings::default().uub_lambda2_elements;
+    let ((region_fig, fields), ((comparison, accuracy), w_ratio)) = rayon::join(
+        || (region.map(|r| (r.figure(), r.omega1)), paper::field_figures(cfg, runs)),
+        || {
+            rayon::join(
+                || (paper::comparison_figures(cfg, runs), accuracy::accuracy(&runs.accuracy)),
+                || omega1.and_then(|w| wratio::w_ratio_figure(cfg, w, elements)),
+            )
+        },
+    );
+    let all: Vec<&Figure> = fields
+        .all()
+        .chain(&comparison)
+        .chain(std::iter::once(&accuracy.0))
+        .chain(region_fig.iter().map(|(f, _)| f))
+        .chain(w_ratio.iter())
+        .collect();
+    let (files, records) = render_charts(&all, staging, progress)?;
+    Ok(Early { fields, comparison, accuracy, region_fig, w_ratio, files, records })
 }
 
 /// The ledger, the simulations, the region map and the certificate set, concurrently; the
-/// ledger and the figures share one study, so every simulation runs once. (The ledger's SDP
+/// ledger and the figures share one study, so every simulation runs once, and the set's ω₁
+/// enclosure is the ledger's (cached per wing and plan; computed twice only when the two ask at
+/// the same instant, which costs time, never a different file). (The ledger's SDP
 /// cross-check is bounded by an iteration budget, not by wall time, so sharing the threads
 /// changes no result.)
 fn compute(
     cfg: &Config,
+    staging: &atomic::Staging,
     progress: Option<&(dyn Fn(Progress) + Sync)>,
 ) -> Result<(Computed, Vec<StageTiming>), ReportError> {
     let study = Study::new();
     let settings = CheckSettings::default();
-    let ((ledger, lt), (((runs, st), (region, rt)), (proofs, pt))) = rayon::join(
+    let ((ledger, lt), ((runs, st), (region, rt), (proofs, pt), early)) = rayon::join(
         || {
             report(progress, "ledger", 0, 1);
             let t = Instant::now();
@@ -313,25 +358,35 @@ fn compute(
             (l, t.elapsed().as_secs_f64())
         },
         || {
-            rayon::join(
+            let (((runs, st), (region, rt)), (proofs, pt)) = rayon::join(
                 || {
                     rayon::join(
                         || timed(|| runs::run_all(cfg, &study, progress)),
                         || timed(|| region_stage(cfg, progress)),
                     )
                 },
-                || timed(|| wingcheck_claims::certify::render_set(cfg)),
-            )
+                || timed(|| wingcheck_claims::certify::render_deciding_set(cfg)),
+            );
+            report(progress, "region map", 1, 1);
+            // the figures that need no ledger, while the ledger's longest chain still runs
+            let early = match (&runs, &region) {
+                (Ok(r), Ok(m)) => Some(timed(|| early_figures(cfg, r, m.as_ref(), staging, progress))),
+                _ => None,
+            };
+            ((runs, st), (region, rt), (proofs, pt), early)
         },
     );
+    let (ledger, runs) = (ledger?, runs?);
+    region?;
+    let (early, et) = early.expect("drawn whenever the runs and the region map succeeded");
     let timings = vec![
         StageTiming { name: "ledger".into(), seconds: lt },
         StageTiming { name: "simulations".into(), seconds: st },
         StageTiming { name: "region map".into(), seconds: rt },
         StageTiming { name: "certificates".into(), seconds: pt },
+        StageTiming { name: "run figures and charts".into(), seconds: et },
     ];
-    report(progress, "region map", 1, 1);
-    Ok((Computed { ledger: ledger?, runs: runs?, region: region?, proofs }, timings))
+    Ok((Computed { ledger, runs, proofs, early: early? }, timings))
 }
 
 /// `f()` and its wall time (s).

@@ -199,46 +199,79 @@ fn controlled(
     ]
 }
 
-/// Figures 3–20 in three groups (no control, FTDO, DOBC), FTDO/DOBC pairs on common axes;
-/// `bounds` are the bounds t_f1, t_f2 of (38)/(39) (the ledger's), marked on the FTDO's |g̃|.
-pub fn paper_figures(cfg: &Config, runs: &Runs, bounds: [Option<f64>; 2]) -> Vec<Group> {
-    let t_end = cfg.horizon.t_end;
-    let c = Ctx { t_half: t_end / 2.0, t_end };
+/// The field figures of Figures 3–6 and 13–14 (map and 3-D view of q and θ per run): they need
+/// only the runs, so the report draws them while the ledger is still being checked.
+pub struct FieldFigures {
+    /// Figures 3–4, no control.
+    none: Vec<Figure>,
+    /// Figures 5–6, FTDO.
+    ftdo: Vec<Figure>,
+    /// Figures 13–14, DOBC.
+    dobc: Vec<Figure>,
+}
+
+impl FieldFigures {
+    /// Every figure, in page order.
+    pub fn all(&self) -> impl Iterator<Item = &Figure> {
+        self.none.iter().chain(&self.ftdo).chain(&self.dobc)
+    }
+}
+
+/// The field figures of the three runs, the FTDO/DOBC pairs on the colour scales they share.
+pub fn field_figures(cfg: &Config, runs: &Runs) -> FieldFigures {
+    let c = Ctx { t_half: cfg.horizon.t_end / 2.0, t_end: cfg.horizon.t_end };
     let (none, ftdo, dobc) = (&runs.none, &runs.ftdo, &runs.dobc);
-    let frame = Frame { t_end, every: cfg.horizon.sample_every, none };
-    let view = |tag, desc, first, out, err, bounds| RunView { tag, desc, first, out, err, bounds };
-    let (lf, ld) = paired(
-        &view("ftdo", "with the proposed control (FTDO)", 7, ftdo, &runs.errors[1], bounds),
-        &view("dobc", "with DOBC", 15, dobc, &runs.errors[2], [None, None]),
-        &frame,
-    );
     let (sq, st) = (shared_scale(Field::Q, ftdo, dobc, &c), shared_scale(Field::Theta, ftdo, dobc, &c));
     let wo = "without control";
-    let pf = "with the proposed control (FTDO)";
-    let db = "with DOBC";
+    FieldFigures {
+        none: vec![
+            heat(3, "none", wo, Field::Q, none, &c, None, runs.errors[0].max_q),
+            surface(3, "none", wo, Field::Q, none, &c, None),
+            heat(4, "none", wo, Field::Theta, none, &c, None, runs.errors[0].max_theta),
+            surface(4, "none", wo, Field::Theta, none, &c, None),
+        ],
+        ftdo: controlled(5, "ftdo", PROPOSED, ftdo, &c, (sq, st, 13), &runs.errors[1]),
+        dobc: controlled(13, "dobc", DOBC, dobc, &c, (sq, st, 5), &runs.errors[2]),
+    }
+}
+
+const PROPOSED: &str = "with the proposed control (FTDO)";
+const DOBC: &str = "with DOBC";
+
+/// The time-series figures of Figures 7–12 and 15–20 (FTDO/DOBC pairs on common axes); `bounds`
+/// are the bounds t_f1, t_f2 of (38)/(39) (the ledger's), marked on the FTDO's |g̃|.
+pub fn series_figures(cfg: &Config, runs: &Runs, bounds: [Option<f64>; 2]) -> (Vec<Figure>, Vec<Figure>) {
+    let frame = Frame { t_end: cfg.horizon.t_end, every: cfg.horizon.sample_every, none: &runs.none };
+    let view = |tag, desc, first, out, err, bounds| RunView { tag, desc, first, out, err, bounds };
+    paired(
+        &view("ftdo", PROPOSED, 7, &runs.ftdo, &runs.errors[1], bounds),
+        &view("dobc", DOBC, 15, &runs.dobc, &runs.errors[2], [None, None]),
+        &frame,
+    )
+}
+
+/// Figures 3–20 in three groups (no control, FTDO, DOBC): each run's field figures, then its
+/// time series (`series`, from [`series_figures`]).
+pub fn paper_groups(cfg: &Config, fields: FieldFigures, series: (Vec<Figure>, Vec<Figure>)) -> Vec<Group> {
+    let (lf, ld) = series;
     vec![
         Group {
             id: "paper-none",
             title: "Without control (paper Figures 3–4)".into(),
             intro: format!("τ1 = τ2 = 0; the disturbances (56) act. {}", period_note(cfg)),
-            figures: vec![
-                heat(3, "none", wo, Field::Q, none, &c, None, runs.errors[0].max_q),
-                surface(3, "none", wo, Field::Q, none, &c, None),
-                heat(4, "none", wo, Field::Theta, none, &c, None, runs.errors[0].max_theta),
-                surface(4, "none", wo, Field::Theta, none, &c, None),
-            ],
+            figures: fields.none,
         },
         Group {
             id: "paper-ftdo",
             title: "Proposed control: law (15) with the finite-time disturbance observer (paper Figures 5–12)".into(),
             intro: "The configured gains; the values the paper leaves out are listed under Assumptions.".into(),
-            figures: [controlled(5, "ftdo", pf, ftdo, &c, (sq, st, 13), &runs.errors[1]), lf].concat(),
+            figures: [fields.ftdo, lf].concat(),
         },
         Group {
             id: "paper-dobc",
             title: "Comparison: DOBC (57), corrected (paper Figures 13–20)".into(),
             intro: "Same law (15) and gains, with the linear disturbance observer of (57).".into(),
-            figures: [controlled(13, "dobc", db, dobc, &c, (sq, st, 5), &runs.errors[2]), ld].concat(),
+            figures: [fields.dobc, ld].concat(),
         },
     ]
 }

@@ -43,20 +43,48 @@ fn sweep(cfg: &Config, pencil: &WPencil, omega1: f64) -> Option<Sweep> {
         .into_iter()
         .unzip();
     let crossing =
-        ratios.windows(2).zip(tight.windows(2)).find(|(_, t)| t[0] > 0.0 && t[1] <= 0.0).and_then(|(r, _)| {
-            let (mut x0, mut x1) = (r[0].ln(), r[1].ln());
-            for _ in 0..60 {
-                let m = 0.5 * (x0 + x1);
-                let (l2, _) = pencil.constants(m.exp() * b, b).ok()?;
-                if l2 > 0.0 {
-                    x0 = m;
-                } else {
-                    x1 = m;
-                }
-            }
-            Some((0.5 * (x0 + x1)).exp())
+        ratios.windows(2).zip(tight.windows(2)).find(|(_, t)| t[0] > 0.0 && t[1] <= 0.0).and_then(|(r, t)| {
+            let ratio_at = |x: f64| pencil.constants(x.exp() * b, b).ok().map(|(l2, l1)| l2 / l1);
+            zero_crossing((r[0].ln(), t[0]), (r[1].ln(), t[1]), ratio_at).map(f64::exp)
         });
     Some(Sweep { ratios, tight, printed, crossing })
+}
+
+/// Bracket width (in ln a/b, so relative in a/b) at which [`zero_crossing`] stops.
+const CROSSING_WIDTH: f64 = 1e-12;
+
+/// The zero of `f` between `lo` = (x, f(x) > 0) and `hi` = (x, f(x) ≤ 0) by regula falsi with the
+/// Illinois modification (superlinear: the ratio is smooth there), until the bracket is at most
+/// [`CROSSING_WIDTH`] wide or f is exactly 0 (at most 100 evaluations, then the bracket's
+/// midpoint); None if `f` fails.
+fn zero_crossing(lo: (f64, f64), hi: (f64, f64), f: impl Fn(f64) -> Option<f64>) -> Option<f64> {
+    let ((mut x0, mut f0), (mut x1, mut f1)) = (lo, hi);
+    let mut kept = 0i8; // which end stayed last time (+1 the low end, −1 the high end)
+    for _ in 0..100 {
+        if x1 - x0 <= CROSSING_WIDTH {
+            break;
+        }
+        let secant = (x0 * f1 - x1 * f0) / (f1 - f0);
+        let m = if secant > x0 && secant < x1 { secant } else { 0.5 * (x0 + x1) };
+        let fm = f(m)?;
+        if fm == 0.0 {
+            return Some(m);
+        }
+        if fm > 0.0 {
+            (x0, f0) = (m, fm);
+            if kept == -1 {
+                f1 *= 0.5;
+            }
+            kept = -1;
+        } else {
+            (x1, f1) = (m, fm);
+            if kept == 1 {
+                f0 *= 0.5;
+            }
+            kept = 1;
+        }
+    }
+    Some(0.5 * (x0 + x1))
 }
 
 fn chart_of(cfg: &Config, s: &Sweep, omega1: f64, elements: usize) -> LineChart {
@@ -95,7 +123,7 @@ fn caption_of(s: &Sweep, omega1: f64, elements: usize, chart: &LineChart, rescal
         Some(x) => cap
             .t("it crosses zero at a/b = ")
             .n("w-ratio.crossing", x)
-            .t(format!(" 1/s (bisection; ω₁ of the {elements}-element space, an upper bound of ω₁), against the converged ω₁ = "))
+            .t(format!(" 1/s (to 1e-12 relative; ω₁ of the {elements}-element space, an upper bound of ω₁), against the converged ω₁ = "))
             .n("w-ratio.omega1", omega1)
             .t(" 1/s."),
         None => cap.t("it does not change sign on this sweep."),
@@ -132,4 +160,47 @@ pub fn w_ratio_figure(cfg: &Config, omega1: f64, elements: usize) -> Option<Figu
         caption: cap.0,
         chart: Chart::Line(chart),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The sweep's zero crossing is ω₁ of the Galerkin space, which the W-bounds row computes
+    /// another way (`a_over_b_max`: the generalized eigenproblem of the mass and stiffness
+    /// forms); both agree to the crossing's stated width, at the paper's wing and off it.
+    #[test]
+    fn the_crossing_is_the_galerkin_omega1() {
+        let si = |c: &mut Config| {
+            (c.wing.span, c.wing.ei, c.wing.gj, c.wing.rho, c.wing.ip) = (6.0, 1e7, 1e6, 100.0, 10.0);
+            (c.control.a, c.control.b) = (2.0, 50.0);
+        };
+        let other_b = |c: &mut Config| c.control.b = 3000.0;
+        let paper = |_: &mut Config| {};
+        let cases: [&dyn Fn(&mut Config); 3] = [&paper, &other_b, &si];
+        for set in cases {
+            let mut cfg = Config::paper();
+            set(&mut cfg);
+            let elements = 16;
+            let reference = wingcheck_claims::wbounds::a_over_b_max(
+                &cfg,
+                wingcheck_claims::lyapunov::Coupling::Corrected,
+                elements,
+            )
+            .unwrap();
+            let omega1 = wingcheck_claims::theory::w_threshold(&cfg).unwrap().value;
+            let s = sweep(&cfg, &WPencil::new(&cfg, elements).unwrap(), omega1).unwrap();
+            let x = s.crossing.expect("the sweep spans ω₁");
+            assert!((x / reference - 1.0).abs() < 1e-9, "crossing {x} against ω₁ of the space {reference}");
+        }
+    }
+
+    #[test]
+    fn regula_falsi_finds_a_known_root() {
+        // Reference: x³ − 2 has its real root at 2^(1/3) (f decreasing here: 2 − x³).
+        let root = zero_crossing((1.0, 1.0), (2.0, -6.0), |x| Some(2.0 - x * x * x)).unwrap();
+        assert!((root - 2f64.cbrt()).abs() < 2.0 * CROSSING_WIDTH, "{root}");
+        // a failing evaluation is no crossing
+        assert_eq!(zero_crossing((1.0, 1.0), (2.0, -6.0), |_| None), None);
+    }
 }

@@ -171,18 +171,16 @@ impl EnclosureSummary {
     /// The coarsest enclosure of [`LADDER`] that decides where the configured a/b lies (below
     /// or above ω₁), or [`PLAN`]'s when none does (a/b inside even the tightest, or b = 0).
     pub fn deciding(cfg: &Config) -> Self {
-        for plan in &LADDER[..LADDER.len() - 1] {
-            let e = Self::with_plan(cfg, plan);
-            if matches!(e.position(), Some(Position::Below | Position::Above)) {
-                return e;
-            }
-        }
-        Self::of(cfg)
+        Self::summarise(cfg, deciding(cfg))
     }
 
     /// The enclosure with `plan` and where the configured a/b lies.
     pub fn with_plan(cfg: &Config, plan: &Plan) -> Self {
-        let r = compute_with(cfg, plan).and_then(|c| Ok((c, config_ratio(cfg)?)));
+        Self::summarise(cfg, compute_with(cfg, plan))
+    }
+
+    fn summarise(cfg: &Config, computed: Result<Computed, CertifyError>) -> Self {
+        let r = computed.and_then(|c| Ok((c, config_ratio(cfg)?)));
         match r {
             Ok((c, ratio)) => {
                 let e = &c.1;
@@ -534,13 +532,31 @@ fn float_certificate(
     })
 }
 
-type Computed = Arc<(Omega1Certificate, Omega1Enclosure)>;
+/// A certificate and its exactly checked enclosure (shared: [`compute_with`] caches it).
+pub type Computed = Arc<(Omega1Certificate, Omega1Enclosure)>;
 
 /// The certificate for `cfg`'s wing and its exactly checked enclosure (cached per wing: a pure
 /// function of the wing's decimals other than ξ). A shift that the exact count refutes (float eigenvalue
 /// error above its margin) gets a margin 100× larger, at most three times.
 pub fn compute(cfg: &Config) -> Result<Computed, CertifyError> {
     compute_with(cfg, &PLAN)
+}
+
+/// The certificate of the coarsest plan of [`LADDER`] whose enclosure decides where the
+/// configured a/b lies (below or above ω₁), or [`PLAN`]'s when none does (a/b inside even the
+/// tightest, or b = 0): the enclosure the W-bounds row quotes, and the one a report's
+/// certificate set carries. A plan whose computation fails is passed over.
+pub fn deciding(cfg: &Config) -> Result<Computed, CertifyError> {
+    if let Some(ratio) = config_ratio(cfg)? {
+        for plan in &LADDER[..LADDER.len() - 1] {
+            if let Ok(c) = compute_with(cfg, plan) {
+                if matches!(c.1.position(&ratio), Position::Below | Position::Above) {
+                    return Ok(c);
+                }
+            }
+        }
+    }
+    compute(cfg)
 }
 
 /// [`compute`] with other sizes (refused beyond [`LIMITS`]).
