@@ -3,16 +3,18 @@
 //! is a choice, written positionally without an exponent: `0.00001`, `-0`, `1e21` as
 //! `1000000000000000000000`).
 //!
-//! The digits come from the `ryu` crate, whose shortest representation is the same
-//! definition except at an exact tie between two shortest candidates (ryu takes the even last
-//! digit, the standard library the larger magnitude), which is detected exactly here
-//! ([`is_tie_above`]). ryu's own text is the standard library's for |x| from 1e-5 to 1e16
-//! (bar an integer's `.0` and the ties); other magnitudes are laid out positionally here.
-//! Written by hand because no crate writes this exact form; what it buys: 39 ns a number
-//! against `format!`'s 110 ns, and a run's CSV in 2.5 ms instead of 4.9 ms (2026-12-04,
-//! 2-core AMD EPYC, one run of each). `tests/number_format.rs` checks the text against
+//! The digits come from the `zmij` crate (Schubfach), whose shortest representation is the
+//! same definition except at an exact tie between two shortest candidates (zmij, like ryu,
+//! takes the even last digit, the standard library the larger magnitude), which is detected
+//! exactly here ([`is_tie_above`]). zmij's own text is the standard library's for |x| from 1e-5
+//! to 1e16 (bar an integer's `.0` and the ties); other magnitudes are laid out positionally
+//! here. Written by hand because no crate writes this exact form; what it buys: 39 ns a number
+//! against `format!`'s 110 ns with ryu's digits, and a run's CSV in 2.5 ms instead of 4.9 ms
+//! (2026-12-04, 2-core AMD EPYC, one run of each); zmij's digits took 19 ns against ryu's 37–47
+//! ns on two million random values (2026-12-06, same machine), with the same text but `e+` for a
+//! positive exponent, which [`lay_out`] reads. `tests/number_format.rs` checks the text against
 //! `format!("{x}")` bit pattern by bit pattern (random patterns, every power of two, the
-//! subnormals' edges, integers around 2⁵³, decimal round numbers, 998 ties).
+//! subnormals' edges, integers around 2⁵³, decimal round numbers, the ties).
 
 /// Longest text laid out in place; longer ones (|x| ≥ 1e40 or below 1e-20 or so, which no
 /// wingcheck output has in practice) are written by `format!` itself.
@@ -25,9 +27,9 @@ pub fn push_number(out: &mut String, x: f64) {
     if !x.is_finite() {
         return write!(out, "{x}").expect("writing to a String cannot fail");
     }
-    let mut buffer = ryu::Buffer::new();
+    let mut buffer = zmij::Buffer::new();
     let text = buffer.format_finite(x);
-    // ryu's positional form (|x| from 1e-5 to 1e16) is the standard library's, except that an
+    // zmij's positional form (|x| from 1e-5 to 1e16) is the standard library's, except that an
     // integer ends in ".0" and a tie may round the other way. Decided from x, not by searching
     // the text for an 'e' (≈ 2 % of a default `simulate`): 1e-5 ≤ |x| < 1e15 is positional for
     // certain (the shortest digits of such an x stay within [1e-5, 1e16)); elsewhere, and at
@@ -54,10 +56,10 @@ pub fn push_number(out: &mut String, x: f64) {
     }
 }
 
-/// The positional form of ryu's text `[-]int[.frac][e[-]exp]` of the finite `x`, with the
+/// The positional form of zmij's text `[-]int[.frac][e(+|-)exp]` of the finite `x`, with the
 /// standard library's choice at a tie; `None` where it is longer than [`MAX_LAID_OUT`].
 fn lay_out(x: f64, text: &[u8]) -> Option<([u8; MAX_LAID_OUT], usize)> {
-    // value = 0.d₁d₂… × 10^point over the digits (ryu writes at most 17 significant digits
+    // value = 0.d₁d₂… × 10^point over the digits (zmij writes at most 17 significant digits
     // and 5 leading zeros)
     let mut digits = [0u8; 32];
     let (mut len, mut int_len, mut in_fraction, mut exponent) = (0usize, 0i32, false, 0i32);
@@ -67,7 +69,11 @@ fn lay_out(x: f64, text: &[u8]) -> Option<([u8; MAX_LAID_OUT], usize)> {
         match text[i] {
             b'.' => in_fraction = true,
             b'e' => {
-                let (sign, start) = if text.get(i + 1) == Some(&b'-') { (-1, i + 2) } else { (1, i + 1) };
+                let (sign, start) = match text.get(i + 1) {
+                    Some(b'-') => (-1, i + 2),
+                    Some(b'+') => (1, i + 2),
+                    _ => (1, i + 1),
+                };
                 exponent = sign * text[start..].iter().fold(0i32, |acc, &c| acc * 10 + i32::from(c - b'0'));
                 break;
             }
@@ -96,7 +102,7 @@ fn lay_out(x: f64, text: &[u8]) -> Option<([u8; MAX_LAID_OUT], usize)> {
     if first == len {
         return Some((out, at + 1));
     }
-    // an exact tie between two shortest candidates: ryu takes the even last digit, the
+    // an exact tie between two shortest candidates: zmij takes the even last digit, the
     // standard library the larger magnitude
     if is_tie_above(x, &digits[first..len], point) {
         let mut j = len;

@@ -1,6 +1,6 @@
 //! `wingcheck_io::number` against its definition, Rust's `format!("{x}")` (the standard
 //! library's shortest round-trip formatting, Grisu with the exact Dragon fallback: an
-//! implementation independent of the ryu digits `number` lays out). Text for text, on the
+//! implementation independent of the zmij digits `number` lays out). Text for text, on the
 //! f64s where the two could part: random bit patterns over the whole range, every power of two
 //! (the asymmetric rounding intervals), the subnormals' edges, integers around 2⁵³, decimal
 //! round numbers and their neighbours, and the signed zeros and non-finite values.
@@ -34,7 +34,7 @@ fn random_bit_patterns_print_as_the_standard_library_does() {
 
 /// Odd 53-bit mantissas times 2^e for e from −60 to 60: short exact decimal expansions, where
 /// the exact ties between two shortest candidates are (2^−25 and 1394865425023536.25 are such
-/// ties: ryu's digits end in 2 there, the standard library's in 3).
+/// ties: zmij's digits end in 2 there, the standard library's in 3).
 #[test]
 fn ties_print_as_the_standard_library_does() {
     let mut state: u64 = 0x2545_f491_4f6c_dd1d;
@@ -48,11 +48,11 @@ fn ties_print_as_the_standard_library_does() {
             let x = m * 2f64.powi(e);
             same(x);
             same(-x);
-            let (ours, std) = (ryu::Buffer::new().format_finite(x).to_string(), format!("{x}"));
+            let (ours, std) = (zmij::Buffer::new().format_finite(x).to_string(), format!("{x}"));
             ties += usize::from(significant_digits(&ours) != significant_digits(&std));
         }
     }
-    // measured: 998 of the 242 000 (ryu's even last digit, the standard library's larger one)
+    // measured: 998 of the 242 000 (zmij's even last digit, the standard library's larger one)
     println!("{ties} ties");
     assert!(ties > 0, "no tie among the values: the test does not reach the case it is for");
 }
