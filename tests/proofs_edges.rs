@@ -103,6 +103,21 @@ fn verify_can_be_pinned_to_a_configuration() {
     assert!(err.contains("REJECTED") && err.contains("control.a (set: 1.0, expected: 0.5)"), "{err}");
 }
 
+/// b = 0 (a valid weight: no a/b) certifies and verifies; the enclosure's conclusion says it
+/// places no ratio (verify divided by b and panicked there before).
+#[test]
+fn a_set_with_b_zero_verifies() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("p");
+    let ps = p.to_str().unwrap();
+    let o = wingcheck(&["certify", "--out", ps, "--set", "control.b=0"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = wingcheck(&["verify", ps, "--set", "control.b=0"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(out.contains("with b = 0 there is no ratio a/b to place"), "{out}");
+}
+
 #[test]
 fn duplicate_keys_unknown_and_repeated_claims_and_needs_are_refused() {
     let dir = tempfile::tempdir().unwrap();

@@ -392,12 +392,27 @@ pub fn render_set(cfg: &Config) -> Result<Vec<(String, String)>, CertifyError> {
     render_files(cfg, &certificates(cfg)?, &omega1::compute(cfg)?)
 }
 
+/// The set a report carries ([`render_deciding_set`]).
+#[derive(Debug, Clone)]
+pub struct DecidingSet {
+    /// `(file name, text)` pairs, index last.
+    pub files: Vec<(String, String)>,
+    /// Whether its ω₁ enclosure is coarser than the one `certify` writes ([`omega1::PLAN`]'s):
+    /// false where nothing coarser decides (b = 0, or a/b within the coarser enclosures).
+    pub coarser_enclosure: bool,
+}
+
 /// [`render_set`] with the ω₁ enclosure the W-bounds row quotes ([`omega1::deciding`]: the
 /// coarsest that decides where the configured a/b lies) instead of the tightest: the set a
 /// report carries, so that its `proofs/` proves what its ledger states. The other files are
 /// [`render_set`]'s.
-pub fn render_deciding_set(cfg: &Config) -> Result<Vec<(String, String)>, CertifyError> {
-    render_files(cfg, &certificates(cfg)?, &omega1::deciding(cfg)?)
+pub fn render_deciding_set(cfg: &Config) -> Result<DecidingSet, CertifyError> {
+    let enclosure = omega1::deciding(cfg)?;
+    let c = &enclosure.0;
+    let plan =
+        omega1::Plan { modes: c.modes, inertia_elements: c.inertia_elements, rayleigh_elements: c.rayleigh_elements };
+    let files = render_files(cfg, &certificates(cfg)?, &enclosure)?;
+    Ok(DecidingSet { files, coarser_enclosure: plan != omega1::PLAN })
 }
 
 fn render_files(

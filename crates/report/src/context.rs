@@ -58,6 +58,8 @@ pub struct Page {
     pub notation: Vec<wingcheck_claims::display::Symbol>,
     /// The certificate set in `proofs/` (file names), or why there is none.
     pub proofs: Result<Vec<String>, String>,
+    /// Whether its ω₁ enclosure is coarser than the one `wingcheck certify` writes.
+    pub coarser_enclosure: bool,
 }
 
 /// Build and run provenance.

@@ -158,7 +158,7 @@ pub struct Rendered {
 /// the same size: measured 2026-12-06 on the data at the paper's configuration, at b = 3000 and
 /// with the explicit observer, 1.615, 2.002 and 1.616 MB at 4 against 1.614, 2.010 and 1.614 MB at
 /// 6, in 0.11 against 0.52 s (one thread). 5 is 0.4 % smaller at the paper's point and 50 %
-/// slower; 1–3 are 8–40 % larger, 7–9 larger and slower still.
+/// slower; 1–3 are 6–40 % larger, 7–9 larger and slower still.
 const GZIP_LEVEL: u32 = 4;
 
 /// `text` gzip-compressed, deterministically (no file name, time 0, [`GZIP_LEVEL`]).

@@ -35,6 +35,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use rayon::prelude::*;
+use wingcheck_claims::certify::DecidingSet;
 use wingcheck_claims::{check_all_with, config_sha256, CheckSettings, Ledger, Study};
 use wingcheck_model::Config;
 
@@ -86,10 +87,18 @@ pub struct ReportOptions<'a> {
     pub command_line: Option<&'a str>,
 }
 
-/// Stage weights of the overall fraction (the first three run concurrently, with the
-/// certificates, which report no progress).
-const WEIGHTS: [(&str, f64); 6] =
-    [("ledger", 0.35), ("simulations", 0.15), ("region map", 0.35), ("charts", 0.1), ("html", 0.04), ("write", 0.01)];
+/// Stage weights of the overall fraction. The ledger runs concurrently with the simulations,
+/// the region map, the certificates (which report no progress) and, after those, the run charts
+/// (the figures that need no ledger); the charts that need the ledger follow it.
+const WEIGHTS: [(&str, f64); 7] = [
+    ("ledger", 0.35),
+    ("simulations", 0.15),
+    ("region map", 0.35),
+    ("run charts", 0.08),
+    ("charts", 0.02),
+    ("html", 0.04),
+    ("write", 0.01),
+];
 
 /// Turns per-stage counts into one monotone fraction.
 struct Tracker<'a> {
@@ -131,7 +140,8 @@ impl<'a> Tracker<'a> {
 pub struct StageTiming {
     /// Stage name.
     pub name: String,
-    /// Wall time (s). `ledger`, `simulations`, `region map` and `certificates` run concurrently.
+    /// Wall time (s). `ledger` runs concurrently with `simulations`, `region map` and
+    /// `certificates`, and with `run charts` after them.
     pub seconds: f64,
 }
 
@@ -202,17 +212,17 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     // SVG + CSV of each of them, in parallel.
     let t = Instant::now();
     let late: Vec<&Figure> = series.0.iter().chain(&series.1).chain(row_figs.iter().flatten()).collect();
-    let (late_files, late_records) = render_charts(&late, &staging, progress)?;
+    let (late_files, late_records) = render_charts("charts", &late, &staging, progress)?;
     files.extend(late_files);
     csv_records.extend(late_records);
     csv_records.sort_by(|a, b| a.file.cmp(&b.file));
     let groups = paper::paper_groups(cfg, fields, series);
-    let region_fig = region_fig.map(|(f, _)| f);
     // the W-bounds row's λ2/λ1 against a/b (drawn early: it needs no ledger)
     if let Some(i) = ledger.rows.iter().position(|r| r.id == wingcheck_claims::ClaimId::WBounds) {
         row_figs[i].extend(w_ratio);
     }
     // the certificate set for the configured point (re-checkable with `wingcheck verify proofs`)
+    let coarser_enclosure = proofs.as_ref().is_ok_and(|s| s.coarser_enclosure);
     let proofs = write_proofs(proofs, &staging, &mut files)?;
     timings.push(StageTiming { name: "charts".into(), seconds: t.elapsed().as_secs_f64() });
 
@@ -225,6 +235,7 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
         accuracy: (&acc_fig, acc_rows),
         rows: &row_figs,
         proofs,
+        coarser_enclosure,
     };
     let mut page = page(cfg, opts, &ledger, figures)?;
     page.timings = timings
@@ -265,14 +276,14 @@ pub const PROOFS: &str = "proofs";
 /// The certificate set into `proofs/` of the staging directory (names appended to `files`);
 /// the set's file names, or why `certify` could not make it.
 fn write_proofs(
-    set: Result<Vec<(String, String)>, wingcheck_claims::certify::CertifyError>,
+    set: Result<DecidingSet, wingcheck_claims::certify::CertifyError>,
     staging: &atomic::Staging,
     files: &mut Vec<String>,
 ) -> Result<Result<Vec<String>, String>, ReportError> {
     match set {
         Ok(set) => {
             let mut names = Vec::new();
-            for (name, text) in &set {
+            for (name, text) in &set.files {
                 files.push(staging.write(&format!("{PROOFS}/{name}"), text.as_bytes())?);
                 names.push(name.clone());
             }
@@ -287,7 +298,7 @@ struct Computed {
     ledger: Ledger,
     runs: runs::Runs,
     /// The certificate set for the configured point ([`PROOFS`]), or why it could not be made.
-    proofs: Result<Vec<(String, String)>, wingcheck_claims::certify::CertifyError>,
+    proofs: Result<DecidingSet, wingcheck_claims::certify::CertifyError>,
     early: Early,
 }
 
@@ -296,8 +307,8 @@ struct Early {
     fields: paper::FieldFigures,
     comparison: Vec<Figure>,
     accuracy: (Figure, Vec<accuracy::AccuracyRow>),
-    /// The region map's figure and the ω₁ (rad/s) it was drawn with.
-    region_fig: Option<(Figure, f64)>,
+    /// The region map's figure.
+    region_fig: Option<Figure>,
     /// The W-bounds row's λ2/λ1 against a/b, through zero at ω₁ ([`wratio`]).
     w_ratio: Option<Figure>,
     /// The files written.
@@ -317,7 +328,7 @@ fn early_figures(
     let omega1 = region.map(|r| r.omega1).or_else(|| paper::omega1(cfg));
     let elements = CheckSettings::default().uub_lambda2_elements;
     let ((region_fig, fields), ((comparison, accuracy), w_ratio)) = rayon::join(
-        || (region.map(|r| (r.figure(), r.omega1)), paper::field_figures(cfg, runs)),
+        || (region.map(|r| r.figure()), paper::field_figures(cfg, runs)),
         || {
             rayon::join(
                 || (paper::comparison_figures(cfg, runs), accuracy::accuracy(&runs.accuracy)),
@@ -329,10 +340,10 @@ fn early_figures(
         .all()
         .chain(&comparison)
         .chain(std::iter::once(&accuracy.0))
-        .chain(region_fig.iter().map(|(f, _)| f))
+        .chain(region_fig.iter())
         .chain(w_ratio.iter())
         .collect();
-    let (files, records) = render_charts(&all, staging, progress)?;
+    let (files, records) = render_charts("run charts", &all, staging, progress)?;
     Ok(Early { fields, comparison, accuracy, region_fig, w_ratio, files, records })
 }
 
@@ -384,7 +395,7 @@ fn compute(
         StageTiming { name: "simulations".into(), seconds: st },
         StageTiming { name: "region map".into(), seconds: rt },
         StageTiming { name: "certificates".into(), seconds: pt },
-        StageTiming { name: "run figures and charts".into(), seconds: et },
+        StageTiming { name: "run charts".into(), seconds: et },
     ];
     Ok((Computed { ledger, runs, proofs, early: early? }, timings))
 }
@@ -395,9 +406,11 @@ fn timed<T>(f: impl FnOnce() -> T) -> (T, f64) {
     (f(), t.elapsed().as_secs_f64())
 }
 
-/// The SVG and CSV of every figure, written into the staging directory in parallel; the file
-/// names written and each CSV's record for provenance.json (sorted by file).
+/// The SVG and CSV of every figure, written into the staging directory in parallel (progress
+/// reported as `stage`); the file names written and each CSV's record for provenance.json
+/// (sorted by file).
 fn render_charts(
+    stage: &str,
     all: &[&Figure],
     staging: &atomic::Staging,
     progress: Option<&(dyn Fn(Progress) + Sync)>,
@@ -413,7 +426,7 @@ fn render_charts(
                 names.push(staging.write(&f.data_file(), csv)?);
             }
             let k = done.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
-            report(progress, "charts", k, total);
+            report(progress, stage, k, total);
             let record =
                 r.csv.is_some().then(|| wingcheck_io::FileRecord { file: f.data_file(), contents: r.contents });
             Ok::<_, ReportError>((names, record))
@@ -436,6 +449,8 @@ struct PageFigures<'a> {
     accuracy: (&'a Figure, Vec<accuracy::AccuracyRow>),
     rows: &'a [Vec<Figure>],
     proofs: Result<Vec<String>, String>,
+    /// Whether `proofs/`'s ω₁ enclosure is coarser than the one `wingcheck certify` writes.
+    coarser_enclosure: bool,
 }
 
 /// The template's context (wall times are filled in by the caller).
@@ -490,6 +505,7 @@ fn page(cfg: &Config, opts: &ReportOptions, ledger: &Ledger, figs: PageFigures) 
         changes: top::config_changes(cfg),
         notation: wingcheck_claims::display::notation(cfg),
         proofs: figs.proofs.clone(),
+        coarser_enclosure: figs.coarser_enclosure,
     })
 }
 

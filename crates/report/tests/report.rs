@@ -435,3 +435,22 @@ fn overall_progress_never_goes_back_and_ends_at_one() {
     assert!(v.windows(2).all(|w| w[1] >= w[0]), "the overall fraction went back: {v:?}");
     assert!((v.last().unwrap() - 1.0).abs() < 1e-12, "ends at {}", v.last().unwrap());
 }
+
+/// The page says the set's ω₁ enclosure is coarser than `certify`'s only when it is: at the
+/// paper's point (a/b = 1, far above ω₁ ≈ 0.12 1/s) the coarsest plan decides (4 modes in the
+/// file); with b = 0 nothing is placed, so the set carries the tightest enclosure (36 modes,
+/// `certify`'s), and the sentence is absent.
+#[test]
+fn the_enclosure_sentence_matches_the_sets_plan() {
+    let tmp = tempfile::tempdir().unwrap();
+    let sentence = "the coarsest that decides where the configured a/b lies";
+    for (name, sets, coarser) in [("paper", &[][..], true), ("b0", &["control.b=0"][..], false)] {
+        let out = tmp.path().join(name);
+        render(&small_cfg(sets), &out);
+        let html = read(&out.join("index.html"));
+        let cert: serde_json::Value = serde_json::from_str(&read(&out.join("proofs/omega1-enclosure.json"))).unwrap();
+        let modes = cert["modes"].as_u64().unwrap() as usize;
+        assert_eq!(modes < wingcheck_claims::certify::omega1::PLAN.modes, coarser, "{name}: {modes} modes");
+        assert_eq!(html.contains(sentence), coarser, "{name}");
+    }
+}

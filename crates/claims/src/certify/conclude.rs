@@ -5,7 +5,7 @@
 use std::collections::BTreeSet;
 
 use num_rational::BigRational;
-use num_traits::Signed;
+use num_traits::{Signed, Zero};
 
 use super::facts::{mu3_system, show, CheckedFact, ExactParams};
 use super::manifest::{bad, role, Manifest, VerifiedCert, INDEX, ROLES};
@@ -176,12 +176,17 @@ fn statements(
 /// docs/model.md "W ≻ 0 iff a/b < ω₁").
 fn enclosure_conclusion(e: &Omega1Enclosure, p: &ExactParams) -> String {
     let [a, b] = &p.weights;
-    let ratio = a / b;
-    let head = format!(
-        "{} ≤ ω₁ ≤ {} rad/s for the continuous wing, so ",
+    let interval = format!(
+        "{} ≤ ω₁ ≤ {} rad/s for the continuous wing",
         omega1::exact_decimal(&e.lower),
         omega1::exact_decimal(&e.upper)
     );
+    if b.is_zero() {
+        // no ratio a/b to place (and no division by zero)
+        return format!("{interval}; with b = 0 there is no ratio a/b to place against it, so it decides nothing about W ≻ 0 at these weights");
+    }
+    let ratio = a / b;
+    let head = format!("{interval}, so ");
     match e.position(&ratio) {
         Position::Below => {
             format!("{head}a/b = {} < ω̲₁: W is positive definite for the continuous model", show(&ratio))
