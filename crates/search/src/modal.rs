@@ -15,7 +15,7 @@ use std::sync::{Arc, Mutex};
 
 use serde::Serialize;
 use wingcheck_model::Config;
-use wingcheck_sim::modal::{drive, ModalLoop, ModalState, ObserverSignal, RecordedSignal, Recorder};
+use wingcheck_sim::modal::{drive, ModalLoop, ModalState, ObserverSignal, Reads, RecordedSignal, Recorder};
 use wingcheck_sim::{Sample, SimError, SquareIntegral};
 
 pub use wingcheck_sim::modal::ModalBasis;
@@ -123,16 +123,8 @@ impl Recorder for Trace {
         self.squares.add_squares(squares);
     }
 
-    fn interval_squares(&self) -> bool {
-        false
-    }
-
-    fn reads_state(&self) -> bool {
-        false
-    }
-
-    fn reads_tip_states(&self) -> bool {
-        false
+    fn reads(&self) -> Reads {
+        Reads::OUTPUTS
     }
 
     fn output(&mut self, _: &ModalState, s: &Sample, _: usize) -> Result<(), SimError> {

@@ -1,11 +1,11 @@
-//! The driver's lean outputs (`Recorder::reads_state` false, as the search's recorder): where
+//! The driver's lean outputs (`Reads::state` false, as the search's recorder): where
 //! the loop steps in the eigenbasis, the outputs before the last skip the O(N²) reconstruction
 //! of η, ζ and take the tip values from the step and an O(N) upper bound of the energy. Checked
 //! against the same run with a recorder that reads the state (the reconstruction at every
 //! output), on the paper wing and off it.
 
 use wingcheck_model::{apply_overrides, Config};
-use wingcheck_sim::modal::{drive, ModalBasis, ModalLoop, ModalState, RecordedSignal, Recorder};
+use wingcheck_sim::modal::{drive, ModalBasis, ModalLoop, ModalState, Reads, RecordedSignal, Recorder};
 use wingcheck_sim::{Sample, SimError};
 
 struct Outputs {
@@ -34,11 +34,8 @@ impl Recorder for Outputs {
     fn deferred_squares(&mut self, sq: [f64; 2]) {
         self.squares = [self.squares[0] + sq[0], self.squares[1] + sq[1]];
     }
-    fn interval_squares(&self) -> bool {
-        false
-    }
-    fn reads_state(&self) -> bool {
-        self.reads_state
+    fn reads(&self) -> Reads {
+        Reads { interval_squares: false, state: self.reads_state, tip_states: true }
     }
 }
 

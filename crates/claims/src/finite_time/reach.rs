@@ -5,7 +5,7 @@
 use wingcheck_control::{ChannelObserver, ObserverGain, TipChannel};
 use wingcheck_model::{Config, ObserverRule, TipDisturbance};
 use wingcheck_sim::metrics::max_abs;
-use wingcheck_sim::modal::{drive, ModalBasis, ModalLoop, ModalState, ObserverSignal, Recorder};
+use wingcheck_sim::modal::{drive, ModalBasis, ModalLoop, ModalState, ObserverSignal, Reads, Recorder};
 use wingcheck_sim::{Sample, Stepper};
 
 use crate::ClaimsError;
@@ -393,16 +393,8 @@ impl Recorder for EachSample<'_> {
 
     fn deferred_squares(&mut self, _: [f64; 2]) {}
 
-    fn interval_squares(&self) -> bool {
-        false
-    }
-
-    fn reads_state(&self) -> bool {
-        false
-    }
-
-    fn reads_tip_states(&self) -> bool {
-        false
+    fn reads(&self) -> Reads {
+        Reads::OUTPUTS
     }
 }
 

@@ -49,35 +49,45 @@ pub trait Recorder {
     /// are the exact ∫τ_c² over the output interval.
     fn deferred_squares(&mut self, squares: [f64; 2]);
 
-    /// Whether the recorder reads ∫τ² per output interval (the default) or only over the whole
-    /// run. Then a scheme that defers part of its ∫τ² to checkpoints adds that part once, at
-    /// the last output ([`ModalLoop::checkpoint`]): the intervals' values in between are not
-    /// the intervals' integrals, their sum over the run is the run's (the deferred terms
-    /// telescope), and the O(N r) work of each intermediate checkpoint's part is saved.
-    fn interval_squares(&self) -> bool {
-        true
+    /// What the recorder reads beyond each output's tip values, τ and observer output
+    /// ([`Reads`]); the default, [`Reads::ALL`], is always correct, a leaner value saves work.
+    fn reads(&self) -> Reads {
+        Reads::ALL
     }
+}
 
-    /// Whether the recorder reads the modal state at every output (the default) or only the
-    /// tip values, τ and the observer's output there, and the state at the last output. With
-    /// false (and [`Recorder::interval_squares`] false), where the scheme carries the state in
-    /// the eigenbasis, the outputs before the last skip its O(N²) reconstruction: their tip
-    /// values are the step's own (UᵀV x̂ from precomputed rows, equal to the reconstructed
-    /// ones to round-off), their `energy` is the O(N) upper bound
-    /// [`ModalLoop::energy_bound`], and η, ζ, w and the quantities formed from them are the
-    /// previous checkpoint's. The divergence check gives the same verdict: where the bound
-    /// passes, the energy passes; where it does not, the state is reconstructed and checked.
-    fn reads_state(&self) -> bool {
-        true
-    }
+/// What a [`Recorder`] reads, so that the driver skips the work nobody reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Reads {
+    /// ∫τ² per output interval (true) or only over the whole run. With false, a scheme that
+    /// defers part of its ∫τ² to checkpoints adds that part once, at the last output
+    /// ([`ModalLoop::checkpoint`]): the intervals' values in between are not the intervals'
+    /// integrals, their sum over the run is the run's (the deferred terms telescope), and the
+    /// O(N r) work of each intermediate checkpoint's part is saved.
+    pub interval_squares: bool,
+    /// The modal state at every output (true) or only the tip values, τ and the observer's
+    /// output there, and the state at the last output. With false (and `interval_squares`
+    /// false), where the scheme carries the state in the eigenbasis, the outputs before the
+    /// last skip its O(N²) reconstruction: their tip values are the step's own (UᵀV x̂ from
+    /// precomputed rows, equal to the reconstructed ones to round-off), their `energy` is the
+    /// O(N) upper bound [`ModalLoop::energy_bound`], and η, ζ, w and the quantities formed from
+    /// them are the previous checkpoint's. The divergence check gives the same verdict: where
+    /// the bound passes, the energy passes; where it does not, the state is reconstructed and
+    /// checked.
+    pub state: bool,
+    /// The tip boundary states w (q'''(s), θ'(s): the samples' `q_tip_shear`,
+    /// `theta_tip_slope`). With false, TR-BDF2 does not advance them
+    /// ([`ModalLoop::step_with`]): they do not feed back, so every other value is the same,
+    /// and the samples carry w(0) in their place.
+    pub tip_states: bool,
+}
 
-    /// Whether the recorder reads the tip boundary states w (q'''(s), θ'(s): the samples'
-    /// `q_tip_shear`, `theta_tip_slope`; the default). With false, TR-BDF2 does not advance
-    /// them ([`ModalLoop::step_with`]): they do not feed back, so every other value is the
-    /// same, and the samples carry w(0) in their place.
-    fn reads_tip_states(&self) -> bool {
-        true
-    }
+impl Reads {
+    /// Everything: every output interval's ∫τ², the state and the tip boundary states.
+    pub const ALL: Reads = Reads { interval_squares: true, state: true, tip_states: true };
+    /// Only the outputs' tip values, τ and observer output, and ∫τ² over the whole run: what
+    /// the search and the finite-time rows' digital runs read.
+    pub const OUTPUTS: Reads = Reads { interval_squares: false, state: false, tip_states: false };
 }
 
 /// Run the loop `lp` of `cfg` on `basis` over [0, T] from the state `st`, with the observer
@@ -94,8 +104,9 @@ pub fn drive<S: Signal, R: Recorder>(
     let (total, every, period) = (cfg.total_samples(), cfg.samples_per_output(), cfg.observer.sample_period);
     let h = cfg.discretisation.dt;
     let e0 = basis.energy(&st.eta, &st.zeta);
-    let lean = !rec.reads_state() && !rec.interval_squares();
-    let tip_states = rec.reads_tip_states();
+    let reads = rec.reads();
+    let lean = !reads.state && !reads.interval_squares;
+    let tip_states = reads.tip_states;
     let output = |st: &mut ModalState, obs: &SampleInput, t: f64, k: usize, rec: &mut R| {
         if lean && k != total {
             // margin 1e-10 relative: far above the bound's and the energy's round-off
@@ -105,7 +116,7 @@ pub fn drive<S: Signal, R: Recorder>(
                 return rec.output(st, &sample, k);
             }
         }
-        if let Some(squares) = lp.checkpoint(st, rec.interval_squares() || k == total) {
+        if let Some(squares) = lp.checkpoint(st, reads.interval_squares || k == total) {
             rec.deferred_squares(squares);
         }
         st.sync_tip(basis);

@@ -69,7 +69,7 @@ fn the_eigenbasis_step_matches_the_dense_exponential_step() {
         assert!(dense.eigenbasis_roundoff().is_none() && dense.eigenbasis_refusal().is_none());
         let (mut a, mut b) = (diag.initial_state(&cfg, &basis), dense.initial_state(&cfg, &basis));
         // a third run that adds the deferred terms only at the last checkpoint (a recorder
-        // of the whole run's ∫τ² only, Recorder::interval_squares): its total is the run's
+        // of the whole run's ∫τ² only, Reads::interval_squares): its total is the run's
         let mut whole_run = diag.initial_state(&cfg, &basis);
         let (mut total_whole, mut total_dense) = ([0.0; 2], [0.0; 2]);
         let steps = cfg.total_samples() * cfg.steps_per_sample();

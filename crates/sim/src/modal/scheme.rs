@@ -342,8 +342,8 @@ impl<'a> ModalLoop<'a> {
 
     /// [`ModalLoop::step`]; with `tip_states` false, TR-BDF2 leaves the tip boundary states w
     /// as they are instead of advancing them (they do not feed back: every other value is the
-    /// same bits), for a run that never reads them (the search, [`super::Recorder`]'s
-    /// `reads_tip_states`). The other schemes advance them either way.
+    /// same bits), for a run that never reads them (the search, [`super::Reads`]'s
+    /// `tip_states`). The other schemes advance them either way.
     #[inline]
     pub fn step_with(&self, st: &mut ModalState, input: &StepInput, tip_states: bool) -> Option<[f64; 2]> {
         match &self.stepping {
