@@ -408,11 +408,8 @@ pub struct DecidingSet {
 /// [`render_set`]'s.
 pub fn render_deciding_set(cfg: &Config) -> Result<DecidingSet, CertifyError> {
     let enclosure = omega1::deciding(cfg)?;
-    let c = &enclosure.0;
-    let plan =
-        omega1::Plan { modes: c.modes, inertia_elements: c.inertia_elements, rayleigh_elements: c.rayleigh_elements };
     let files = render_files(cfg, &certificates(cfg)?, &enclosure)?;
-    Ok(DecidingSet { files, coarser_enclosure: plan != omega1::PLAN })
+    Ok(DecidingSet { files, coarser_enclosure: enclosure.0.plan() != omega1::PLAN })
 }
 
 fn render_files(

@@ -106,8 +106,9 @@ fn simulation_rows(cfg: &Config, study: &Study, settings: &CheckSettings) -> (Ve
     (vec![ft1, ft2, comparison], shared)
 }
 
-/// `f()` and its wall time (s).
-pub(crate) fn seconds<T>(f: impl FnOnce() -> T) -> (T, f64) {
+/// `f()` and its wall time (s): the one timing helper of the rows, the report's stages and
+/// their parts.
+pub fn seconds<T>(f: impl FnOnce() -> T) -> (T, f64) {
     let start = Instant::now();
     (f(), start.elapsed().as_secs_f64())
 }

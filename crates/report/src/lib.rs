@@ -36,7 +36,7 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 use wingcheck_claims::certify::DecidingSet;
-use wingcheck_claims::{check_all_with, config_sha256, CheckSettings, Ledger, Study};
+use wingcheck_claims::{check_all_with, config_sha256, seconds, CheckSettings, Ledger, Study};
 use wingcheck_model::Config;
 
 pub use atomic::MARKER;
@@ -363,25 +363,24 @@ fn compute(
     let ((ledger, lt), ((runs, st), (region, rt), (proofs, pt), early)) = rayon::join(
         || {
             report(progress, "ledger", 0, 1);
-            let t = Instant::now();
-            let l = check_all_with(cfg, &study, &settings).map_err(ReportError::from);
+            let l = seconds(|| check_all_with(cfg, &study, &settings).map_err(ReportError::from));
             report(progress, "ledger", 1, 1);
-            (l, t.elapsed().as_secs_f64())
+            l
         },
         || {
             let (((runs, st), (region, rt)), (proofs, pt)) = rayon::join(
                 || {
                     rayon::join(
-                        || timed(|| runs::run_all(cfg, &study, progress)),
-                        || timed(|| region_stage(cfg, progress)),
+                        || seconds(|| runs::run_all(cfg, &study, progress)),
+                        || seconds(|| region_stage(cfg, progress)),
                     )
                 },
-                || timed(|| wingcheck_claims::certify::render_deciding_set(cfg)),
+                || seconds(|| wingcheck_claims::certify::render_deciding_set(cfg)),
             );
             report(progress, "region map", 1, 1);
             // the figures that need no ledger, while the ledger's longest chain still runs
             let early = match (&runs, &region) {
-                (Ok(r), Ok(m)) => Some(timed(|| early_figures(cfg, r, m.as_ref(), staging, progress))),
+                (Ok(r), Ok(m)) => Some(seconds(|| early_figures(cfg, r, m.as_ref(), staging, progress))),
                 _ => None,
             };
             ((runs, st), (region, rt), (proofs, pt), early)
@@ -398,12 +397,6 @@ fn compute(
         StageTiming { name: "run charts".into(), seconds: et },
     ];
     Ok((Computed { ledger, runs, proofs, early: early? }, timings))
-}
-
-/// `f()` and its wall time (s).
-fn timed<T>(f: impl FnOnce() -> T) -> (T, f64) {
-    let t = Instant::now();
-    (f(), t.elapsed().as_secs_f64())
 }
 
 /// The SVG and CSV of every figure, written into the staging directory in parallel (progress

@@ -275,6 +275,11 @@ fn from_enclosure_error(e: EnclosureError) -> CertifyError {
 }
 
 impl Omega1Certificate {
+    /// The sizes it was made with.
+    pub fn plan(&self) -> Plan {
+        Plan { modes: self.modes, inertia_elements: self.inertia_elements, rayleigh_elements: self.rayleigh_elements }
+    }
+
     /// Parses certificate text (at most [`MAX_FILE_BYTES`]): syntax, format, version, id, fact.
     /// No arithmetic happens here.
     pub fn parse(text: &str) -> Result<Self, CertifyError> {
