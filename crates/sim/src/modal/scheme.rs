@@ -51,7 +51,14 @@ fn tip_dots(u: &[Vec<f64>; 2], eta: &[f64], zeta: &[f64]) -> [f64; 4] {
 
 /// The modal state of the closed loop: x = Φη, v = Φζ, with the tip values and tip boundary
 /// states carried alongside.
+///
+/// `repr(C)` with w between x_tip and v_tip: τ = −k(a x + b v) − ĝ, read right after a step
+/// wrote x_tip and v_tip, was compiled to one 16-byte load of the adjacent x_tip[1], v_tip[0],
+/// which spans both of the step's 16-byte stores and so waits for them to reach the cache (no
+/// store-to-load forwarding); apart, the two are read as single values. A search point was 3 %
+/// faster (1-thread 32×32 search, paired runs), with the same output.
 #[derive(Debug)]
+#[repr(C)]
 pub struct ModalState {
     /// Modal displacements η (x = Φη).
     pub eta: Vec<f64>,
@@ -61,10 +68,10 @@ pub struct ModalState {
     pub y: Vec<f64>,
     /// q(s), θ(s) (m, rad) = Uᵀη.
     pub x_tip: [f64; 2],
-    /// q̇(s), θ̇(s) (m/s, rad/s) = Uᵀζ.
-    pub v_tip: [f64; 2],
     /// Tip boundary states q'''(s) (1/m²), θ'(s) (1/m).
     pub w: [f64; 2],
+    /// q̇(s), θ̇(s) (m/s, rad/s) = Uᵀζ.
+    pub v_tip: [f64; 2],
     /// Work buffers of the exponential scheme (empty for the others).
     pub(crate) exact_x: Vec<f64>,
     /// See `exact_x`.
