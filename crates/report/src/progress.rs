@@ -58,17 +58,16 @@ impl<'a> Tracker<'a> {
             cb(p);
         }
         let Some(cb) = self.overall else { return };
-        let fraction = {
-            let mut g = self.stages.lock().expect("progress lock");
-            if let Some(i) = WEIGHTS.iter().position(|(n, _)| *n == p.stage) {
-                let f = if p.total == 0 { 1.0 } else { (p.done as f64 / p.total as f64).clamp(0.0, 1.0) };
-                g.0[i] = g.0[i].max(f);
-            }
-            let sum: f64 = g.0.iter().zip(WEIGHTS).map(|(f, (_, w))| f * w).sum();
-            g.1 = g.1.max(sum.min(1.0));
-            g.1
-        };
-        cb(Overall { stage: p.stage, fraction });
+        // The callback is called under the lock: called after it, two threads could deliver
+        // their fractions in the other order, and the caller would see the fraction go back.
+        let mut g = self.stages.lock().expect("progress lock");
+        if let Some(i) = WEIGHTS.iter().position(|(n, _)| *n == p.stage) {
+            let f = if p.total == 0 { 1.0 } else { (p.done as f64 / p.total as f64).clamp(0.0, 1.0) };
+            g.0[i] = g.0[i].max(f);
+        }
+        let sum: f64 = g.0.iter().zip(WEIGHTS).map(|(f, (_, w))| f * w).sum();
+        g.1 = g.1.max(sum.min(1.0));
+        cb(Overall { stage: p.stage, fraction: g.1 });
     }
 }
 
