@@ -112,7 +112,7 @@ fn ledger_holds_the_table_and_its_summary() {
             w.wall.iter().filter(|t| t.what.starts_with("W-bounds SDP N = ")).map(|t| t.seconds).collect();
         assert_eq!(per_n.len(), SDP_GRIDS.len());
         assert!(per_n.iter().all(|&s| s > 0.0));
-        let total = w.wall.iter().find(|t| t.what == "W-bounds SDP cross-check").unwrap().seconds;
+        let total = w.wall.iter().find(|t| t.what == wingcheck_claims::SDP_CROSS_CHECK).unwrap().seconds;
         assert!(total >= per_n.iter().sum::<f64>());
         assert_eq!(settings.sdp_tolerance, SDP_TOLERANCE);
         let details = w.row.details.join(" ");

@@ -267,12 +267,10 @@ fn bench_check(cfg: &wingcheck_model::Config, repeats: usize, as_json: bool) -> 
             if rows.len() <= i {
                 rows.push((r.id.to_string(), Vec::new()));
             }
-            rows[i].1.push(ledger.wall_seconds.iter().find(|w| w.what == r.id.name()).map_or(0.0, |w| w.seconds));
+            rows[i].1.push(ledger.wall_seconds_of(r.id.name()).unwrap_or(0.0));
         }
-        sdp.push(ledger.wall_seconds.iter().find(|w| w.what == "W-bounds SDP cross-check").map_or(0.0, |w| w.seconds));
-        digital.push(
-            ledger.wall_seconds.iter().find(|w| w.what == wingcheck_claims::DIGITAL_RUNS).map_or(0.0, |w| w.seconds),
-        );
+        sdp.push(ledger.wall_seconds_of(wingcheck_claims::SDP_CROSS_CHECK).unwrap_or(0.0));
+        digital.push(ledger.wall_seconds_of(wingcheck_claims::DIGITAL_RUNS).unwrap_or(0.0));
     }
     let tmp = std::env::temp_dir().join(format!("wingcheck-bench-proofs-{}", std::process::id()));
     let t = Instant::now();
@@ -306,11 +304,8 @@ fn bench_check(cfg: &wingcheck_model::Config, repeats: usize, as_json: bool) -> 
     for (id, s) in &breakdown {
         println!("  {id:<14} {s:>7.3} s");
     }
-    println!(
-        "  (SDP cross-check at N = 2…32, started first beside the rest of W-bounds: {:.4} s)",
-        median(sdp.clone())
-    );
-    println!("  (the finite-time rows' digital runs, once for both rows: {:.4} s)", median(digital.clone()));
+    println!("  (SDP cross-check at N = 2…32, started first beside the rest of W-bounds: {:.4} s)", median(sdp));
+    println!("  (the finite-time rows' digital runs, once for both rows: {:.4} s)", median(digital));
     println!("  distinct closed-loop simulations (each run once): {sims}");
     println!(
         "certify: {} certificates in {certify_s:.3} s; exact re-verification ({ok} ok) in {verify_s:.3} s",

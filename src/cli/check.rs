@@ -28,13 +28,13 @@ pub fn run(a: CheckArgs) -> anyhow::Result<()> {
     println!("claim ledger ({}, config sha256 {})", ledger.tool, &ledger.config_sha256[..12]);
     println!("{:<14} {:<32} {:<23} {:<18} {:>7}", "id", "equation", "verdict", "basis", "time");
     for r in &ledger.rows {
-        let seconds = ledger.wall_seconds.iter().find(|w| w.what == r.id.name()).map_or(0.0, |w| w.seconds);
+        let seconds = ledger.wall_seconds_of(r.id.name()).unwrap_or(0.0);
         println!("{:<14} {:<32} {:<23} {:<18} {:>6.2}s", r.id, r.equation, r.verdict.name(), r.basis.name(), seconds);
     }
-    for w in ledger.wall_seconds.iter().filter(|w| w.what == wingcheck_claims::DIGITAL_RUNS) {
+    if let Some(seconds) = ledger.wall_seconds_of(wingcheck_claims::DIGITAL_RUNS) {
         println!(
             "{:<14} {:<32} {:<23} {:<18} {:>6.2}s",
-            "", "(digital runs of both finite-time rows)", "", "", w.seconds
+            "", "(digital runs of both finite-time rows)", "", "", seconds
         );
     }
     println!("(wall times overlap: the rows and their parts run side by side on the thread pool)");

@@ -257,6 +257,14 @@ pub struct Ledger {
     pub wall_seconds: Vec<WallTime>,
 }
 
+impl Ledger {
+    /// The wall time (s) recorded under `what` ([`WallTime::what`]: a row's name,
+    /// [`crate::SDP_CROSS_CHECK`], [`crate::DIGITAL_RUNS`], …), if any.
+    pub fn wall_seconds_of(&self, what: &str) -> Option<f64> {
+        self.wall_seconds.iter().find(|w| w.what == what).map(|w| w.seconds)
+    }
+}
+
 /// `v` as indented JSON (two spaces, like `serde_json::to_string_pretty`) except that an
 /// array of scalars — a plot's x or y, a grid list — is written on one line: the same document
 /// in about half the bytes (a 2001-point series is one line instead of 2001).

@@ -83,6 +83,9 @@ fn timed(id: ClaimId, f: impl FnOnce() -> Result<ClaimRow, ClaimsError>) -> (Cla
 /// The name of the finite-time rows' shared digital runs among [`Ledger::wall_seconds`].
 pub const DIGITAL_RUNS: &str = "finite-time digital runs";
 
+/// The name of the W-bounds row's SDP cross-check (all N) among [`Ledger::wall_seconds`].
+pub const SDP_CROSS_CHECK: &str = "W-bounds SDP cross-check";
+
 /// The rows that rest on simulation (their computations side by side on the pool), and the
 /// wall time of the finite-time rows' digital runs (computed once for both rows).
 fn simulation_rows(cfg: &Config, study: &Study, settings: &CheckSettings) -> (Vec<(ClaimRow, WallTime)>, WallTime) {

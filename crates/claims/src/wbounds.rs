@@ -338,7 +338,7 @@ pub fn compute(cfg: &Config, settings: &CheckSettings) -> Result<Computed, Claim
 /// The SDP cross-check's and the enclosure's wall times (the SDP's per N too).
 pub fn sdp_wall_times(c: &Computed) -> Vec<WallTime> {
     let mut out = vec![
-        WallTime { what: "W-bounds SDP cross-check".into(), seconds: c.sdp_seconds },
+        WallTime { what: crate::SDP_CROSS_CHECK.into(), seconds: c.sdp_seconds },
         WallTime { what: "W-bounds ω₁ enclosure".into(), seconds: c.enclosure_seconds },
     ];
     out.extend(c.sdp.iter().map(|r| WallTime { what: format!("W-bounds SDP N = {}", r.elements), seconds: r.seconds }));
