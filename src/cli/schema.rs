@@ -17,32 +17,11 @@ pub struct SchemaArgs {
     out: PathBuf,
 }
 
-/// Every schema: the file name and the schema.
-pub fn schemas() -> Vec<(&'static str, schemars::Schema)> {
-    use schemars::schema_for;
-    vec![
-        ("config", schema_for!(wingcheck_model::Config)),
-        ("check", schema_for!(wingcheck_claims::Ledger)),
-        ("simulate", schema_for!(super::simulate::SimulateSummary)),
-        ("run", schema_for!(wingcheck_sim::output::RunDocument<'static>)),
-        ("results", schema_for!(wingcheck_search::records::ResultsDocument)),
-        ("best", schema_for!(wingcheck_search::records::BestDocument)),
-        ("manifest", schema_for!(wingcheck_search::Manifest)),
-        ("provenance", schema_for!(wingcheck_io::Provenance)),
-        ("proofs-index", schema_for!(wingcheck_claims::certify::manifest::Manifest)),
-    ]
-}
-
-/// The text of one schema file (pretty JSON, trailing newline).
-pub fn schema_text(s: &schemars::Schema) -> String {
-    serde_json::to_string_pretty(s).expect("a schema serialises") + "\n"
-}
-
 pub fn run(a: SchemaArgs) -> anyhow::Result<()> {
     std::fs::create_dir_all(&a.out).with_context(|| format!("create {}", a.out.display()))?;
-    for (name, s) in schemas() {
+    for (name, s) in wingcheck_app::schemas() {
         let path = a.out.join(format!("{name}.schema.json"));
-        wingcheck_io::write_file_atomic(&path, schema_text(&s).as_bytes())?;
+        wingcheck_io::write_file_atomic(&path, wingcheck_app::schema_text(&s).as_bytes())?;
         println!("wrote {}", path.display());
     }
     Ok(())

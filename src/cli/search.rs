@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use wingcheck_search::{merge, run, Progress, RunControl, RunSummary, Search, SearchOptions, Shard};
+use wingcheck_search::{merge, Progress, RunControl, RunSummary, SearchOptions, Shard};
 
 use super::common::ConfigArgs;
 
@@ -67,7 +67,6 @@ pub fn run_search(a: SearchArgs) -> anyhow::Result<()> {
         best: a.best,
         ..Default::default()
     };
-    let search = Search::new(base, &a.over, options)?;
     let bar = indicatif::ProgressBar::new(0);
     if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
         bar.set_style(
@@ -88,17 +87,9 @@ pub fn run_search(a: SearchArgs) -> anyhow::Result<()> {
             bar.inc(1);
         }
     };
-    let s = run(
-        &search,
-        &a.out,
-        RunControl {
-            shard: a.shard,
-            progress: Some(&on_progress),
-            threads: a.threads,
-            allow_large: a.allow_large,
-            ..Default::default()
-        },
-    )?;
+    let policy = wingcheck_app::WorkPolicy { allow_large: a.allow_large, front: wingcheck_app::Front::Cli };
+    let ctl = RunControl { shard: a.shard, progress: Some(&on_progress), threads: a.threads, ..Default::default() };
+    let s = wingcheck_app::ops::search(base, &a.over, options, &a.out, policy, ctl)?;
     bar.finish_and_clear();
     println!(
         "{} of {} points evaluated ({} already done), {} of them failed, in {:.1} s; simulation {:.1} s, theory {:.1} s (summed over points)",

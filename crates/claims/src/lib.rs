@@ -46,6 +46,9 @@ pub enum ClaimsError {
     /// A simulation needed as evidence failed (shared: the study runs each simulation once).
     #[error(transparent)]
     Sim(Arc<wingcheck_sim::SimError>),
+    /// The check was stopped through its study's cancel token ([`check_all_cancellable`]).
+    #[error(transparent)]
+    Cancelled(#[from] wingcheck_model::Cancelled),
     /// A numerical step failed.
     #[error("numerical failure in {what}: {detail}")]
     Numerical {
@@ -71,6 +74,17 @@ pub fn config_sha256(cfg: &Config) -> String {
 /// [`Study`] (each distinct simulation runs once) and the default [`CheckSettings`].
 pub fn check_all(cfg: &Config) -> Result<Ledger, ClaimsError> {
     check_all_with(cfg, &Study::new(), &CheckSettings::default())
+}
+
+/// [`check_all_with`] stopped once `study`'s cancel token is set ([`Study::with_cancel`]):
+/// the rows in flight end early as `inconclusive`, and the ledger is then discarded for
+/// [`ClaimsError::Cancelled`], so a cancelled check never returns rows decided on cut-short
+/// evidence.
+pub fn check_all_cancellable(cfg: &Config, study: &Study, settings: &CheckSettings) -> Result<Ledger, ClaimsError> {
+    study.cancel().check()?;
+    let ledger = check_all_with(cfg, study, settings)?;
+    study.cancel().check()?;
+    Ok(ledger)
 }
 
 /// A row's outcome with its wall time; a failed computation becomes `inconclusive`.

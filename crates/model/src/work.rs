@@ -196,6 +196,9 @@ pub const CHECK_SIGMA0_SETUPS: f64 = 3.0;
 /// Element counts of the report's accuracy study.
 pub const REPORT_ACCURACY_GRIDS: [usize; 4] = [8, 16, 32, 64];
 
+/// The command-line flag that runs a command above the limits (named in [`WorkRefused`]).
+pub const ALLOW_LARGE_FLAG: &str = "--allow-large";
+
 /// Limits above which a command refuses without `--allow-large`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WorkLimits {
@@ -231,11 +234,14 @@ pub struct WorkEstimate {
 #[error(
     "{what} refused before starting: estimated {details}; the limits are {limits}. \
      Reduce horizon.t_end, raise discretisation.dt or horizon.sample_every, use fewer elements, \
-     or pass --allow-large to run anyway"
+     or pass {override_flag} to run anyway"
 )]
 pub struct WorkRefused {
     /// The command.
     pub what: String,
+    /// How the front end that asked overrides the limits ([`ALLOW_LARGE_FLAG`] on the command
+    /// line; the Python binding's keyword argument).
+    pub override_flag: String,
     /// The estimate, in words.
     pub details: String,
     /// The limits, in words.
@@ -393,6 +399,7 @@ impl WorkEstimate {
         }
         Err(WorkRefused {
             what: self.what.clone(),
+            override_flag: ALLOW_LARGE_FLAG.into(),
             details: over.join(", "),
             limits: format!(
                 "{} of computing, {} of memory, {} of output",

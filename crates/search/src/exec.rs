@@ -164,7 +164,8 @@ pub fn run(search: &Search, out: &Path, ctl: RunControl<'_>) -> Result<RunSummar
         limits::check_threads(n)?;
     }
     let threads = ctl.threads.unwrap_or_else(rayon::current_num_threads);
-    limits::check(&search.estimate_with_threads(threads), ctl.allow_large)?;
+    let flag = ctl.allow_large_flag.unwrap_or(wingcheck_model::work::ALLOW_LARGE_FLAG);
+    limits::check_with_flag(&search.estimate_with_threads(threads), ctl.allow_large, flag)?;
     if let Some(n) = ctl.threads {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(n)
@@ -174,8 +175,11 @@ pub fn run(search: &Search, out: &Path, ctl: RunControl<'_>) -> Result<RunSummar
     }
     let found = prepare_out(out, &search.manifest_text())?;
     let result = run_in(search, out, &ctl);
-    if result.is_err() {
-        clean_up(out, found, false);
+    match &result {
+        // a cancelled run into a directory it created leaves nothing behind
+        Err(SearchError::Cancelled(_)) => clean_up(out, found, matches!(found, Found::Created | Found::Empty)),
+        Err(_) => clean_up(out, found, false),
+        Ok(_) => {}
     }
     result
 }
@@ -224,14 +228,15 @@ fn run_in(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<RunSummar
             .chunk_range(c)
             .into_par_iter()
             .map(|p| {
+                ctl.cancel.check()?;
                 let r = search.evaluate(p, &cache, &runs);
                 let d = done.fetch_add(1, Ordering::Relaxed) + 1;
                 if let Some(cb) = ctl.progress {
                     cb(Progress { done: d, total });
                 }
-                r
+                Ok(r)
             })
-            .collect();
+            .collect::<Result<_, wingcheck_model::Cancelled>>()?;
         store::write_atomic(&store::chunk_path(out, c), store::chunk_text(search, c, &points).as_bytes())?;
         completed += 1;
         summary.evaluated += points.len();
@@ -248,6 +253,7 @@ fn run_in(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<RunSummar
             (serde_json::to_string_pretty(&progress).expect("json") + "\n").as_bytes(),
         )?;
     }
+    ctl.cancel.check()?;
     if (0..search.chunks()).all(|c| store::chunk_path(out, c).exists()) {
         let (files, failed) = finalize(out)?;
         summary.files = files;

@@ -99,6 +99,10 @@ pub enum SearchError {
     /// The search is above a work limit (see [`limits`]).
     #[error("search too large: {0}")]
     TooLarge(String),
+    /// The run was stopped through [`RunControl::cancel`] (nothing of this invocation is
+    /// kept in a directory it created).
+    #[error(transparent)]
+    Cancelled(#[from] wingcheck_model::Cancelled),
     /// A theory computation failed (eigenproblem, SOCP).
     #[error("theory ({what}): {detail}")]
     Theory {
@@ -375,6 +379,12 @@ pub struct RunControl<'a> {
     pub threads: Option<usize>,
     /// Run even above [`MAX_POINTS`] / [`MAX_CORE_SECONDS`] (never above [`MAX_POINTS_OVERRIDE`]).
     pub allow_large: bool,
+    /// How the caller's front end spells `allow_large` in the refusal (None:
+    /// [`wingcheck_model::work::ALLOW_LARGE_FLAG`]).
+    pub allow_large_flag: Option<&'a str>,
+    /// Checked before every point: once set, the run stops with [`SearchError::Cancelled`]
+    /// without writing the chunk in progress.
+    pub cancel: wingcheck_model::Cancel,
 }
 
 /// What a run or merge did.

@@ -183,6 +183,11 @@ fn short(x: f64) -> String {
 /// Refuse a search above the limits ([`MAX_POINTS`], [`MAX_CORE_SECONDS`]; with `allow_large`
 /// only above [`MAX_POINTS_OVERRIDE`]), naming the estimate and the flag.
 pub fn check(w: &WorkEstimate, allow_large: bool) -> Result<(), SearchError> {
+    check_with_flag(w, allow_large, wingcheck_model::work::ALLOW_LARGE_FLAG)
+}
+
+/// [`check`] naming `flag` as the override (a front end's spelling of `--allow-large`).
+pub fn check_with_flag(w: &WorkEstimate, allow_large: bool, flag: &str) -> Result<(), SearchError> {
     let what = format!(
         "{} points × up to {} steps × {} unknowns ≈ {} core-hours, {:.3} GB of memory",
         w.points,
@@ -203,7 +208,7 @@ pub fn check(w: &WorkEstimate, allow_large: bool) -> Result<(), SearchError> {
     {
         return Err(SearchError::TooLarge(format!(
             "{what}: above the limits of {MAX_POINTS} points, {} core-hours and {:.3} GB of memory; \
-             pass --allow-large to run it anyway (or --shard it over several machines; a long horizon or a \
+             pass {flag} to run it anyway (or --shard it over several machines; a long horizon or a \
              small dt costs memory per point: the observer signal holds 3 numbers per integrator step)",
             MAX_CORE_SECONDS / 3600.0,
             MAX_MEMORY_BYTES / 1e9

@@ -36,6 +36,7 @@ struct Simulation<'c, 'o> {
     fields: Option<Fields>,
     full_rate: FullRate,
     progress: Option<&'o mut dyn FnMut(f64)>,
+    cancel: wingcheck_model::Cancel,
     /// Probe the next step ([`ModalLoop::probe_last_step`]): the held inputs jumped (t = 0 and
     /// every sample), and the probe is on.
     probe_next: bool,
@@ -80,6 +81,7 @@ impl Recorder for Simulation<'_, '_> {
             f.q.push(self.basis.field_q.iter().map(|row| dot(row, &st.eta)).collect());
             f.theta.push(self.basis.field_theta.iter().map(|row| dot(row, &st.eta)).collect());
         }
+        self.cancel.check()?;
         if k > 0 {
             if let Some(p) = self.progress.as_mut() {
                 p(k as f64 / self.total as f64);
@@ -139,6 +141,7 @@ pub fn simulate_modal(
         fields: opts.fields.then(|| Fields { z: basis.field_z.clone(), ..Default::default() }),
         full_rate: FullRate::new(crate::layer::layer_end(cfg)),
         progress: opts.progress,
+        cancel: opts.cancel,
         probe_next: false,
         probe_on: opts.sub_step_probe != SubStepProbe::Off && lp.probe_points() > 0,
         exhaustive: opts.sub_step_probe == SubStepProbe::Exhaustive,
