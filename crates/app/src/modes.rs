@@ -118,7 +118,7 @@ mod tests {
         let bad = ModesRequest { tol: 1e-14, ..Default::default() };
         assert_eq!(
             bad.validate(Front::Python).unwrap_err().to_string(),
-            "tol 1e-14: use a relative tolerance >= 1e-13"
+            "tol 0.00000000000001: use a relative tolerance >= 1e-13"
         );
     }
 }

@@ -135,7 +135,7 @@ fn theory_rows(cfg: &Config, study: &Study, settings: &CheckSettings) -> (Vec<(C
     // W-bounds, mu-conditions and lemmas are independent: side by side on the pool; UUB needs
     // the first two.
     let ((w, w_seconds), ((m, m_seconds), lemmas)) = rayon::join(
-        || seconds(|| wbounds::check(cfg, settings)),
+        || seconds(|| wbounds::check_cancellable(cfg, settings, study.cancel())),
         || {
             rayon::join(
                 || seconds(|| mu::check(cfg, study, settings)),

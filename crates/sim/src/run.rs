@@ -229,7 +229,7 @@ pub struct RunOptions<'a> {
     pub fields: bool,
     /// Called with the fraction done (0..=1) at every output sample.
     pub progress: Option<&'a mut dyn FnMut(f64)>,
-    /// Read at every output sample (and between the runs of a layer resolution or an error
+    /// Read at every observer sample (and between the runs of a layer resolution or an error
     /// estimate): once set, the run stops with [`crate::SimError::Cancelled`].
     pub cancel: wingcheck_model::Cancel,
     /// The exponential scheme's sub-step probe (`crate::modal`'s probe): screened (the
@@ -428,9 +428,9 @@ fn simulate_nodal(
     crate::cpu::clear_upper_vector_state();
     for k in 1..=total {
         stepper.advance_sample();
+        opts.cancel.check()?;
         if k % every == 0 || k == total {
             record(&mut stepper, &mut series, &mut fields)?;
-            opts.cancel.check()?;
             if let Some(p) = opts.progress.as_mut() {
                 p(k as f64 / total as f64);
             }

@@ -74,6 +74,10 @@ impl Recorder for Simulation<'_, '_> {
         self.full_rate.add_squares(squares);
     }
 
+    fn checkpoint(&self) -> Result<(), SimError> {
+        Ok(self.cancel.check()?)
+    }
+
     fn output(&mut self, st: &ModalState, sample: &Sample, k: usize) -> Result<(), SimError> {
         self.series.push(sample, self.full_rate.take_tau_rms());
         self.envelope.push(self.full_rate.take_range(crate::run::Envelope::values(sample)));
@@ -81,7 +85,6 @@ impl Recorder for Simulation<'_, '_> {
             f.q.push(self.basis.field_q.iter().map(|row| dot(row, &st.eta)).collect());
             f.theta.push(self.basis.field_theta.iter().map(|row| dot(row, &st.eta)).collect());
         }
-        self.cancel.check()?;
         if k > 0 {
             if let Some(p) = self.progress.as_mut() {
                 p(k as f64 / self.total as f64);
