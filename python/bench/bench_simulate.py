@@ -33,10 +33,12 @@ def in_process(wingcheck) -> tuple:
 
 
 def via_cli(cli: str, pd, work: str) -> tuple:
+    from wingcheck._results import exact_floats
+
     path = os.path.join(work, "run.csv")
     w, c, k = time.perf_counter(), time.process_time(), children_cpu()
     subprocess.run([cli, "simulate", "--out", path], check=True, stdout=subprocess.DEVNULL)
-    df = pd.read_csv(path, float_precision="round_trip")
+    df = pd.read_csv(path, **exact_floats(pd))
     assert len(df) > 0
     return time.perf_counter() - w, (time.process_time() - c) + (children_cpu() - k)
 

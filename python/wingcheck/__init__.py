@@ -5,8 +5,9 @@ claims, map the gain region, write the report and the exact certificates.
 Every function takes a configuration as a :class:`Config`, a dict (complete or partial, merged
 over the paper's default), JSON text or a path, plus ``set=`` overrides (``{"control.a": 0.05}``),
 validated by the same Rust code as the command line (same messages). Long calls release the GIL,
-honour Ctrl-C within 0.1 s (``KeyboardInterrupt``, nothing written) and take ``progress=True``
-(tqdm when installed) or a callable ``progress(fraction, stage)`` that may return ``False`` to stop.
+honour Ctrl-C (``KeyboardInterrupt``, nothing written; within 0.1 s for ``simulate`` and
+``search``, see docs/python.md for the others) and take ``progress=True`` (tqdm when installed)
+or a callable ``progress(fraction, stage)`` that may return ``False`` to stop.
 """
 
 from __future__ import annotations

@@ -39,6 +39,14 @@ def _pandas() -> Any:
         raise ImportError("to_pandas() needs pandas: pip install pandas") from e
 
 
+def exact_floats(pd: Any) -> Dict[str, str]:
+    """``read_csv`` options that read every float back to the float64 it was written from:
+    pandas < 3 needs ``float_precision="round_trip"``; pandas 3 does it by default (and
+    deprecates the option)."""
+    major = int(str(pd.__version__).split(".")[0])
+    return {"float_precision": "round_trip"} if major < 3 else {}
+
+
 @dataclass(frozen=True)
 class Peak:
     """A full-rate peak max |x| over the run (every integrator step, the initial layer resolved)."""
@@ -290,7 +298,7 @@ class SearchResult:
     def to_pandas(self) -> Any:
         """results.csv as a DataFrame (round-trip float parsing: the exact float64 values)."""
         pd = _pandas()
-        return pd.read_csv(self.results_csv, float_precision="round_trip")
+        return pd.read_csv(self.results_csv, **exact_floats(pd))
 
     def __repr__(self) -> str:
         s = self.summary
