@@ -3,7 +3,6 @@
 Usage: python run_notebook.py NOTEBOOK.ipynb
 """
 
-import os
 import sys
 import tempfile
 
@@ -14,7 +13,6 @@ from nbclient import NotebookClient
 def main(path: str) -> None:
     nb = nbformat.read(path, as_version=4)
     with tempfile.TemporaryDirectory() as work:
-        os.environ.setdefault("MPLBACKEND", "Agg")
         NotebookClient(nb, timeout=900, kernel_name="python3", resources={"metadata": {"path": work}}).execute()
     print(f"{path}: {len(nb.cells)} cells executed")
 

@@ -3,11 +3,16 @@
 //! `fork` of the host process), while the calling thread wakes every [`POLL`] to run Python's
 //! signal handlers (Ctrl-C) and the user's progress callback. A signal handler's exception
 //! (`KeyboardInterrupt`) or a callback that raises or returns `False` sets the computation's
-//! cancel token; the worker stops at its next checkpoint without writing anything, and the
-//! exception is raised once it has stopped.
+//! cancel token; the worker stops at its next checkpoint without writing anything.
+//!
+//! A computation that writes files ([`Writes::Files`]) is waited for before the exception is
+//! raised, so nothing of it can appear afterwards. One that writes nothing ([`Writes::Nothing`]:
+//! check, modes, verify) is left to finish its current stretch in the background (exact
+//! arithmetic without a checkpoint can take a second): the exception is raised at once.
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
-use std::sync::Mutex;
+use std::sync::mpsc::{channel, Receiver, RecvTimeoutError};
+use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use pyo3::prelude::*;
@@ -15,6 +20,15 @@ use wingcheck_app::{AppError, Cancel};
 
 /// How often the calling thread serves signals and progress while the worker runs.
 const POLL: Duration = Duration::from_millis(20);
+
+/// Whether a computation writes files (then a stop waits for it to end).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Writes {
+    /// It writes files: wait for it after a stop.
+    Files,
+    /// It writes nothing: raise at once after a stop.
+    Nothing,
+}
 
 /// The latest progress of the worker: (fraction done in [0, 1], stage), taken by the poller.
 #[derive(Default)]
@@ -33,57 +47,80 @@ impl Progress {
     }
 }
 
+type Outcome<T> = std::thread::Result<Result<T, AppError>>;
+
 /// Run `work` (given the cancel token and the progress sink) as described above; its error
 /// becomes the matching Python exception.
-pub fn run<T: Send>(
+pub fn run<T: Send + 'static>(
     py: Python<'_>,
     progress: Option<&Bound<'_, PyAny>>,
-    threads: Option<usize>,
-    work: impl FnOnce(&Cancel, &Progress) -> Result<T, AppError> + Send,
+    writes: Writes,
+    work: impl FnOnce(&Cancel, &Progress) -> Result<T, AppError> + Send + 'static,
 ) -> PyResult<T> {
     let cancel = Cancel::new();
-    let sink = Progress::default();
-    let mut stop: Option<PyErr> = None;
-    let (tx, mut rx) = std::sync::mpsc::channel::<()>();
-    let result = std::thread::scope(|s| {
-        let (cancel, sink) = (&cancel, &sink);
-        let worker = s.spawn(move || {
-            let r = catch_unwind(AssertUnwindSafe(|| wingcheck_app::ops::in_own_pool(threads, || work(cancel, sink))));
-            let _ = tx.send(());
-            r
-        });
-        loop {
-            let (done, back) = py.detach(move || (rx.recv_timeout(POLL), rx));
-            rx = back;
-            if !matches!(done, Err(std::sync::mpsc::RecvTimeoutError::Timeout)) {
-                break;
-            }
-            if stop.is_some() {
-                continue;
-            }
-            if let Err(e) = py.check_signals() {
-                stop = Some(e);
-            } else if let (Some(cb), Some((fraction, stage))) = (progress, sink.take()) {
-                match cb.call1((fraction, stage)) {
-                    Ok(v) if v.is_instance_of::<pyo3::types::PyBool>() && !v.is_truthy().unwrap_or(true) => {
-                        stop = Some(crate::errors::cancelled(py, "stopped by the progress callback"));
-                    }
-                    Ok(_) => {}
-                    Err(e) => stop = Some(e),
-                }
-            }
-            if stop.is_some() {
-                cancel.cancel();
-            }
-        }
-        worker.join()
-    });
+    let sink = Arc::new(Progress::default());
+    let (tx, rx) = channel::<Outcome<T>>();
+    let (c, s) = (cancel.clone(), sink.clone());
+    let worker = std::thread::Builder::new()
+        .name("wingcheck".into())
+        .spawn(move || {
+            let r = catch_unwind(AssertUnwindSafe(|| wingcheck_app::ops::in_own_pool(None, || work(&c, &s))));
+            let _ = tx.send(r);
+        })
+        .map_err(|e| crate::errors::to_py(py, &AppError::Internal(format!("cannot start a thread: {e}"))))?;
+    let (outcome, stop) = poll(py, progress, &cancel, &sink, rx, writes);
+    if outcome.is_some() || writes == Writes::Files {
+        let _ = worker.join();
+    }
     if let Some(e) = stop {
         return Err(e);
     }
-    match result {
-        Ok(Ok(r)) => r.map_err(|e| crate::errors::to_py(py, &e)),
-        Ok(Err(panic)) | Err(panic) => Err(crate::errors::to_py(py, &AppError::Internal(panic_text(&panic)))),
+    match outcome {
+        Some(Ok(r)) => r.map_err(|e| crate::errors::to_py(py, &e)),
+        Some(Err(panic)) => Err(crate::errors::to_py(py, &AppError::Internal(panic_text(&panic)))),
+        None => Err(crate::errors::to_py(py, &AppError::Internal("the worker thread ended without a result".into()))),
+    }
+}
+
+/// Wait for the worker's outcome, serving signals and progress; after a stop, wait on only if
+/// it writes files. Returns the outcome (if it came) and the exception that stopped it.
+fn poll<T: Send>(
+    py: Python<'_>,
+    progress: Option<&Bound<'_, PyAny>>,
+    cancel: &Cancel,
+    sink: &Progress,
+    mut rx: Receiver<Outcome<T>>,
+    writes: Writes,
+) -> (Option<Outcome<T>>, Option<PyErr>) {
+    let mut stop: Option<PyErr> = None;
+    loop {
+        let (got, back) = py.detach(move || (rx.recv_timeout(POLL), rx));
+        rx = back;
+        match got {
+            Ok(outcome) => return (Some(outcome), stop),
+            Err(RecvTimeoutError::Disconnected) => return (None, stop),
+            Err(RecvTimeoutError::Timeout) => {}
+        }
+        if stop.is_some() {
+            continue;
+        }
+        if let Err(e) = py.check_signals() {
+            stop = Some(e);
+        } else if let (Some(cb), Some((fraction, stage))) = (progress, sink.take()) {
+            match cb.call1((fraction, stage)) {
+                Ok(v) if v.is_instance_of::<pyo3::types::PyBool>() && !v.is_truthy().unwrap_or(true) => {
+                    stop = Some(crate::errors::cancelled(py, "stopped by the progress callback"));
+                }
+                Ok(_) => {}
+                Err(e) => stop = Some(e),
+            }
+        }
+        if stop.is_some() {
+            cancel.cancel();
+            if writes == Writes::Nothing {
+                return (None, stop);
+            }
+        }
     }
 }
 

@@ -8,7 +8,7 @@ use pyo3::types::PyDict;
 use wingcheck_app::{ops, ConfigSource, Front, ModesRequest, SimulateRequest, SimulateSummary, WorkPolicy};
 use wingcheck_sim::Series;
 
-use crate::blocking;
+use crate::blocking::{self, Writes};
 use crate::errors::{argument, dict};
 
 /// The configuration source of a call: JSON text or a file (the Python layer turns a dict, a
@@ -64,7 +64,9 @@ pub fn simulate<'py>(
         out,
     };
     let base = source(config_text, config_path, set);
-    let (cfg, result) = blocking::run(py, progress.as_ref(), None, |cancel, sink| {
+    let run_req = req.clone();
+    let (cfg, result) = blocking::run(py, progress.as_ref(), Writes::Files, move |cancel, sink| {
+        let req = run_req;
         let cfg = req.config(&base)?;
         let mut on_progress = |f: f64| sink.set(f, "simulate");
         let r = wingcheck_app::simulate::run(&cfg, &req, policy(allow_large), Some(&mut on_progress), cancel)?;
@@ -119,7 +121,7 @@ pub fn check(
     progress: Option<Bound<'_, PyAny>>,
 ) -> PyResult<String> {
     let base = source(config_text, config_path, set);
-    blocking::run(py, progress.as_ref(), None, |cancel, _| {
+    blocking::run(py, progress.as_ref(), Writes::Nothing, move |cancel, _| {
         let cfg = base.load()?;
         Ok(ops::check(&cfg, policy(allow_large), cancel)?.to_json())
     })
@@ -151,7 +153,7 @@ pub fn search(
     };
     let options = wingcheck_search::SearchOptions { window, chunk_size, refine, best, ..Default::default() };
     let base = source(config_text, config_path, set);
-    blocking::run(py, progress.as_ref(), None, |cancel, sink| {
+    blocking::run(py, progress.as_ref(), Writes::Files, move |cancel, sink| {
         let cfg = base.load()?;
         let on_progress = |p: wingcheck_search::Progress| {
             sink.set(if p.total == 0 { 1.0 } else { p.done as f64 / p.total as f64 }, "search")
@@ -183,7 +185,7 @@ pub fn report(
     progress: Option<Bound<'_, PyAny>>,
 ) -> PyResult<ReportParts> {
     let base = source(config_text, config_path, set);
-    blocking::run(py, progress.as_ref(), None, |cancel, sink| {
+    blocking::run(py, progress.as_ref(), Writes::Files, move |cancel, sink| {
         let cfg = base.load()?;
         let on_progress = |p: wingcheck_report::Overall| sink.set(p.fraction, p.stage);
         let opts = wingcheck_report::ReportOptions {
@@ -216,7 +218,7 @@ pub fn modes(
         tol: tol.unwrap_or(ModesRequest::default().tol),
     };
     let base = source(config_text, config_path, set);
-    blocking::run(py, None, None, |_, _| {
+    blocking::run(py, None, Writes::Nothing, move |_, _| {
         let cfg = base.load()?;
         let doc = req.run(&cfg, Front::Python)?;
         Ok(serde_json::to_string(&doc).unwrap_or_default())

@@ -6,7 +6,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use wingcheck_app::ops;
 
-use crate::blocking;
+use crate::blocking::{self, Writes};
 use crate::errors::dict;
 use crate::functions::source;
 
@@ -21,7 +21,7 @@ pub fn certify(
     set: Vec<String>,
 ) -> PyResult<(Vec<PathBuf>, Vec<String>)> {
     let base = source(config_text, config_path, set);
-    blocking::run(py, None, None, |cancel, _| {
+    blocking::run(py, None, Writes::Files, move |cancel, _| {
         let cfg = base.load()?;
         let w = ops::certify(&cfg, &out, cancel)?;
         Ok((w.files, w.notes))
@@ -42,7 +42,7 @@ pub fn verify<'py>(
     set: Vec<String>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let base = source(config_text, config_path, set);
-    let (cfg_json, sha, certs, conclusions) = blocking::run(py, None, None, |_, _| {
+    let (cfg_json, sha, certs, conclusions) = blocking::run(py, None, Writes::Nothing, move |_, _| {
         let expected = if pinned && !path.is_file() { Some(base.load()?) } else { None };
         let v = ops::verify(&path, expected.as_ref())?;
         let certs: Vec<(String, String, String)> = v

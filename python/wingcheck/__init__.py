@@ -5,8 +5,8 @@ claims, map the gain region, write the report and the exact certificates.
 Every function takes a configuration as a :class:`Config`, a dict (complete or partial, merged
 over the paper's default), JSON text or a path, plus ``set=`` overrides (``{"control.a": 0.05}``),
 validated by the same Rust code as the command line (same messages). Long calls release the GIL,
-honour Ctrl-C (``KeyboardInterrupt``, nothing written; within 0.1 s for ``simulate`` and
-``search``, see docs/python.md for the others) and take ``progress=True`` (tqdm when installed)
+honour Ctrl-C (``KeyboardInterrupt``, nothing written; within 0.1 s for ``simulate``,
+``search`` and ``check``, see docs/python.md for ``report`` and ``certify``) and take ``progress=True`` (tqdm when installed)
 or a callable ``progress(fraction, stage)`` that may return ``False`` to stop.
 """
 
