@@ -6,7 +6,7 @@
 #
 # The array must be numbered 1..N (task K runs shard K/N, N = SLURM_ARRAY_TASK_COUNT) and
 # writes OUT/shard-K, with SLURM_CPUS_PER_TASK threads (default 1). The binary: $WINGCHECK,
-# else `wingcheck` on PATH (`cargo install --path .`), else the checkout's
+# else `wingcheck` on PATH (`cargo install --locked --path .`), else the checkout's
 # target/release/wingcheck (scripts/find-wingcheck.sh). A task exits 0 when its shard is
 # complete — also when some of its points failed (wingcheck's status 3: they are answered,
 # and merge reports them) — and with wingcheck's own status otherwise, so Slurm shows it
