@@ -3,7 +3,7 @@
 #   2. `wingcheck` on PATH (`cargo install --locked --path .` puts it in ~/.cargo/bin);
 #   3. the checkout's release build (`cargo build --release`): $CARGO_TARGET_DIR/release/wingcheck
 #      if CARGO_TARGET_DIR is set, else <checkout>/target/release/wingcheck, the checkout being
-#      the directory above this file;
+#      the directory above this file (symbolic links resolved);
 # and exits with status 1 and a message saying how to get one if there is none.
 find_wingcheck() {
     local here checkout candidate
@@ -15,7 +15,7 @@ find_wingcheck() {
         wingcheck=$(command -v wingcheck)
         return 0
     fi
-    here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+    here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd -P)
     checkout=$(dirname "$here")
     candidate=${CARGO_TARGET_DIR:-$checkout/target}/release/wingcheck
     if [ -x "$candidate" ]; then

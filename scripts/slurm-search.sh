@@ -2,7 +2,7 @@
 # One shard of a wingcheck search per task of a Slurm job array; submit from the checkout.
 #
 #   jid=$(sbatch --parsable --array=1-16 scripts/slurm-search.sh OUT SEARCH-ARGS...)
-#   sbatch --dependency=afterany:$jid --wrap "wingcheck merge OUT/shard-* --out OUT/all"
+#   sbatch --dependency=afterany:$jid scripts/slurm-merge.sh OUT      # merges into OUT/all
 #
 # The array must be numbered 1..N (task K runs shard K/N, N = SLURM_ARRAY_TASK_COUNT) and
 # writes OUT/shard-K, with SLURM_CPUS_PER_TASK threads (default 1). The binary: $WINGCHECK,
