@@ -37,9 +37,9 @@ const FILES: [&str; 9] = [
     "best.json",
     "failures.csv",
     "boundary.csv",
-    "heatmap-rms_q_tip.svg",
-    "heatmap-rms_theta_tip.svg",
-    "heatmap-settling_time.svg",
+    "heatmap-rms_q_tip_m.svg",
+    "heatmap-rms_theta_tip_rad.svg",
+    "heatmap-settling_time_s.svg",
 ];
 
 fn checkout() -> &'static Path {
