@@ -331,7 +331,7 @@ fn the_scripts_find_a_fresh_checkouts_build_or_say_how_to_get_one() {
     let bare = copied_checkout(&root.path().join("bare"), false);
     let out = run(&bare, &root.path().join("o1"));
     assert_eq!(out.status.code(), Some(1), "{}", text(&out));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("cargo install --path ."), "{}", text(&out));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("cargo install --locked --path ."), "{}", text(&out));
     // after `cargo build --release` in the checkout: target/release/wingcheck is used
     let built = copied_checkout(&root.path().join("built"), true);
     let out = run(&built, &root.path().join("o2"));
