@@ -5,10 +5,16 @@
 //! (`KeyboardInterrupt`) or a callback that raises or returns `False` sets the computation's
 //! cancel token; the worker stops at its next checkpoint without writing anything.
 //!
-//! A computation that writes files ([`Writes::Files`]) is waited for before the exception is
-//! raised, so nothing of it can appear afterwards. One that writes nothing ([`Writes::Nothing`]:
-//! check, modes, verify) is left to finish its current stretch in the background (exact
-//! arithmetic without a checkpoint can take a second): the exception is raised at once.
+//! A computation that writes files as it goes ([`Writes::Files`]: simulate's output, a search
+//! directory) is waited for before the exception is raised, so nothing of it can appear
+//! afterwards. One that moves its output into place through the cancel token's gate
+//! ([`Writes::Gated`]: report, certify; [`Cancel::commit`]) or writes nothing
+//! ([`Writes::Nothing`]: check, modes, verify) is left to finish its current stretch in the
+//! background (exact arithmetic without a checkpoint can take seconds) and the exception is
+//! raised at once: once `cancel` has returned, a gated output never appears. A gated worker
+//! still removes its staging directory when it reaches its next checkpoint, so it is kept in
+//! [`STOPPED`] and joined by [`join_stopped`] (registered with `atexit`): the interpreter does not
+//! exit with a staging directory left behind.
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::mpsc::{channel, Receiver, RecvTimeoutError};
@@ -26,8 +32,26 @@ const POLL: Duration = Duration::from_millis(20);
 pub enum Writes {
     /// It writes files: wait for it after a stop.
     Files,
+    /// It moves its output into place through [`Cancel::commit`]: raise at once after a stop,
+    /// join the worker at exit.
+    Gated,
     /// It writes nothing: raise at once after a stop.
     Nothing,
+}
+
+/// Workers stopped while they may still hold a staging directory ([`Writes::Gated`]).
+static STOPPED: Mutex<Vec<std::thread::JoinHandle<()>>> = Mutex::new(Vec::new());
+
+/// Wait (GIL released) for every stopped gated worker to end, so its staging directory is
+/// removed. Called at interpreter exit.
+#[pyfunction]
+pub fn join_stopped(py: Python<'_>) {
+    let workers = std::mem::take(&mut *STOPPED.lock().unwrap_or_else(std::sync::PoisonError::into_inner));
+    py.detach(move || {
+        for w in workers {
+            let _ = w.join();
+        }
+    });
 }
 
 /// The latest progress of the worker: (fraction done in [0, 1], stage), taken by the poller.
@@ -71,6 +95,8 @@ pub fn run<T: Send + 'static>(
     let (outcome, stop) = poll(py, progress, &cancel, &sink, rx, writes);
     if outcome.is_some() || writes == Writes::Files {
         let _ = worker.join();
+    } else if writes == Writes::Gated {
+        STOPPED.lock().unwrap_or_else(std::sync::PoisonError::into_inner).push(worker);
     }
     if let Some(e) = stop {
         return Err(e);
@@ -116,8 +142,9 @@ fn poll<T: Send>(
             }
         }
         if stop.is_some() {
+            // for a gated computation: once this returns, its output never appears
             cancel.cancel();
-            if writes == Writes::Nothing {
+            if writes != Writes::Files {
                 return (None, stop);
             }
         }

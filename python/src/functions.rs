@@ -185,7 +185,7 @@ pub fn report(
     progress: Option<Bound<'_, PyAny>>,
 ) -> PyResult<ReportParts> {
     let base = source(config_text, config_path, set);
-    blocking::run(py, progress.as_ref(), Writes::Files, move |cancel, sink| {
+    blocking::run(py, progress.as_ref(), Writes::Gated, move |cancel, sink| {
         let cfg = base.load()?;
         let on_progress = |p: wingcheck_report::Overall| sink.set(p.fraction, p.stage);
         let opts = wingcheck_report::ReportOptions {

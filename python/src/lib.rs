@@ -26,5 +26,6 @@ fn _wingcheck(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(functions::build_info, m)?)?;
     m.add_function(wrap_pyfunction!(proofs::certify, m)?)?;
     m.add_function(wrap_pyfunction!(proofs::verify, m)?)?;
+    m.add_function(wrap_pyfunction!(blocking::join_stopped, m)?)?;
     Ok(())
 }

@@ -21,7 +21,7 @@ pub fn certify(
     set: Vec<String>,
 ) -> PyResult<(Vec<PathBuf>, Vec<String>)> {
     let base = source(config_text, config_path, set);
-    blocking::run(py, None, Writes::Files, move |cancel, _| {
+    blocking::run(py, None, Writes::Gated, move |cancel, _| {
         let cfg = base.load()?;
         let w = ops::certify(&cfg, &out, cancel)?;
         Ok((w.files, w.notes))

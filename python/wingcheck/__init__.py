@@ -5,13 +5,13 @@ claims, map the gain region, write the report and the exact certificates.
 Every function takes a configuration as a :class:`Config`, a dict (complete or partial, merged
 over the paper's default), JSON text or a path, plus ``set=`` overrides (``{"control.a": 0.05}``),
 validated by the same Rust code as the command line (same messages). Long calls release the GIL,
-honour Ctrl-C (``KeyboardInterrupt``, nothing written; within 0.1 s for ``simulate``,
-``search`` and ``check``, see docs/python.md for ``report`` and ``certify``) and take ``progress=True`` (tqdm when installed)
+honour Ctrl-C (``KeyboardInterrupt`` within 0.1 s, nothing written) and take ``progress=True`` (tqdm when installed)
 or a callable ``progress(fraction, stage)`` that may return ``False`` to stop.
 """
 
 from __future__ import annotations
 
+import atexit
 import os
 from typing import Any, Dict, Optional, Sequence, Tuple, Union
 
@@ -32,6 +32,10 @@ from ._results import (
     Verdict,
     VerifiedSet,
 )
+# a report or certify stopped by Ctrl-C returns at once; its worker removes its staging
+# directory at its next checkpoint, and the interpreter waits for that before it exits
+atexit.register(_wingcheck.join_stopped)
+
 from .errors import (
     Cancelled,
     ConfigError,

@@ -7,6 +7,7 @@ __all__ = [
     "build_info",
     "certify",
     "check",
+    "join_stopped",
     "load_config",
     "modes",
     "report",
@@ -89,3 +90,4 @@ def verify(
     config_path: Optional[_Path] = None,
     set: Sequence[str] = ...,
 ) -> Dict[str, Any]: ...
+def join_stopped() -> None: ...

@@ -197,6 +197,7 @@ fn certify_kind(e: &CertifyError, other: ErrorKind) -> ErrorKind {
         CertifyError::Io { .. } => ErrorKind::Input,
         CertifyError::Write(_) => ErrorKind::Output,
         CertifyError::Numerical { .. } => ErrorKind::Numerical,
+        CertifyError::Cancelled(_) => ErrorKind::Cancelled,
         CertifyError::Invalid { .. } | CertifyError::Refuted(_) | CertifyError::SelfCheck(_) => other,
     }
 }

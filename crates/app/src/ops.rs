@@ -46,8 +46,8 @@ pub fn search(
 /// `certify`: the exact certificate set of `cfg` into `out` (replaced atomically).
 pub fn certify(cfg: &Config, out: &Path, cancel: &Cancel) -> Result<WrittenSet, AppError> {
     cancel.check()?;
-    let written =
-        certify::write_set(cfg, out).map_err(|source| AppError::Certify { out: out.to_path_buf(), source })?;
+    let written = certify::write_set_cancellable(cfg, out, cancel)
+        .map_err(|source| AppError::Certify { out: out.to_path_buf(), source })?;
     Ok(written)
 }
 

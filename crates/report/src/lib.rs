@@ -195,8 +195,8 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     report(progress, "html", 1, 1);
 
     let t = Instant::now();
-    cancel.check()?;
-    staging.commit(&format!("{}\nconfig sha256 {}\n", ledger.tool, page.config_sha256))?;
+    // the gate: once the front end's cancel has returned, the directory never appears
+    cancel.commit(|| staging.commit(&format!("{}\nconfig sha256 {}\n", ledger.tool, page.config_sha256)))?;
     files.push(MARKER.to_string());
     files.sort();
     timings.push(StageTiming { name: "write".into(), seconds: t.elapsed().as_secs_f64() });
