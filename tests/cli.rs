@@ -274,3 +274,17 @@ fn bench_report_measures_the_explicit_observer_beside_the_configured_report() {
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert!(v.get("explicit_over_configured").is_none(), "{v}");
 }
+
+#[test]
+fn simulate_names_the_loop_it_ran_and_an_observer_only_where_there_is_one() {
+    let first_line = |controller: &str| {
+        let o = wingcheck(&["simulate", "--controller", controller, SHORT[0], SHORT[1]]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        String::from_utf8_lossy(&o.stdout).lines().next().unwrap_or_default().to_string()
+    };
+    let none = first_line("none");
+    assert!(none.starts_with("open loop (no controller), "), "{none}");
+    assert!(!none.contains("observer"), "{none}");
+    assert!(first_line("pd").starts_with("pd controller (no observer), "));
+    assert!(first_line("ftdo").starts_with("ftdo controller, implicit observer, "));
+}

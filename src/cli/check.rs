@@ -19,7 +19,10 @@ pub struct CheckArgs {
 
 pub fn run(a: CheckArgs) -> anyhow::Result<()> {
     let cfg = a.config.load()?;
-    let ledger = wingcheck_app::ops::check(&cfg, a.work.policy(), &Cancel::new())?;
+    let estimate = wingcheck_claims::plan::check_estimate(&cfg, &wingcheck_claims::CheckSettings::default());
+    let ledger = super::progress::while_running("check", estimate.seconds, || {
+        wingcheck_app::ops::check(&cfg, a.work.policy(), &Cancel::new())
+    })?;
     if a.json {
         println!("{}", ledger.to_json());
         return Ok(());

@@ -1,6 +1,5 @@
 //! Options shared by all commands: the configuration source and overrides.
 
-use std::io::IsTerminal;
 use std::path::PathBuf;
 
 use clap::Args;
@@ -49,19 +48,4 @@ impl WorkArgs {
     pub fn guard(&self, est: &wingcheck_model::work::WorkEstimate) -> anyhow::Result<()> {
         Ok(self.policy().guard(est)?)
     }
-}
-
-/// A progress bar on stderr when it is a terminal; `None` otherwise (quiet).
-pub fn progress_bar(len: u64, what: &str) -> Option<indicatif::ProgressBar> {
-    if !std::io::stderr().is_terminal() {
-        return None;
-    }
-    let bar = indicatif::ProgressBar::new(len);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{msg} [{bar:40}] {percent}% ({elapsed} / eta {eta})")
-            .expect("valid template")
-            .progress_chars("=> "),
-    );
-    bar.set_message(what.to_string());
-    Some(bar)
 }

@@ -68,30 +68,12 @@ pub fn run_search(a: SearchArgs) -> anyhow::Result<()> {
         best: a.best,
         ..Default::default()
     };
-    let bar = indicatif::ProgressBar::new(0);
-    if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
-        bar.set_style(
-            indicatif::ProgressStyle::with_template(
-                "search [{bar:40}] {pos}/{len} points ({per_sec}, {elapsed} / eta {eta})",
-            )
-            .expect("valid template")
-            .progress_chars("=> "),
-        );
-    } else {
-        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
-    }
-    let on_progress = |p: Progress| {
-        if p.done == 0 {
-            bar.set_length(p.total as u64);
-            bar.reset();
-        } else {
-            bar.inc(1);
-        }
-    };
+    let shown = super::progress::Progress::new("search");
+    let on_progress = |p: Progress| shown.set(p.done as u64, p.total as u64, "points", "");
     let policy = wingcheck_app::WorkPolicy { allow_large: a.allow_large, front: wingcheck_app::Front::Cli };
     let ctl = RunControl { shard: a.shard, progress: Some(&on_progress), threads: a.threads, ..Default::default() };
     let s = wingcheck_app::ops::search(base, &a.over, options, &a.out, policy, ctl)?;
-    bar.finish_and_clear();
+    shown.finish();
     println!(
         "{} of {} points evaluated ({} already done), {} of them failed, in {:.1} s; simulation {:.1} s, theory {:.1} s (summed over points)",
         s.evaluated, s.points_total, s.skipped, s.failed, s.wall_seconds, s.sim_seconds, s.theory_seconds

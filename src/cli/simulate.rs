@@ -7,7 +7,8 @@ use wingcheck_app::{Cancel, SimulateRequest, SimulateSummary};
 use wingcheck_model::{ControllerKind, Method, ObserverRule};
 use wingcheck_sim::{SubStepCheck, TIP_TOLERANCE};
 
-use super::common::{progress_bar, ConfigArgs};
+use super::common::ConfigArgs;
+use super::progress::Progress;
 
 /// Arguments of `wingcheck simulate`.
 #[derive(Debug, Args)]
@@ -58,16 +59,10 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
         out: a.out.clone(),
     };
     let cfg = req.config(&a.config.source())?;
-    let bar = progress_bar(1000, "simulate");
-    let mut progress = |f: f64| {
-        if let Some(b) = &bar {
-            b.set_position((f * 1000.0) as u64);
-        }
-    };
+    let shown = Progress::new("simulate");
+    let mut progress = |f: f64| shown.set((f * 1000.0).round() as u64, 1000, "", "");
     let result = wingcheck_app::simulate::run(&cfg, &req, a.work.policy(), Some(&mut progress), &Cancel::new())?;
-    if let Some(b) = bar {
-        b.finish_and_clear();
-    }
+    shown.finish();
     let (out, estimated, sample_times, wall) =
         (&result.output, result.estimate.as_ref(), &result.sample_times, result.wall_seconds);
     let s = &out.series;
@@ -75,10 +70,15 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
         let summary = SimulateSummary::of(&cfg, &result, a.out.as_deref());
         println!("{}", serde_json::to_string_pretty(&summary)?);
     } else {
+        // the observer's rule matters only to the FTDO
+        let loop_text = match cfg.control.kind {
+            ControllerKind::None => "open loop (no controller)".to_string(),
+            ControllerKind::Pd => "pd controller (no observer)".to_string(),
+            ControllerKind::Dobc => "dobc controller (its linear observer (57))".to_string(),
+            ControllerKind::Ftdo => format!("ftdo controller, {} observer", cfg.observer.rule.name()),
+        };
         println!(
-            "{} controller, {} observer, {} with {} {}, dt = {} s ({}, {} basis): {} steps in {:.3} s",
-            cfg.control.kind.name(),
-            cfg.observer.rule.name(),
+            "{loop_text}, {} with {} {}, dt = {} s ({}, {} basis): {} steps in {:.3} s",
             cfg.discretisation.method.name(),
             cfg.discretisation.grid_size(),
             if cfg.discretisation.method == Method::Fe { "elements" } else { "intervals" },

@@ -5,7 +5,7 @@
 pub fn schemas() -> Vec<(&'static str, schemars::Schema)> {
     use schemars::schema_for;
     vec![
-        ("config", schema_for!(wingcheck_model::Config)),
+        ("config", wingcheck_model::config_schema()),
         ("check", schema_for!(wingcheck_claims::Ledger)),
         ("simulate", schema_for!(crate::SimulateSummary)),
         ("run", schema_for!(wingcheck_sim::output::RunDocument<'static>)),

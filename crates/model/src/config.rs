@@ -297,9 +297,18 @@ impl Config {
     /// configuration or only some of its keys, merged over the embedded default
     /// ([`Config::paper`]; objects merged key by key, a value replacing the default's). Unknown
     /// keys, a key given twice and anything after the document (other than whitespace) are
-    /// rejected, naming the key.
+    /// rejected, naming the key. A top-level `"$schema"` string (an editor's pointer to the
+    /// JSON Schema, [`crate::config_schema`]) is ignored.
     pub fn from_json_str(text: &str) -> Result<Config, ConfigError> {
-        let partial = Self::read_document(text)?;
+        let mut partial = Self::read_document(text)?;
+        // an editor's pointer to the schema (docs/schema/config.schema.json): not a parameter
+        if let Some(pointer) = partial.as_object_mut().and_then(|m| m.remove("$schema")) {
+            if !pointer.is_string() {
+                return Err(ConfigError::Parse(format!(
+                    "$schema: must be a string (the URI or path of the configuration's JSON Schema), got {pointer}"
+                )));
+            }
+        }
         let mut merged = serde_json::to_value(Self::paper()).expect("config serialises");
         merge(&mut merged, partial);
         Self::from_json_value(merged)

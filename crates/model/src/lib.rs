@@ -9,6 +9,7 @@
 //! [`Config::validate`] checks every field and returns a [`ConfigError`] naming the field
 //! and the allowed range.
 
+pub mod bounds;
 pub mod cancel;
 mod config;
 mod disturbance;
@@ -21,6 +22,7 @@ mod scheme;
 mod validate;
 pub mod work;
 
+pub use bounds::{config_schema, FieldBound, FIELD_BOUNDS, MAX_MAGNITUDE, MIN_POSITIVE};
 pub use cancel::{Cancel, Cancelled};
 pub use config::*;
 pub use disturbance::{Distributed, Disturbance, MeanSteps, StepMeans, TipDisturbance, TipValues};
