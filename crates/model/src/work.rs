@@ -100,9 +100,10 @@ pub fn layer_steps_max(cfg: &Config) -> f64 {
     layer_runs(cfg).iter().map(|r| r.steps).sum()
 }
 
-/// Seconds of a run's modal-basis setup per unknown³ (the dense eigenproblems, once per run):
-/// ≈ 0.3 s at 600 unknowns (1.4e-9), doubled.
-pub const SECONDS_PER_MODAL_SETUP_CUBE: f64 = 3e-9;
+/// Seconds of a run's modal-basis setup per unknown³ (the SVD and its check, once per run):
+/// measured ≤ 6.5e-10 CPU ([`crate::MODAL_SETUP_SECONDS_PER_CUBE`]: 0.11 s at 576 unknowns,
+/// 2.3 s at 1 536), doubled and rounded up.
+pub const SECONDS_PER_MODAL_SETUP_CUBE: f64 = 1.5e-9;
 /// Worst-case seconds of the W-bounds row's SDP cross-check at N = 2 … 32: it is bounded by an
 /// iteration budget (600 interior-point iterations, claims' `SDP_ITERATION_BUDGET`), ≈ 0.4 s on
 /// the paper's wing and ≈ 3 s at the budget.
@@ -311,8 +312,7 @@ impl WorkEstimate {
         }
     }
 
-    /// Seconds of one run's set-up beyond its steps: the modal basis's dense eigenproblems
-    /// (O(unknowns³)) when the run is expected in the modal basis (once per `simulate`: its
+    /// Seconds of one run's set-up beyond its steps: the modal basis's SVD (O(unknowns³)) when the run is expected in the modal basis (once per `simulate`: its
     /// initial-layer re-runs step in the same basis).
     pub fn setup_seconds(cfg: &Config) -> f64 {
         if cfg.expected_modal() {
@@ -426,11 +426,15 @@ mod tests {
         let trbdf2 = seconds(&["observer.rule=explicit", "discretisation.stepper=trbdf2"]);
         let exponential = seconds(&["observer.rule=explicit"]);
         assert!(exponential > 2.0 * trbdf2, "{exponential} vs {trbdf2}");
-        // above MODAL_AUTO_UNKNOWNS `auto` runs nodal TR-BDF2, and is estimated as such
+        // above MODAL_AUTO_UNKNOWNS `auto` runs the explicit FTDO in nodal TR-BDF2 (the modal
+        // basis would mean the exponential scheme's dense steps), and is estimated as such
         let fine = ["observer.rule=explicit", "discretisation.elements=200"];
         let auto = seconds(&fine);
-        let nodal = seconds(&[fine[0], fine[1], "discretisation.stepper=trbdf2"]);
+        let nodal = seconds(&[fine[0], fine[1], "discretisation.stepper=trbdf2", "discretisation.basis=nodal"]);
         assert_eq!(auto, nodal);
+        // TR-BDF2 asked for there is stepped in the modal basis, whose setup the estimate counts
+        let modal = seconds(&[fine[0], fine[1], "discretisation.stepper=trbdf2"]);
+        assert!(modal > nodal, "{modal} vs {nodal}");
         // a forced exponential scheme there is estimated with its dense step
         assert!(seconds(&[fine[0], fine[1], "discretisation.stepper=exponential"]) > 10.0 * nodal);
     }
