@@ -33,9 +33,9 @@ pub fn exponential_seconds(steps: f64, states: f64) -> f64 {
 pub fn sub_step_probe_seconds(probes: f64, states: f64) -> f64 {
     probes * states * states * SECONDS_PER_EXPONENTIAL_ENTRY_STEP
 }
-/// Rows of length `states` the sub-step probe stores: 16 points per octave of s over up to 30
-/// octaves, 6 outputs each.
-pub const SUB_STEP_PROBE_ROWS: f64 = 16.0 * 30.0 * 6.0;
+/// Rows of length `states` the sub-step probe stores: 32 fine points per octave of s and the
+/// coarse grid's copy over up to 30 octaves, 4 rows (q, θ, q̇, θ̇) each.
+pub const SUB_STEP_PROBE_ROWS: f64 = 33.0 * 30.0 * 4.0;
 /// Observer sample periods at the start of a run that `simulate` re-runs at finer steps to
 /// resolve a sub-step transient (the initial layer; sim's `layer` module).
 pub const LAYER_SAMPLES: usize = 2;

@@ -41,7 +41,7 @@ use wingcheck_model::{Config, MODAL_MAX_UNKNOWNS};
 use crate::{Discretisation, SimError};
 
 pub use drive::{drive, Reads, Recorder, Signal};
-pub use probe::{SubStepPeak, FINE_PER_OCTAVE, PROBED, PROBE_MARGIN};
+pub use probe::{ProbedStep, SubStepPeak, FINE_PER_OCTAVE, PROBED, PROBE_MARGIN};
 pub use run::simulate_modal;
 pub use scheme::{dot, ModalLoop, ModalState, StepInput};
 pub use signal::{ObserverSignal, RecordedSignal, Replay, SampleInput};
