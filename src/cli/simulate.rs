@@ -117,24 +117,24 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
                     TIP_TOLERANCE
                 );
                 let p = &e.peaks;
+                let at =
+                    |t: f64| if t == 0.0 { "0".to_string() } else { wingcheck_model::quantity::with_significant(t, 4) };
                 println!(
-                    "full-rate peaks: |τ1| {:.6} ± {:.1e} N at {:.3} s, |τ2| {:.6} ± {:.1e} N m at {:.3} s, |q| {:.6} ± {:.1e} m, |θ| {:.6} ± {:.1e} rad",
-                    p.tau1.abs_max.value, p.tau1.abs_max.error, p.tau1.t,
-                    p.tau2.abs_max.value, p.tau2.abs_max.error, p.tau2.t,
-                    p.q_tip.abs_max.value, p.q_tip.abs_max.error,
-                    p.theta_tip.abs_max.value, p.theta_tip.abs_max.error
+                    "full-rate peaks (± from h on N, 2N, 4N; dt; the initial layer; the sub-step probe; round-off):"
                 );
-                println!(
-                    "tip-rate peaks: |q̇| {:.4e} ± {:.1e} m/s at {:.3e} s{}, |θ̇| {:.4e} ± {:.1e} rad/s at {:.3e} s{}",
-                    p.q_tip_rate.abs_max.value,
-                    p.q_tip_rate.abs_max.error,
-                    p.q_tip_rate.t,
-                    if p.q_tip_rate.grid_converged { "" } else { " (not converged in the grid)" },
-                    p.theta_tip_rate.abs_max.value,
-                    p.theta_tip_rate.abs_max.error,
-                    p.theta_tip_rate.t,
-                    if p.theta_tip_rate.grid_converged { "" } else { " (not converged in the grid)" },
-                );
+                for (name, peak, unit) in [
+                    ("|τ1|", &p.tau1, "N"),
+                    ("|τ2|", &p.tau2, "N m"),
+                    ("|q|", &p.q_tip, "m"),
+                    ("|θ|", &p.theta_tip, "rad"),
+                    ("|q̇|", &p.q_tip_rate, "m/s"),
+                    ("|θ̇|", &p.theta_tip_rate, "rad/s"),
+                ] {
+                    println!("  {name} {} at {} s", peak.text(unit), at(peak.t));
+                }
+                if let wingcheck_sim::ThirdGrid::NotRun { reason } = &e.third_grid {
+                    println!("  (the peaks' 4N grid did not run: {reason}; no peak is called converged in the grid)");
+                }
                 match &e.sub_step_check {
                     SubStepCheck::Probed => {}
                     SubStepCheck::Twin { raised } => println!(

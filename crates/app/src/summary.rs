@@ -104,6 +104,8 @@ pub struct ErrorSummary {
     pub peaks: wingcheck_sim::PeakEstimates,
     /// How the peaks were checked for sub-step transients after the initial layer.
     pub sub_step_check: SubStepCheck,
+    /// The peaks' third grid (4N).
+    pub third_grid: wingcheck_sim::ThirdGrid,
     /// How the estimate is made.
     pub basis: String,
 }
@@ -165,7 +167,8 @@ fn summary_of(
             meets_tolerance: e.meets_tolerance,
             peaks: e.peaks,
             sub_step_check: e.sub_step_check.clone(),
-            basis: "Richardson, order 2 in h and dt, safety factor 1.25: (5/3)·|u(N) − u(2N)| + (5/3)·|u(dt) − u(dt/2)| per output sample, maximised over ±0.1 s; peaks at full rate with the initial layer resolved at finer steps (its last change), a 4N grid check inside the layer, the sub-step probe's resolution after later jumps (the exponential scheme's own, or an exponential twin's excess over a scheme without one), and a round-off floor of 256 ulp".into(),
+            third_grid: e.third_grid.clone(),
+            basis: "Richardson, order 2 in h and dt, safety factor 1.25: (5/3)·|u(N) − u(2N)| + (5/3)·|u(dt) − u(dt/2)| per output sample, maximised over ±0.1 s; peaks at full rate: the grid part from N, 2N and 4N (the 4N run to one sample period past the latest peak; Richardson when the changes shrink at least 3-fold, else |u(N) − u(4N)| plus the geometric tail or the whole value, called not converged in the grid), the initial layer resolved at finer steps (its last change), the sub-step probe's resolution after later jumps (the exponential scheme's own, or an exponential twin's excess over a scheme without one), and a round-off floor of 256 ulp".into(),
         }),
     }
 }

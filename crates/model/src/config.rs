@@ -254,8 +254,9 @@ pub struct Discretisation {
     /// Time integrator (default `auto`, see [`TimeScheme::Auto`]).
     #[serde(default)]
     pub stepper: TimeScheme,
-    /// Basis the closed loop is stepped in (default `auto`: modal up to
-    /// [`crate::MODAL_AUTO_UNKNOWNS`] unknowns); it changes the cost, not the result beyond round-off.
+    /// Basis the closed loop is stepped in (default `auto`: modal where
+    /// [`Config::expected_modal`] finds it cheaper); it changes the cost, not the result beyond
+    /// round-off.
     #[serde(default)]
     pub basis: StepBasis,
 }

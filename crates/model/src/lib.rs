@@ -29,7 +29,10 @@ pub use disturbance::{Distributed, Disturbance, MeanSteps, StepMeans, TipDisturb
 pub use error::ConfigError;
 pub use overrides::{apply_override, apply_overrides};
 pub use quantity::{Accuracy, ErrorSource, Estimate, Quantity, Unit, ValueBasis};
-pub use scheme::{StepBasis, TimeScheme, MODAL_AUTO_UNKNOWNS, MODAL_MAX_UNKNOWNS};
+pub use scheme::{
+    StepBasis, TimeScheme, MODAL_AUTO_UNKNOWNS, MODAL_MAX_UNKNOWNS, MODAL_SETUP_SECONDS_PER_CUBE,
+    NODAL_EXTRA_SECONDS_PER_UNKNOWN_STEP,
+};
 
 /// The paper's configuration (`configs/paper.json`), embedded at compile time.
 pub const PAPER_JSON: &str = include_str!("../../../configs/paper.json");

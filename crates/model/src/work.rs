@@ -33,9 +33,9 @@ pub fn exponential_seconds(steps: f64, states: f64) -> f64 {
 pub fn sub_step_probe_seconds(probes: f64, states: f64) -> f64 {
     probes * states * states * SECONDS_PER_EXPONENTIAL_ENTRY_STEP
 }
-/// Rows of length `states` the sub-step probe stores: 16 points per octave of s over up to 30
-/// octaves, 6 outputs each.
-pub const SUB_STEP_PROBE_ROWS: f64 = 16.0 * 30.0 * 6.0;
+/// Rows of length `states` the sub-step probe stores: 32 fine points per octave of s and the
+/// coarse grid's copy over up to 30 octaves, 4 rows (q, θ, q̇, θ̇) each.
+pub const SUB_STEP_PROBE_ROWS: f64 = 33.0 * 30.0 * 4.0;
 /// Observer sample periods at the start of a run that `simulate` re-runs at finer steps to
 /// resolve a sub-step transient (the initial layer; sim's `layer` module).
 pub const LAYER_SAMPLES: usize = 2;
@@ -100,9 +100,10 @@ pub fn layer_steps_max(cfg: &Config) -> f64 {
     layer_runs(cfg).iter().map(|r| r.steps).sum()
 }
 
-/// Seconds of a run's modal-basis setup per unknown³ (the dense eigenproblems, once per run):
-/// ≈ 0.3 s at 600 unknowns (1.4e-9), doubled.
-pub const SECONDS_PER_MODAL_SETUP_CUBE: f64 = 3e-9;
+/// Seconds of a run's modal-basis setup per unknown³ (the SVD and its check, once per run):
+/// measured ≤ 6.5e-10 CPU ([`crate::MODAL_SETUP_SECONDS_PER_CUBE`]: 0.11 s at 576 unknowns,
+/// 2.3 s at 1 536), doubled and rounded up.
+pub const SECONDS_PER_MODAL_SETUP_CUBE: f64 = 1.5e-9;
 /// Worst-case seconds of the W-bounds row's SDP cross-check at N = 2 … 32: it is bounded by an
 /// iteration budget (600 interior-point iterations, claims' `SDP_ITERATION_BUDGET`), ≈ 0.4 s on
 /// the paper's wing and ≈ 3 s at the budget.
@@ -317,8 +318,7 @@ impl WorkEstimate {
         }
     }
 
-    /// Seconds of one run's set-up beyond its steps: the modal basis's dense eigenproblems
-    /// (O(unknowns³)) when the run is expected in the modal basis (once per `simulate`: its
+    /// Seconds of one run's set-up beyond its steps: the modal basis's SVD (O(unknowns³)) when the run is expected in the modal basis (once per `simulate`: its
     /// initial-layer re-runs step in the same basis).
     pub fn setup_seconds(cfg: &Config) -> f64 {
         if cfg.expected_modal() {
@@ -329,12 +329,14 @@ impl WorkEstimate {
     }
 
     /// `simulate --error-estimate`: the run, the run on the doubled grid and the run at dt/2,
-    /// and for a scheme without the sub-step probe its exponential twin (modal basis, at the
-    /// configured step only).
+    /// the peaks' 4N run (counted over the whole horizon: it stops one sample period after
+    /// the latest peak), and for a scheme without the sub-step probe its exponential twin
+    /// (modal basis, at the configured step only).
     pub fn simulation_with_error(cfg: &Config, fields: bool, json_output: Option<bool>) -> WorkEstimate {
         let base = Self::simulation(cfg, fields, json_output);
         let space = Self::simulation(&refined_in_space(cfg), false, None);
         let time = Self::simulation(&refined_in_time(cfg), false, None);
+        let fourth = Self::simulation(&refined_in_space(&refined_in_space(cfg)), false, None);
         let twin = if cfg.expected_time_scheme() == crate::TimeScheme::Exponential {
             None
         } else {
@@ -347,9 +349,10 @@ impl WorkEstimate {
             twin.map_or((0.0, 0.0, 0.0), |t| (t.steps, t.seconds, t.memory_bytes));
         WorkEstimate {
             what: "simulate".into(),
-            steps: base.steps + space.steps + time.steps + twin_steps,
-            seconds: base.seconds + space.seconds + time.seconds + twin_seconds,
-            memory_bytes: base.memory_bytes + space.memory_bytes.max(time.memory_bytes).max(twin_memory),
+            steps: base.steps + space.steps + time.steps + fourth.steps + twin_steps,
+            seconds: base.seconds + space.seconds + time.seconds + fourth.seconds + twin_seconds,
+            memory_bytes: base.memory_bytes
+                + space.memory_bytes.max(time.memory_bytes).max(fourth.memory_bytes).max(twin_memory),
             output_bytes: base.output_bytes,
         }
     }
@@ -433,11 +436,15 @@ mod tests {
         let trbdf2 = seconds(&["observer.rule=explicit", "discretisation.stepper=trbdf2"]);
         let exponential = seconds(&["observer.rule=explicit"]);
         assert!(exponential > 2.0 * trbdf2, "{exponential} vs {trbdf2}");
-        // above MODAL_AUTO_UNKNOWNS `auto` runs nodal TR-BDF2, and is estimated as such
+        // above MODAL_AUTO_UNKNOWNS `auto` runs the explicit FTDO in nodal TR-BDF2 (the modal
+        // basis would mean the exponential scheme's dense steps), and is estimated as such
         let fine = ["observer.rule=explicit", "discretisation.elements=200"];
         let auto = seconds(&fine);
-        let nodal = seconds(&[fine[0], fine[1], "discretisation.stepper=trbdf2"]);
+        let nodal = seconds(&[fine[0], fine[1], "discretisation.stepper=trbdf2", "discretisation.basis=nodal"]);
         assert_eq!(auto, nodal);
+        // TR-BDF2 asked for there is stepped in the modal basis, whose setup the estimate counts
+        let modal = seconds(&[fine[0], fine[1], "discretisation.stepper=trbdf2"]);
+        assert!(modal > nodal, "{modal} vs {nodal}");
         // a forced exponential scheme there is estimated with its dense step
         assert!(seconds(&[fine[0], fine[1], "discretisation.stepper=exponential"]) > 10.0 * nodal);
     }

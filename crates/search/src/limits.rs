@@ -96,7 +96,7 @@ fn point_memory(cfg: &Config) -> (f64, f64, f64) {
     let signal = 8.0 * (3.0 * steps + 4.0 * samples);
     let outputs = (cfg.horizon.t_end / cfg.horizon.sample_every).floor() + 2.0;
     let n = cfg.unknowns() as f64;
-    let run = if cfg.unknowns() <= MODAL_AUTO_UNKNOWNS {
+    let run = if cfg.expected_modal() {
         8.0 * 9.0 * outputs + 8.0 * 4.0 * (2.0 * n) * (2.0 * n)
     } else {
         wingcheck_model::work::WorkEstimate::simulation(cfg, false, None).memory_bytes

@@ -32,8 +32,8 @@ pub mod strain;
 
 pub use disc::{mass_determinant, Discretisation, Interpolation, Parts};
 pub use error_estimate::{
-    estimate_from_runs, refinements, series_error, simulate_with_error, EstimatedRun, PeakEstimate, PeakEstimates,
-    SubStepCheck, RICHARDSON_2, TIP_TOLERANCE,
+    estimate_from_runs, grid_part, refinements, series_error, simulate_with_error, third_grid_run, EstimatedRun,
+    PeakEstimate, PeakEstimates, SubStepCheck, ThirdGrid, RICHARDSON_2, TIP_TOLERANCE,
 };
 pub use estimate::Estimate;
 pub use run::{

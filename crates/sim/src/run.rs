@@ -5,7 +5,7 @@
 use std::time::Instant;
 
 use serde::Serialize;
-use wingcheck_model::{Config, StepBasis, TimeScheme, Unit, MODAL_AUTO_UNKNOWNS};
+use wingcheck_model::{Config, StepBasis, TimeScheme, Unit};
 
 use crate::modal::ModalBasis;
 use crate::stepper::{Peaks, Sample, Stepper};
@@ -320,9 +320,10 @@ pub struct SimOutput {
 const DIVERGENCE_FACTOR: f64 = 1e12;
 
 /// The basis `cfg` is stepped in, and the modal basis if that is the modal one:
-/// `discretisation.basis`, with `auto` resolved to `modal` when `disc` has at most
-/// [`MODAL_AUTO_UNKNOWNS`] unknowns and its modal basis passes its orthonormality check
-/// ([`crate::modal::MASS_TOLERANCE`], [`crate::modal::STIFFNESS_TOLERANCE`]), `nodal`
+/// `discretisation.basis`, with `auto` resolved to `modal` where [`Config::expected_modal`]
+/// expects it (up to [`wingcheck_model::MODAL_AUTO_UNKNOWNS`] unknowns, and above where the
+/// basis's setup is repaid by its cheaper steps) and the modal basis passes its check
+/// ([`crate::modal::MASS_TOLERANCE`], [`crate::modal::FREQUENCY_TOLERANCE`]), `nodal`
 /// otherwise. An explicit `modal` (or `auto` with `discretisation.stepper = exponential`, which
 /// runs in the modal basis only) whose basis cannot be built or fails the check is an error
 /// naming the reason.
@@ -341,7 +342,7 @@ pub fn resolved_basis(cfg: &Config, disc: &Discretisation) -> Result<(StepBasis,
         StepBasis::Nodal => Ok((StepBasis::Nodal, None)),
         StepBasis::Modal => Ok((StepBasis::Modal, Some(modal()?))),
         StepBasis::Auto if needs_modal => Ok((StepBasis::Modal, Some(modal()?))),
-        StepBasis::Auto if disc.dim() > MODAL_AUTO_UNKNOWNS => Ok((StepBasis::Nodal, None)),
+        StepBasis::Auto if !cfg.expected_modal() => Ok((StepBasis::Nodal, None)),
         StepBasis::Auto => match ModalBasis::of(disc) {
             Ok(basis) => Ok((StepBasis::Modal, Some(basis))),
             Err(SimError::NoModalBasis { .. }) => Ok((StepBasis::Nodal, None)),

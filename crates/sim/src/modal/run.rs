@@ -38,7 +38,8 @@ struct Simulation<'c, 'o> {
     progress: Option<&'o mut dyn FnMut(f64)>,
     cancel: wingcheck_model::Cancel,
     /// Probe the next step ([`ModalLoop::probe_last_step`]): the held inputs jumped (t = 0 and
-    /// every sample), and the probe is on.
+    /// every sample), or the step just probed ended with an output still rising toward its
+    /// running peak ([`crate::modal::ProbedStep`]), and the probe is on.
     probe_next: bool,
     probe_on: bool,
     exhaustive: bool,
@@ -103,8 +104,9 @@ impl Simulation<'_, '_> {
             return;
         };
         self.probes += 1;
+        self.probe_next = found.rising_at_end;
         let mut raised = false;
-        for (o, peak) in found.iter().enumerate() {
+        for (o, peak) in found.peaks.iter().enumerate() {
             if let Some(p) = peak {
                 let t = start + p.s;
                 raised |= p.value.abs() > self.full_rate.running(t, [o])[0];
