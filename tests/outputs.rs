@@ -180,6 +180,9 @@ fn every_output_is_documented_and_valid() {
     let csv = d("run.csv");
     let o = wingcheck(&[&["simulate", "--json", "--out", csv.to_str().unwrap()][..], &SHORT].concat());
     schemas.validate("simulate", "simulate --json", &json(&o));
+    let modes = json(&wingcheck(&["modes", "--json", "--count", "3"]));
+    schemas.validate("modes", "modes --json", &modes);
+    assert_eq!(modes["provenance"]["config_sha256"], json(&wingcheck(&["simulate", "--json"]))["provenance"]["config_sha256"]);
     let (header, rows) = read_csv(&csv);
     check_columns(&csv, &header, &docs["run.csv"], &config_units);
     assert_eq!(rows.len(), 51, "0.5 s at 0.01 s: 51 samples");

@@ -25,9 +25,13 @@ impl Default for ModesRequest {
     }
 }
 
-/// The `modes --json` document (keys in this order).
-#[derive(Debug, Clone, Serialize)]
+/// The `modes --json` document (keys in this order; docs/schema/modes.schema.json).
+#[derive(Debug, Clone, Serialize, schemars::JsonSchema)]
 pub struct ModesDocument {
+    /// Layout version ([`wingcheck_io::SCHEMA_VERSION`]).
+    pub schema_version: u32,
+    /// Tool build and the configuration's SHA-256 (no files: the document is the output).
+    pub provenance: wingcheck_io::Provenance,
     /// `fd` or `fe`.
     pub method: String,
     /// The uniform meshes extrapolated over (elements or intervals).
@@ -42,6 +46,7 @@ pub struct ModesDocument {
     pub coupled_error_rad_s: Vec<f64>,
     /// Observed convergence order per frequency; none: at round-off (`"round-off"` in JSON).
     #[serde(serialize_with = "orders")]
+    #[schemars(schema_with = "orders_schema")]
     pub coupled_observed_order: Vec<Option<f64>>,
     /// Uncoupled analytic ω_n (rad/s) (ρx_c = 0: the bending and torsion frequencies merged).
     pub uncoupled_analytic_rad_s: Vec<f64>,
@@ -51,6 +56,14 @@ pub struct ModesDocument {
     pub torsion_analytic_rad_s: Vec<f64>,
     /// How the numbers are made.
     pub note: &'static str,
+}
+
+/// Each entry a number or the text `round-off`.
+fn orders_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+    schemars::json_schema!({
+        "type": "array",
+        "items": {"anyOf": [{"type": "number"}, {"const": "round-off"}]}
+    })
 }
 
 fn orders<S: serde::Serializer>(v: &[Option<f64>], s: S) -> Result<S::Ok, S::Error> {
@@ -92,6 +105,8 @@ impl ModesRequest {
         let conv = modes::converged_frequencies(cfg, method, self.count, self.tol)?;
         let w = &cfg.wing;
         Ok(ModesDocument {
+            schema_version: wingcheck_io::SCHEMA_VERSION,
+            provenance: wingcheck_io::Provenance::new(&cfg.sha256(), Vec::new()),
             method: method.name().into(),
             meshes: conv.meshes,
             tolerance: self.tol,

@@ -8,6 +8,7 @@ pub fn schemas() -> Vec<(&'static str, schemars::Schema)> {
         ("config", wingcheck_model::config_schema()),
         ("check", schema_for!(wingcheck_claims::Ledger)),
         ("simulate", schema_for!(crate::SimulateSummary)),
+        ("modes", schema_for!(crate::ModesDocument)),
         ("run", schema_for!(wingcheck_sim::output::RunDocument<'static>)),
         ("results", schema_for!(wingcheck_search::records::ResultsDocument)),
         ("best", schema_for!(wingcheck_search::records::BestDocument)),
