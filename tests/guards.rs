@@ -92,8 +92,12 @@ fn default_work_is_far_inside_the_limits() {
 
 #[test]
 fn config_input_is_bounded_and_strict() {
-    refused(&["config", "--config", "/dev/zero"], &["larger than 1048576 bytes"]);
+    // a device is never opened; a regular file is read up to 1 MiB
+    refused(&["config", "--config", "/dev/zero"], &["it is a device, not a regular file"]);
     let dir = tempfile::tempdir().unwrap();
+    let big = dir.path().join("big.json");
+    std::fs::File::create(&big).unwrap().set_len(2 << 20).unwrap();
+    refused(&["config", "--config", big.to_str().unwrap()], &["larger than 1048576 bytes"]);
     let p = dir.path().join("c.json");
     std::fs::write(&p, format!("{} {{\"x\": 1}}", wingcheck_model::PAPER_JSON)).unwrap();
     refused(&["config", "--config", p.to_str().unwrap()], &["trailing data"]);

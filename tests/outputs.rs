@@ -112,6 +112,9 @@ impl Schemas {
         let mut index = BTreeMap::new();
         for e in std::fs::read_dir(repo("docs/schema")).unwrap() {
             let path = e.unwrap().path();
+            if !path.to_string_lossy().ends_with(".schema.json") {
+                continue; // the directory's marker, .wingcheck-schema
+            }
             let name = path.file_name().unwrap().to_string_lossy().trim_end_matches(".schema.json").to_string();
             let value: Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
             let loc = format!("file:///schema/{name}.schema.json");

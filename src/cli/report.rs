@@ -30,7 +30,7 @@ pub fn run(a: ReportArgs) -> anyhow::Result<()> {
             b.set_position((p.fraction * 1000.0).round() as u64);
         }
     };
-    let command_line = wingcheck_report::command_text(&std::env::args().collect::<Vec<_>>());
+    let command_line = wingcheck_report::command_text(&std::env::args_os().collect::<Vec<_>>());
     let opts = ReportOptions { progress: None, overall: Some(&on_progress), command_line: Some(&command_line) };
     let summary = write_report(&cfg, &a.out, &opts)?;
     if let Some(b) = bar {

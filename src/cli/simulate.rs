@@ -217,22 +217,15 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Fail before any work if the output cannot be written (missing directory, bad extension).
+/// Fail before any work if the output cannot be written (bad extension, missing directory, a
+/// name too long, a symlink or special file in the way: `wingcheck_io::check_output_file`).
 fn check_writable(path: &std::path::Path) -> anyhow::Result<()> {
-    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+    let ext = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
     if ext != "csv" && ext != "json" {
         anyhow::bail!("--out {}: use a .csv or .json file name", path.display());
     }
-    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(std::path::Path::new("."));
-    let md = std::fs::metadata(dir)
-        .map_err(|e| anyhow::anyhow!("--out {}: directory {}: {e}", path.display(), dir.display()))?;
-    if !md.is_dir() {
-        anyhow::bail!("--out {}: {} is not a directory", path.display(), dir.display());
-    }
-    if md.permissions().readonly() {
-        anyhow::bail!("--out {}: directory {} is read-only", path.display(), dir.display());
-    }
-    Ok(())
+    let sidecar = (ext == "csv").then_some(wingcheck_io::SIDECAR_SUFFIX);
+    anyhow::Context::context(wingcheck_io::check_output_file_with(path, sidecar), "--out")
 }
 
 /// `simulate --json`: the settings run, the cost, the tip values at the requested times and the

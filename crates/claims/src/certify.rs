@@ -478,6 +478,11 @@ pub struct WrittenSet {
 /// is replaced only if it holds nothing but a certificate set's files (`index.json` and the
 /// files it lists); anything else is refused and left untouched.
 pub fn write_set(cfg: &Config, dir: &Path) -> Result<WrittenSet, CertifyError> {
+    // the target first, before any arithmetic: its name, its type, and that it holds a set
+    wingcheck_io::check_output_dir(dir, true)?;
+    if dir.exists() {
+        wingcheck_io::only_listed_files(dir, &files_of_set(dir))?;
+    }
     let (certs, notes) = certificate_set(cfg)?;
     let files = render_files(cfg, &certs, &omega1::compute(cfg)?)?;
     let staging = wingcheck_io::StagingDir::new(dir)?;

@@ -20,6 +20,13 @@ fn mismatch(dir: &Path, reason: impl Into<String>) -> SearchError {
     SearchError::Mismatch { dir: dir.display().to_string(), reason: reason.into() }
 }
 
+/// The output directory's name and type, before any work ([`wingcheck_io::check_output_dir`]:
+/// a directory or missing; a symlink to a directory is followed, as the files are written into
+/// it).
+fn check_out(out: &Path) -> Result<(), SearchError> {
+    Ok(wingcheck_io::check_output_dir(out, false)?)
+}
+
 /// How `prepare_out` found the output directory.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Found {
@@ -160,6 +167,7 @@ const CACHE_POINTS: usize = 1024;
 /// chunk of the search is present, write the final files ([`finalize`]). Refused before any
 /// work above the limits ([`limits::check`]) or with a bad thread count.
 pub fn run(search: &Search, out: &Path, ctl: RunControl<'_>) -> Result<RunSummary, SearchError> {
+    check_out(out)?;
     if let Some(n) = ctl.threads {
         limits::check_threads(n)?;
     }
@@ -263,6 +271,7 @@ fn run_in(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<RunSummar
 /// copy found, in the order of `dirs`) and [`finalize`]. On failure nothing is left in `out`
 /// that was not there before.
 pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<RunSummary, SearchError> {
+    check_out(out)?;
     let start = Instant::now();
     let first = dirs.first().ok_or_else(|| SearchError::Options("merge needs at least one directory".into()))?;
     let text = store::read(&first.join("manifest.json"))?;

@@ -99,6 +99,9 @@ pub enum SearchError {
     /// The search is above a work limit (see [`limits`]).
     #[error("search too large: {0}")]
     TooLarge(String),
+    /// An output path cannot be used (its name, its type; [`wingcheck_io::paths`]).
+    #[error(transparent)]
+    Output(#[from] wingcheck_io::IoError),
     /// A theory computation failed (eigenproblem, SOCP).
     #[error("theory ({what}): {detail}")]
     Theory {
