@@ -12,6 +12,8 @@ use super::common::ConfigArgs;
 pub struct ModesArgs {
     #[command(flatten)]
     config: ConfigArgs,
+    #[command(flatten)]
+    work: super::common::WorkArgs,
     /// Number of frequencies (1..=50).
     #[arg(long, default_value_t = 5)]
     count: usize,
@@ -54,6 +56,7 @@ pub fn run(a: ModesArgs) -> anyhow::Result<()> {
         anyhow::bail!("--tol {}: use a relative tolerance >= 1e-13", tol);
     }
     let count = a.count;
+    a.work.guard(&wingcheck_model::work::WorkEstimate::modes(&cfg, method, count))?;
     let conv = modes::converged_frequencies(&cfg, method, count, tol)?;
     let w = &cfg.wing;
     let bending = modes::bending_frequencies(w.span, w.ei, w.rho, count);

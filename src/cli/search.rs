@@ -68,6 +68,7 @@ pub fn run_search(a: SearchArgs) -> anyhow::Result<()> {
         ..Default::default()
     };
     let search = Search::new(base, &a.over, options)?;
+    println!("estimated: {}", search.estimate_for(a.threads).text());
     let bar = indicatif::ProgressBar::new(0);
     if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
         bar.set_style(

@@ -400,6 +400,14 @@ impl Config {
     pub fn total_samples(&self) -> usize {
         (self.horizon.t_end / self.observer.sample_period).round() as usize
     }
+
+    /// Output samples of a run: observer samples k = 0, e, 2e, … (e = [`Self::samples_per_output`])
+    /// and the last one, k = K, when K is not a multiple of e. Every runner records exactly
+    /// these (and allocates its series at this length).
+    pub fn output_samples(&self) -> usize {
+        let (every, total) = (self.samples_per_output(), self.total_samples());
+        total / every + 1 + usize::from(total % every != 0)
+    }
 }
 
 /// Largest configuration document accepted (bytes).

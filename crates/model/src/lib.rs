@@ -26,6 +26,7 @@ pub use error::ConfigError;
 pub use overrides::{apply_override, apply_overrides};
 pub use quantity::{Accuracy, ErrorSource, Estimate, Quantity, Unit, ValueBasis};
 pub use scheme::{StepBasis, TimeScheme, MODAL_AUTO_UNKNOWNS, MODAL_MAX_UNKNOWNS};
+pub use validate::{MAX_MAGNITUDE, MIN_POSITIVE};
 
 /// The paper's configuration (`configs/paper.json`), embedded at compile time.
 pub const PAPER_JSON: &str = include_str!("../../../configs/paper.json");

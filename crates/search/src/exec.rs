@@ -161,7 +161,7 @@ fn clean_up(out: &Path, found: Found, force: bool) {
 /// Points evaluated with one set of caches ([`TheoryCache`], [`RunCache`]) before they are
 /// dropped and rebuilt: bounds their memory (the verdict cache holds ≈ 300 bytes per point)
 /// while a sweep over wing keys rebuilds each wing's basis and pencil only once per window.
-const CACHE_POINTS: usize = 1024;
+pub(crate) const CACHE_POINTS: usize = 1024;
 
 /// Run (this shard of) a search into `out`, resuming from chunks already there; when every
 /// chunk of the search is present, write the final files ([`finalize`]). Refused before any
@@ -171,8 +171,7 @@ pub fn run(search: &Search, out: &Path, ctl: RunControl<'_>) -> Result<RunSummar
     if let Some(n) = ctl.threads {
         limits::check_threads(n)?;
     }
-    let threads = ctl.threads.unwrap_or_else(rayon::current_num_threads);
-    limits::check(&search.estimate_with_threads(threads), ctl.allow_large)?;
+    limits::check(&search.estimate_for(ctl.threads), ctl.allow_large)?;
     if let Some(n) = ctl.threads {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(n)

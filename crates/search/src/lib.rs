@@ -234,6 +234,12 @@ impl Search {
         limits::estimate_with_threads(&self.base, &self.grid.axes, threads)
     }
 
+    /// The work estimate [`run`] checks for [`RunControl::threads`] (`None`: the current rayon
+    /// pool's threads).
+    pub fn estimate_for(&self, threads: Option<usize>) -> WorkEstimate {
+        self.estimate_with_threads(threads.unwrap_or_else(rayon::current_num_threads))
+    }
+
     /// Number of points.
     pub fn points(&self) -> usize {
         self.grid.len()

@@ -140,20 +140,26 @@ fn the_estimate_takes_the_costliest_value_of_each_axis() {
     )
     .unwrap()
     .estimate();
-    assert!((w.core_seconds - 4.0 * corner.core_seconds).abs() <= 1e-12 * w.core_seconds, "{w:?} vs {corner:?}");
+    assert_eq!(w.point_seconds, corner.point_seconds, "{w:?} vs {corner:?}");
+    assert!(w.core_seconds >= 4.0 * corner.point_seconds, "{w:?} vs {corner:?}");
 }
 
 #[test]
 fn memory_is_estimated_and_every_value_of_a_list_axis_counts() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("s");
-    // t_end = 1e5 s at dt = 1 ms: 1e8 steps, whose observer signal is 3 × 8 bytes per step
-    // (2.4 GB) plus 4 × 8 bytes per sample (3.2 GB), and the point's trace: above the 4 GiB limit, refused before any
-    // work (it used to run and reach 2.2 GB RSS while `simulate` refused the same horizon).
+    // t_end = 1e5 s at dt = 1 ms: 1e8 steps, whose observer signal is 3 f64 per step (2.4 GB)
+    // plus 6 f64 per observer sample k = 0..=1e8 (4.8 GB: ĝ, σ, g of both channels), and the
+    // point's trace of 7 f64 at 1e7 + 1 output samples (0.56 GB): above the 4 GiB limit, refused
+    // before any work (it used to run and reach 2.2 GB RSS while `simulate` refused the same
+    // horizon; the estimate counted 4 f64 per sample, issue 46).
     let long = apply_overrides(&Config::paper(), &["horizon.t_end=1e5".into()]).unwrap();
     let s = Search::new(long, &["control.a=1".into()], SearchOptions::default()).unwrap();
     let w = s.estimate_with_threads(1);
-    assert!(w.memory_bytes > 5.6e9 && w.memory_bytes < 7e9, "{w:?}");
+    assert_eq!(w.memory.signal_bytes, 24.0 * 1e8 + 48.0 * (1e8 + 1.0), "{w:?}");
+    assert_eq!(w.memory.signals, 1.0, "one signal, whatever the threads: {w:?}");
+    assert!(w.memory.per_thread >= 56.0 * (1e7 + 1.0), "{w:?}");
+    assert!(w.memory_bytes > 7.7e9 && w.memory_bytes < 7.9e9, "{w:?}");
     let e = run(&s, &out, RunControl::default()).unwrap_err().to_string();
     assert!(e.contains("GB of memory") && e.contains("--allow-large"), "{e}");
     assert!(!out.exists());
