@@ -31,6 +31,7 @@ pub mod records;
 mod refine;
 pub mod store;
 pub mod theory;
+pub mod verify;
 
 use std::path::PathBuf;
 
@@ -39,13 +40,14 @@ use wingcheck_model::Config;
 
 pub use assemble::{assemble, finalize, ChunkStream};
 pub use axis::{parse_axes, validate_axes, Axis, Grid, Spacing};
-pub use exec::{merge, run};
+pub use exec::{merge, merge_with, run};
 pub use heatmap::heatmap_svg;
 pub use limits::{WorkEstimate, MAX_CORE_SECONDS, MAX_POINTS, MAX_POINTS_OVERRIDE};
 pub use metric::{Metric, Ranking, METRICS, METRIC_UNITS};
 pub use point::{PointResult, PointVerdicts, Status};
 pub use refine::{boundaries, boundary_csv, BoundaryRow};
 pub use theory::{Theory, TheoryCache, Verdicts};
+pub use verify::ChunkCheck;
 
 /// Errors of a search (a failing point is a status in the results, not an error).
 #[derive(Debug, thiserror::Error)]
@@ -384,6 +386,9 @@ pub struct RunControl<'a> {
     pub threads: Option<usize>,
     /// Run even above [`MAX_POINTS`] / [`MAX_CORE_SECONDS`] (never above [`MAX_POINTS_OVERRIDE`]).
     pub allow_large: bool,
+    /// How many points of each chunk found on disk are recomputed before it is resumed from
+    /// ([`verify`]; `--verify-chunks`: all).
+    pub verify: ChunkCheck,
 }
 
 /// What a run or merge did.
@@ -409,6 +414,8 @@ pub struct RunSummary {
     pub wall_seconds: f64,
     /// Points evaluated in this invocation whose status is not `ok`.
     pub failed: usize,
+    /// Points of chunks found on disk recomputed to prove them this search's own ([`verify`]).
+    pub verified: usize,
     /// When complete: points of the whole search whose status is not `ok` (listed in
     /// `failures.csv`), by status: (diverged, error).
     pub failed_total: Option<(usize, usize)>,

@@ -66,6 +66,51 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), SearchError> {
     })
 }
 
+fn io_error(p: &Path) -> impl Fn(std::io::Error) -> SearchError + '_ {
+    move |e| SearchError::Io { path: p.display().to_string(), detail: e.to_string() }
+}
+
+/// Write a chunk and the progress file that counts it together: both staged (temp file, fsync)
+/// before either is renamed into place, the chunk first. A kill between the two renames leaves
+/// the progress file one chunk behind, which the next run rewrites before any work.
+pub fn write_with_progress(
+    chunk: &Path,
+    bytes: &[u8],
+    progress: &Path,
+    progress_bytes: &[u8],
+) -> Result<(), SearchError> {
+    use std::io::Write;
+    check_replaceable(chunk)?;
+    check_replaceable(progress)?;
+    let (chunk_tmp, progress_tmp) = (temp_path(chunk, TMP_TAGS[0]), temp_path(progress, TMP_TAGS[0]));
+    let dir = chunk.parent().unwrap_or(Path::new("."));
+    let pdir = progress.parent().unwrap_or(Path::new("."));
+    let _locks = (
+        wingcheck_io::DirLock::acquire(dir).map_err(io_error(chunk))?,
+        wingcheck_io::DirLock::acquire(pdir).map_err(io_error(progress))?,
+    );
+    let stage = |tmp: &Path, bytes: &[u8]| -> std::io::Result<()> {
+        let mut f = std::fs::File::create(tmp)?;
+        f.write_all(bytes)?;
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            f.set_permissions(std::fs::Permissions::from_mode(0o644))?;
+        }
+        f.sync_all()
+    };
+    let result = stage(&chunk_tmp, bytes)
+        .map_err(io_error(chunk))
+        .and_then(|()| stage(&progress_tmp, progress_bytes).map_err(io_error(progress)))
+        .and_then(|()| std::fs::rename(&chunk_tmp, chunk).map_err(io_error(chunk)))
+        .and_then(|()| std::fs::rename(&progress_tmp, progress).map_err(io_error(progress)));
+    if result.is_err() {
+        let _ = std::fs::remove_file(&chunk_tmp);
+        let _ = std::fs::remove_file(&progress_tmp);
+    }
+    result
+}
+
 /// Create `path` holding `bytes` unless it exists, atomically and without overwriting: the
 /// bytes go to a temp file (as in [`write_atomic`]) that is then hard-linked to `path`, which
 /// fails if another process created `path` first. Returns whether this call created it.

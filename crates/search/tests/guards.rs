@@ -179,3 +179,30 @@ fn memory_is_estimated_and_every_value_of_a_list_axis_counts() {
     let s = Search::new(base(), &[format!("control.a={}", many.join(","))], SearchOptions::default()).unwrap();
     assert_eq!(s.estimate().steps_per_point, 50);
 }
+
+/// `merge` recomputes chunks' points ([`wingcheck_search::verify`]): one per chunk by default,
+/// all with `--verify-chunks`. That work is the search's, guarded by the search's estimate
+/// before any chunk is read: a directory of a search above the memory limit (started with
+/// `--allow-large`) is refused unless the merge is given it too.
+#[test]
+fn merge_recomputation_is_guarded_by_the_searchs_estimate() {
+    use wingcheck_search::{merge_with, ChunkCheck};
+    let dir = tempfile::tempdir().unwrap();
+    let (shard, out) = (dir.path().join("shard"), dir.path().join("merged"));
+    // t_end = 1e5 s: 7.8 GB (memory_is_estimated_and_every_value_of_a_list_axis_counts); the run
+    // stops before its first chunk, leaving the manifest only
+    let long = apply_overrides(&Config::paper(), &["horizon.t_end=1e5".into()]).unwrap();
+    let s = Search::new(long, &["control.a=1".into()], SearchOptions::default()).unwrap();
+    run(&s, &shard, RunControl { allow_large: true, stop_after_chunks: Some(0), ..Default::default() }).unwrap();
+    for check in [ChunkCheck::Sample, ChunkCheck::All] {
+        let start = std::time::Instant::now();
+        let e = merge_with(std::slice::from_ref(&shard), &out, check, false).unwrap_err().to_string();
+        assert!(e.contains("GB of memory") && e.contains("--allow-large") && e.contains("1 points"), "{e}");
+        assert!(start.elapsed().as_secs_f64() < 2.0, "refused before any work: {:?}", start.elapsed());
+        assert!(!out.exists());
+    }
+    // allowed, the merge goes on to find the chunk missing (nothing recomputed, nothing written)
+    let e = merge_with(std::slice::from_ref(&shard), &out, ChunkCheck::All, true).unwrap_err();
+    assert!(matches!(e, SearchError::MissingChunks { .. }), "{e}");
+    assert!(!out.exists());
+}
