@@ -395,3 +395,18 @@ fn verify_prints_each_os_error_once() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success() && err.matches("(os error").count() == 1, "{err}");
 }
+
+/// Issue 46, item 6: `certify --set wing.span=1e6` named the certificate's internal `shifts[0]`;
+/// the ω₁ enclosure's shifts (squared frequencies ≈ EI/(ρ span⁴) ≈ 1e-23 s⁻² here) fall below the
+/// certificate numbers' range, and the refusal names the wing keys they follow from, as typed.
+#[test]
+fn an_unrepresentable_enclosure_names_the_wing_keys_not_the_certificates_fields() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("p");
+    let o = wingcheck(&["certify", "--set", "wing.span=1e6", "--out", out.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("wing.span = 1e6") && err.contains("cannot be written as a certificate"), "{err}");
+    assert!(!err.contains("shifts[") && !err.contains("panicked"), "{err}");
+    assert!(!out.exists(), "nothing written");
+}
