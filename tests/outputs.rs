@@ -206,25 +206,26 @@ fn every_output_is_documented_and_valid() {
 
     // a search
     let out = d("search");
-    let o =
-        Command::new(env!("CARGO_BIN_EXE_wingcheck"))
-            .args(
-                [
-                    &[
-                        "search",
-                        "--over",
-                        "control.a=1e-4,1",
-                        "--over",
-                        "control.b=1,2",
-                        "--out",
-                        out.to_str().unwrap(),
-                    ][..],
-                    &SHORT,
-                ]
-                .concat(),
-            )
-            .output()
-            .unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_wingcheck"))
+        .args(
+            [
+                &[
+                    "search",
+                    "--over",
+                    "control.a=1e-4,1",
+                    "--over",
+                    "control.b=1,2",
+                    "--best",
+                    "-tau1_rms_N",
+                    "--out",
+                    out.to_str().unwrap(),
+                ][..],
+                &SHORT,
+            ]
+            .concat(),
+        )
+        .output()
+        .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     for f in ["results.csv", "failures.csv", "boundary.csv", "timings.csv"] {
         let (header, rows) = read_csv(&out.join(f));
@@ -234,11 +235,20 @@ fn every_output_is_documented_and_valid() {
         }
     }
     let results = schemas.validate_file("results", &out.join("results.json"));
+    // one name per metric: results.json's units and metrics are keyed by results.csv's columns
+    let (header, _) = read_csv(&out.join("results.csv"));
     for (m, u) in results["units"].as_object().unwrap() {
-        let col = docs["results.csv"].keys().find(|c| c.starts_with(m.as_str())).unwrap();
-        assert!(is_unit(&docs["results.csv"][col]), "{m} ({u})");
+        assert!(header.contains(m), "results.json names {m}, which is not a results.csv column");
+        assert!(is_unit(&docs["results.csv"][m]), "{m} ({u})");
     }
-    schemas.validate_file("best", &out.join("best.json"));
+    for p in results["points"].as_array().unwrap() {
+        for m in p["metrics"].as_object().unwrap().keys() {
+            assert!(header.contains(m), "a point's metric {m} is not a results.csv column");
+        }
+    }
+    // --best takes results.csv's column name, and best.json names the metric the same way
+    let best = schemas.validate_file("best", &out.join("best.json"));
+    assert_eq!((best["metric"].as_str(), best["order"].as_str()), (Some("tau1_rms_N"), Some("descending")));
     schemas.validate_file("manifest", &out.join("manifest.json"));
     let prov = schemas.validate_file("provenance", &out.join("provenance.json"));
     let listed: BTreeSet<&str> =
@@ -254,11 +264,8 @@ fn every_output_is_documented_and_valid() {
 /// and settled is false exactly when settling_time_s is empty.
 fn check_result_cells(header: &[String], rows: &[Vec<String>]) {
     let col = |n: &str| header.iter().position(|h| h == n).unwrap_or_else(|| panic!("no column {n}"));
-    let metrics: Vec<(usize, String)> = wingcheck_search::store::metric_columns()
-        .into_iter()
-        .zip(wingcheck_search::METRICS)
-        .map(|(c, m)| (col(&c), m.to_string()))
-        .collect();
+    // missing_metrics names the empty cells by their column names
+    let metrics: Vec<(usize, String)> = wingcheck_search::METRICS.iter().map(|m| (col(m), m.clone())).collect();
     for row in rows {
         let missing: BTreeSet<&str> = match row[col("missing_metrics")].as_str() {
             "none" => BTreeSet::new(),

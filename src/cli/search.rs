@@ -25,8 +25,9 @@ pub struct SearchArgs {
     /// Bisect the W ≻ 0 and (32) boundaries to this tolerance (relative on log axes).
     #[arg(long, value_name = "TOL")]
     refine: Option<f64>,
-    /// Metric ranking best.json (minimised; prefix `-` to maximise), e.g. rms_q_tip, -lambda.
-    #[arg(long, default_value = "rms_q_tip", allow_hyphen_values = true)]
+    /// Metric ranking best.json, by its results.csv column name (minimised; prefix `-` to maximise),
+    /// e.g. rms_q_tip_m, -lambda_per_s; the name without its unit suffix (rms_q_tip) is accepted too.
+    #[arg(long, default_value = "rms_q_tip_m", allow_hyphen_values = true)]
     best: wingcheck_search::Ranking,
     /// Metric window `t0,t1` in s (default: the second half of the horizon).
     #[arg(long, value_name = "T0,T1", value_parser = parse_window)]

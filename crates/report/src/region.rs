@@ -257,7 +257,7 @@ impl RegionMap {
             "feasible_32_decided".to_string(),
             "feasible_32".to_string(),
             "rms_available".to_string(),
-            wingcheck_io::column_name(METRIC.name(), METRIC.unit().column_suffix()),
+            METRIC.column().to_string(),
         ];
         let flag = |b: bool| if b { "true" } else { "false" }.to_string();
         let mut rows = Vec::with_capacity(self.a.len() * self.b.len());

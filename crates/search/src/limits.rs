@@ -29,7 +29,7 @@ pub use wingcheck_model::MODAL_AUTO_UNKNOWNS;
 /// `wingcheck bench --what search` (48 unknowns, one core); rounded up.
 const SECONDS_PER_MODE_STEP: f64 = 4e-9;
 /// Cost per unknown and integrator step (s), the simulator's sparse stepper: ≈ 1 µs per step
-/// at 48 unknowns (README, "Speed"); rounded up.
+/// at 48 unknowns (docs/performance.md); rounded up.
 const SECONDS_PER_UNKNOWN_STEP: f64 = 3e-8;
 /// Theory per point (λ2, λ1, the μ and ε SOCPs).
 use wingcheck_model::work::SECONDS_PER_POINT_THEORY;

@@ -10,7 +10,7 @@ use serde_json::{Map, Value};
 use crate::records::{BestDocument, PointRecord};
 
 pub use crate::chunk::{chunk_text, read_chunk};
-use crate::metric::{Metric, Ranking, METRICS, METRIC_UNITS};
+use crate::metric::{Metric, Ranking, METRICS};
 use crate::point::{PointResult, Status};
 use crate::SearchError;
 
@@ -244,7 +244,7 @@ pub fn results_csv_header(keys: &[String]) -> String {
 
 /// The metric columns' names: each metric with its unit suffix (`rms_q_tip_m`, `lambda_per_s`).
 pub fn metric_columns() -> Vec<String> {
-    METRICS.iter().zip(METRIC_UNITS).map(|(m, u)| wingcheck_io::column_name(m, u.column_suffix())).collect()
+    METRICS.to_vec()
 }
 
 /// One row of `results.csv` (points in index order; f64 in Rust's shortest round-trip form).
@@ -254,7 +254,8 @@ pub fn results_csv_row(p: &PointResult) -> String {
     let mut row = vec![p.index.to_string()];
     row.extend(p.values.iter().cloned());
     let settling = p.metric(Metric::SettlingTime);
-    let missing: Vec<&str> = METRICS.iter().zip(&p.metrics).filter(|(_, m)| m.is_none()).map(|(n, _)| *n).collect();
+    let missing: Vec<&str> =
+        METRICS.iter().zip(&p.metrics).filter(|(_, m)| m.is_none()).map(|(n, _)| n.as_str()).collect();
     row.extend(
         [
             p.status.name(),
@@ -324,7 +325,7 @@ where
         schema_version: u32,
         provenance: &'a wingcheck_io::Provenance,
         axes: &'a [String],
-        metrics: &'a [&'a str],
+        metrics: &'a [String],
         units: Map<String, Value>,
         points: &'a LazyPoints<'a, I>,
     }
@@ -333,7 +334,7 @@ where
         schema_version: wingcheck_io::SCHEMA_VERSION,
         provenance,
         axes: keys,
-        metrics: &METRICS,
+        metrics: &METRICS[..],
         units: crate::records::metric_units(),
         points: &lazy,
     };
@@ -389,7 +390,7 @@ impl BestPoints {
         let list = |l: &[(f64, PointResult)]| l.iter().map(|(_, p)| point_json(keys, p)).collect::<Vec<PointRecord>>();
         let doc = BestDocument {
             schema_version: wingcheck_io::SCHEMA_VERSION,
-            metric: self.ranking.metric.name().to_string(),
+            metric: self.ranking.metric.column().to_string(),
             order: if self.ranking.maximise { "descending" } else { "ascending" }.to_string(),
             unit: BestDocument::unit_of(self.ranking.metric),
             best: list(&self.overall),

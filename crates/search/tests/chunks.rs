@@ -90,8 +90,8 @@ fn edited_chunks_off_grid_values_and_non_finite_metrics_are_refused() {
     let cases: [Tamper; 5] = [
         (false, |l| l["status"] = "diverged".into(), "do not hash"),
         (true, |l| l["values"][0] = "3.5".into(), "the grid has"),
-        (true, |l| l["metrics"][9] = "NaN".into(), "metric rms_q_tip = \"NaN\" is not a finite number"),
-        (true, |l| l["metrics"][0] = "inf".into(), "metric lambda2 = \"inf\" is not a finite number"),
+        (true, |l| l["metrics"][9] = "NaN".into(), "metric rms_q_tip_m = \"NaN\" is not a finite number"),
+        (true, |l| l["metrics"][0] = "inf".into(), "metric lambda2_Wu = \"inf\" is not a finite number"),
         (true, |l| l["message"] = "".into(), "status"),
     ];
     for (rehash, edit, mention) in cases {
@@ -135,7 +135,9 @@ fn an_edited_and_rehashed_chunk_is_caught_by_recomputing_its_points() {
     let dir = root.path().join("all-edited");
     copy_dir(&b, &dir);
     tamper(&dir, 1, true, |l| l["metrics"][0] = "0.5".into());
-    refused_merge(&[a.clone(), dir.clone()], &out, &["chunk-00001.jsonl", "recomputes differently", "lambda2 = 0.5"]);
+    // the first metric, λ2, named by its results.csv column
+    let edited = format!("{} = 0.5", wingcheck_search::METRICS[0]);
+    refused_merge(&[a.clone(), dir.clone()], &out, &["chunk-00001.jsonl", "recomputes differently", &edited]);
     // resuming the edited shard refuses it too, before any work, and keeps it
     let before = std::fs::read(store::chunk_path(&dir, 1)).unwrap();
     let e = run(&ours, &dir, RunControl { shard: Shard { k: 2, n: 2 }, ..Default::default() }).unwrap_err();
@@ -154,7 +156,7 @@ fn an_edited_and_rehashed_chunk_is_caught_by_recomputing_its_points() {
     header["sha256"] = sha256_hex(body.as_bytes()).into();
     std::fs::write(&path, serde_json::to_string(&header).unwrap() + "\n" + &body).unwrap();
     let e = merge_with(&[a.clone(), one.clone()], &out, ChunkCheck::All, false).unwrap_err().to_string();
-    assert!(e.contains("point 3 recomputes differently") && e.contains("lambda2 = 0.5"), "{e}");
+    assert!(e.contains("point 3 recomputes differently") && e.contains(&edited), "{e}");
     assert!(!out.exists());
     let ctl = RunControl { shard: Shard { k: 2, n: 2 }, verify: ChunkCheck::All, ..Default::default() };
     assert!(run(&ours, &one, ctl).unwrap_err().to_string().contains("point 3 recomputes differently"));
