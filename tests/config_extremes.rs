@@ -210,3 +210,23 @@ fn every_case_when_asked() {
         eprintln!("{}: {:.1} s", sets.join(" "), start.elapsed().as_secs_f64());
     }
 }
+
+/// docs/usage.md states the ranges of the physical parameters, gains and weights: they are the
+/// ones the validator states when it refuses a value (the issue found the docs promising
+/// [1e-12, 1e12] for weights the validator accepts from 0).
+#[test]
+fn the_documented_ranges_are_the_validators() {
+    let docs = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/usage.md")).unwrap();
+    let docs = docs.split_whitespace().collect::<Vec<_>>().join(" ");
+    for (keys, said, range) in [
+        (&["wing.rho", "wing.ei", "wing.gj", "wing.ip"][..], "ρ, EI, GJ and I_p in [1e-12, 1e12]", ["1e-12", "1e12"]),
+        (&["wing.rho_xc"][..], "ρx_c in [-1e12, 1e12]", ["-1e12", "1e12"]),
+        (&["control.k1", "control.k2", "control.a", "control.b"][..], "the weights a, b in [0, 1e12]", ["0", "1e12"]),
+    ] {
+        assert!(docs.contains(said), "docs/usage.md no longer says {said:?}");
+        for key in keys {
+            let stated = stated_bounds(key);
+            assert_eq!(&stated[..2], &range.map(String::from)[..], "{key}: the validator states {stated:?}");
+        }
+    }
+}
