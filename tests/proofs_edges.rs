@@ -147,8 +147,11 @@ fn duplicate_keys_unknown_and_repeated_claims_and_needs_are_refused() {
         let mut v = original.clone();
         edit(&mut v);
         write_index(&p, &serde_json::to_string_pretty(&v).unwrap());
+        let start = Instant::now();
         let e = verify_set(&p).unwrap_err().to_string();
         assert!(e.contains(mention), "{mention}: {e}");
+        // refused before any arithmetic (issue 46, item 6: a repeated claim after ≈ 3 s of it)
+        assert!(start.elapsed() < Duration::from_secs(1), "{mention}: refused after {:?}", start.elapsed());
     }
     write_index(&p, &text);
     verify_set(&p).unwrap();
