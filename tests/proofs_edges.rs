@@ -296,7 +296,12 @@ fn messages_name_each_os_error_once_and_abbreviate_long_integers() {
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("f");
     std::fs::write(&file, "a file").unwrap();
+    // an --out under a file is now refused before any work, without an OS error (issue 46)
     let o = wingcheck(&["certify", "--out", file.join("p").to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("is a regular file, not a directory"), "{err}");
+    assert!(err.matches("(os error").count() <= 1, "{err}");
+    let o = wingcheck(&["certify", "--config", dir.path().join("missing.json").to_str().unwrap()]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success() && err.matches("(os error").count() == 1, "{err}");
     // A refuted exact pivot has hundreds of digits: shown as its first and last digits and
