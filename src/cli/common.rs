@@ -4,7 +4,8 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 
 use clap::Args;
-use wingcheck_model::{apply_overrides, Config};
+use wingcheck_app::{ConfigSource, Front, WorkPolicy};
+use wingcheck_model::Config;
 
 /// Where the configuration comes from.
 #[derive(Debug, Clone, Args)]
@@ -18,16 +19,14 @@ pub struct ConfigArgs {
 }
 
 impl ConfigArgs {
+    /// The configuration source these flags name.
+    pub fn source(&self) -> ConfigSource {
+        ConfigSource { file: self.config.clone(), text: None, set: self.set.clone() }
+    }
+
     /// Load, override and validate.
     pub fn load(&self) -> anyhow::Result<Config> {
-        let base = match &self.config {
-            None => Config::paper(),
-            Some(p) => Config::from_file(p).map_err(|e| match e {
-                wingcheck_model::ConfigError::Read { .. } => anyhow::Error::new(e),
-                other => anyhow::Error::new(other).context(format!("in config {}", p.display())),
-            })?,
-        };
-        Ok(apply_overrides(&base, &self.set)?)
+        Ok(self.source().load()?)
     }
 }
 
@@ -41,12 +40,14 @@ pub struct WorkArgs {
 }
 
 impl WorkArgs {
+    /// The work policy these flags ask for.
+    pub fn policy(&self) -> WorkPolicy {
+        WorkPolicy { allow_large: self.allow_large, front: Front::Cli }
+    }
+
     /// Refuse `est` above the default limits unless `--allow-large` was given.
     pub fn guard(&self, est: &wingcheck_model::work::WorkEstimate) -> anyhow::Result<()> {
-        if self.allow_large {
-            return Ok(());
-        }
-        Ok(est.within(&wingcheck_model::work::DEFAULT_LIMITS)?)
+        Ok(self.policy().guard(est)?)
     }
 }
 

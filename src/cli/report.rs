@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use wingcheck_report::{write_report, Overall, ReportOptions};
+use wingcheck_report::{Overall, ReportOptions};
 
 use super::common::{progress_bar, ConfigArgs};
 
@@ -21,7 +21,6 @@ pub struct ReportArgs {
 
 pub fn run(a: ReportArgs) -> anyhow::Result<()> {
     let cfg = a.config.load()?;
-    a.work.guard(&wingcheck_report::report_estimate(&cfg))?;
     // One bar over the whole report (per mille of the overall fraction): it never restarts.
     let bar = progress_bar(1000, "report");
     let on_progress = |p: Overall| {
@@ -31,8 +30,8 @@ pub fn run(a: ReportArgs) -> anyhow::Result<()> {
         }
     };
     let command_line = wingcheck_report::command_text(&std::env::args_os().collect::<Vec<_>>());
-    let opts = ReportOptions { progress: None, overall: Some(&on_progress), command_line: Some(&command_line) };
-    let summary = write_report(&cfg, &a.out, &opts)?;
+    let opts = ReportOptions { overall: Some(&on_progress), command_line: Some(&command_line), ..Default::default() };
+    let summary = wingcheck_app::ops::report(&cfg, &a.out, a.work.policy(), &opts)?;
     if let Some(b) = bar {
         b.finish_and_clear();
     }

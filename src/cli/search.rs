@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use wingcheck_search::{run, Progress, RunControl, RunSummary, Search, SearchOptions, Shard};
+use wingcheck_search::{Progress, RunControl, RunSummary, SearchOptions, Shard};
 
 use super::common::ConfigArgs;
 
@@ -87,8 +87,10 @@ pub fn run_search(a: SearchArgs) -> anyhow::Result<()> {
         best: a.best,
         ..Default::default()
     };
-    let search = Search::new(base, &a.over, options)?;
-    println!("estimated: {}", search.estimate_for(a.threads).text());
+    // the estimate the guard applies, memory buffer by buffer (the search is posed again inside
+    // `ops::search`; posing it is cheap)
+    let posed = wingcheck_search::Search::new(base.clone(), &a.over, options.clone())?;
+    println!("estimated: {}", posed.estimate_for(a.threads).text());
     let bar = indicatif::ProgressBar::new(0);
     if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
         bar.set_style(
@@ -109,18 +111,15 @@ pub fn run_search(a: SearchArgs) -> anyhow::Result<()> {
             bar.inc(1);
         }
     };
-    let s = run(
-        &search,
-        &a.out,
-        RunControl {
-            shard: a.shard,
-            progress: Some(&on_progress),
-            threads: a.threads,
-            allow_large: a.allow_large,
-            verify: chunk_check(a.verify_chunks),
-            ..Default::default()
-        },
-    )?;
+    let policy = wingcheck_app::WorkPolicy { allow_large: a.allow_large, front: wingcheck_app::Front::Cli };
+    let ctl = RunControl {
+        shard: a.shard,
+        progress: Some(&on_progress),
+        threads: a.threads,
+        verify: chunk_check(a.verify_chunks),
+        ..Default::default()
+    };
+    let s = wingcheck_app::ops::search(base, &a.over, options, &a.out, policy, ctl)?;
     bar.finish_and_clear();
     if s.verified > 0 {
         println!("{} points of the chunks found on disk recomputed: the same results", s.verified);

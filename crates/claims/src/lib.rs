@@ -50,6 +50,9 @@ pub enum ClaimsError {
     /// `inconclusive` with the reason instead of ending the process.
     #[error(transparent)]
     Panicked(#[from] wingcheck_io::Panicked),
+    /// The check was stopped through its study's cancel token ([`check_all_cancellable`]).
+    #[error(transparent)]
+    Cancelled(#[from] wingcheck_model::Cancelled),
     /// A numerical step failed.
     #[error("numerical failure in {what}: {detail}")]
     Numerical {
@@ -82,6 +85,17 @@ pub fn check_all(cfg: &Config) -> Result<Ledger, ClaimsError> {
 /// becomes that row's `inconclusive` with the reason and never ends the process.
 pub fn guarded<T>(f: impl FnOnce() -> Result<T, ClaimsError>) -> Result<T, ClaimsError> {
     wingcheck_io::catch(f).unwrap_or_else(|p| Err(ClaimsError::Panicked(p)))
+}
+
+/// [`check_all_with`] stopped once `study`'s cancel token is set ([`Study::with_cancel`]):
+/// the rows in flight end early as `inconclusive`, and the ledger is then discarded for
+/// [`ClaimsError::Cancelled`], so a cancelled check never returns rows decided on cut-short
+/// evidence.
+pub fn check_all_cancellable(cfg: &Config, study: &Study, settings: &CheckSettings) -> Result<Ledger, ClaimsError> {
+    study.cancel().check()?;
+    let ledger = check_all_with(cfg, study, settings)?;
+    study.cancel().check()?;
+    Ok(ledger)
 }
 
 /// A row's outcome with its wall time; a failed (or panicking) computation becomes
@@ -133,7 +147,7 @@ fn theory_rows(cfg: &Config, study: &Study, settings: &CheckSettings) -> (Vec<(C
     // W-bounds, mu-conditions and lemmas are independent: side by side on the pool; UUB needs
     // the first two.
     let ((w, w_seconds), ((m, m_seconds), lemmas)) = rayon::join(
-        || seconds(|| guarded(|| wbounds::check(cfg, settings))),
+        || seconds(|| guarded(|| wbounds::check_cancellable(cfg, settings, study.cancel()))),
         || {
             rayon::join(
                 || seconds(|| guarded(|| mu::check(cfg, study, settings))),

@@ -197,7 +197,14 @@ fn dense_rows(m: &Mat<f64>, scale: f64) -> Vec<Vec<f64>> {
 /// clarabel's point for one side: max λ s.t. sign·W − λκ ⪰ 0 in the reduced form, with data
 /// divided by σ, the 4×4 LMI rescaled by β and each P entry scaled by the size of its
 /// coefficients.
-fn solve_side(r: &ReducedPencil, sign: f64, sigma: f64, beta: f64, budget: &mut u32) -> Result<SideSolution, String> {
+fn solve_side(
+    r: &ReducedPencil,
+    sign: f64,
+    sigma: f64,
+    beta: f64,
+    budget: &mut u32,
+    cancel: &wingcheck_model::Cancel,
+) -> Result<SideSolution, String> {
     use wingcheck_lapack::sdp::{PsdConstraint, SdpProblem};
     let err = |e: wingcheck_lapack::sdp::SdpError| e.to_string();
     // The 4×4 LMI in the congruent form diag(1, 1, β, β)·[[A, B], [Bᵀ, P]]·diag(1, 1, β, β).
@@ -250,7 +257,8 @@ fn solve_side(r: &ReducedPencil, sign: f64, sigma: f64, beta: f64, budget: &mut 
         settings.time_limit = SDP_SOLVE_GUARD_SECONDS;
         // clarabel panics on some ill-scaled data (an eigen-decomposition failure inside its
         // cone margins): that solve becomes this side's reason, never the process's end
-        let sol = wingcheck_io::catch(|| problem.solve_with(settings))
+        let stop = cancel.clone();
+        let sol = wingcheck_io::catch(|| problem.solve_with_stop(settings, move || stop.is_cancelled()))
             .map_err(|p| format!("clarabel failed ({p})"))?
             .map_err(err)?;
         *budget = budget.saturating_sub(sol.iterations.max(1));
@@ -302,12 +310,14 @@ pub fn pencil_cross_check(
     span: f64,
 ) -> PencilSdpRow {
     let mut budget = SDP_ITERATION_BUDGET;
-    pencil_cross_check_within(w, kappa, c1, c2, n, span, &mut budget)
+    pencil_cross_check_within(w, kappa, c1, c2, n, span, &mut budget, &wingcheck_model::Cancel::new())
 }
 
 /// [`pencil_cross_check`] spending at most `budget` interior-point iterations (decremented by
 /// what the solves use); a solve stopped by it ends `MaxIterations`, recorded in the row and
-/// not accepted.
+/// not accepted. Once `cancel` is set, a solve stops at its next interior-point iteration
+/// (clarabel's termination callback) and is not accepted.
+#[allow(clippy::too_many_arguments)]
 pub fn pencil_cross_check_within(
     w: &Mat<f64>,
     kappa: &Mat<f64>,
@@ -316,6 +326,7 @@ pub fn pencil_cross_check_within(
     n: usize,
     span: f64,
     budget: &mut u32,
+    cancel: &wingcheck_model::Cancel,
 ) -> PencilSdpRow {
     let start = std::time::Instant::now();
     let dimension = w.nrows();
@@ -325,8 +336,8 @@ pub fn pencil_cross_check_within(
     };
     let sigma = eig[0].abs().max(eig[dimension - 1].abs()).max(f64::MIN_POSITIVE);
     let reduced = reduce(w, kappa, c1, c2, n, span / n as f64);
-    let lambda2 = pencil_side(&reduced, &c, 1.0, sigma, eig[0], n, budget);
-    let lambda1 = pencil_side(&reduced, &c, -1.0, sigma, eig[dimension - 1], n, budget);
+    let lambda2 = pencil_side(&reduced, &c, 1.0, sigma, eig[0], n, budget, cancel);
+    let lambda1 = pencil_side(&reduced, &c, -1.0, sigma, eig[dimension - 1], n, budget, cancel);
     PencilSdpRow {
         elements: n,
         dimension,
@@ -341,6 +352,7 @@ pub fn pencil_cross_check_within(
 /// One side of the cross-check at N (sign 1: λ2 = min W/κ; −1: λ1 = max W/κ): clarabel on the
 /// reduced pencil, once more rescaled if the first point is not Solved or not re-verified, then
 /// re-verified against the original constraint and compared with the eigenvalue.
+#[allow(clippy::too_many_arguments)]
 fn pencil_side(
     reduced: &Result<ReducedPencil, String>,
     c: &Mat<f64>,
@@ -349,6 +361,7 @@ fn pencil_side(
     lambda_eig: f64,
     n: usize,
     budget: &mut u32,
+    cancel: &wingcheck_model::Cancel,
 ) -> PencilSide {
     let not_run = |reason: &str| PencilSdpRow::not_run(n, reason).lambda2;
     let delta = SDP_TOLERANCE * sigma;
@@ -358,7 +371,7 @@ fn pencil_side(
     };
     let verify =
         |x: &SideSolution| x.status.is_solved() && x.lambda.is_some_and(|l| pencil_feasible(c, sign, l - sign * delta));
-    let first = match solve_side(r, sign, sigma, 1.0, budget) {
+    let first = match solve_side(r, sign, sigma, 1.0, budget, cancel) {
         Ok(x) => x,
         Err(e) => return PencilSide { lambda_eig: Some(lambda_eig), ..not_run(&format!("SDP: {e}")) },
     };
@@ -371,7 +384,7 @@ fn pencil_side(
         first
     } else {
         let scale = first.p_over_sigma.max(first.b_over_sigma * first.b_over_sigma);
-        match (scale > 0.0 && *budget > 0).then(|| solve_side(r, sign, sigma, 1.0 / scale.sqrt(), budget)) {
+        match (scale > 0.0 && *budget > 0).then(|| solve_side(r, sign, sigma, 1.0 / scale.sqrt(), budget, cancel)) {
             Some(Ok(second)) => {
                 attempts = 2;
                 second

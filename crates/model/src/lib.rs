@@ -9,6 +9,7 @@
 //! [`Config::validate`] checks every field and returns a [`ConfigError`] naming the field
 //! and the allowed range.
 
+pub mod cancel;
 mod config;
 mod disturbance;
 mod error;
@@ -20,6 +21,7 @@ mod scheme;
 mod validate;
 pub mod work;
 
+pub use cancel::{Cancel, Cancelled};
 pub use config::*;
 pub use disturbance::{Distributed, Disturbance, MeanSteps, StepMeans, TipDisturbance, TipValues};
 pub use error::ConfigError;

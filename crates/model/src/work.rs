@@ -239,6 +239,9 @@ pub fn modes_meshes(count: usize) -> Vec<usize> {
     out
 }
 
+/// The command-line flag that runs a command above the limits (named in [`WorkRefused`]).
+pub const ALLOW_LARGE_FLAG: &str = "--allow-large";
+
 /// Limits above which a command refuses without `--allow-large`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WorkLimits {
@@ -271,10 +274,13 @@ pub struct WorkEstimate {
 
 /// A refused estimate.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{what} refused before starting: estimated {details}; the limits are {limits}. {advice}, or pass --allow-large to run anyway")]
+#[error("{what} refused before starting: estimated {details}; the limits are {limits}. {advice}, or pass {override_flag} to run anyway")]
 pub struct WorkRefused {
     /// The command.
     pub what: String,
+    /// How the front end that asked overrides the limits ([`ALLOW_LARGE_FLAG`] on the command
+    /// line; the Python binding's keyword argument).
+    pub override_flag: String,
     /// The estimate, in words.
     pub details: String,
     /// The limits, in words.
@@ -469,6 +475,7 @@ impl WorkEstimate {
         Err(WorkRefused {
             what: self.what.clone(),
             advice: advice(&self.what).to_string(),
+            override_flag: ALLOW_LARGE_FLAG.into(),
             details: over.join(", "),
             limits: format!(
                 "{} of computing, {} of memory, {} of output",

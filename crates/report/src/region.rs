@@ -107,6 +107,7 @@ pub fn region_map(
     omega1: f64,
     r_star: f64,
     progress: Option<&(dyn Fn(Progress) + Sync)>,
+    cancel: &wingcheck_model::Cancel,
 ) -> Result<RegionMap, ReportError> {
     let (a, b) = axes(cfg, omega1, r_star);
     let list = |v: &[f64]| v.iter().map(|x| format!("{x:e}")).collect::<Vec<_>>().join(",");
@@ -125,14 +126,15 @@ pub fn region_map(
     let points: Vec<PointResult> = (0..total)
         .into_par_iter()
         .map(|p| {
+            cancel.check()?;
             let r = search.evaluate(p, &theory, &runs);
             let k = done.fetch_add(1, Ordering::SeqCst) + 1;
             if let Some(cb) = progress {
                 cb(Progress { stage: "region map", done: k, total });
             }
-            r
+            Ok(r)
         })
-        .collect();
+        .collect::<Result<_, wingcheck_model::Cancelled>>()?;
     let a: Vec<f64> = (0..a.len()).map(|i| search.grid.axes[0].numeric(i).unwrap_or(a[i])).collect();
     let b: Vec<f64> = (0..b.len()).map(|j| search.grid.axes[1].numeric(j).unwrap_or(b[j])).collect();
     let window = wingcheck_search::point::window(cfg, SearchOptions::default().window);

@@ -172,7 +172,8 @@ pub fn run(search: &Search, out: &Path, ctl: RunControl<'_>) -> Result<RunSummar
     if let Some(n) = ctl.threads {
         limits::check_threads(n)?;
     }
-    limits::check(&search.estimate_for(ctl.threads), ctl.allow_large)?;
+    let flag = ctl.allow_large_flag.unwrap_or(wingcheck_model::work::ALLOW_LARGE_FLAG);
+    limits::check_with_flag(&search.estimate_for(ctl.threads), ctl.allow_large, flag)?;
     if let Some(n) = ctl.threads {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(n)
@@ -182,8 +183,11 @@ pub fn run(search: &Search, out: &Path, ctl: RunControl<'_>) -> Result<RunSummar
     }
     let found = prepare_out(out, &search.manifest_text())?;
     let result = run_in(search, out, &ctl);
-    if result.is_err() {
-        clean_up(out, found, false);
+    match &result {
+        // a cancelled run into a directory it created leaves nothing behind
+        Err(SearchError::Cancelled(_)) => clean_up(out, found, matches!(found, Found::Created | Found::Empty)),
+        Err(_) => clean_up(out, found, false),
+        Ok(_) => {}
     }
     result
 }
@@ -247,14 +251,15 @@ fn run_in(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<RunSummar
             .chunk_range(c)
             .into_par_iter()
             .map(|p| {
+                ctl.cancel.check()?;
                 let r = search.evaluate(p, &cache, &runs);
                 let d = points_done.fetch_add(1, Ordering::Relaxed) + 1;
                 if let Some(cb) = ctl.progress {
                     cb(Progress { done: d, total });
                 }
-                r
+                Ok(r)
             })
-            .collect();
+            .collect::<Result<_, wingcheck_model::Cancelled>>()?;
         // the chunk and the progress file that counts it, written together
         completed += 1;
         store::write_with_progress(
@@ -268,6 +273,7 @@ fn run_in(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<RunSummar
         summary.sim_seconds += points.iter().map(|p| p.sim_seconds).sum::<f64>();
         summary.theory_seconds += points.iter().map(|p| p.theory_seconds).sum::<f64>();
     }
+    ctl.cancel.check()?;
     if (0..search.chunks()).all(|c| store::chunk_path(out, c).exists()) {
         let (files, failed) = finalize(out)?;
         summary.files = files;

@@ -104,6 +104,10 @@ pub enum SearchError {
     /// An output path cannot be used (its name, its type; [`wingcheck_io::paths`]).
     #[error(transparent)]
     Output(#[from] wingcheck_io::IoError),
+    /// The run was stopped through [`RunControl::cancel`] (nothing of this invocation is
+    /// kept in a directory it created).
+    #[error(transparent)]
+    Cancelled(#[from] wingcheck_model::Cancelled),
     /// A theory computation failed (eigenproblem, SOCP).
     #[error("theory ({what}): {detail}")]
     Theory {
@@ -389,6 +393,12 @@ pub struct RunControl<'a> {
     /// How many points of each chunk found on disk are recomputed before it is resumed from
     /// ([`verify`]; `--verify-chunks`: all).
     pub verify: ChunkCheck,
+    /// How the caller's front end spells `allow_large` in the refusal (None:
+    /// [`wingcheck_model::work::ALLOW_LARGE_FLAG`]).
+    pub allow_large_flag: Option<&'a str>,
+    /// Checked before every point: once set, the run stops with [`SearchError::Cancelled`]
+    /// without writing the chunk in progress.
+    pub cancel: wingcheck_model::Cancel,
 }
 
 /// What a run or merge did.

@@ -324,6 +324,11 @@ impl WorkEstimate {
 /// Refuse a search above the limits ([`MAX_POINTS`], [`MAX_CORE_SECONDS`]; with `allow_large`
 /// only above [`MAX_POINTS_OVERRIDE`]), naming the estimate and the flag.
 pub fn check(w: &WorkEstimate, allow_large: bool) -> Result<(), SearchError> {
+    check_with_flag(w, allow_large, wingcheck_model::work::ALLOW_LARGE_FLAG)
+}
+
+/// [`check`] naming `flag` as the override (a front end's spelling of `--allow-large`).
+pub fn check_with_flag(w: &WorkEstimate, allow_large: bool, flag: &str) -> Result<(), SearchError> {
     let what = w.text();
     if w.points > MAX_POINTS_OVERRIDE as u128 {
         return Err(SearchError::TooLarge(format!(
@@ -337,7 +342,7 @@ pub fn check(w: &WorkEstimate, allow_large: bool) -> Result<(), SearchError> {
     {
         return Err(SearchError::TooLarge(format!(
             "{what}: above the limits of {MAX_POINTS} points, {} core-hours and {:.3} GB of memory; \
-             pass --allow-large to run it anyway (or --shard it over several machines, or use fewer --threads; a \
+             pass {flag} to run it anyway (or --shard it over several machines, or use fewer --threads; a \
              long horizon or a small dt costs memory: an observer signal holds 24 bytes per integrator step)",
             MAX_CORE_SECONDS / 3600.0,
             MAX_MEMORY_BYTES / 1e9

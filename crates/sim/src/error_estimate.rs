@@ -243,11 +243,13 @@ pub fn simulate_with_error(cfg: &Config, opts: RunOptions<'_>) -> Result<Estimat
     let (mut space_cfg, mut time_cfg) = (refined_space(cfg), refined_time(cfg));
     space_cfg.validate()?;
     time_cfg.validate()?;
+    let cancel = opts.cancel.clone();
+    let refined = || RunOptions { cancel: cancel.clone(), ..Default::default() };
     let output = simulate(cfg, opts)?;
     let scheme = output.stats.stepper;
     space_cfg.discretisation.stepper = scheme;
     time_cfg.discretisation.stepper = scheme;
-    let space = simulate(&space_cfg, RunOptions::default()).map_err(|e| match e {
+    let space = simulate(&space_cfg, refined()).map_err(|e| match e {
         SimError::Numerical(reason) | SimError::NoModalBasis { reason } => SimError::Numerical(format!(
             "the spatial refinement ({} {}) cannot run the base run's {} scheme: {reason}; \
              set discretisation.stepper=trbdf2 to estimate with TR-BDF2, or use a coarser grid",
@@ -257,8 +259,10 @@ pub fn simulate_with_error(cfg: &Config, opts: RunOptions<'_>) -> Result<Estimat
         )),
         other => other,
     })?;
-    let time = simulate(&time_cfg, RunOptions::default())?;
-    let twin = (scheme != wingcheck_model::TimeScheme::Exponential).then(|| sub_step_twin(cfg));
+    let time = simulate(&time_cfg, refined())?;
+    let twin = (scheme != wingcheck_model::TimeScheme::Exponential).then(|| sub_step_twin(cfg, refined()));
+    // the twin's and the layer check's failures are findings, not errors: a cancelled one is not
+    cancel.check()?;
     let mut estimated = estimate_from_runs(output, &space, &time, &space_cfg, &time_cfg);
     if let Some(twin) = twin {
         estimated.apply_twin(twin);
@@ -268,12 +272,12 @@ pub fn simulate_with_error(cfg: &Config, opts: RunOptions<'_>) -> Result<Estimat
 
 /// The twin of `cfg` that probes inside its steps: the exponential scheme in the modal basis,
 /// at the configured step only (the base run resolves its own initial layer).
-fn sub_step_twin(cfg: &Config) -> Result<SimOutput, String> {
+fn sub_step_twin(cfg: &Config, opts: RunOptions<'_>) -> Result<SimOutput, String> {
     let mut twin = cfg.clone();
     twin.discretisation.stepper = wingcheck_model::TimeScheme::Exponential;
     twin.discretisation.basis = wingcheck_model::StepBasis::Modal;
     twin.validate().map_err(|e| format!("the exponential twin is not a valid configuration: {e}"))?;
-    crate::simulate_base(&twin, RunOptions::default()).map_err(|e| format!("the exponential twin did not run: {e}"))
+    crate::simulate_base(&twin, opts).map_err(|e| format!("the exponential twin did not run: {e}"))
 }
 
 impl EstimatedRun {

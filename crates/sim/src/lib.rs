@@ -61,6 +61,9 @@ pub enum SimError {
         /// Why not.
         reason: String,
     },
+    /// The run was stopped through [`RunOptions::cancel`].
+    #[error(transparent)]
+    Cancelled(#[from] wingcheck_model::Cancelled),
     /// The simulation diverged.
     #[error("simulation diverged at t = {t:.4} s: {reason}")]
     Diverged {

@@ -275,6 +275,9 @@ pub struct RunOptions<'a> {
     pub fields: bool,
     /// Called with the fraction done (0..=1) at every output sample.
     pub progress: Option<&'a mut dyn FnMut(f64)>,
+    /// Read at every observer sample (and between the runs of a layer resolution or an error
+    /// estimate): once set, the run stops with [`crate::SimError::Cancelled`].
+    pub cancel: wingcheck_model::Cancel,
     /// The exponential scheme's sub-step probe (`crate::modal`'s probe): screened (the
     /// default), exhaustive, or off.
     pub sub_step_probe: SubStepProbe,
@@ -398,6 +401,7 @@ pub fn resolved_basis(cfg: &Config, disc: &Discretisation) -> Result<(StepBasis,
 /// which).
 pub fn simulate(cfg: &Config, opts: RunOptions<'_>) -> Result<SimOutput, SimError> {
     let sub_step_probe = opts.sub_step_probe;
+    let cancel = opts.cancel.clone();
     let (mut out, basis) = base_run(cfg, opts)?;
     // The layer runs change the step, horizon and output sampling only, none of which the
     // basis depends on: a layer run whose basis key (`ModalBasis::key`, which also fixes the
@@ -406,7 +410,7 @@ pub fn simulate(cfg: &Config, opts: RunOptions<'_>) -> Result<SimOutput, SimErro
     // inputs). Any other layer run is a run of its own.
     let base_key = basis.as_ref().map(|_| ModalBasis::key(cfg));
     let layer = crate::layer::resolve(cfg, &mut out, |c| {
-        let opts = RunOptions { sub_step_probe, ..Default::default() };
+        let opts = RunOptions { sub_step_probe, cancel: cancel.clone(), ..Default::default() };
         match (&basis, &base_key) {
             (Some(basis), Some(key)) if ModalBasis::key(c) == *key => {
                 crate::modal::simulate_modal(c, basis, Instant::now(), opts)
@@ -470,6 +474,7 @@ fn simulate_nodal(
     crate::cpu::clear_upper_vector_state();
     for k in 1..=total {
         stepper.advance_sample();
+        opts.cancel.check()?;
         if k % every == 0 || k == total {
             record(&mut stepper, &mut series, &mut fields)?;
             if let Some(p) = opts.progress.as_mut() {

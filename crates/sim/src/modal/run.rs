@@ -36,6 +36,7 @@ struct Simulation<'c, 'o> {
     fields: Option<Fields>,
     full_rate: FullRate,
     progress: Option<&'o mut dyn FnMut(f64)>,
+    cancel: wingcheck_model::Cancel,
     /// Probe the next step ([`ModalLoop::probe_last_step`]): the held inputs jumped (t = 0 and
     /// every sample), and the probe is on.
     probe_next: bool,
@@ -71,6 +72,10 @@ impl Recorder for Simulation<'_, '_> {
 
     fn deferred_squares(&mut self, squares: [f64; 2]) {
         self.full_rate.add_squares(squares);
+    }
+
+    fn checkpoint(&self) -> Result<(), SimError> {
+        Ok(self.cancel.check()?)
     }
 
     fn output(&mut self, st: &ModalState, sample: &Sample, k: usize) -> Result<(), SimError> {
@@ -139,6 +144,7 @@ pub fn simulate_modal(
         fields: opts.fields.then(|| Fields::with_capacity(basis.field_z.clone(), cfg)),
         full_rate: FullRate::new(crate::layer::layer_end(cfg)),
         progress: opts.progress,
+        cancel: opts.cancel,
         probe_next: false,
         probe_on: opts.sub_step_probe != SubStepProbe::Off && lp.probe_points() > 0,
         exhaustive: opts.sub_step_probe == SubStepProbe::Exhaustive,
