@@ -200,11 +200,12 @@ fn certify_names_the_real_cause_of_io_errors() {
     let dir = tempfile::tempdir().unwrap();
     let blocker = dir.path().join("blocker");
     std::fs::write(&blocker, "").unwrap();
+    // refused before any arithmetic, naming the file in the way (issue 46)
     let o = wingcheck(&["certify", "--out", blocker.join("proofs").to_str().unwrap()]);
-    assert_clean_failure(&o, "cannot create directory");
+    assert_clean_failure(&o, "blocker is a regular file, not a directory");
     assert!(!stderr(&o).contains("numerical"), "{}", stderr(&o));
     let o = wingcheck(&["certify", "--out", blocker.to_str().unwrap()]);
-    assert_clean_failure(&o, "exists and is not a directory");
+    assert_clean_failure(&o, "exists and is a regular file, not a directory");
     assert_eq!(std::fs::read(&blocker).unwrap(), b"", "the file is untouched");
     let names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
     assert_eq!(names.len(), 1, "no staging directory left: {names:?}");

@@ -112,6 +112,9 @@ impl Schemas {
         let mut index = BTreeMap::new();
         for e in std::fs::read_dir(repo("docs/schema")).unwrap() {
             let path = e.unwrap().path();
+            if !path.to_string_lossy().ends_with(".schema.json") {
+                continue; // the directory's marker, .wingcheck-schema
+            }
             let name = path.file_name().unwrap().to_string_lossy().trim_end_matches(".schema.json").to_string();
             let value: Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
             let loc = format!("file:///schema/{name}.schema.json");
@@ -182,7 +185,10 @@ fn every_output_is_documented_and_valid() {
     schemas.validate("simulate", "simulate --json", &json(&o));
     let modes = json(&wingcheck(&["modes", "--json", "--count", "3"]));
     schemas.validate("modes", "modes --json", &modes);
-    assert_eq!(modes["provenance"]["config_sha256"], json(&wingcheck(&["simulate", "--json"]))["provenance"]["config_sha256"]);
+    assert_eq!(
+        modes["provenance"]["config_sha256"],
+        json(&wingcheck(&["simulate", "--json"]))["provenance"]["config_sha256"]
+    );
     let (header, rows) = read_csv(&csv);
     check_columns(&csv, &header, &docs["run.csv"], &config_units);
     assert_eq!(rows.len(), 51, "0.5 s at 0.01 s: 51 samples");

@@ -220,7 +220,7 @@ pub fn modes(
     let base = source(config_text, config_path, set);
     blocking::run(py, None, Writes::Nothing, move |_, _| {
         let cfg = base.load()?;
-        let doc = req.run(&cfg, Front::Python)?;
+        let doc = req.run(&cfg, WorkPolicy { allow_large: false, front: Front::Python })?;
         Ok(serde_json::to_string(&doc).unwrap_or_default())
     })
 }

@@ -1,7 +1,7 @@
 //! `wingcheck modes`: converged natural frequencies, each with its error estimate.
 
 use clap::Args;
-use wingcheck_app::{Front, ModesRequest};
+use wingcheck_app::ModesRequest;
 use wingcheck_model::Method;
 use wingcheck_sim::modes;
 
@@ -12,6 +12,8 @@ use super::common::ConfigArgs;
 pub struct ModesArgs {
     #[command(flatten)]
     config: ConfigArgs,
+    #[command(flatten)]
+    work: super::common::WorkArgs,
     /// Number of frequencies (1..=50).
     #[arg(long, default_value_t = 5)]
     count: usize,
@@ -46,7 +48,7 @@ impl std::str::FromStr for Tolerance {
 pub fn run(a: ModesArgs) -> anyhow::Result<()> {
     let cfg = a.config.load()?;
     let req = ModesRequest { count: a.count, method: a.method, tol: a.tol.0 };
-    let doc = req.run(&cfg, Front::Cli)?;
+    let doc = req.run(&cfg, a.work.policy())?;
     if a.json {
         println!("{}", serde_json::to_string_pretty(&doc)?);
         return Ok(());

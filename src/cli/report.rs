@@ -25,7 +25,7 @@ pub fn run(a: ReportArgs) -> anyhow::Result<()> {
     // One bar over the whole report (per mille of the overall fraction): it never restarts.
     let shown = Progress::new("report");
     let on_progress = |p: Overall| shown.set((p.fraction * 1000.0).round() as u64, 1000, "", p.stage);
-    let command_line = wingcheck_report::command_text(&std::env::args().collect::<Vec<_>>());
+    let command_line = wingcheck_report::command_text(&std::env::args_os().collect::<Vec<_>>());
     let opts = ReportOptions { overall: Some(&on_progress), command_line: Some(&command_line), ..Default::default() };
     let summary = wingcheck_app::ops::report(&cfg, &a.out, a.work.policy(), &opts)?;
     shown.finish();

@@ -17,12 +17,19 @@ pub struct SchemaArgs {
     out: PathBuf,
 }
 
+/// Marker of a schema directory: `--out` is replaced (atomically) only when it is missing, empty
+/// or a schema directory holding nothing but the files its marker lists.
+pub const MARKER: &str = ".wingcheck-schema";
+
 pub fn run(a: SchemaArgs) -> anyhow::Result<()> {
-    std::fs::create_dir_all(&a.out).with_context(|| format!("create {}", a.out.display()))?;
-    for (name, s) in wingcheck_app::schemas() {
-        let path = a.out.join(format!("{name}.schema.json"));
-        wingcheck_io::write_file_atomic(&path, wingcheck_app::schema_text(&s).as_bytes())?;
-        println!("wrote {}", path.display());
+    let files: Vec<(String, Vec<u8>)> = wingcheck_app::schemas()
+        .into_iter()
+        .map(|(name, s)| (format!("{name}.schema.json"), wingcheck_app::schema_text(&s).into_bytes()))
+        .collect();
+    wingcheck_io::write_marked_dir(&a.out, MARKER, "wingcheck schema", "a schema directory", &files)
+        .with_context(|| format!("schema --out {}", a.out.display()))?;
+    for (name, _) in &files {
+        println!("wrote {}", a.out.join(name).display());
     }
     Ok(())
 }

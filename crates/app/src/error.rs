@@ -161,13 +161,14 @@ fn claims_kind(e: &ClaimsError) -> ErrorKind {
         ClaimsError::Sim(s) => sim_kind(s),
         ClaimsError::Numerical { .. } => ErrorKind::Numerical,
         ClaimsError::Cancelled(_) => ErrorKind::Cancelled,
+        ClaimsError::Panicked(_) => ErrorKind::Internal,
     }
 }
 
 fn search_kind(e: &SearchError) -> ErrorKind {
     match e {
         SearchError::TooLarge(_) => ErrorKind::WorkLimit,
-        SearchError::Io { .. } => ErrorKind::Output,
+        SearchError::Io { .. } | SearchError::Output(_) => ErrorKind::Output,
         SearchError::Theory { .. } => ErrorKind::Numerical,
         SearchError::Cancelled(_) => ErrorKind::Cancelled,
         SearchError::Axis { .. }

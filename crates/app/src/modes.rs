@@ -6,7 +6,7 @@ use serde::Serialize;
 use wingcheck_model::{Config, Method};
 use wingcheck_sim::modes;
 
-use crate::{AppError, Front};
+use crate::{AppError, Front, WorkPolicy};
 
 /// The arguments of `modes`.
 #[derive(Debug, Clone, Copy)]
@@ -98,10 +98,13 @@ impl ModesRequest {
         Ok(())
     }
 
-    /// The converged frequencies of `cfg` and the analytic ones.
-    pub fn run(&self, cfg: &Config, front: Front) -> Result<ModesDocument, AppError> {
+    /// The converged frequencies of `cfg` and the analytic ones, refused before any work above
+    /// `policy`'s limits (the worst case: every mesh at the iteration limit,
+    /// `wingcheck_model::work::WorkEstimate::modes`).
+    pub fn run(&self, cfg: &Config, policy: WorkPolicy) -> Result<ModesDocument, AppError> {
         let method = self.method.unwrap_or(cfg.discretisation.method);
-        self.validate(front)?;
+        self.validate(policy.front)?;
+        policy.guard(&wingcheck_model::work::WorkEstimate::modes(cfg, method, self.count))?;
         let conv = modes::converged_frequencies(cfg, method, self.count, self.tol)?;
         let w = &cfg.wing;
         Ok(ModesDocument {

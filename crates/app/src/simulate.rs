@@ -124,7 +124,8 @@ pub fn default_sample_times(cfg: &Config) -> Vec<f64> {
 }
 
 /// Fail before any work if `path` cannot be written (bad extension, missing or read-only
-/// directory).
+/// directory, a name too long with its staging suffix or sidecar, a symlink or special file in
+/// the way: `wingcheck_io::check_output_file_with`).
 pub fn check_writable(path: &Path, front: Front) -> Result<(), AppError> {
     let arg = front.arg("out");
     let fail = |message: String| AppError::OutputPath { path: path.to_path_buf(), message };
@@ -132,6 +133,8 @@ pub fn check_writable(path: &Path, front: Front) -> Result<(), AppError> {
     if ext != "csv" && ext != "json" {
         return Err(fail(format!("{arg} {}: use a .csv or .json file name", path.display())));
     }
+    let sidecar = (ext == "csv").then_some(wingcheck_io::SIDECAR_SUFFIX);
+    wingcheck_io::check_output_file_with(path, sidecar).map_err(|e| fail(format!("{arg}: {e}")))?;
     let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
     let md = std::fs::metadata(dir)
         .map_err(|e| fail(format!("{arg} {}: directory {}: {e}", path.display(), dir.display())))?;

@@ -492,6 +492,11 @@ pub fn write_set_cancellable(
     dir: &Path,
     cancel: &wingcheck_model::Cancel,
 ) -> Result<WrittenSet, CertifyError> {
+    // the target first, before any arithmetic: its name, its type, and that it holds a set
+    wingcheck_io::check_output_dir(dir, true)?;
+    if dir.exists() {
+        wingcheck_io::only_listed_files(dir, &files_of_set(dir))?;
+    }
     let (certs, notes) = certificate_set(cfg)?;
     cancel.check()?;
     let files = render_files(cfg, &certs, &omega1::compute(cfg)?)?;

@@ -114,6 +114,28 @@ fn rel(f: &Metrics, d: &Metrics) -> [f64; 4] {
     [0, 1, 2, 3].map(|j| rel_excess(x[j], y[j]))
 }
 
+/// The (a, b) sweep around the configured weights (each × and ÷ `factor`): the points whose
+/// configuration is valid, and, in words, those left out because a weight leaves the range
+/// the validator allows (`a × 2 = 2e12 is above control.a's range`).
+pub fn sweep_weights(cfg: &Config, factor: f64) -> (Vec<(f64, f64)>, Vec<String>) {
+    let (a0, b0) = (cfg.control.a, cfg.control.b);
+    let f = wingcheck_model::quantity::format_value(factor, None);
+    let points = [
+        (a0 / factor, b0, format!("a ÷ {f}")),
+        (a0 * factor, b0, format!("a × {f}")),
+        (a0, b0 / factor, format!("b ÷ {f}")),
+        (a0, b0 * factor, format!("b × {f}")),
+    ];
+    let (mut kept, mut left_out) = (Vec::new(), Vec::new());
+    for (a, b, name) in points {
+        match variant(cfg, cfg.control.kind, cfg.observer.rule, a, b).validate() {
+            Ok(()) => kept.push((a, b)),
+            Err(e) => left_out.push(format!("{name} (outside the configuration's range: {e})")),
+        }
+    }
+    (kept, left_out)
+}
+
 /// `cfg` with the given controller, rule and weights: the run [`compute`] asks the study for.
 pub fn variant(cfg: &Config, kind: ControllerKind, rule: ObserverRule, a: f64, b: f64) -> Config {
     let mut c = cfg.clone();
@@ -239,7 +261,8 @@ impl Runs {
                 c.observer.nu2_0 += sign * START_NUDGE * c.observer.nu2_0.abs().max(1.0);
                 c
             }),
-            sweep: [(a0 / f, b0), (a0 * f, b0), (a0, b0 / f), (a0, b0 * f)]
+            sweep: sweep_weights(cfg, f)
+                .0
                 .into_iter()
                 .map(|(a, b)| {
                     (

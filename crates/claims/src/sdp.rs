@@ -163,6 +163,18 @@ pub struct PencilSdpRow {
     pub seconds: f64,
 }
 
+/// `v`, or 0 for a subnormal: the SDP's data are scaled to O(1), so an entry below the smallest
+/// normal f64 (≈ 2.2e-308) is zero to 300 digits, and clarabel's eigen-decompositions fail on
+/// such entries (it panicked at a = 1e12, b = 1e-300, where W's reduced block scaled by σ ≈ 6e12
+/// is ≈ 4e-314).
+fn flush_subnormal(v: f64) -> f64 {
+    if v.abs() < f64::MIN_POSITIVE {
+        0.0
+    } else {
+        v
+    }
+}
+
 fn dense_rows(m: &Mat<f64>, scale: f64) -> Vec<Vec<f64>> {
     // symmetrised exactly; entries below 1e-13 of the largest are round-off of exact zeros
     let max = m.norm_max();
@@ -174,7 +186,7 @@ fn dense_rows(m: &Mat<f64>, scale: f64) -> Vec<Vec<f64>> {
                     if v.abs() <= 1e-13 * max {
                         0.0
                     } else {
-                        v / scale
+                        flush_subnormal(v / scale)
                     }
                 })
                 .collect()
@@ -204,9 +216,9 @@ fn solve_side(
     let mut f0 = vec![vec![0.0; 4]; 4];
     for i in 0..2 {
         for j in 0..2 {
-            f0[i][j] = sign * r.a_b[i][j] / sigma;
-            f0[i][2 + j] = beta * sign * r.b[i][j] / sigma;
-            f0[2 + j][i] = beta * sign * r.b[i][j] / sigma;
+            f0[i][j] = flush_subnormal(sign * r.a_b[i][j] / sigma);
+            f0[i][2 + j] = flush_subnormal(beta * sign * r.b[i][j] / sigma);
+            f0[2 + j][i] = flush_subnormal(beta * sign * r.b[i][j] / sigma);
         }
     }
     let unit = |pairs: &[(usize, usize)], s: f64| {
@@ -243,8 +255,12 @@ fn solve_side(
         // clarabel stops with status MaxIterations at the budget (recorded, not accepted)
         settings.max_iter = (*budget).max(1);
         settings.time_limit = SDP_SOLVE_GUARD_SECONDS;
+        // clarabel panics on some ill-scaled data (an eigen-decomposition failure inside its
+        // cone margins): that solve becomes this side's reason, never the process's end
         let stop = cancel.clone();
-        let sol = problem.solve_with_stop(settings, move || stop.is_cancelled()).map_err(err)?;
+        let sol = wingcheck_io::catch(|| problem.solve_with_stop(settings, move || stop.is_cancelled()))
+            .map_err(|p| format!("clarabel failed ({p})"))?
+            .map_err(err)?;
         *budget = budget.saturating_sub(sol.iterations.max(1));
         use wingcheck_lapack::sdp::SdpStatus;
         // λ only from a point clarabel calls optimal (an interrupted solve's point means nothing)

@@ -352,11 +352,12 @@ pub fn compute_cancellable(
     // The SDP ladder is the ledger's longest sequential chain: it starts at once on this thread.
     let (sdp, (enclosure, computed)) = crate::first_beside(sdp, || crate::beside(enclosure, rest));
     let mut computed = computed?;
-    (computed.sdp, computed.sdp_seconds) = sdp.unwrap_or_else(|_| {
-        (settings.sdp_grids.iter().map(|&n| PencilSdpRow::not_run(n, "the SDP computation panicked")).collect(), 0.0)
+    (computed.sdp, computed.sdp_seconds) = sdp.unwrap_or_else(|p| {
+        let why = format!("the SDP computation failed: {p}");
+        (settings.sdp_grids.iter().map(|&n| PencilSdpRow::not_run(n, &why)).collect(), 0.0)
     });
-    (computed.enclosure, computed.enclosure_seconds) = enclosure.unwrap_or_else(|_| {
-        (EnclosureSummary::NotCertified { reason: "the enclosure computation panicked".into() }, 0.0)
+    (computed.enclosure, computed.enclosure_seconds) = enclosure.unwrap_or_else(|p| {
+        (EnclosureSummary::NotCertified { reason: format!("the enclosure computation failed: {p}") }, 0.0)
     });
     Ok(computed)
 }

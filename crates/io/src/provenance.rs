@@ -140,9 +140,12 @@ impl Provenance {
     }
 }
 
+/// What a file's provenance sidecar adds to its name ([`sidecar_path`]).
+pub const SIDECAR_SUFFIX: &str = ".provenance.json";
+
 /// The sidecar of a single CSV file: `run.csv` → `run.csv.provenance.json`.
 pub fn sidecar_path(file: &std::path::Path) -> std::path::PathBuf {
     let mut name = file.file_name().map(|n| n.to_os_string()).unwrap_or_default();
-    name.push(".provenance.json");
+    name.push(SIDECAR_SUFFIX);
     file.with_file_name(name)
 }

@@ -331,8 +331,8 @@ impl Config {
         if text.len() as u64 > MAX_CONFIG_BYTES {
             return Err(ConfigError::Parse(format!("{} bytes, at most {MAX_CONFIG_BYTES} allowed", text.len())));
         }
-        if let Some((token, x)) = crate::json::underflowing_number(text) {
-            return Err(crate::json::underflow_error(None, &token, x));
+        if let Some(n) = crate::json::unrepresentable_number(text) {
+            return Err(n.error());
         }
         let de = &mut serde_json::Deserializer::from_str(text);
         let value = serde_json::Value::deserialize(&mut *de).map_err(|e| ConfigError::Parse(e.to_string()))?;
@@ -371,18 +371,13 @@ impl Config {
         serde_json::from_value(v).unwrap_or(self)
     }
 
-    /// Reads a config file of at most [`MAX_CONFIG_BYTES`] (never more, so `/dev/zero` fails
-    /// fast) and parses it with [`Config::from_json_str`].
+    /// Reads a config file of at most [`MAX_CONFIG_BYTES`] and parses it with
+    /// [`Config::from_json_str`]; only a regular file (or a symlink to one) is read: `/dev/zero`,
+    /// `/dev/stdin` or a FIFO is refused without being opened.
     pub fn from_file(path: &std::path::Path) -> Result<Config, ConfigError> {
-        use std::io::Read;
         let read = |reason: String| ConfigError::Read { path: path.display().to_string(), reason };
-        let io = |e: std::io::Error| read(e.to_string());
-        let f = std::fs::File::open(path).map_err(io)?;
-        let mut bytes = Vec::new();
-        f.take(MAX_CONFIG_BYTES + 1).read_to_end(&mut bytes).map_err(io)?;
-        if bytes.len() as u64 > MAX_CONFIG_BYTES {
-            return Err(read(format!("larger than {MAX_CONFIG_BYTES} bytes")));
-        }
+        // a FIFO or device is never opened (it could block or never end)
+        let bytes = wingcheck_io::read_regular(path, MAX_CONFIG_BYTES).map_err(|e| read(e.to_string()))?;
         let text = String::from_utf8(bytes).map_err(|_| read("not UTF-8 text".into()))?;
         Self::from_json_str(&text)
     }
@@ -414,6 +409,14 @@ impl Config {
     /// Total number of observer samples in [0, T].
     pub fn total_samples(&self) -> usize {
         (self.horizon.t_end / self.observer.sample_period).round() as usize
+    }
+
+    /// Output samples of a run: observer samples k = 0, e, 2e, … (e = [`Self::samples_per_output`])
+    /// and the last one, k = K, when K is not a multiple of e. Every runner records exactly
+    /// these (and allocates its series at this length).
+    pub fn output_samples(&self) -> usize {
+        let (every, total) = (self.samples_per_output(), self.total_samples());
+        total / every + 1 + usize::from(total % every != 0)
     }
 }
 

@@ -435,8 +435,13 @@ pub fn format_error(error: f64) -> String {
 }
 
 /// `value` with `digits` significant digits, fixed notation for 1e-3 ≤ |v| < 1e5 (trailing
-/// zeros kept: they are significant), else scientific with a bare exponent (`1.2e-5`).
+/// zeros kept: they are significant), else scientific with a bare exponent (`1.2e-5`). A value
+/// that is not finite prints as Rust prints it (`inf`, `NaN`): the ledger refuses to show such a
+/// row's value (it becomes `inconclusive`, naming the quantity), but formatting never fails.
 pub fn with_significant(value: f64, digits: usize) -> String {
+    if !value.is_finite() {
+        return format!("{value}");
+    }
     let digits = digits.max(1);
     let sci = format!("{:.*e}", digits - 1, value);
     // The exponent after rounding (9.99 → 1.00e1 moves the decade).
@@ -510,6 +515,11 @@ mod tests {
         for v in [0.1208599220466, -215.9, 1.5e-5, 3.1e7] {
             assert!(format_value(v, None).parse::<f64>().is_ok());
         }
+        // a value that is not finite is printed, never a panic (`check` exited 101 at
+        // control.a = 1e-300, control.b = 1e12 formatting UUB's infinite bound)
+        assert_eq!(with_significant(f64::INFINITY, 3), "inf");
+        assert_eq!(with_significant(f64::NAN, 2), "NaN");
+        assert_eq!(format_value(f64::NEG_INFINITY, Some(1e-3)), "-inf");
     }
 
     #[test]

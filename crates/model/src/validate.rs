@@ -7,7 +7,7 @@ fn finite(field: &str, v: f64) -> Result<f64, ConfigError> {
     if v.is_finite() {
         Ok(v)
     } else {
-        Err(ConfigError::NotFinite { field: field.to_string(), value: v })
+        Err(ConfigError::NotFinite { field: field.to_string(), value: format!("{v}") })
     }
 }
 

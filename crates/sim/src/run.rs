@@ -60,7 +60,9 @@ pub struct Series {
 impl Series {
     /// Column names and units in output order (run.csv writes `name_unitsuffix`,
     /// [`Series::csv_header`]).
-    pub const COLUMNS: [(&'static str, Unit); 19] = [
+    /// Its length is [`wingcheck_model::work::SERIES_COLUMNS`], the width the work estimates
+    /// count per output sample (a column added here without it does not compile).
+    pub const COLUMNS: [(&'static str, Unit); wingcheck_model::work::SERIES_COLUMNS] = [
         ("t", Unit::Second),
         ("q_tip", Unit::Metre),
         ("theta_tip", Unit::Radian),
@@ -87,8 +89,35 @@ impl Series {
         Self::COLUMNS.iter().map(|(n, u)| wingcheck_io::column_name(n, u.column_suffix())).collect()
     }
 
+    /// Every column empty, with room for `samples` output samples (allocated once, so a run
+    /// holds exactly what the work estimate counts).
+    pub fn with_capacity(samples: usize) -> Series {
+        let v = || Vec::with_capacity(samples);
+        Series {
+            t: v(),
+            q_tip: v(),
+            theta_tip: v(),
+            q_tip_rate: v(),
+            theta_tip_rate: v(),
+            tau1: v(),
+            tau2: v(),
+            g1: v(),
+            g2: v(),
+            g1_hat: v(),
+            g2_hat: v(),
+            sigma1: v(),
+            sigma2: v(),
+            energy: v(),
+            displacement_momentum: v(),
+            q_tip_shear: v(),
+            theta_tip_slope: v(),
+            tau1_rms: v(),
+            tau2_rms: v(),
+        }
+    }
+
     /// Columns in the order of [`Series::COLUMNS`].
-    pub fn columns(&self) -> [&Vec<f64>; 19] {
+    pub fn columns(&self) -> [&Vec<f64>; wingcheck_model::work::SERIES_COLUMNS] {
         [
             &self.t,
             &self.q_tip,
@@ -196,7 +225,16 @@ pub struct Envelope {
     pub g2_error: Vec<(f64, f64)>,
 }
 
+// The envelope's width per output sample is what the work estimates count.
+const _: () = assert!(4 * std::mem::size_of::<(f64, f64)>() == 8 * wingcheck_model::work::ENVELOPE_VALUES);
+
 impl Envelope {
+    /// Empty, with room for `samples` output samples.
+    pub fn with_capacity(samples: usize) -> Envelope {
+        let v = || Vec::with_capacity(samples);
+        Envelope { tau1: v(), tau2: v(), g1_error: v(), g2_error: v() }
+    }
+
     /// The values of an output sample: [τ1, τ2, g̃1, g̃2].
     pub(crate) fn values(s: &Sample) -> [f64; 4] {
         [s.tau1, s.tau2, s.g1 - s.g1_hat, s.g2 - s.g2_hat]
@@ -207,6 +245,14 @@ impl Envelope {
         self.tau2.push(r[1]);
         self.g1_error.push(r[2]);
         self.g2_error.push(r[3]);
+    }
+}
+
+impl Fields {
+    /// Empty fields on the grid `z`, with room for the output samples of `cfg`.
+    pub fn with_capacity(z: Vec<f64>, cfg: &Config) -> Fields {
+        let n = cfg.output_samples();
+        Fields { z, q: Vec::with_capacity(n), theta: Vec::with_capacity(n) }
     }
 }
 
@@ -408,9 +454,9 @@ fn simulate_nodal(
     let start = Instant::now();
     let total = cfg.total_samples();
     let every = cfg.samples_per_output();
-    let mut series = Series::default();
-    let mut envelope = Envelope::default();
-    let mut fields = opts.fields.then(|| Fields { z: stepper.discretisation().interp.z.clone(), ..Default::default() });
+    let mut series = Series::with_capacity(cfg.output_samples());
+    let mut envelope = Envelope::with_capacity(cfg.output_samples());
+    let mut fields = opts.fields.then(|| Fields::with_capacity(stepper.discretisation().interp.z.clone(), cfg));
     let e0 = stepper.sample().energy;
     let mut record = |st: &mut Stepper, series: &mut Series, fields: &mut Option<Fields>| -> Result<(), SimError> {
         let s = st.sample();

@@ -449,7 +449,8 @@ pub fn check(cfg: &Config, study: &Study, settings: &CheckSettings) -> Result<Cl
     let fmt = |v: f64| wingcheck_model::quantity::format_value(v, None);
     let (a0, b0) = (cfg.control.a, cfg.control.b);
     let sf = fmt(settings.sweep_factor);
-    let assumptions = vec![
+    let left_out = super::sweep_weights(cfg, settings.sweep_factor).1;
+    let mut assumptions = vec![
         "DOBC (57) corrected: b q̇(s) in τ1, ĝ from d ĝ/dt = g − ĝ with p(0) = 0; the same k1, k2, a, b and sampling rule as the FTDO".into(),
         format!(
             "(a, b) not given by the paper: the configured ({}, {}) and the sweep a × {sf}, a ÷ {sf}, b × {sf}, b ÷ {sf}",
@@ -464,5 +465,8 @@ pub fn check(cfg: &Config, study: &Study, settings: &CheckSettings) -> Result<Cl
         ),
         format!("indistinguishable = tip RMS within {} %", fmt(100.0 * settings.indistinguishable)),
     ];
+    if !left_out.is_empty() {
+        assumptions.push(format!("the sweep leaves out {}", left_out.join("; ")));
+    }
     Ok(ClaimRow::decided(ClaimId::FtdoVsDobc, e, assumptions, plots(c.rule, &f, &d)))
 }
