@@ -45,7 +45,11 @@ def test_the_gil_is_released_during_a_run():
 
 CHILD = textwrap.dedent(
     """
-    import sys, time, wingcheck
+    import signal, sys, time, wingcheck
+    # Python installs its KeyboardInterrupt handler only where SIGINT is not ignored at start,
+    # and a job started in the background by a non-interactive shell (`cmd &`) inherits it
+    # ignored: restore the handler an interactive session has
+    signal.signal(signal.SIGINT, signal.default_int_handler)
     what, out = sys.argv[1], sys.argv[2]
     calls = {
         "simulate": lambda: wingcheck.simulate(set={"horizon.t_end": 4000}, out=out + "/run.csv", allow_large=True),
