@@ -47,7 +47,7 @@ fn the_171_gb_output_is_refused_and_nothing_is_written() {
             "--out",
             out.to_str().unwrap(),
         ],
-        &["GB of output", "GB of memory", "--allow-large"],
+        &["GiB of output", "GiB of memory", "--allow-large"],
     );
     assert!(!out.exists());
     // The estimate itself: 1e8 + 1 samples × (16 series + 2 × 21 field values) × 32 bytes.
@@ -120,7 +120,7 @@ fn bench_is_guarded_like_the_commands_it_times() {
     let start = std::time::Instant::now();
     refused(
         &["bench", "--what", "search", "--set", "horizon.t_end=1e5", "--set", "horizon.sample_every=1e-3"],
-        &["bench refused before starting", "GB of memory", "--allow-large"],
+        &["bench refused before starting", "GiB of memory", "--allow-large"],
     );
     assert!(start.elapsed().as_secs_f64() < 5.0, "refused before any run ({:?})", start.elapsed());
     // the default benchmark of each kind is within the limits (it runs); `report` times two

@@ -185,6 +185,11 @@ fn every_output_is_documented_and_valid() {
     schemas.validate("simulate", "simulate --json", &json(&o));
     let modes = json(&wingcheck(&["modes", "--json", "--count", "3"]));
     schemas.validate("modes", "modes --json", &modes);
+    // bench --json: the simulator's timings, wall and CPU, with the machine's load
+    let bench = json(&wingcheck(&["bench", "--what", "sim", "--repeats", "1", "--json"]));
+    schemas.validate("bench", "bench --json", &bench);
+    assert!(bench["machine"]["cores"].as_u64().is_some_and(|c| c >= 1), "{bench}");
+    assert_eq!(bench["provenance"]["config_sha256"], modes["provenance"]["config_sha256"]);
     assert_eq!(
         modes["provenance"]["config_sha256"],
         json(&wingcheck(&["simulate", "--json"]))["provenance"]["config_sha256"]

@@ -28,17 +28,25 @@ pub fn run(a: CheckArgs) -> anyhow::Result<()> {
         return Ok(());
     }
     println!("claim ledger ({}, config sha256 {})", ledger.tool, &ledger.config_sha256[..12]);
-    println!("{:<14} {:<32} {:<23} {:<18} {:>7}", "id", "equation", "verdict", "basis", "time");
-    for r in &ledger.rows {
-        let seconds = ledger.wall_seconds_of(r.id.name()).unwrap_or(0.0);
-        println!("{:<14} {:<32} {:<23} {:<18} {:>6.2}s", r.id, r.equation, r.verdict.name(), r.basis.name(), seconds);
-    }
+    let mut rows: Vec<Vec<String>> = ledger
+        .rows
+        .iter()
+        .map(|r| {
+            let seconds = ledger.wall_seconds_of(r.id.name()).unwrap_or(0.0);
+            vec![
+                r.id.to_string(),
+                r.equation.to_string(),
+                r.verdict.name().to_string(),
+                r.basis.name().to_string(),
+                format!("{seconds:.2} s"),
+            ]
+        })
+        .collect();
     if let Some(seconds) = ledger.wall_seconds_of(wingcheck_claims::DIGITAL_RUNS) {
-        println!(
-            "{:<14} {:<32} {:<23} {:<18} {:>6.2}s",
-            "", "(digital runs of both finite-time rows)", "", "", seconds
-        );
+        let label = "(digital runs of both finite-time rows)".to_string();
+        rows.push(vec![String::new(), label, String::new(), String::new(), format!("{seconds:.2} s")]);
     }
+    print!("{}", super::table::text_table(&["id", "equation", "verdict", "basis", "wall time"], &rows, &[4]));
     println!("(wall times overlap: the rows and their parts run side by side on the thread pool)");
     for r in &ledger.rows {
         println!("\n[{}] {} ({}) — {}", r.id, r.verdict.name(), r.basis.name(), r.claim);

@@ -43,9 +43,4 @@ impl WorkArgs {
     pub fn policy(&self) -> WorkPolicy {
         WorkPolicy { allow_large: self.allow_large, front: Front::Cli }
     }
-
-    /// Refuse `est` above the default limits unless `--allow-large` was given.
-    pub fn guard(&self, est: &wingcheck_model::work::WorkEstimate) -> anyhow::Result<()> {
-        Ok(self.policy().guard(est)?)
-    }
 }

@@ -1,6 +1,7 @@
 //! Command-line interface.
 
 mod bench;
+mod bench_search;
 mod check;
 mod common;
 mod modes;
@@ -10,6 +11,7 @@ mod report;
 mod schema;
 mod search;
 mod simulate;
+mod table;
 
 use clap::{Parser, Subcommand};
 

@@ -106,8 +106,10 @@ pub fn run_search(a: SearchArgs) -> anyhow::Result<()> {
     if s.verified > 0 {
         println!("{} points of the chunks found on disk recomputed: the same results", s.verified);
     }
+    let cpu = s.cpu_seconds.map_or(String::new(), |c| format!(", {c:.1} s CPU"));
     println!(
-        "{} of {} points evaluated ({} already done), {} of them failed, in {:.1} s; simulation {:.1} s, theory {:.1} s (summed over points)",
+        "{} of {} points evaluated ({} already done), {} of them failed, in {:.1} s wall{cpu}; the points' own wall \
+         times summed: simulation {:.1} s, theory {:.1} s (they include time a thread waited for a core)",
         s.evaluated, s.points_total, s.skipped, s.failed, s.wall_seconds, s.sim_seconds, s.theory_seconds
     );
     if s.complete {

@@ -70,13 +70,7 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
         let summary = SimulateSummary::of(&cfg, &result, a.out.as_deref());
         println!("{}", serde_json::to_string_pretty(&summary)?);
     } else {
-        // the observer's rule matters only to the FTDO
-        let loop_text = match cfg.control.kind {
-            ControllerKind::None => "open loop (no controller)".to_string(),
-            ControllerKind::Pd => "pd controller (no observer)".to_string(),
-            ControllerKind::Dobc => "dobc controller (its linear observer (57))".to_string(),
-            ControllerKind::Ftdo => format!("ftdo controller, {} observer", cfg.observer.rule.name()),
-        };
+        let loop_text = wingcheck_app::simulate::controller_phrase(&cfg);
         println!(
             "{loop_text}, {} with {} {}, dt = {} s ({}, {} basis): {} steps in {:.3} s",
             cfg.discretisation.method.name(),

@@ -10,6 +10,7 @@
 //! - [`WorkPolicy`]: the work guard (`--allow-large` / `allow_large=True`).
 //! - [`ModesRequest`]: the `modes` arguments' checks and the `modes --json` document.
 //! - [`ops`]: check, report, search, certify, verify with the guard and a [`Cancel`] token.
+//! - [`bench`]: the tool's measurements of itself (`bench --json`), wall and CPU time, load.
 //! - [`schemas`]: every JSON Schema of docs/schema/.
 //! - [`build_info`]: the build's provenance (git commit, dirty flag, rustc), from this crate's
 //!   build script.
@@ -17,6 +18,7 @@
 //! Every error is an [`AppError`]; [`AppError::kind`] classifies it for a front end (the
 //! Python exception classes).
 
+pub mod bench;
 mod build_info;
 mod config;
 mod error;

@@ -9,6 +9,7 @@ pub fn schemas() -> Vec<(&'static str, schemars::Schema)> {
         ("check", schema_for!(wingcheck_claims::Ledger)),
         ("simulate", schema_for!(crate::SimulateSummary)),
         ("modes", schema_for!(crate::ModesDocument)),
+        ("bench", schema_for!(crate::bench::BenchDocument)),
         ("run", schema_for!(wingcheck_sim::output::RunDocument<'static>)),
         ("results", schema_for!(wingcheck_search::records::ResultsDocument)),
         ("best", schema_for!(wingcheck_search::records::BestDocument)),

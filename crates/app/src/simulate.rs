@@ -178,3 +178,16 @@ pub fn run(
     }
     Ok(SimulateResult { output, estimate, sample_times, wall_seconds })
 }
+
+/// The closed loop in words, as every front end names it: "open loop (no controller)",
+/// "pd controller (no observer)", "dobc controller (its linear observer (57))" or
+/// "ftdo controller, implicit observer" (the observer's rule matters only to the FTDO).
+pub fn controller_phrase(cfg: &Config) -> String {
+    use wingcheck_model::ControllerKind;
+    match cfg.control.kind {
+        ControllerKind::None => "open loop (no controller)".to_string(),
+        ControllerKind::Pd => "pd controller (no observer)".to_string(),
+        ControllerKind::Dobc => "dobc controller (its linear observer (57))".to_string(),
+        ControllerKind::Ftdo => format!("ftdo controller, {} observer", cfg.observer.rule.name()),
+    }
+}

@@ -19,6 +19,7 @@
 #![warn(missing_docs)]
 
 mod allocator;
+pub mod clock;
 mod lock;
 pub mod marked;
 mod number;

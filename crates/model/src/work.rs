@@ -299,13 +299,18 @@ fn advice(what: &str) -> &'static str {
     }
 }
 
-fn human_bytes(b: f64) -> String {
-    if b >= 1e9 {
-        format!("{:.3} GB", b / 1e9)
-    } else if b >= 1e6 {
-        format!("{:.3} MB", b / 1e6)
+/// A size in binary units, as every work estimate and limit states it (the limits are
+/// 4 GiB and 1 GiB): "4.000 GiB", "12.500 MiB", "3 KiB" (KiB rounded up).
+pub fn human_bytes(b: f64) -> String {
+    const KIB: f64 = 1024.0;
+    const MIB: f64 = KIB * KIB;
+    const GIB: f64 = MIB * KIB;
+    if b >= GIB {
+        format!("{:.3} GiB", b / GIB)
+    } else if b >= MIB {
+        format!("{:.3} MiB", b / MIB)
     } else {
-        format!("{:.0} kB", (b / 1e3).ceil())
+        format!("{:.0} KiB", (b / KIB).ceil())
     }
 }
 

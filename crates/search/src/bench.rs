@@ -3,9 +3,8 @@
 //! the same run: the search's wall time against `points` × one default `simulate` run, and the
 //! explicit observer's cost per point against the implicit one's.
 
-use std::time::Instant;
-
 use serde::Serialize;
+use wingcheck_io::clock::{measure, Elapsed, MachineLoad};
 use wingcheck_model::{apply_overrides, Config};
 use wingcheck_sim::{simulate, RunOptions};
 
@@ -28,20 +27,9 @@ pub struct ThreadTiming {
     pub theory_seconds: f64,
     /// Points that failed (see failures.csv of a real run).
     pub failed: usize,
-    /// CPU time of the process during the run (user + system, s; Linux `/proc/self/stat`,
-    /// None elsewhere): on a shared machine, points per CPU-second is the load-independent figure.
+    /// CPU time of the process during the run (user + system, s; [`wingcheck_io::clock`],
+    /// None off Linux): on a shared machine, points per CPU-second is the load-independent figure.
     pub cpu_seconds: Option<f64>,
-}
-
-/// User + system CPU time of this process (s), from `/proc/self/stat` (fields 14, 15, in the
-/// kernel's USER_HZ = 100 ticks per second).
-fn process_cpu_seconds() -> Option<f64> {
-    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
-    // fields after the parenthesised command name (which may contain spaces)
-    let rest = stat.rsplit_once(')')?.1;
-    let f: Vec<&str> = rest.split_whitespace().collect();
-    let ticks = f.get(11)?.parse::<f64>().ok()? + f.get(12)?.parse::<f64>().ok()?;
-    Some(ticks / 100.0)
 }
 
 /// The benchmark's result.
@@ -51,11 +39,9 @@ pub struct SearchBench {
     pub axes: Vec<String>,
     /// Points.
     pub points: usize,
-    /// 1-minute load average of the machine when the benchmark started (Linux; None
-    /// elsewhere): timings on a shared machine are only comparable at similar load.
-    pub load_average: Option<f64>,
-    /// Cores available.
-    pub cores: usize,
+    /// Cores and the machine's load at the start and the end: timings on a shared machine are
+    /// only comparable at similar load.
+    pub machine: MachineLoad,
     /// One run per thread count.
     pub runs: Vec<ThreadTiming>,
     /// Once per search: the modal basis of the wing (s).
@@ -64,12 +50,13 @@ pub struct SearchBench {
     pub input_signal_seconds: f64,
     /// Writing the final files (boundaries, heatmaps, CSV/JSON) of the complete search (s).
     pub finalize_seconds: f64,
-    /// One point's closed loop as the search runs it (shared basis and signal), median of 5 (s).
+    /// One point's closed loop as the search runs it (shared basis and signal), median of 5 (s;
+    /// CPU where known, else wall, like every `_seconds` of a single-threaded piece here).
     pub modal_point_seconds: f64,
     /// The same point with the simulator (`simulate` of the base configuration: modal basis,
     /// observer signal, full series and peaks), median of all its timings: 5 before the thread
     /// runs, and 5 before and 5 after each of the [`SEARCH_REPEATS`] runs with the most threads
-    /// (s): the unit of the search's ratio.
+    /// (s; CPU where known).
     pub simulator_point_seconds: f64,
     /// Wall times of the [`SEARCH_REPEATS`] runs with the most threads (s), each between 5
     /// `simulate` timings before and 5 after it.
@@ -78,8 +65,16 @@ pub struct SearchBench {
     /// it (s).
     pub simulate_around_seconds: Vec<f64>,
     /// The median over those runs of wall / (points × the `simulate_around_seconds` of the run):
-    /// each ratio within one stretch of time.
+    /// each ratio within one stretch of time. It moves with the machine's load (the search's
+    /// threads compete with other processes, one `simulate` less so).
     pub wall_over_simulate_runs: f64,
+    /// CPU times of the same runs (s; None off Linux).
+    pub most_threads_cpu_seconds: Vec<Option<f64>>,
+    /// Per run: the median CPU time of the 10 `simulate` runs around it (s).
+    pub simulate_around_cpu_seconds: Vec<Option<f64>>,
+    /// The median over those runs of CPU / (points × `simulate_around_cpu_seconds`): the
+    /// search's work per point against one `simulate` run's, load-independent (None off Linux).
+    pub cpu_over_simulate_runs: Option<f64>,
     /// The implicit and the explicit observer on a smaller grid of the same axes.
     pub rules: Vec<RuleTiming>,
     /// Explicit / implicit observer cost per point, wall time: the median over
@@ -123,33 +118,31 @@ pub struct RuleTiming {
     pub cpu_seconds_per_point: Option<f64>,
 }
 
-use wingcheck_sim::bench::median;
+use wingcheck_sim::bench::{median, median_elapsed};
 
 /// One rule's cost per point in one round: wall time and, where measurable, CPU time (s).
 type PerPoint = (f64, Option<f64>);
 
 /// One timed whole search of `axes` on `base` with `threads` threads in a new directory under
-/// `tmp`: (wall s, CPU s, summary).
+/// `tmp`: (wall and CPU time, summary).
 fn timed_run(
     base: &Config,
     axes: &[String],
     threads: usize,
     dir: &std::path::Path,
-) -> Result<(f64, Option<f64>, crate::RunSummary), SearchError> {
+) -> Result<(Elapsed, crate::RunSummary), SearchError> {
     let search = Search::new(base.clone(), axes, SearchOptions::default())?;
-    let (start, cpu0) = (Instant::now(), process_cpu_seconds());
-    let s = run(&search, dir, RunControl { threads: Some(threads), ..Default::default() })?;
-    let wall = start.elapsed().as_secs_f64();
-    Ok((wall, cpu0.zip(process_cpu_seconds()).map(|(a, b)| b - a), s))
+    let (s, elapsed) = measure(|| run(&search, dir, RunControl { threads: Some(threads), ..Default::default() }));
+    Ok((elapsed, s?))
 }
 
-/// Median wall time (s) of `repeats` default `simulate` runs of `cfg`.
-fn simulate_seconds(cfg: &Config, repeats: usize) -> Result<Vec<f64>, SearchError> {
+/// Wall and CPU times of `repeats` default `simulate` runs of `cfg`.
+fn simulate_seconds(cfg: &Config, repeats: usize) -> Result<Vec<Elapsed>, SearchError> {
     (0..repeats)
         .map(|_| {
-            let start = Instant::now();
-            simulate(cfg, RunOptions::default()).map_err(|e| SearchError::Options(e.to_string()))?;
-            Ok(start.elapsed().as_secs_f64())
+            let (out, elapsed) = measure(|| simulate(cfg, RunOptions::default()));
+            out.map_err(|e| SearchError::Options(e.to_string()))?;
+            Ok(elapsed)
         })
         .collect()
 }
@@ -198,10 +191,7 @@ pub fn bench_estimate(
 /// Run the benchmark on `base` (the paper config by default): the grid
 /// a ∈ [1e-4, 10] × b ∈ [1e-2, 1e4], n × n log points, with 1 and `max_threads` threads.
 pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<SearchBench, SearchError> {
-    let load_average = std::fs::read_to_string("/proc/loadavg")
-        .ok()
-        .and_then(|s| s.split_whitespace().next().and_then(|x| x.parse().ok()));
-    let cores = std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1);
+    let mut machine = MachineLoad::at_start();
     let axes = vec![format!("control.a=1e-4..10:log:{n}"), format!("control.b=1e-2..1e4:log:{n}")];
     let search = Search::new(base.clone(), &axes, SearchOptions::default())?;
     let tmp = tempfile::tempdir().map_err(|e| SearchError::Io { path: "temp dir".into(), detail: e.to_string() })?;
@@ -211,40 +201,46 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
     let mut finalize_seconds = 0.0;
     for (k, &threads) in thread_counts.iter().enumerate() {
         let dir = tmp.path().join(format!("run-{k}"));
-        let (wall, cpu_seconds, s) = timed_run(base, &axes, threads, &dir)?;
+        let (elapsed, s) = timed_run(base, &axes, threads, &dir)?;
         runs.push(ThreadTiming {
             threads,
-            wall_seconds: wall,
-            points_per_second: s.evaluated as f64 / wall,
+            wall_seconds: elapsed.wall_seconds,
+            points_per_second: s.evaluated as f64 / elapsed.wall_seconds,
             closed_loop_seconds: s.sim_seconds,
             theory_seconds: s.theory_seconds,
             failed: s.failed,
-            cpu_seconds,
+            cpu_seconds: elapsed.cpu_seconds,
         });
-        let start = Instant::now();
-        finalize(&dir)?;
-        finalize_seconds = start.elapsed().as_secs_f64();
+        let (done, elapsed) = measure(|| finalize(&dir));
+        done?;
+        finalize_seconds = elapsed.wall_seconds;
     }
     let most = thread_counts.iter().copied().max().unwrap_or(1);
     // Each ratio from one search run and the `simulate` timings just before and after it, so
     // that a change of the machine's speed between runs (this VM's neighbours) cancels; the
     // median of the ratios is reported. (The quotient of two medians over the whole bench moved
     // from 0.255 to 0.329 between two runs 12 minutes apart, its `simulate` from 8.0 to 5.7 ms.)
-    let (mut most_threads_wall_seconds, mut simulate_around_seconds) = (Vec::new(), Vec::new());
+    let (mut most_threads, mut simulate_around) = (Vec::new(), Vec::new());
     for k in 0..SEARCH_REPEATS {
         let mut around = simulate_seconds(&cfg, 5)?;
-        let (wall, _, _) = timed_run(base, &axes, most, &tmp.path().join(format!("repeat-{k}")))?;
+        let (elapsed, _) = timed_run(base, &axes, most, &tmp.path().join(format!("repeat-{k}")))?;
         around.extend(simulate_seconds(&cfg, 5)?);
-        most_threads_wall_seconds.push(wall);
-        simulate_around_seconds.push(median(around.clone()));
+        most_threads.push(elapsed);
+        simulate_around.push(median_elapsed(&around));
         simulator.extend(around);
     }
-    let ratios: Vec<f64> = most_threads_wall_seconds
+    let points = search.points() as f64;
+    let ratios: Vec<f64> = most_threads
         .iter()
-        .zip(&simulate_around_seconds)
-        .map(|(wall, sim)| wall / (search.points() as f64 * sim))
+        .zip(&simulate_around)
+        .map(|(r, sim)| r.wall_seconds / (points * sim.wall_seconds))
         .collect();
-    let simulator_point_seconds = median(simulator);
+    let cpu_ratios: Option<Vec<f64>> = most_threads
+        .iter()
+        .zip(&simulate_around)
+        .map(|(r, sim)| Some(r.cpu_seconds? / (points * sim.cpu_seconds?)))
+        .collect();
+    let simulator_point_seconds = median_elapsed(&simulator).seconds();
     let small = vec!["control.a=1e-4..10:log:8".to_string(), "control.b=1e-2..1e4:log:8".to_string()];
     let rule_cfg = |rule: &str| {
         apply_overrides(base, &[format!("observer.rule={rule}")]).map_err(|e| SearchError::Options(e.to_string()))
@@ -257,9 +253,9 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
         let order = if round % 2 == 0 { [0, 1] } else { [1, 0] };
         for r in order {
             let dir = tmp.path().join(format!("rule-{r}-{round}"));
-            let (wall, cpu, s) = timed_run(&rule_cfgs[r], &small, most, &dir)?;
+            let (elapsed, s) = timed_run(&rule_cfgs[r], &small, most, &dir)?;
             let points = s.evaluated.max(1) as f64;
-            per_point[r].push((wall / points, cpu.map(|c| c / points)));
+            per_point[r].push((elapsed.wall_seconds / points, elapsed.cpu_seconds.map(|c| c / points)));
             evaluated[r] = s.evaluated;
         }
     }
@@ -280,35 +276,37 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
     };
     let explicit_over_implicit_wall = paired(&|p| Some(p.0)).unwrap_or(0.0);
     let explicit_over_implicit_cpu = paired(&|p| p.1);
-    let start = Instant::now();
-    let basis = ModalBasis::new(&cfg).map_err(|e| SearchError::Options(e.to_string()))?;
-    let modal_basis_seconds = start.elapsed().as_secs_f64();
-    let start = Instant::now();
-    let signal = RecordedSignal::new(&cfg);
-    let input_signal_seconds = start.elapsed().as_secs_f64();
+    let (basis, elapsed) = measure(|| ModalBasis::new(&cfg));
+    let basis = basis.map_err(|e| SearchError::Options(e.to_string()))?;
+    let modal_basis_seconds = elapsed.seconds();
+    let (signal, elapsed) = measure(|| RecordedSignal::new(&cfg));
+    let input_signal_seconds = elapsed.seconds();
     let mut modal = Vec::new();
     let runs_cache = RunCache::new();
     for _ in 0..5 {
-        let start = Instant::now();
-        crate::point::closed_loop(&cfg, &runs_cache).map_err(|e| SearchError::Options(e.to_string()))?;
-        modal.push(start.elapsed().as_secs_f64());
+        let (out, elapsed) = measure(|| crate::point::closed_loop(&cfg, &runs_cache));
+        out.map_err(|e| SearchError::Options(e.to_string()))?;
+        modal.push(elapsed);
     }
     drop((basis, signal));
     let wall_over_simulate_runs = median(ratios);
+    machine.finish();
     Ok(SearchBench {
         axes,
         points: search.points(),
-        load_average,
-        cores,
+        machine,
         runs,
         modal_basis_seconds,
         input_signal_seconds,
         finalize_seconds,
-        modal_point_seconds: median(modal),
+        modal_point_seconds: median_elapsed(&modal).seconds(),
         simulator_point_seconds,
-        most_threads_wall_seconds,
-        simulate_around_seconds,
+        most_threads_wall_seconds: most_threads.iter().map(|e| e.wall_seconds).collect(),
+        simulate_around_seconds: simulate_around.iter().map(|e| e.wall_seconds).collect(),
         wall_over_simulate_runs,
+        most_threads_cpu_seconds: most_threads.iter().map(|e| e.cpu_seconds).collect(),
+        simulate_around_cpu_seconds: simulate_around.iter().map(|e| e.cpu_seconds).collect(),
+        cpu_over_simulate_runs: cpu_ratios.map(median),
         rules,
         explicit_over_implicit_wall,
         explicit_over_implicit_cpu,

@@ -194,6 +194,7 @@ pub fn run(search: &Search, out: &Path, ctl: RunControl<'_>) -> Result<RunSummar
 
 fn run_in(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<RunSummary, SearchError> {
     let start = Instant::now();
+    let clock = wingcheck_io::clock::Stopwatch::start();
     // First pass over this shard's chunks: which are done, each proven this search's own by
     // recomputing some of its points (all with --verify-chunks) before any new work; chunks are
     // read one at a time (a bit per chunk is kept).
@@ -281,6 +282,7 @@ fn run_in(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<RunSummar
         summary.complete = true;
     }
     summary.wall_seconds = start.elapsed().as_secs_f64();
+    summary.cpu_seconds = clock.elapsed().cpu_seconds;
     Ok(summary)
 }
 

@@ -3,6 +3,9 @@
 
 use wingcheck_chart::{grid_heatmap_svg, GridAxis, GridHeatmap, Mark, MarkShape, RGBColor};
 
+use crate::heatmap_blocks::{
+    block_centre, block_note, block_verdict, edge, thin_refined, AxisBlocks, BlockVerdict, MARK_BLOCKS, SEGMENT_BLOCKS,
+};
 use crate::metric::Metric;
 use crate::point::PointVerdicts;
 use crate::refine::{BoundaryRow, KINDS};
@@ -151,94 +154,105 @@ fn metric_text(metric: Metric, window: (f64, f64)) -> (String, String, String) {
     }
 }
 
-/// Cell edge `i` of axis `a` in axis values (the midpoints between centres; the ends half a
-/// spacing out), for the boundary segments between cells.
-fn edge(a: &GridAxis, i: usize) -> f64 {
-    let c = |k: usize| if a.log { a.centres[k].log10() } else { a.centres[k] };
-    let n = a.centres.len();
-    let e = if i == 0 {
-        c(0) - 0.5 * (c(1) - c(0))
-    } else if i == n {
-        c(n - 1) + 0.5 * (c(n - 1) - c(n - 2))
-    } else {
-        0.5 * (c(i - 1) + c(i))
-    };
-    if a.log {
-        10f64.powf(e)
-    } else {
-        e
-    }
-}
-
-/// The marks of the closed-form boundaries and the search's verdicts per cell: on an (a, b)
-/// plane the closed-form lines with the verdicts as circles and dots (the report's region map);
-/// on other axes the verdict boundaries between grid cells and the cells where both hold.
+/// The marks of the closed-form boundaries and the search's verdicts per cell (per block of
+/// cells above [`MARK_BLOCKS`] / [`SEGMENT_BLOCKS`] cells per axis): on an (a, b) plane the
+/// closed-form lines with the verdicts as circles and dots (the report's region map); on other
+/// axes the verdict boundaries between grid cells and the cells where both hold.
 fn verdict_marks(search: &Search, ax: &GridAxis, ay: &GridAxis, verdicts: &[PointVerdicts]) -> Vec<Mark> {
     let grid = &search.grid;
     let (nx, ny) = (grid.dims()[0], grid.dims()[1]);
     let mut marks = Vec::new();
+    let (mx, my) = (AxisBlocks::new(nx, MARK_BLOCKS), AxisBlocks::new(ny, MARK_BLOCKS));
+    let every = block_note(&mx, &my, "a mark where every cell holds");
+    // the centres of the mark blocks whose every cell satisfies `f`
+    let cells = |f: &dyn Fn(&PointVerdicts) -> bool| -> Vec<(f64, f64)> {
+        let mut pts = Vec::new();
+        for bi in 0..mx.count() {
+            for bj in 0..my.count() {
+                let all = mx.range(bi).all(|i| my.range(bj).all(|j| f(&verdicts[grid.index(&[i, j])])));
+                if all {
+                    pts.push((block_centre(ax, &mx, bi), block_centre(ay, &my, bj)));
+                }
+            }
+        }
+        pts
+    };
     let closed = closed_form_marks(search, ax, ay);
     if let Some(lines) = &closed {
         // the (a, b) plane: the closed-form boundaries as lines and the search's verdicts per
         // cell, as in the report's region map
         marks.extend(lines.iter().cloned());
-        let cells = |f: &dyn Fn(&PointVerdicts) -> bool| -> Vec<(f64, f64)> {
-            (0..nx * ny)
-                .filter(|&p| f(&verdicts[p]))
-                .map(|p| {
-                    let m = grid.multi(p);
-                    (ax.centres[m[0]], ay.centres[m[1]])
-                })
-                .collect()
-        };
         marks.push(Mark {
-            label: "W ≻ 0 (search verdict)".into(),
+            label: format!("W ≻ 0 (search verdict){every}"),
             colour: W_COLOUR,
             shape: MarkShape::Circles,
             points: cells(&|v| v.w_positive_definite == Some(true)),
         });
         marks.push(Mark {
-            label: "(32) feasible (search verdict)".into(),
+            label: format!("(32) feasible (search verdict){every}"),
             colour: MU_COLOUR,
             shape: MarkShape::Dots,
             points: cells(&|v| v.feasible_32 == Some(true)),
         });
+        return marks;
     }
-    if closed.is_none() {
-        for (kind, colour, label) in [
-            (0, W_COLOUR, "boundary of W ≻ 0 (Theorem 1) between grid cells"),
-            (1, MU_COLOUR, "boundary of (29)–(32) feasibility between grid cells"),
-        ] {
-            let v = |p: usize| if kind == 0 { verdicts[p].w_positive_definite } else { verdicts[p].feasible_32 };
-            let mut seg = Vec::new();
-            for i in 0..nx {
-                for j in 0..ny {
-                    let p = grid.index(&[i, j]);
-                    if i + 1 < nx && matches!((v(p), v(grid.index(&[i + 1, j]))), (Some(a), Some(b)) if a != b) {
-                        seg.extend([(edge(ax, i + 1), edge(ay, j)), (edge(ax, i + 1), edge(ay, j + 1))]);
-                    }
-                    if j + 1 < ny && matches!((v(p), v(grid.index(&[i, j + 1]))), (Some(a), Some(b)) if a != b) {
-                        seg.extend([(edge(ax, i), edge(ay, j + 1)), (edge(ax, i + 1), edge(ay, j + 1))]);
-                    }
-                }
-            }
-            marks.push(Mark { label: label.into(), colour, shape: MarkShape::Segments, points: seg });
-        }
-        let both = (0..nx * ny)
-            .filter(|&p| verdicts[p].theorem_feasible() == Some(true))
-            .map(|p| {
-                let m = grid.multi(p);
-                (ax.centres[m[0]], ay.centres[m[1]])
-            })
-            .collect();
+    for (kind, colour, label) in [
+        (0, W_COLOUR, "boundary of W ≻ 0 (Theorem 1) between grid cells"),
+        (1, MU_COLOUR, "boundary of (29)–(32) feasibility between grid cells"),
+    ] {
+        let v = |p: usize| if kind == 0 { verdicts[p].w_positive_definite } else { verdicts[p].feasible_32 };
+        let (sx, sy) = (AxisBlocks::new(nx, SEGMENT_BLOCKS), AxisBlocks::new(ny, SEGMENT_BLOCKS));
+        let note = block_note(&sx, &sy, "drawn; a block the boundary crosses is outlined,");
         marks.push(Mark {
-            label: "W ≻ 0 and (32) both hold (Theorem 2 applies)".into(),
-            colour: BOTH_COLOUR,
-            shape: MarkShape::Dots,
-            points: both,
+            label: format!("{label}{note}"),
+            colour,
+            shape: MarkShape::Segments,
+            points: boundary_segments(grid, ax, ay, (&sx, &sy), &v),
         });
     }
+    marks.push(Mark {
+        label: format!("W ≻ 0 and (32) both hold (Theorem 2 applies){every}"),
+        colour: BOTH_COLOUR,
+        shape: MarkShape::Dots,
+        points: cells(&|v| v.theorem_feasible() == Some(true)),
+    });
     marks
+}
+
+/// Segments between adjacent blocks whose verdicts differ (true, false, or mixed: the boundary
+/// crosses the block); with blocks of one cell, the boundary between cells.
+fn boundary_segments(
+    grid: &crate::Grid,
+    ax: &GridAxis,
+    ay: &GridAxis,
+    (sx, sy): (&AxisBlocks, &AxisBlocks),
+    v: &dyn Fn(usize) -> Option<bool>,
+) -> Vec<(f64, f64)> {
+    let (bx, by) = (sx.count(), sy.count());
+    let mut block = Vec::with_capacity(bx * by);
+    for i in 0..bx {
+        for j in 0..by {
+            block.push(block_verdict(
+                sx.range(i).flat_map(|x| sy.range(j).map(move |y| (x, y))).map(|(x, y)| v(grid.index(&[x, y]))),
+            ));
+        }
+    }
+    let at = |i: usize, j: usize| block[i * by + j];
+    let differ = |a: Option<BlockVerdict>, b: Option<BlockVerdict>| matches!((a, b), (Some(a), Some(b)) if a != b);
+    let (ex, ey) = (|i: usize| edge(ax, sx.range(i).start), |j: usize| edge(ay, sy.range(j).start));
+    let (ex_end, ey_end) = (|i: usize| edge(ax, sx.range(i).end), |j: usize| edge(ay, sy.range(j).end));
+    let mut seg = Vec::new();
+    for i in 0..bx {
+        for j in 0..by {
+            if i + 1 < bx && differ(at(i, j), at(i + 1, j)) {
+                seg.extend([(ex(i + 1), ey(j)), (ex(i + 1), ey_end(j))]);
+            }
+            if j + 1 < by && differ(at(i, j), at(i, j + 1)) {
+                seg.extend([(ex(i), ey(j + 1)), (ex_end(i), ey(j + 1))]);
+            }
+        }
+    }
+    seg
 }
 
 /// Render `metric` over a 2-D search (x = first axis, y = second), log colour scale if `log`;
@@ -274,7 +288,8 @@ pub fn heatmap_svg(
             })
             .collect();
         if !refined.is_empty() {
-            let label = format!("refined {} boundary point", if kind == KINDS[0] { "W ≻ 0" } else { "(32)" });
+            let (refined, note) = thin_refined(refined);
+            let label = format!("refined {} boundary point{note}", if kind == KINDS[0] { "W ≻ 0" } else { "(32)" });
             marks.push(Mark { label, colour, shape: MarkShape::Circles, points: refined });
         }
     }

@@ -23,6 +23,7 @@ pub mod bench;
 pub mod chunk;
 mod exec;
 pub mod heatmap;
+mod heatmap_blocks;
 pub mod limits;
 pub mod metric;
 pub mod modal;
@@ -416,12 +417,16 @@ pub struct RunSummary {
     pub complete: bool,
     /// Final files written (relative names).
     pub files: Vec<String>,
-    /// Sum of the points' simulation wall times (s) in this invocation.
+    /// Sum of the points' simulation wall times (s) in this invocation (each includes time its
+    /// thread waited for a core).
     pub sim_seconds: f64,
     /// Sum of the points' theory wall times (s) in this invocation.
     pub theory_seconds: f64,
     /// Wall time of the invocation (s).
     pub wall_seconds: f64,
+    /// CPU time of the process over the invocation (user + system of all threads, s;
+    /// [`wingcheck_io::clock`]; None off Linux or for a merge).
+    pub cpu_seconds: Option<f64>,
     /// Points evaluated in this invocation whose status is not `ok`.
     pub failed: usize,
     /// Points of chunks found on disk recomputed to prove them this search's own ([`verify`]).

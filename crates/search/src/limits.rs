@@ -7,13 +7,13 @@ use crate::axis::{Axis, Spacing};
 use crate::SearchError;
 
 /// Points a search may have without `--allow-large`. Finalising streams the chunks and keeps
-/// 2 bytes per point (the theory verdicts), on 2-D searches ≈ 0.5 kB per point (three plotted
-/// values and one heatmap SVG at a time; `tests/assembly.rs` measures both): ≈ 2 MB, or
-/// ≈ 0.5 GB for a 2-D search, here.
+/// 2 bytes per point (the theory verdicts), on 2-D searches ≈ 140 bytes per point (three plotted
+/// values and one heatmap at a time, its marks per block of cells; `tests/assembly.rs` measures
+/// both): ≈ 2 MB, or ≈ 0.14 GB for a 2-D search, here.
 pub const MAX_POINTS: usize = 1_000_000;
 
-/// Points a search may never exceed, even with `--allow-large` (a 2-D search's heatmaps then
-/// need ≈ 2 GB).
+/// Points a search may never exceed, even with `--allow-large` (a 2-D search's assembly then
+/// holds ≈ 0.6 GB, at the 140 bytes per point measured).
 pub const MAX_POINTS_OVERRIDE: usize = 4_000_000;
 
 /// Estimated core time (s) a search may take without `--allow-large`: 2 core-hours.
@@ -82,7 +82,7 @@ impl MemoryEstimate {
 
     /// The estimate in words, buffer by buffer.
     pub fn text(&self) -> String {
-        let gb = |b: f64| format!("{:.3} GB", b / 1e9);
+        let gb = wingcheck_model::work::human_bytes;
         format!(
             "{} of memory at {} threads: {:.0} observer signal(s) × {}, {:.0} modal basis(es) × {}, {} per thread \
              (a point's run), {} for the process, {} for the assembly",
@@ -289,7 +289,8 @@ fn memory_model(
         base.control.kind != wingcheck_model::ControllerKind::Ftdo || axes.iter().any(|a| a.key == "control.kind");
     let signals = held(distinct_values(axes, &SIGNAL_KEYS) * if not_ftdo { 2.0 } else { 1.0 });
     let bases = held(distinct_values(axes, &BASIS_KEYS));
-    // the assembly keeps 2 bytes per point, ≈ 600 on 2-D searches (heatmaps; tests/assembly.rs)
+    // the assembly keeps 2 bytes per point; 600 allowed on 2-D searches (heatmaps: 137 measured
+    // since their marks are drawn per block of cells, 603 before; tests/assembly.rs bounds it at 300)
     let per_point = if axes.len() == 2 { 600.0 } else { 2.0 };
     MemoryEstimate {
         threads,
@@ -333,7 +334,7 @@ pub fn check_with_flag(w: &WorkEstimate, allow_large: bool, flag: &str) -> Resul
     if w.points > MAX_POINTS_OVERRIDE as u128 {
         return Err(SearchError::TooLarge(format!(
             "{what}: more than {MAX_POINTS_OVERRIDE} points cannot be searched in one directory \
-             (the heatmaps of a 2-D search are drawn in memory, ≈ 0.5 kB per point); \
+             (the heatmaps of a 2-D search are drawn in memory, ≈ 140 bytes per point); \
              split the axes into several searches"
         )));
     }
@@ -341,11 +342,11 @@ pub fn check_with_flag(w: &WorkEstimate, allow_large: bool, flag: &str) -> Resul
         && (w.points > MAX_POINTS as u128 || w.core_seconds > MAX_CORE_SECONDS || w.memory_bytes > MAX_MEMORY_BYTES)
     {
         return Err(SearchError::TooLarge(format!(
-            "{what}: above the limits of {MAX_POINTS} points, {} core-hours and {:.3} GB of memory; \
+            "{what}: above the limits of {MAX_POINTS} points, {} core-hours and {} of memory; \
              pass {flag} to run it anyway (or --shard it over several machines, or use fewer --threads; a \
              long horizon or a small dt costs memory: an observer signal holds 24 bytes per integrator step)",
             MAX_CORE_SECONDS / 3600.0,
-            MAX_MEMORY_BYTES / 1e9
+            wingcheck_model::work::human_bytes(MAX_MEMORY_BYTES)
         )));
     }
     Ok(())

@@ -25,6 +25,21 @@ fn the_search_bench_runs_its_repeats_and_forms_its_ratios_from_them() {
         .collect();
     let ratio = median(ratios);
     assert!((b.wall_over_simulate_runs - ratio).abs() <= 1e-12 * ratio, "{} vs {ratio}", b.wall_over_simulate_runs);
+    // the load-independent ratio from CPU times, formed the same way from its own fields
+    #[cfg(target_os = "linux")]
+    {
+        let cpu: Vec<f64> = b
+            .most_threads_cpu_seconds
+            .iter()
+            .zip(&b.simulate_around_cpu_seconds)
+            .map(|(w, s)| w.unwrap() / (b.points as f64 * s.unwrap()))
+            .collect();
+        let cpu_ratio = median(cpu);
+        let got = b.cpu_over_simulate_runs.unwrap();
+        assert!((got - cpu_ratio).abs() <= 1e-12 * cpu_ratio, "{got} vs {cpu_ratio}");
+        // the machine line: cores and the load at both ends
+        assert!(b.machine.load_average_end.is_some() && b.machine.cores >= 1);
+    }
     // both observer rules on the 8 × 8 grid, their pairs' median ratio positive and finite
     assert_eq!(b.rules.len(), 2);
     assert!(b.rules.iter().all(|r| r.points == 64 && r.wall_seconds_per_point > 0.0));

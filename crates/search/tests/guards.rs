@@ -161,7 +161,7 @@ fn memory_is_estimated_and_every_value_of_a_list_axis_counts() {
     assert!(w.memory.per_thread >= 56.0 * (1e7 + 1.0), "{w:?}");
     assert!(w.memory_bytes > 7.7e9 && w.memory_bytes < 7.9e9, "{w:?}");
     let e = run(&s, &out, RunControl::default()).unwrap_err().to_string();
-    assert!(e.contains("GB of memory") && e.contains("--allow-large"), "{e}");
+    assert!(e.contains("GiB of memory") && e.contains("--allow-large"), "{e}");
     assert!(!out.exists());
     // one costly value listed last in a list of 300: counted (the estimate read only the first
     // 256 values). 0.05 s is 50 steps; 1e5 s is 1e8.
@@ -197,7 +197,7 @@ fn merge_recomputation_is_guarded_by_the_searchs_estimate() {
     for check in [ChunkCheck::Sample, ChunkCheck::All] {
         let start = std::time::Instant::now();
         let e = merge_with(std::slice::from_ref(&shard), &out, check, false).unwrap_err().to_string();
-        assert!(e.contains("GB of memory") && e.contains("--allow-large") && e.contains("1 points"), "{e}");
+        assert!(e.contains("GiB of memory") && e.contains("--allow-large") && e.contains("1 points"), "{e}");
         assert!(start.elapsed().as_secs_f64() < 2.0, "refused before any work: {:?}", start.elapsed());
         assert!(!out.exists());
     }

@@ -1,9 +1,8 @@
 //! Performance measurements of the simulator (used by `wingcheck bench`): whole-run time,
 //! time per step next to the cost of one sparse solve, and scaling with grid size and horizon.
 
-use std::time::Instant;
-
 use serde::Serialize;
+use wingcheck_io::clock::{measure, Elapsed};
 use wingcheck_model::Config;
 
 use crate::banded::BandedCholesky;
@@ -25,12 +24,28 @@ pub struct Timing {
     pub t_end: f64,
     /// Integrator steps.
     pub steps: usize,
-    /// Median wall time of the whole run (s), best of `repeats`.
+    /// Median wall time of the whole run over `repeats` runs (s).
     pub run_seconds: f64,
-    /// Wall time per integrator step (s).
+    /// Median CPU time of the whole run over the same runs (s; user + system of the process,
+    /// [`wingcheck_io::clock`]); None off Linux.
+    pub run_cpu_seconds: Option<f64>,
+    /// Time per integrator step (s): CPU where known, else wall.
     pub seconds_per_step: f64,
-    /// Wall time of one sparse solve with the step matrix (s).
+    /// Time of one sparse solve with the step matrix (s): CPU where known, else wall.
     pub solve_seconds: f64,
+}
+
+impl Timing {
+    /// The run's time a ratio is taken from: CPU where known, else wall (s).
+    pub fn seconds(&self) -> f64 {
+        self.run_cpu_seconds.unwrap_or(self.run_seconds)
+    }
+}
+
+/// Medians of wall and CPU times (CPU only when every measurement has it).
+pub fn median_elapsed(v: &[Elapsed]) -> Elapsed {
+    let cpu: Option<Vec<f64>> = v.iter().map(|e| e.cpu_seconds).collect();
+    Elapsed { wall_seconds: median(v.iter().map(|e| e.wall_seconds).collect()), cpu_seconds: cpu.map(median) }
 }
 
 /// Median of repeated measurements.
@@ -48,15 +63,15 @@ pub fn time_config(cfg: &Config, repeats: usize) -> Result<Timing, SimError> {
     let mut basis = wingcheck_model::StepBasis::default();
     let mut stepper = wingcheck_model::TimeScheme::default();
     for _ in 0..repeats.max(1) {
-        let t = Instant::now();
-        let out = simulate(cfg, RunOptions::default())?;
-        runs.push(t.elapsed().as_secs_f64());
+        let (out, elapsed) = measure(|| simulate(cfg, RunOptions::default()));
+        let out = out?;
+        runs.push(elapsed);
         steps = out.stats.steps;
         unknowns = out.stats.unknowns;
         basis = out.stats.basis;
         stepper = out.stats.stepper;
     }
-    let run_seconds = median(runs);
+    let run = median_elapsed(&runs);
     Ok(Timing {
         elements: cfg.discretisation.grid_size(),
         unknowns,
@@ -64,8 +79,9 @@ pub fn time_config(cfg: &Config, repeats: usize) -> Result<Timing, SimError> {
         stepper,
         t_end: cfg.horizon.t_end,
         steps,
-        run_seconds,
-        seconds_per_step: run_seconds / steps as f64,
+        run_seconds: run.wall_seconds,
+        run_cpu_seconds: run.cpu_seconds,
+        seconds_per_step: run.seconds() / steps as f64,
         solve_seconds: time_solve(cfg)?,
     })
 }
@@ -81,14 +97,15 @@ pub fn time_solve(cfg: &Config) -> Result<f64, SimError> {
     let batch = 2000;
     let mut samples = Vec::new();
     for _ in 0..7 {
-        let t = Instant::now();
-        for _ in 0..batch {
-            solver.solve_in_place(&mut rhs);
-            // keep the values O(1) so timing does not depend on denormals
-            let scale = 1.0 / rhs[0].abs().max(1e-300);
-            rhs.iter_mut().for_each(|x| *x *= scale);
-        }
-        samples.push(t.elapsed().as_secs_f64() / batch as f64);
+        let ((), elapsed) = measure(|| {
+            for _ in 0..batch {
+                solver.solve_in_place(&mut rhs);
+                // keep the values O(1) so timing does not depend on denormals
+                let scale = 1.0 / rhs[0].abs().max(1e-300);
+                rhs.iter_mut().for_each(|x| *x *= scale);
+            }
+        });
+        samples.push(elapsed.seconds() / batch as f64);
     }
     Ok(median(samples))
 }
@@ -112,8 +129,8 @@ pub struct ModesTiming {
     pub count: usize,
     /// Meshes solved.
     pub meshes: Vec<usize>,
-    /// Median wall time (s).
-    pub seconds: f64,
+    /// Median wall and CPU time (s).
+    pub elapsed: Elapsed,
     /// Largest relative error estimate.
     pub worst_relative_error: f64,
 }
@@ -124,32 +141,34 @@ pub fn time_modes(cfg: &Config, count: usize, repeats: usize) -> Result<ModesTim
     let mut runs = Vec::new();
     let mut last = None;
     for _ in 0..repeats.max(1) {
-        let t = Instant::now();
-        let m = crate::modes::converged_frequencies(
-            cfg,
-            cfg.discretisation.method,
-            count,
-            crate::modes::DEFAULT_MODE_TOLERANCE,
-        )?;
-        runs.push(t.elapsed().as_secs_f64());
-        last = Some(m);
+        let (m, elapsed) = measure(|| {
+            crate::modes::converged_frequencies(
+                cfg,
+                cfg.discretisation.method,
+                count,
+                crate::modes::DEFAULT_MODE_TOLERANCE,
+            )
+        });
+        runs.push(elapsed);
+        last = Some(m?);
     }
     let m = last.expect("at least one run");
     Ok(ModesTiming {
         count,
         meshes: m.meshes.clone(),
-        seconds: median(runs),
+        elapsed: median_elapsed(&runs),
         worst_relative_error: m.modes.iter().map(|e| e.error / e.omega).fold(0.0, f64::max),
     })
 }
 
-/// Median wall time (s) of [`crate::simulate_with_error`] (the run plus its refinements).
-pub fn time_error_estimate(cfg: &Config, repeats: usize) -> Result<f64, SimError> {
+/// Median wall and CPU time (s) of [`crate::simulate_with_error`] (the run plus its
+/// refinements).
+pub fn time_error_estimate(cfg: &Config, repeats: usize) -> Result<Elapsed, SimError> {
     let mut runs = Vec::new();
     for _ in 0..repeats.max(1) {
-        let t = Instant::now();
-        crate::simulate_with_error(cfg, RunOptions::default())?;
-        runs.push(t.elapsed().as_secs_f64());
+        let (out, elapsed) = measure(|| crate::simulate_with_error(cfg, RunOptions::default()));
+        out?;
+        runs.push(elapsed);
     }
-    Ok(median(runs))
+    Ok(median_elapsed(&runs))
 }
