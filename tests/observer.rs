@@ -23,12 +23,14 @@ fn ftdo_identity_residual(cfg: &Config, samples: usize) -> f64 {
     let mut worst: f64 = 0.0;
     for _ in 0..samples {
         let t0 = st.time();
-        let before: Vec<(f64, f64, f64)> = st.channels.iter().map(|c| (c.sigma, c.g_hat, c.observer.nu)).collect();
+        let nu = |st: &Stepper, i: usize| st.controller().observers[i].nu;
+        let before: Vec<(f64, f64, f64)> =
+            st.channels.iter().enumerate().map(|(i, c)| (c.sigma, c.g_hat, nu(&st, i))).collect();
         st.advance_sample();
         for (i, c) in st.channels.iter().enumerate() {
             let (sigma0, ghat0, nu0) = before[i];
             let expected = integral(g[i], t0, t0 + period) - period * ghat0;
-            let scale = 1.0 + nu0.abs() + c.observer.nu.abs() + sigma0.abs() + c.sigma.abs();
+            let scale = 1.0 + nu0.abs() + nu(&st, i).abs() + sigma0.abs() + c.sigma.abs();
             worst = worst.max(((c.sigma - sigma0) - expected).abs() / scale);
         }
     }
