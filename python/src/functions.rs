@@ -6,9 +6,10 @@ use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use wingcheck_app::{ops, ConfigSource, Front, ModesRequest, SimulateRequest, SimulateSummary, WorkPolicy};
-use wingcheck_sim::Series;
+use wingcheck_sim::{ControllerFactory, Series};
 
 use crate::blocking::{self, Writes};
+use crate::controller::Shared;
 use crate::errors::{argument, dict};
 
 /// The configuration source of a call: JSON text or a file (the Python layer turns a dict, a
@@ -35,7 +36,8 @@ fn policy(allow_large: bool) -> WorkPolicy {
 /// `simulate --json` document, the configuration and, if asked for, the fields.
 #[pyfunction]
 #[pyo3(signature = (config_text=None, config_path=None, set=Vec::new(), controller=None, observer=None, method=None,
-    sample_every=None, error_estimate=false, fields=false, sample_times=None, out=None, allow_large=false, progress=None))]
+    sample_every=None, error_estimate=false, fields=false, sample_times=None, out=None, allow_large=false, progress=None,
+    controller_object=None, continuous=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn simulate<'py>(
     py: Python<'py>,
@@ -52,7 +54,11 @@ pub fn simulate<'py>(
     out: Option<PathBuf>,
     allow_large: bool,
     progress: Option<Bound<'py, PyAny>>,
+    controller_object: Option<Py<PyAny>>,
+    continuous: Option<[f64; 4]>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let shared = controller_object.map(|obj| Shared::new(py, obj, continuous.unwrap_or([0.0; 4]))).transpose()?;
+    let own = shared.clone();
     let req = SimulateRequest {
         controller: parse_name(py, "controller", controller)?,
         observer: parse_name(py, "observer", observer)?,
@@ -69,9 +75,13 @@ pub fn simulate<'py>(
         let req = run_req;
         let cfg = req.config(&base)?;
         let mut on_progress = |f: f64| sink.set(f, "simulate");
-        let r = wingcheck_app::simulate::run(&cfg, &req, policy(allow_large), Some(&mut on_progress), cancel)?;
+        let make = own.map(|s| move || s.controller());
+        let factory = make.as_ref().map(|f| f as ControllerFactory<'_>);
+        let r = wingcheck_app::simulate::run_with(&cfg, &req, policy(allow_large), Some(&mut on_progress), cancel, factory)?;
         Ok((cfg, r))
-    })?;
+    })
+    // an exception inside the user's controller is raised as it is, with its traceback
+    .map_err(|e| shared.as_ref().and_then(|s| s.take_error()).unwrap_or(e))?;
     let series = &result.output.series;
     let columns = PyDict::new(py);
     let units = PyDict::new(py);

@@ -8,6 +8,7 @@
 //! `wingcheck_io::tune_allocator` is not called here).
 
 mod blocking;
+mod controller;
 mod errors;
 mod functions;
 mod proofs;
