@@ -20,6 +20,7 @@ fn _wingcheck(m: &Bound<'_, PyModule>) -> PyResult<()> {
     wingcheck_app::register_build();
     m.add_function(wrap_pyfunction!(functions::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(functions::check, m)?)?;
+    m.add_function(wrap_pyfunction!(functions::compare, m)?)?;
     m.add_function(wrap_pyfunction!(functions::search, m)?)?;
     m.add_function(wrap_pyfunction!(functions::report, m)?)?;
     m.add_function(wrap_pyfunction!(functions::modes, m)?)?;

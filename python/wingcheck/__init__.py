@@ -13,11 +13,11 @@ from __future__ import annotations
 
 import atexit
 import os
-from typing import Any, Callable, Dict, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, Mapping, Optional, Sequence, Tuple, Union
 
 from . import _progress, _wingcheck, errors
 from ._config import Config, ConfigLike, Overrides, source
-from ._control import Continuous, Tip, check_callable, continuous_of
+from ._control import Comparison, Continuous, Tip, check_callable, continuous_of
 from ._progress import ProgressArg
 from ._results import (
     Basis,
@@ -90,6 +90,8 @@ __all__ = [
     "Tip",
     "Continuous",
     "ControllerLike",
+    "compare",
+    "Comparison",
 ]
 
 #: A controller: a built-in one by name, or your own (see :mod:`wingcheck._control`).
@@ -167,6 +169,34 @@ def simulate(
         **source(config, set),
     )
     return Run(raw)
+
+
+def compare(
+    config: ConfigLike = None,
+    controllers: Optional[Mapping[str, ControllerLike]] = None,
+    *,
+    set: Overrides = None,
+    allow_large: bool = False,
+    progress: ProgressArg = None,
+) -> Comparison:
+    """Controllers side by side on the same wing, disturbances and metrics:
+    ``compare(cfg, {"mine": f, "FTDO": "ftdo", "DOBC": "dobc"})``. Each row is a run plus the
+    two ``error_estimate`` refinements (≈ 5 runs of work); each metric (RMS and peak of q and θ,
+    settling times, RMS and peak |τ1|, |τ2| at full rate, E(t_end)/E(0)) carries its error.
+    A built-in row runs as ``simulate`` and ``check`` run it; your own in the nodal basis."""
+    if not controllers:
+        controllers = {"FTDO": "ftdo", "DOBC": "dobc"}
+    entrants = []
+    for name, c in controllers.items():
+        if isinstance(c, str):
+            entrants.append((str(name), c, None, None))
+        else:
+            check_callable(c)
+            entrants.append((str(name), None, c, continuous_of(c)))
+    text = _with_progress(
+        progress, "compare", _wingcheck.compare, entrants=entrants, allow_large=allow_large, **source(config, set)
+    )
+    return Comparison(text)
 
 
 def check(

@@ -19,7 +19,8 @@ Runs under such a controller step in the nodal basis (``discretisation.basis`` a
 from __future__ import annotations
 
 import math
-from typing import Any, ClassVar, Dict, NamedTuple, Optional, Tuple
+import json
+from typing import Any, ClassVar, Dict, List, NamedTuple, Optional, Tuple
 
 
 class Tip(NamedTuple):
@@ -110,3 +111,71 @@ def check_callable(obj: Any) -> None:
             f"controller: expected 'none', 'pd', 'ftdo', 'dobc' or a callable f(t, tip) -> (tau1, tau2); "
             f"got {type(obj).__name__}"
         )
+
+
+class Comparison:
+    """Controllers side by side (:func:`wingcheck.compare`): one row per controller, each metric
+    with its error from the ``--error-estimate`` refinements (``error_rule``); ``series[name]``
+    holds the base run's t (s), q (m), θ (rad), τ1 (N), τ2 (N m); ``not_applicable`` names the
+    ledger's claims that say nothing about a controller of your own, and why."""
+
+    def __init__(self, text: str) -> None:
+        doc = json.loads(text)
+        #: (label, unit) of each metric.
+        self.columns: List[Tuple[str, str]] = [(c[0], c[1]) for c in doc["columns"]]
+        #: The error rule, in words.
+        self.error_rule: str = doc["error_rule"]
+        #: (claim id, why it does not apply to a foreign controller).
+        self.not_applicable: List[Tuple[str, str]] = [(c[0], c[1]) for c in doc["not_applicable"]]
+        #: The basis each row stepped in (``modal`` or ``nodal``).
+        self.basis: Dict[str, str] = {r["name"]: r["basis"] for r in doc["rows"]}
+        #: name → {label: (value, error)}; a settling time never reached is absent.
+        self.rows: Dict[str, Dict[str, Tuple[float, float]]] = {}
+        #: name → {"t_s", "q_tip_m", "theta_tip_rad", "tau1_N", "tau2_N_m"} arrays.
+        self.series: Dict[str, Dict[str, Any]] = {}
+        import numpy as np
+
+        for r in doc["rows"]:
+            vals: Dict[str, Tuple[float, float]] = {}
+            for q in r["values"]:
+                if q is not None:
+                    vals[q["label"]] = (float(q["value"]), float(q["error"]))
+            self.rows[r["name"]] = vals
+            names = ["t_s", "q_tip_m", "theta_tip_rad", "tau1_N", "tau2_N_m"]
+            self.series[r["name"]] = {n: np.asarray(col) for n, col in zip(names, r["series"])}
+
+    def value(self, name: str, label: str) -> Tuple[float, float]:
+        """(value, error) of metric ``label`` in row ``name``."""
+        return self.rows[name][label]
+
+    def to_pandas(self) -> Any:
+        """One row per controller; each metric as ``label [unit]`` and its error as ``± label``."""
+        import pandas as pd
+
+        data = {}
+        for name, vals in self.rows.items():
+            row: Dict[str, float] = {}
+            for label, unit in self.columns:
+                v, e = vals.get(label, (float("nan"), float("nan")))
+                row[f"{label} [{unit}]"] = v
+                row[f"± {label}"] = e
+            data[name] = row
+        df = pd.DataFrame.from_dict(data, orient="index")
+        df.attrs["error_rule"] = self.error_rule
+        df.attrs["not_applicable"] = self.not_applicable
+        return df
+
+    def plot(self, ax: Any = None) -> Any:
+        """Tip responses and inputs of every row on common axes (matplotlib): four panels
+        q (m), θ (rad), τ1 (N), τ2 (N m) against t (s). Returns the figure."""
+        import matplotlib.pyplot as plt
+
+        fig, axes = plt.subplots(4, 1, sharex=True, figsize=(8, 9)) if ax is None else (ax[0].figure, ax)
+        keys = [("q_tip_m", "q(s,t) [m]"), ("theta_tip_rad", "θ(s,t) [rad]"), ("tau1_N", "τ1 [N]"), ("tau2_N_m", "τ2 [N m]")]
+        for name, s in self.series.items():
+            for a, (k, label) in zip(axes, keys):
+                a.plot(s["t_s"], s[k], label=name, lw=0.8)
+                a.set_ylabel(label)
+        axes[-1].set_xlabel("t [s]")
+        axes[0].legend()
+        return fig

@@ -18,6 +18,7 @@
 //! Python exception classes).
 
 mod build_info;
+pub mod compare;
 mod config;
 mod error;
 pub mod modes;
