@@ -12,6 +12,7 @@ mod controller;
 mod errors;
 mod functions;
 mod proofs;
+mod wing;
 
 use pyo3::prelude::*;
 
@@ -29,5 +30,6 @@ fn _wingcheck(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(proofs::certify, m)?)?;
     m.add_function(wrap_pyfunction!(proofs::verify, m)?)?;
     m.add_function(wrap_pyfunction!(blocking::join_stopped, m)?)?;
+    m.add_class::<wing::WingLoop>()?;
     Ok(())
 }

@@ -214,3 +214,64 @@ def test_bad_continuous_part_is_a_config_error():
 def test_a_modal_basis_is_refused_for_a_python_controller():
     with pytest.raises(wingcheck.ConfigError, match=r"nodal"):
         wingcheck.simulate(controller=lambda t, tip: (0.0, 0.0), set={"discretisation.basis": "modal"})
+
+
+def test_the_step_form_gives_the_callback_forms_bits():
+    # Reference: simulate(controller=f) with the same controller; the step form drives the same
+    # stepper with the same held inputs, so the tip values at every output sample are the same bits.
+    cfg = PAPER.with_overrides({"horizon.t_end": 2.0})
+    run = wingcheck.simulate(cfg, controller=ExplicitFTDO(cfg))
+    ctrl = ExplicitFTDO(cfg)
+    c = cfg["control"]
+    wing = wingcheck.Wing(cfg, continuous=(c["k1"], c["k2"], c["a"], c["b"]))
+    tip = wing.reset()
+    every = round(cfg["horizon"]["sample_every"] / cfg["observer"]["sample_period"])
+    q, theta, t = [tip.q], [tip.theta], [tip.t]
+    k = 0
+    while tip.t < 2.0 - 1e-12:
+        tip, info = wing.step(ctrl(tip.t, tip))
+        k += 1
+        assert info["t"] == tip.t
+        if k % every == 0:
+            q.append(tip.q)
+            theta.append(tip.theta)
+            t.append(tip.t)
+    assert np.array_equal(np.array(t), run["t_s"])
+    assert np.array_equal(np.array(q), run["q_tip_m"])
+    assert np.array_equal(np.array(theta), run["theta_tip_rad"])
+
+
+def test_the_step_form_refuses_bad_actions_and_reports_divergence():
+    wing = wingcheck.Wing()
+    wing.reset()
+    with pytest.raises(ControllerError, match="t = 0"):
+        wing.step((1.0, 2.0, 3.0))
+    with pytest.raises(ControllerError, match="tau2 = NaN"):
+        wing.step((0.0, float("nan")))
+    tip = wing.reset()
+    with pytest.raises(DivergedError):
+        for _ in range(20000):
+            tip, _ = wing.step((1e3 * tip.q_rate, 1e3 * tip.theta_rate))
+
+
+def test_gymnasium_env_passes_check_env():
+    gymnasium = pytest.importorskip("gymnasium")
+    from gymnasium.utils.env_checker import check_env
+
+    from wingcheck.gym import WingEnv
+
+    env = WingEnv(set={"horizon.t_end": 0.05})
+    check_env(env, skip_render_check=True)
+    obs, info = env.reset(seed=0)
+    assert obs.shape == (11,)
+    steps, truncated = 0, False
+    while not truncated:
+        obs, r, terminated, truncated, info = env.step(env.action_space.sample() * 0.0)
+        steps += 1
+        assert r <= 0.0 and not terminated
+    assert steps == 50
+
+
+def test_the_tip_record_has_eleven_fields_with_units():
+    assert len(wingcheck.Tip._fields) == 11
+    assert set(wingcheck.Tip.UNITS) == set(wingcheck.Tip._fields)

@@ -17,7 +17,7 @@ from typing import Any, Callable, Dict, Mapping, Optional, Sequence, Tuple, Unio
 
 from . import _progress, _wingcheck, errors
 from ._config import Config, ConfigLike, Overrides, source
-from ._control import Comparison, Continuous, Tip, check_callable, continuous_of
+from ._control import Comparison, Continuous, Tip, Wing, check_callable, continuous_of
 from ._progress import ProgressArg
 from ._results import (
     Basis,
@@ -92,6 +92,7 @@ __all__ = [
     "ControllerLike",
     "compare",
     "Comparison",
+    "Wing",
 ]
 
 #: A controller: a built-in one by name, or your own (see :mod:`wingcheck._control`).

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 import json
-from typing import Any, ClassVar, Dict, List, NamedTuple, Optional, Tuple
+from typing import Any, Dict, List, NamedTuple, Optional, Tuple
 
 
 class Tip(NamedTuple):
@@ -51,8 +51,8 @@ class Tip(NamedTuple):
     #: ∫ θ'(s, t) dt over [t_{k−1}, t_k] (s/m).
     theta_slope_integral: float
 
-    #: The unit of every field.
-    UNITS: ClassVar[Dict[str, str]] = {
+    #: The unit of every field (a class attribute, not a field: it has no annotation).
+    UNITS = {
         "t": "s",
         "q": "m",
         "theta": "rad",
@@ -179,3 +179,53 @@ class Comparison:
         axes[-1].set_xlabel("t [s]")
         axes[0].legend()
         return fig
+
+
+def _pair(action: Any, t: float) -> Tuple[float, float]:
+    """(tau1, tau2) from an action, or ControllerError naming the time."""
+    from .errors import ControllerError
+
+    try:
+        items = list(action)
+    except TypeError:
+        items = []
+    if len(items) != 2:
+        e = ControllerError(f"the action at t = {t} s is not a pair (tau1, tau2) of numbers: {action!r}")
+        e.t = t
+        raise e
+    return (float(items[0]), float(items[1]))
+
+
+class Wing:
+    """The closed loop driven one sample period at a time (the form reinforcement-learning and
+    co-simulation codes use): ``wing = Wing(config); tip = wing.reset(); tip, info =
+    wing.step((tau1, tau2))``. ``step`` holds (tau1 (N), tau2 (N m)) over [t_k, t_k + T_s) on
+    top of the ``continuous`` part (k1, k2, a, b) of law (15) and returns the measurements at
+    t_{k+1} (a :class:`Tip`) and ``info`` = {``"t"`` (s), ``"energy_J"``}. The same stepper as
+    ``simulate(config, controller=f)``: the same inputs give the same bits. A diverged loop
+    raises :class:`~wingcheck.errors.DivergedError`; a NaN, inf or non-pair action
+    :class:`~wingcheck.errors.ControllerError`."""
+
+    def __init__(self, config: Any = None, *, set: Any = None, continuous: Any = None) -> None:
+        from . import _wingcheck
+        from ._config import source
+
+        holder = type("_C", (), {"continuous": continuous})()
+        self._loop = _wingcheck.WingLoop(continuous=continuous_of(holder), **source(config, set))
+        #: T_s (s) and t_end (s) of the configuration.
+        self.sample_period, self.t_end = self._loop.timing()
+        self._t = 0.0
+
+    def reset(self) -> Tip:
+        """Back to t = 0; the measurements there."""
+        tip = Tip(*self._loop.reset())
+        self._t = tip.t
+        return tip
+
+    def step(self, action: Any) -> Tuple[Tip, Dict[str, float]]:
+        """Hold ``action`` = (tau1, tau2) for one sample period; the measurements after it."""
+        tau1, tau2 = _pair(action, self._t)
+        obs, t, energy = self._loop.step(tau1, tau2)
+        tip = Tip(*obs)
+        self._t = tip.t
+        return tip, {"t": t, "energy_J": energy}

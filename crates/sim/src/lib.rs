@@ -37,8 +37,9 @@ pub use error_estimate::{
 };
 pub use estimate::Estimate;
 pub use run::{
-    check_sample, resolved_basis, simulate, simulate_base, windowed_rms, BoxedController, ControllerFactory, Envelope,
-    Fields, RunOptions, RunStats, Series, SimOutput, SubStepProbe, MAX_EIGENBASIS_ROUNDOFF,
+    check_sample, nodal_only, resolved_basis, simulate, simulate_base, windowed_rms, BoxedController,
+    ControllerFactory, Envelope, Fields, RunOptions, RunStats, Series, SimOutput, SubStepProbe,
+    MAX_EIGENBASIS_ROUNDOFF,
 };
 pub use stepper::{initial_tip_states, trbdf2, Channel, EnergyLedger, Peak, Peaks, Sample, SquareIntegral, Stepper};
 

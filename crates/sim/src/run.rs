@@ -461,7 +461,7 @@ fn base_run(cfg: &Config, opts: RunOptions<'_>) -> Result<(SimOutput, Option<Mod
 
 /// A run under a controller of the user's steps in the nodal basis ([`RunOptions::controller`]):
 /// refuse the settings that ask for the modal one.
-fn nodal_only(cfg: &Config) -> Result<(), SimError> {
+pub fn nodal_only(cfg: &Config) -> Result<(), SimError> {
     let modal = cfg.discretisation.basis == StepBasis::Modal
         || cfg.discretisation.stepper == wingcheck_model::TimeScheme::Exponential;
     if modal {

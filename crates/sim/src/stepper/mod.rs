@@ -302,6 +302,18 @@ where
         &self.control
     }
 
+    /// The controller, to change (e.g. the held inputs of a controller driven from outside,
+    /// then [`Stepper::resample`]).
+    pub fn controller_mut(&mut self) -> &mut C {
+        &mut self.control
+    }
+
+    /// Sample the controller again at the current instant (its held inputs replace the ones
+    /// taken at this instant): for a controller driven step by step from outside.
+    pub fn resample(&mut self) -> Result<(), C::Error> {
+        self.update_estimates()
+    }
+
     /// What the tip sensors read now ([`TipMeasurement`]).
     pub fn measurement(&self) -> TipMeasurement {
         let [b, tr] = &self.channels;
