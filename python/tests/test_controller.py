@@ -274,4 +274,4 @@ def test_gymnasium_env_passes_check_env():
 
 def test_the_tip_record_has_eleven_fields_with_units():
     assert len(wingcheck.Tip._fields) == 11
-    assert set(wingcheck.Tip.UNITS) == set(wingcheck.Tip._fields)
+    assert set(wingcheck.Tip.units()) == set(wingcheck.Tip._fields)

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import atexit
 import os
-from typing import Any, Callable, Dict, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 from . import _progress, _wingcheck, errors
 from ._config import Config, ConfigLike, Overrides, source
@@ -187,7 +187,7 @@ def compare(
     A built-in row runs as ``simulate`` and ``check`` run it; your own in the nodal basis."""
     if not controllers:
         controllers = {"FTDO": "ftdo", "DOBC": "dobc"}
-    entrants = []
+    entrants: List[Tuple[str, Optional[str], Any, Optional[Tuple[float, float, float, float]]]] = []
     for name, c in controllers.items():
         if isinstance(c, str):
             entrants.append((str(name), c, None, None))

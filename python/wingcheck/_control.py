@@ -51,20 +51,26 @@ class Tip(NamedTuple):
     #: ∫ θ'(s, t) dt over [t_{k−1}, t_k] (s/m).
     theta_slope_integral: float
 
-    #: The unit of every field (a class attribute, not a field: it has no annotation).
-    UNITS = {
-        "t": "s",
-        "q": "m",
-        "theta": "rad",
-        "q_rate": "m/s",
-        "theta_rate": "rad/s",
-        "q_shear": "1/m^2",
-        "theta_slope": "1/m",
-        "tau1_integral": "N s",
-        "tau2_integral": "N m s",
-        "q_shear_integral": "s/m^2",
-        "theta_slope_integral": "s/m",
-    }
+    @staticmethod
+    def units() -> Dict[str, str]:
+        """The unit of every field."""
+        return dict(TIP_UNITS)
+
+
+#: The unit of every field of :class:`Tip`.
+TIP_UNITS: Dict[str, str] = {
+    "t": "s",
+    "q": "m",
+    "theta": "rad",
+    "q_rate": "m/s",
+    "theta_rate": "rad/s",
+    "q_shear": "1/m^2",
+    "theta_slope": "1/m",
+    "tau1_integral": "N s",
+    "tau2_integral": "N m s",
+    "q_shear_integral": "s/m^2",
+    "theta_slope_integral": "s/m",
+}
 
 
 class Continuous(NamedTuple):
@@ -150,7 +156,9 @@ class Comparison:
 
     def to_pandas(self) -> Any:
         """One row per controller; each metric as ``label [unit]`` and its error as ``± label``."""
-        import pandas as pd
+        import importlib
+
+        pd = importlib.import_module("pandas")
 
         data = {}
         for name, vals in self.rows.items():
@@ -168,7 +176,9 @@ class Comparison:
     def plot(self, ax: Any = None) -> Any:
         """Tip responses and inputs of every row on common axes (matplotlib): four panels
         q (m), θ (rad), τ1 (N), τ2 (N m) against t (s). Returns the figure."""
-        import matplotlib.pyplot as plt
+        import importlib
+
+        plt = importlib.import_module("matplotlib.pyplot")
 
         fig, axes = plt.subplots(4, 1, sharex=True, figsize=(8, 9)) if ax is None else (ax[0].figure, ax)
         keys = [("q_tip_m", "q(s,t) [m]"), ("theta_tip_rad", "θ(s,t) [rad]"), ("tau1_N", "τ1 [N]"), ("tau2_N_m", "τ2 [N m]")]

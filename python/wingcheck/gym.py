@@ -1,7 +1,7 @@
 """A ``gymnasium.Env`` over :class:`wingcheck.Wing` (needs ``pip install gymnasium``).
 
 Observation: the 11 fields of :class:`wingcheck.Tip` as float64 (t, q, θ, q̇, θ̇, q''', θ',
-∫τ1, ∫τ2, ∫q''', ∫θ' over the last sample period; SI units, ``Tip.UNITS``). Action: the held
+∫τ1, ∫τ2, ∫q''', ∫θ' over the last sample period; SI units, ``Tip.units()``). Action: the held
 inputs (tau1 (N), tau2 (N m)) in [−tau_max, tau_max]. One step is one sample period T_s;
 the episode is truncated at t_end. Reward: a choice, replaceable with ``reward=f(tip, action,
 info)``; the default −(q² + θ²)·T_s penalises the tip's displacement and twist (units m² s +
