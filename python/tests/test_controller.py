@@ -275,3 +275,22 @@ def test_gymnasium_env_passes_check_env():
 def test_the_tip_record_has_eleven_fields_with_units():
     assert len(wingcheck.Tip._fields) == 11
     assert set(wingcheck.Tip.units()) == set(wingcheck.Tip._fields)
+
+
+def test_the_error_estimate_runs_a_python_controller_with_reset_per_run():
+    # Reference: the built-in PD in the nodal basis through the same --error-estimate machinery:
+    # the same refinements give the same tip errors (bits); only the exponential twin (a modal
+    # run) is unavailable to a controller of your own, so the peaks' sub-step part may differ.
+    class PD(PaperPD):
+        resets = 0
+
+        def reset(self) -> None:
+            PD.resets += 1
+
+    mine = wingcheck.simulate(controller=PD(PAPER), error_estimate=True)
+    ref = wingcheck.simulate(controller="pd", set={"discretisation.basis": "nodal"}, error_estimate=True)
+    a, b = mine.summary["error_estimate"], ref.summary["error_estimate"]
+    for key in ["max_q_tip_error", "max_theta_tip_error", "max_space_error", "max_time_error"]:
+        assert a[key] == b[key], key
+    # base run + its initial layer runs + the 2N and dt/2 runs (each with their layers) + 4N
+    assert PD.resets >= 4
