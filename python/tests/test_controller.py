@@ -205,7 +205,7 @@ def test_bad_continuous_part_is_a_config_error():
         def __call__(self, t, tip):
             return (0.0, 0.0)
 
-    with pytest.raises(wingcheck.ConfigError, match=r"controller.continuous.a"):
+    with pytest.raises(wingcheck.ConfigError, match=r"controller.continuous: a = -1 is not in \[0, "):
         wingcheck.simulate(controller=Neg())
     with pytest.raises(wingcheck.ConfigError, match=r"controller"):
         wingcheck.simulate(controller=42)  # type: ignore[arg-type]

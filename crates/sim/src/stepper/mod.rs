@@ -180,6 +180,7 @@ where
         let h = cfg.discretisation.dt;
         let n = disc.dim();
         let law = control.continuous();
+        law.check()?;
         let [k1, k2] = law.gains;
         let mut tip_damp = SymBuilder::new(n);
         tip_damp.add(disc.tip_q, disc.tip_q, k1);
