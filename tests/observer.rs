@@ -76,7 +76,8 @@ fn dobc_estimate_obeys_its_filter_equation_per_sample() {
                 // implicit (backward Euler): ĝ_{k+1} − ĝ_k = ∫g − T ĝ_{k+1}.
                 let lhs = c.g_hat - before[i];
                 let rhs = if rule == "explicit" { int_g - period * before[i] } else { int_g - period * c.g_hat };
-                worst = worst.max((lhs - rhs).abs() / (1.0 + c.observer.nu.abs()));
+                let nu = st.controller().observers[i].nu;
+                worst = worst.max((lhs - rhs).abs() / (1.0 + nu.abs()));
             }
         }
         println!("dobc/{rule}: max residual {worst:.2e}");

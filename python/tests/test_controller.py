@@ -86,7 +86,7 @@ def test_python_pd_reproduces_the_builtin_pd():
     for col in STATE:
         assert np.array_equal(mine[col], ref[col]), col
     # against the built-in PD's default (modal) run: the same discrete equations in another
-    # basis, equal to round-off (tests/basis.rs); measured ≈ 1e-13 relative
+    # basis, equal to round-off (tests/basis.rs); measured 1.4e-12 (q), 4e-13 (θ), 5e-12 (energy) relative
     modal = wingcheck.simulate(controller="pd")
     for col in STATE:
         scale = np.max(np.abs(modal[col]))
