@@ -74,6 +74,12 @@ pub fn to_py(py: Python<'_>, e: &AppError) -> PyErr {
             let t = t.into_pyobject(py).map(|v| v.into_any().unbind()).unwrap_or_else(|_| none());
             raise(py, "DivergedError", &msg, &[("t", t)])
         }
+        // a continuous part refused before the run is bad input
+        ErrorKind::Controller { t: None } => raise(py, "ConfigError", &msg, &[]),
+        ErrorKind::Controller { t } => {
+            let t = t.unwrap_or(f64::NAN).into_pyobject(py).map(|v| v.into_any().unbind()).unwrap_or_else(|_| none());
+            raise(py, "ControllerError", &msg, &[("t", t)])
+        }
         ErrorKind::Search => raise(py, "SearchError", &msg, &[]),
         ErrorKind::Input => raise(py, "InputError", &msg, &[]),
         ErrorKind::Output => raise(py, "OutputError", &msg, &[]),

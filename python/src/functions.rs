@@ -5,10 +5,12 @@ use std::path::PathBuf;
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use wingcheck_app::{ops, ConfigSource, Front, ModesRequest, SimulateRequest, SimulateSummary, WorkPolicy};
-use wingcheck_sim::Series;
+use wingcheck_app::{ops, AppError, ConfigSource, Front, ModesRequest, SimulateRequest, SimulateSummary, WorkPolicy};
+use wingcheck_model::ControllerKind;
+use wingcheck_sim::{ControllerFactory, Series};
 
 use crate::blocking::{self, Writes};
+use crate::controller::Shared;
 use crate::errors::{argument, dict};
 
 /// The configuration source of a call: JSON text or a file (the Python layer turns a dict, a
@@ -35,7 +37,8 @@ fn policy(allow_large: bool) -> WorkPolicy {
 /// `simulate --json` document, the configuration and, if asked for, the fields.
 #[pyfunction]
 #[pyo3(signature = (config_text=None, config_path=None, set=Vec::new(), controller=None, observer=None, method=None,
-    sample_every=None, error_estimate=false, fields=false, sample_times=None, out=None, allow_large=false, progress=None))]
+    sample_every=None, error_estimate=false, fields=false, sample_times=None, out=None, allow_large=false, progress=None,
+    controller_object=None, continuous=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn simulate<'py>(
     py: Python<'py>,
@@ -52,7 +55,11 @@ pub fn simulate<'py>(
     out: Option<PathBuf>,
     allow_large: bool,
     progress: Option<Bound<'py, PyAny>>,
+    controller_object: Option<Py<PyAny>>,
+    continuous: Option<[f64; 4]>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let shared = controller_object.map(|obj| Shared::new(py, obj, continuous.unwrap_or([0.0; 4]))).transpose()?;
+    let own = shared.clone();
     let req = SimulateRequest {
         controller: parse_name(py, "controller", controller)?,
         observer: parse_name(py, "observer", observer)?,
@@ -69,9 +76,13 @@ pub fn simulate<'py>(
         let req = run_req;
         let cfg = req.config(&base)?;
         let mut on_progress = |f: f64| sink.set(f, "simulate");
-        let r = wingcheck_app::simulate::run(&cfg, &req, policy(allow_large), Some(&mut on_progress), cancel)?;
+        let make = own.map(|s| move || s.controller());
+        let factory = make.as_ref().map(|f| f as ControllerFactory<'_>);
+        let r = wingcheck_app::simulate::run_with(&cfg, &req, policy(allow_large), Some(&mut on_progress), cancel, factory)?;
         Ok((cfg, r))
-    })?;
+    })
+    // an exception inside the user's controller is raised as it is, with its traceback
+    .map_err(|e| shared.as_ref().and_then(|s| s.take_error()).unwrap_or(e))?;
     let series = &result.output.series;
     let columns = PyDict::new(py);
     let units = PyDict::new(py);
@@ -257,4 +268,63 @@ pub fn build_info(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
             ("rustc", b.rustc.into_pyobject(py)?.into_any()),
         ],
     )
+}
+
+/// One contestant of `compare` from Python: (name, built-in kind or None, own object or None,
+/// its continuous part (k1, k2, a, b)).
+type PyEntrant = (String, Option<String>, Option<Py<PyAny>>, Option<[f64; 4]>);
+
+/// Controllers side by side (`wingcheck_app::compare`), as JSON text.
+#[pyfunction]
+#[pyo3(signature = (entrants, config_text=None, config_path=None, set=Vec::new(), allow_large=false, progress=None))]
+pub fn compare(
+    py: Python<'_>,
+    entrants: Vec<PyEntrant>,
+    config_text: Option<String>,
+    config_path: Option<PathBuf>,
+    set: Vec<String>,
+    allow_large: bool,
+    progress: Option<Bound<'_, PyAny>>,
+) -> PyResult<String> {
+    let mut parsed = Vec::with_capacity(entrants.len());
+    let mut shared = Vec::new();
+    for (name, kind, obj, continuous) in entrants {
+        let which = match (kind, obj) {
+            (Some(k), _) => Ok(parse_name::<ControllerKind>(py, "controllers", Some(k))?.unwrap_or(ControllerKind::Ftdo)),
+            (None, Some(obj)) => {
+                let s = Shared::new(py, obj, continuous.unwrap_or([0.0; 4]))?;
+                shared.push(s.clone());
+                Err(s)
+            }
+            (None, None) => return Err(argument(py, "controllers", format!("{name}: no controller"))),
+        };
+        parsed.push((name, which));
+    }
+    let base = source(config_text, config_path, set);
+    let text = blocking::run(py, progress.as_ref(), Writes::Nothing, move |cancel, _sink| {
+        let cfg = base.load()?;
+        let makers: Vec<_> = parsed
+            .iter()
+            .map(|(_, w)| w.as_ref().err().map(|s| {
+                let s = s.clone();
+                move || s.controller()
+            }))
+            .collect();
+        // a row without a maker is a built-in one (its kind parsed above)
+        let entrants: Vec<(String, wingcheck_app::compare::Entrant<'_>)> = parsed
+            .iter()
+            .zip(&makers)
+            .map(|((name, w), m)| {
+                let e = match m {
+                    Some(f) => wingcheck_app::compare::Entrant::Own(f as ControllerFactory<'_>),
+                    None => wingcheck_app::compare::Entrant::BuiltIn(w.as_ref().map_or(ControllerKind::None, |k| *k)),
+                };
+                (name.clone(), e)
+            })
+            .collect();
+        let c = wingcheck_app::compare::compare(&cfg, &entrants, policy(allow_large), cancel)?;
+        serde_json::to_string(&c).map_err(|e| AppError::Internal(format!("compare as JSON: {e}")))
+    })
+    .map_err(|e| shared.iter().find_map(|s| s.take_error()).unwrap_or(e))?;
+    Ok(text)
 }

@@ -8,9 +8,11 @@
 //! `wingcheck_io::tune_allocator` is not called here).
 
 mod blocking;
+mod controller;
 mod errors;
 mod functions;
 mod proofs;
+mod wing;
 
 use pyo3::prelude::*;
 
@@ -19,6 +21,7 @@ fn _wingcheck(m: &Bound<'_, PyModule>) -> PyResult<()> {
     wingcheck_app::register_build();
     m.add_function(wrap_pyfunction!(functions::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(functions::check, m)?)?;
+    m.add_function(wrap_pyfunction!(functions::compare, m)?)?;
     m.add_function(wrap_pyfunction!(functions::search, m)?)?;
     m.add_function(wrap_pyfunction!(functions::report, m)?)?;
     m.add_function(wrap_pyfunction!(functions::modes, m)?)?;
@@ -27,5 +30,6 @@ fn _wingcheck(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(proofs::certify, m)?)?;
     m.add_function(wrap_pyfunction!(proofs::verify, m)?)?;
     m.add_function(wrap_pyfunction!(blocking::join_stopped, m)?)?;
+    m.add_class::<wing::WingLoop>()?;
     Ok(())
 }

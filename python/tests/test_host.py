@@ -53,6 +53,8 @@ CHILD = textwrap.dedent(
     what, out = sys.argv[1], sys.argv[2]
     calls = {
         "simulate": lambda: wingcheck.simulate(set={"horizon.t_end": 4000}, out=out + "/run.csv", allow_large=True),
+        "own-controller": lambda: wingcheck.simulate(controller=lambda t, tip: (0.0, 0.0), set={"horizon.t_end": 4000},
+                                                     out=out + "/run.csv", allow_large=True),
         "check": lambda: wingcheck.check(set={"horizon.t_end": 200}, allow_large=True),
         "search": lambda: wingcheck.search(over=["control.a=1e-3..10:log:40", "control.b=1e-2..1e3:log:40"],
                                            out=out + "/search", set={"horizon.t_end": 40}),
@@ -74,10 +76,10 @@ CHILD = textwrap.dedent(
 # their worker ends the stretch it is in (exact arithmetic without a checkpoint) in the
 # background — the report's staging directory is removed before the interpreter exits (the
 # listing below is taken after the child has exited).
-LATENCY = {"simulate": 0.1, "search": 0.1, "check": 0.1, "report": 0.1}
+LATENCY = {"simulate": 0.1, "own-controller": 0.1, "search": 0.1, "check": 0.1, "report": 0.1}
 
 
-@pytest.mark.parametrize("what", ["simulate", "check", "search", "report"])
+@pytest.mark.parametrize("what", ["simulate", "own-controller", "check", "search", "report"])
 def test_ctrl_c_raises_keyboard_interrupt_and_writes_nothing(tmp_path, what):
     out = tmp_path / "out"
     out.mkdir()

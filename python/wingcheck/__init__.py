@@ -13,10 +13,11 @@ from __future__ import annotations
 
 import atexit
 import os
-from typing import Any, Dict, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 from . import _progress, _wingcheck, errors
 from ._config import Config, ConfigLike, Overrides, source
+from ._control import Comparison, Continuous, Tip, Wing, check_callable, continuous_of
 from ._progress import ProgressArg
 from ._results import (
     Basis,
@@ -39,6 +40,7 @@ atexit.register(_wingcheck.join_stopped)
 from .errors import (
     Cancelled,
     ConfigError,
+    ControllerError,
     DivergedError,
     InputError,
     InternalError,
@@ -84,7 +86,17 @@ __all__ = [
     "VerificationError",
     "InternalError",
     "Cancelled",
+    "ControllerError",
+    "Tip",
+    "Continuous",
+    "ControllerLike",
+    "compare",
+    "Comparison",
+    "Wing",
 ]
+
+#: A controller: a built-in one by name, or your own (see :mod:`wingcheck._control`).
+ControllerLike = Union[str, Callable[[float, Tip], Any]]
 
 __version__: str = _wingcheck.build_info()["version"]
 
@@ -107,7 +119,7 @@ def simulate(
     config: ConfigLike = None,
     *,
     set: Overrides = None,
-    controller: Optional[str] = None,
+    controller: Optional[ControllerLike] = None,
     observer: Optional[str] = None,
     method: Optional[str] = None,
     sample_every: Optional[float] = None,
@@ -121,7 +133,12 @@ def simulate(
     """Run the closed loop (paper eq. (9)–(10) as corrected, control law (15), observer
     (16)–(21) or DOBC (57), disturbances (56)) over [0, horizon.t_end] s.
 
-    ``controller``: ``"none"``, ``"pd"``, ``"ftdo"``, ``"dobc"`` (``control.kind``);
+    ``controller``: ``"none"``, ``"pd"``, ``"ftdo"``, ``"dobc"`` (``control.kind``), or a
+    controller of your own: a callable ``f(t, tip) -> (tau1, tau2)`` called once per
+    ``observer.sample_period`` with a :class:`Tip`, or an object with ``__call__``,
+    ``continuous`` (k1, k2, a, b) and ``reset()`` (see :mod:`wingcheck._control`; it runs in
+    the nodal basis, holding the GIL only for its calls). An exception inside it propagates
+    as raised; a NaN, inf or non-pair output raises :class:`ControllerError` naming the time;
     ``observer``: ``"implicit"`` or ``"explicit"``; ``method``: ``"fe"`` or ``"fd"`` (``fd``
     implies ``discretisation.grading=0`` unless ``set`` gives the grading); ``sample_every``:
     output interval (s); ``error_estimate``: also estimate the discretisation error of every tip
@@ -131,11 +148,17 @@ def simulate(
     ``wingcheck simulate --out`` does (atomically). Returns a :class:`Run` whose columns equal
     run.csv's bit for bit.
     """
+    own: Dict[str, Any] = {}
+    if controller is not None and not isinstance(controller, str):
+        check_callable(controller)
+        own = {"controller_object": controller, "continuous": continuous_of(controller)}
+        controller = None
     raw = _with_progress(
         progress,
         "simulate",
         _wingcheck.simulate,
         controller=controller,
+        **own,
         observer=observer,
         method=method,
         sample_every=sample_every,
@@ -147,6 +170,34 @@ def simulate(
         **source(config, set),
     )
     return Run(raw)
+
+
+def compare(
+    config: ConfigLike = None,
+    controllers: Optional[Mapping[str, ControllerLike]] = None,
+    *,
+    set: Overrides = None,
+    allow_large: bool = False,
+    progress: ProgressArg = None,
+) -> Comparison:
+    """Controllers side by side on the same wing, disturbances and metrics:
+    ``compare(cfg, {"mine": f, "FTDO": "ftdo", "DOBC": "dobc"})``. Each row is a run plus the
+    two ``error_estimate`` refinements (≈ 5 runs of work); each metric (RMS and peak of q and θ,
+    settling times, RMS and peak |τ1|, |τ2| at full rate, E(t_end)/E(0)) carries its error.
+    A built-in row runs as ``simulate`` and ``check`` run it; your own in the nodal basis."""
+    if not controllers:
+        controllers = {"FTDO": "ftdo", "DOBC": "dobc"}
+    entrants: List[Tuple[str, Optional[str], Any, Optional[Tuple[float, float, float, float]]]] = []
+    for name, c in controllers.items():
+        if isinstance(c, str):
+            entrants.append((str(name), c, None, None))
+        else:
+            check_callable(c)
+            entrants.append((str(name), None, c, continuous_of(c)))
+    text = _with_progress(
+        progress, "compare", _wingcheck.compare, entrants=entrants, allow_large=allow_large, **source(config, set)
+    )
+    return Comparison(text)
 
 
 def check(

@@ -1,12 +1,14 @@
 """The compiled extension (Rust, pyo3). Internal: use the functions of :mod:`wingcheck`."""
 
 from os import PathLike
-from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union, final
 
 __all__ = [
+    "WingLoop",
     "build_info",
     "certify",
     "check",
+    "compare",
     "join_stopped",
     "load_config",
     "modes",
@@ -33,7 +35,32 @@ def simulate(
     out: Optional[_Path] = None,
     allow_large: bool = False,
     progress: _Progress = None,
+    controller_object: Optional[Callable[..., Any]] = None,
+    continuous: Optional[Sequence[float]] = None,
 ) -> Dict[str, Any]: ...
+def compare(
+    entrants: Sequence[Tuple[str, Optional[str], Optional[Callable[..., Any]], Optional[Sequence[float]]]],
+    config_text: Optional[str] = None,
+    config_path: Optional[_Path] = None,
+    set: Sequence[str] = ...,
+    allow_large: bool = False,
+    progress: _Progress = None,
+) -> str: ...
+
+_Obs = Tuple[float, float, float, float, float, float, float, float, float, float, float]
+
+@final
+class WingLoop:
+    def __new__(
+        cls,
+        continuous: Sequence[float],
+        config_text: Optional[str] = None,
+        config_path: Optional[_Path] = None,
+        set: Sequence[str] = ...,
+    ) -> "WingLoop": ...
+    def reset(self) -> _Obs: ...
+    def step(self, tau1: float, tau2: float) -> Tuple[_Obs, float, float]: ...
+    def timing(self) -> Tuple[float, float]: ...
 def check(
     config_text: Optional[str] = None,
     config_path: Optional[_Path] = None,

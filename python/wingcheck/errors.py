@@ -18,6 +18,7 @@ __all__ = [
     "WorkLimitError",
     "NumericalError",
     "DivergedError",
+    "ControllerError",
     "SearchError",
     "InputError",
     "OutputError",
@@ -60,6 +61,15 @@ class DivergedError(NumericalError):
     1e12 × (1 + E(0)). :attr:`t` is the time of detection (s)."""
 
     #: Time of detection (s).
+    t: float = float("nan")
+
+
+class ControllerError(WingcheckError, ValueError):
+    """A controller of your own returned something the loop cannot apply (NaN, inf, not a pair
+    ``(tau1, tau2)`` of numbers): :attr:`t` is the sample time (s) of the bad output. An
+    exception raised inside the controller is not wrapped: it propagates as it was raised."""
+
+    #: Sample time t_k (s) of the bad output.
     t: float = float("nan")
 
 

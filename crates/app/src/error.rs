@@ -111,6 +111,12 @@ pub enum ErrorKind {
         /// Time of detection (s).
         t: f64,
     },
+    /// A controller of the user's failed or returned bad inputs at time `t` (s; `None`: its
+    /// continuous part was refused before the run).
+    Controller {
+        /// Time of the failing sample (s).
+        t: Option<f64>,
+    },
     /// A search is malformed or its directory does not fit.
     Search,
     /// An input file or directory cannot be read.
@@ -153,6 +159,16 @@ fn sim_kind(e: &SimError) -> ErrorKind {
         SimError::Numerical(_) | SimError::NoModalBasis { .. } => ErrorKind::Numerical,
         SimError::Diverged { t, .. } => ErrorKind::Diverged { t: *t },
         SimError::Cancelled(_) => ErrorKind::Cancelled,
+        SimError::Control(c) => ErrorKind::Controller { t: control_time(c) },
+    }
+}
+
+/// When a controller's failure happened (s).
+fn control_time(e: &wingcheck_control::ControlError) -> Option<f64> {
+    use wingcheck_control::ControlError as E;
+    match e {
+        E::NonFinite { t, .. } | E::Shape { t, .. } | E::Failed { t, .. } => Some(*t),
+        E::Continuous { .. } => None,
     }
 }
 

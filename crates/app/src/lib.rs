@@ -20,6 +20,7 @@
 
 pub mod bench;
 mod build_info;
+pub mod compare;
 mod config;
 mod error;
 pub mod modes;

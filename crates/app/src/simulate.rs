@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use wingcheck_model::work::WorkEstimate;
 use wingcheck_model::{Cancel, Config, ControllerKind, Method, ObserverRule};
-use wingcheck_sim::{output, simulate, simulate_with_error, EstimatedRun, RunOptions, SimOutput};
+use wingcheck_sim::{output, simulate, simulate_with_error, ControllerFactory, EstimatedRun, RunOptions, SimOutput};
 
 use crate::{AppError, ConfigSource, Front, WorkPolicy};
 
@@ -158,13 +158,26 @@ pub fn run(
     progress: Option<&mut dyn FnMut(f64)>,
     cancel: &Cancel,
 ) -> Result<SimulateResult, AppError> {
+    run_with(cfg, req, policy, progress, cancel, None)
+}
+
+/// [`run`] under a controller of the user's in place of `control.kind` (`None`: the
+/// configured one); see [`RunOptions::controller`].
+pub fn run_with<'a>(
+    cfg: &Config,
+    req: &SimulateRequest,
+    policy: WorkPolicy,
+    progress: Option<&'a mut dyn FnMut(f64)>,
+    cancel: &Cancel,
+    controller: Option<ControllerFactory<'a>>,
+) -> Result<SimulateResult, AppError> {
     let sample_times = req.sample_times(cfg, policy.front)?;
     policy.guard(&req.estimate(cfg))?;
     if let Some(path) = &req.out {
         check_writable(path, policy.front)?;
     }
     let start = Instant::now();
-    let opts = RunOptions { fields: req.fields, progress, cancel: cancel.clone(), ..Default::default() };
+    let opts = RunOptions { fields: req.fields, progress, cancel: cancel.clone(), controller, ..Default::default() };
     let (output, estimate) = if req.error_estimate {
         let e = simulate_with_error(cfg, opts)?;
         (e.output.clone(), Some(e))

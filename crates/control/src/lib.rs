@@ -10,8 +10,10 @@
 //! evaluation rules (explicit and implicit/set-valued) and the per-channel bookkeeping; the
 //! simulator feeds it the measured tip quantities.
 
+mod controller;
 mod law;
 mod observer;
 
+pub use controller::{BuiltIn, ControlError, Controller, Erased, Held, PeriodIntegrals, TipMeasurement};
 pub use law::BoundaryLaw;
 pub use observer::{ChannelObserver, ObserverGain, TipChannel};

@@ -142,6 +142,8 @@ pub struct ChannelObserver {
     pub nu: f64,
     /// Whether the estimate is used at all (false for `none` and `pd`).
     pub active: bool,
+    /// The estimate ĝ held since the last sample (0 before the first and when inactive).
+    pub held: f64,
 }
 
 impl ChannelObserver {
@@ -165,7 +167,17 @@ impl ChannelObserver {
             ControllerKind::Dobc => (ObserverGain::DOBC, true),
             ControllerKind::None | ControllerKind::Pd => (gain, false),
         };
-        ChannelObserver { channel, gain, rule: o.rule, period: o.sample_period, stiffness, xi: cfg.wing.xi, nu, active }
+        ChannelObserver {
+            channel,
+            gain,
+            rule: o.rule,
+            period: o.sample_period,
+            stiffness,
+            xi: cfg.wing.xi,
+            nu,
+            active,
+            held: 0.0,
+        }
     }
 
     /// Measured σ = s ξ S w − ν for the current tip state w (q'''(s) or θ'(s)).

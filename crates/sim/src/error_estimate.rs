@@ -335,8 +335,8 @@ pub fn simulate_with_error(cfg: &Config, opts: RunOptions<'_>) -> Result<Estimat
     let (mut space_cfg, mut time_cfg) = (refined_space(cfg), refined_time(cfg));
     space_cfg.validate()?;
     time_cfg.validate()?;
-    let cancel = opts.cancel.clone();
-    let refined = || RunOptions { cancel: cancel.clone(), ..Default::default() };
+    let (cancel, controller) = (opts.cancel.clone(), opts.controller);
+    let refined = || RunOptions { cancel: cancel.clone(), controller, ..Default::default() };
     let output = simulate(cfg, opts)?;
     let scheme = output.stats.stepper;
     space_cfg.discretisation.stepper = scheme;
@@ -353,7 +353,11 @@ pub fn simulate_with_error(cfg: &Config, opts: RunOptions<'_>) -> Result<Estimat
     })?;
     let time = simulate(&time_cfg, refined())?;
     let fourth = third_grid_run(&output, &space, &space_cfg, refined());
-    let twin = (scheme != wingcheck_model::TimeScheme::Exponential).then(|| sub_step_twin(cfg, refined()));
+    let twin = (scheme != wingcheck_model::TimeScheme::Exponential).then(|| match controller {
+        // the twin steps in the modal basis, which a controller of the user's does not run in
+        Some(_) => Err("a controller of your own is stepped in the nodal basis only: no exponential twin".into()),
+        None => sub_step_twin(cfg, refined()),
+    });
     // the 4N run's, the twin's and the layer check's failures are findings, not errors: a
     // cancelled one is not
     cancel.check()?;

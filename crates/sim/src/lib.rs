@@ -37,8 +37,9 @@ pub use error_estimate::{
 };
 pub use estimate::Estimate;
 pub use run::{
-    check_sample, resolved_basis, simulate, simulate_base, windowed_rms, Envelope, Fields, RunOptions, RunStats,
-    Series, SimOutput, SubStepProbe, MAX_EIGENBASIS_ROUNDOFF,
+    check_sample, nodal_only, resolved_basis, simulate, simulate_base, windowed_rms, BoxedController,
+    ControllerFactory, Envelope, Fields, RunOptions, RunStats, Series, SimOutput, SubStepProbe,
+    MAX_EIGENBASIS_ROUNDOFF,
 };
 pub use stepper::{initial_tip_states, trbdf2, Channel, EnergyLedger, Peak, Peaks, Sample, SquareIntegral, Stepper};
 
@@ -64,6 +65,9 @@ pub enum SimError {
     /// The run was stopped through [`RunOptions::cancel`].
     #[error(transparent)]
     Cancelled(#[from] wingcheck_model::Cancelled),
+    /// A controller of the user's ([`RunOptions::controller`]) failed or returned bad inputs.
+    #[error(transparent)]
+    Control(#[from] wingcheck_control::ControlError),
     /// The simulation diverged.
     #[error("simulation diverged at t = {t:.4} s: {reason}")]
     Diverged {
@@ -72,4 +76,10 @@ pub enum SimError {
         /// What was detected.
         reason: String,
     },
+}
+
+impl From<std::convert::Infallible> for SimError {
+    fn from(never: std::convert::Infallible) -> SimError {
+        match never {}
+    }
 }

@@ -5,6 +5,7 @@
 use std::time::Instant;
 
 use serde::Serialize;
+use wingcheck_control::{ControlError, Controller};
 use wingcheck_model::{Config, StepBasis, TimeScheme, Unit};
 
 use crate::modal::ModalBasis;
@@ -288,7 +289,19 @@ pub struct RunOptions<'a> {
     /// probe, and its ∫τ² is exact per output interval only ([`RunStats::eigenbasis_roundoff`]
     /// says whether it ran and with what estimate). For runs that only need statistics.
     pub eigenbasis: Option<f64>,
+    /// A controller of the user's in place of `control.kind` ([`ControllerFactory`]): each run
+    /// (the base run, the initial layer's, an error estimate's refinements) makes one and
+    /// resets it. Stepped in the nodal basis (`discretisation.basis` auto or nodal, a stepper
+    /// other than exponential): the modal runner precomputes the built-in observers' signal,
+    /// which needs no plant state, and a foreign controller's held inputs depend on it.
+    pub controller: Option<ControllerFactory<'a>>,
 }
+
+/// A controller in place of the built-in ones, boxed (see [`wingcheck_control::Controller`]).
+pub type BoxedController = Box<dyn Controller<Error = ControlError>>;
+
+/// Makes a [`BoxedController`] for a run ([`RunOptions::controller`]).
+pub type ControllerFactory<'a> = &'a (dyn Fn() -> BoxedController + Sync);
 
 /// Largest round-off estimate [`RunOptions::eigenbasis`] accepts (relative of the state). The
 /// estimate is checked against the dense scheme over whole 20-s horizons by the eigenbasis unit
@@ -401,7 +414,7 @@ pub fn resolved_basis(cfg: &Config, disc: &Discretisation) -> Result<(StepBasis,
 /// same discrete equations either way: the results agree to round-off; `stats.basis` says
 /// which).
 pub fn simulate(cfg: &Config, opts: RunOptions<'_>) -> Result<SimOutput, SimError> {
-    let sub_step_probe = opts.sub_step_probe;
+    let (sub_step_probe, controller) = (opts.sub_step_probe, opts.controller);
     let cancel = opts.cancel.clone();
     let (mut out, basis) = base_run(cfg, opts)?;
     // The layer runs change the step, horizon and output sampling only, none of which the
@@ -411,7 +424,7 @@ pub fn simulate(cfg: &Config, opts: RunOptions<'_>) -> Result<SimOutput, SimErro
     // inputs). Any other layer run is a run of its own.
     let base_key = basis.as_ref().map(|_| ModalBasis::key(cfg));
     let layer = crate::layer::resolve(cfg, &mut out, |c| {
-        let opts = RunOptions { sub_step_probe, cancel: cancel.clone(), ..Default::default() };
+        let opts = RunOptions { sub_step_probe, cancel: cancel.clone(), controller, ..Default::default() };
         match (&basis, &base_key) {
             (Some(basis), Some(key)) if ModalBasis::key(c) == *key => {
                 crate::modal::simulate_modal(c, basis, Instant::now(), opts)
@@ -434,22 +447,44 @@ fn base_run(cfg: &Config, opts: RunOptions<'_>) -> Result<(SimOutput, Option<Mod
     cfg.validate().map_err(SimError::Config)?;
     let start = Instant::now();
     let disc = Discretisation::new(cfg);
+    if let Some(make) = opts.controller {
+        nodal_only(cfg)?;
+        return Ok((simulate_nodal(cfg, Stepper::with_controller(cfg, disc, make())?, start, opts)?, None));
+    }
     let (_, basis) = resolved_basis(cfg, &disc)?;
     let out = match &basis {
         Some(basis) => crate::modal::simulate_modal(cfg, basis, start, opts)?,
-        None => simulate_nodal(cfg, disc, start, opts)?,
+        None => simulate_nodal(cfg, Stepper::with_discretisation(cfg, disc)?, start, opts)?,
     };
     Ok((out, basis))
 }
 
+/// A run under a controller of the user's steps in the nodal basis ([`RunOptions::controller`]):
+/// refuse the settings that ask for the modal one.
+pub fn nodal_only(cfg: &Config) -> Result<(), SimError> {
+    let modal = cfg.discretisation.basis == StepBasis::Modal
+        || cfg.discretisation.stepper == wingcheck_model::TimeScheme::Exponential;
+    if modal {
+        return Err(SimError::Config(wingcheck_model::ConfigError::Inconsistent {
+            fields: "discretisation.basis, discretisation.stepper".into(),
+            reason: "a controller of your own is stepped in the nodal basis: discretisation.basis must be auto or \
+                     nodal and discretisation.stepper auto, trbdf2 or trapezoid"
+                .into(),
+        }));
+    }
+    Ok(())
+}
+
 /// [`simulate`] in the nodal basis (banded Cholesky of the step matrix).
-fn simulate_nodal(
+fn simulate_nodal<C: Controller>(
     cfg: &Config,
-    disc: Discretisation,
+    mut stepper: Stepper<C>,
     start: Instant,
     mut opts: RunOptions<'_>,
-) -> Result<SimOutput, SimError> {
-    let mut stepper = Stepper::with_discretisation(cfg, disc)?;
+) -> Result<SimOutput, SimError>
+where
+    C::Error: Into<SimError>,
+{
     let setup_seconds = start.elapsed().as_secs_f64();
     let start = Instant::now();
     let total = cfg.total_samples();
@@ -458,7 +493,7 @@ fn simulate_nodal(
     let mut envelope = Envelope::with_capacity(cfg.output_samples());
     let mut fields = opts.fields.then(|| Fields::with_capacity(stepper.discretisation().interp.z.clone(), cfg));
     let e0 = stepper.sample().energy;
-    let mut record = |st: &mut Stepper, series: &mut Series, fields: &mut Option<Fields>| -> Result<(), SimError> {
+    let mut record = |st: &mut Stepper<C>, series: &mut Series, fields: &mut Option<Fields>| -> Result<(), SimError> {
         let s = st.sample();
         check_sample(&s, e0)?;
         series.push(&s, st.take_tau_rms());
@@ -474,7 +509,7 @@ fn simulate_nodal(
     record(&mut stepper, &mut series, &mut fields)?;
     crate::cpu::clear_upper_vector_state();
     for k in 1..=total {
-        stepper.advance_sample();
+        stepper.try_advance_sample().map_err(Into::into)?;
         opts.cancel.check()?;
         if k % every == 0 || k == total {
             record(&mut stepper, &mut series, &mut fields)?;

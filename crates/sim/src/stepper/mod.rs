@@ -27,7 +27,7 @@ pub mod trbdf2;
 pub(crate) use peaks::FullRate;
 pub use peaks::{Peak, Peaks, SquareIntegral};
 
-use wingcheck_control::{BoundaryLaw, ChannelObserver, TipChannel};
+use wingcheck_control::{BoundaryLaw, BuiltIn, Controller, TipChannel, TipMeasurement};
 use wingcheck_model::{Config, TimeScheme};
 
 use crate::banded::{BandedCholesky, BandedPair};
@@ -48,13 +48,16 @@ pub fn initial_tip_states(cfg: &Config) -> [f64; 2] {
 /// State of one tip channel (bending or torsion).
 #[derive(Debug, Clone)]
 pub struct Channel {
-    /// Observer for this channel (inactive for `none`/`pd`).
-    pub observer: ChannelObserver,
+    /// Sign s of the tip boundary condition ([`TipChannel::bc_sign`]).
+    pub sign: f64,
+    /// Stiffness S: EI (bending) or GJ (torsion) (N m²).
+    pub stiffness: f64,
     /// Tip boundary state w: q'''(s) (1/m²) for bending, θ'(s) (1/m) for torsion.
     pub w: f64,
-    /// Held estimate ĝ over the current sample.
+    /// Held part of (15) over the current sample with its sign there: ĝ for the built-in
+    /// controllers, −u for any [`Controller`] (N, N m).
     pub g_hat: f64,
-    /// σ measured at the start of the current sample.
+    /// σ measured at the start of the current sample (the controller's [`wingcheck_control::Held::sigma`]).
     pub sigma: f64,
     /// Feedback gain k (k1 or k2), 0 when the controller is `none`.
     pub k: f64,
@@ -110,9 +113,10 @@ pub struct Sample {
     pub theta_tip_slope: f64,
 }
 
-/// The closed loop, advanced one observer sample at a time.
+/// The closed loop, advanced one observer sample at a time, under the controller `C` (by
+/// default the paper's, [`BuiltIn`], as `control.kind` names it).
 #[derive(Debug)]
-pub struct Stepper {
+pub struct Stepper<C = BuiltIn> {
     cfg: Config,
     /// The control law (15).
     law: BoundaryLaw,
@@ -142,9 +146,11 @@ pub struct Stepper {
     pub channels: [Channel; 2],
     track_energy: bool,
     ledger: EnergyLedger,
+    /// The controller: its continuous part is `law`, its held part sets the channels' ĝ.
+    control: C,
 }
 
-impl Stepper {
+impl Stepper<BuiltIn> {
     /// Assemble, factorise and set the initial state. Cost: one sparse Cholesky.
     pub fn new(cfg: &Config) -> Result<Stepper, SimError> {
         Self::with_discretisation(cfg, Discretisation::new(cfg))
@@ -152,16 +158,35 @@ impl Stepper {
 
     /// As [`Stepper::new`] with a given discretisation.
     pub fn with_discretisation(cfg: &Config, disc: Discretisation) -> Result<Stepper, SimError> {
+        Stepper::with_controller(cfg, disc, BuiltIn::of(cfg))
+    }
+
+    /// Advance one observer sample period T (see [`Stepper::try_advance_sample`]; the
+    /// built-in controllers cannot fail).
+    pub fn advance_sample(&mut self) {
+        let Ok(()) = self.try_advance_sample();
+    }
+}
+
+impl<C: Controller> Stepper<C>
+where
+    C::Error: Into<SimError>,
+{
+    /// Assemble, factorise and set the initial state under `control` (reset first; its
+    /// continuous part is read once, after the reset). Cost: one sparse Cholesky.
+    pub fn with_controller(cfg: &Config, disc: Discretisation, mut control: C) -> Result<Stepper<C>, SimError> {
         cfg.validate().map_err(SimError::Config)?;
+        control.reset(cfg).map_err(Into::into)?;
         let h = cfg.discretisation.dt;
         let n = disc.dim();
-        let law = BoundaryLaw::of(cfg);
+        let law = control.continuous();
+        law.check()?;
         let [k1, k2] = law.gains;
         let mut tip_damp = SymBuilder::new(n);
         tip_damp.add(disc.tip_q, disc.tip_q, k1);
         tip_damp.add(disc.tip_theta, disc.tip_theta, k2);
         let tip = tip_damp.build();
-        let (a, b, xi) = (cfg.control.a, cfg.control.b, cfg.wing.xi);
+        let (a, b, xi) = (law.a, law.b, cfg.wing.xi);
         let scheme = cfg.time_scheme(false);
         let alpha = match scheme {
             TimeScheme::Trapezoid => 0.5 * h,
@@ -184,8 +209,11 @@ impl Stepper {
         let x = disc.x0.clone();
         let [w1, w2] = initial_tip_states(cfg);
         let mk = |ch: TipChannel, w: f64, k: f64, dof: usize| {
-            let observer = ChannelObserver::new(cfg, ch);
-            Channel { observer, w, g_hat: 0.0, sigma: 0.0, k, dof }
+            let stiffness = match ch {
+                TipChannel::Bending => cfg.wing.ei,
+                TipChannel::Torsion => cfg.wing.gj,
+            };
+            Channel { sign: ch.bc_sign(), stiffness, w, g_hat: 0.0, sigma: 0.0, k, dof }
         };
         let channels = [mk(TipChannel::Bending, w1, k1, disc.tip_q), mk(TipChannel::Torsion, w2, k2, disc.tip_theta)];
         let mut st = Stepper {
@@ -209,8 +237,9 @@ impl Stepper {
             channels,
             track_energy: false,
             ledger: EnergyLedger::default(),
+            control,
         };
-        st.update_estimates();
+        st.update_estimates().map_err(Into::into)?;
         st.record_peaks(0.0);
         Ok(st)
     }
@@ -269,11 +298,42 @@ impl Stepper {
         }
     }
 
-    fn update_estimates(&mut self) {
-        for ch in &mut self.channels {
-            ch.sigma = ch.observer.sigma(ch.w);
-            ch.g_hat = ch.observer.estimate(ch.w);
+    /// The controller.
+    pub fn controller(&self) -> &C {
+        &self.control
+    }
+
+    /// The controller, to change (e.g. the held inputs of a controller driven from outside,
+    /// then [`Stepper::resample`]).
+    pub fn controller_mut(&mut self) -> &mut C {
+        &mut self.control
+    }
+
+    /// Sample the controller again at the current instant (its held inputs replace the ones
+    /// taken at this instant): for a controller driven step by step from outside.
+    pub fn resample(&mut self) -> Result<(), C::Error> {
+        self.update_estimates()
+    }
+
+    /// What the tip sensors read now ([`TipMeasurement`]).
+    pub fn measurement(&self) -> TipMeasurement {
+        let [b, tr] = &self.channels;
+        TipMeasurement {
+            t: self.time(),
+            x: [self.x[b.dof], self.x[tr.dof]],
+            v: [self.v[b.dof], self.v[tr.dof]],
+            w: [b.w, tr.w],
         }
+    }
+
+    /// Sample the controller at the current instant: σ and the held ĝ = −u of both channels.
+    fn update_estimates(&mut self) -> Result<(), C::Error> {
+        let held = self.control.sample(&self.measurement())?;
+        for (c, ch) in self.channels.iter_mut().enumerate() {
+            ch.sigma = held.sigma[c];
+            ch.g_hat = -held.input[c];
+        }
+        Ok(())
     }
 
     /// Control force/moment τ at the current instant with the held estimate.
@@ -360,14 +420,15 @@ impl Stepper {
         }
         self.solver.solve_in_place(&mut self.rhs);
         let vbar = &self.rhs;
-        let (a, b) = (self.cfg.control.a, self.cfg.control.b);
+        let law = self.law;
         let xi = self.cfg.wing.xi;
         let mut tip_power = 0.0;
-        for (c, g) in self.channels.iter_mut().zip(g_mean) {
+        let (mut taus, mut ws) = ([0.0; 2], [0.0; 2]);
+        for (ci, (c, g)) in self.channels.iter_mut().zip(g_mean).enumerate() {
             let xbar = self.x[c.dof] + 0.5 * h * vbar[c.dof];
-            let tau_mean = -c.k * (a * xbar + b * vbar[c.dof]) - c.g_hat;
-            let s = c.observer.channel.bc_sign();
-            let stiff = c.observer.stiffness;
+            let tau_mean = law.tau(ci, xbar, vbar[c.dof], c.g_hat);
+            let s = c.sign;
+            let stiff = c.stiffness;
             let force = tau_mean + g;
             let w_new = if xi > 0.0 {
                 (xi * stiff * c.w + h * s * force - 0.5 * h * stiff * c.w) / (xi * stiff + 0.5 * h * stiff)
@@ -375,10 +436,11 @@ impl Stepper {
                 s * force / stiff
             };
             let w_mean = if xi > 0.0 { 0.5 * (c.w + w_new) } else { w_new };
-            c.observer.integrate(h, c.g_hat, tau_mean, w_mean);
+            (taus[ci], ws[ci]) = (tau_mean, w_mean);
             c.w = w_new;
             tip_power += force * vbar[c.dof];
         }
+        self.control.integrate(h, taus, ws);
         if self.track_energy {
             let dist_power: f64 = phi_mean * self.disc.load.iter().zip(vbar).map(|(f, v)| f * v).sum::<f64>();
             self.ledger.work_in += h * (dist_power + tip_power);
@@ -390,15 +452,16 @@ impl Stepper {
         }
     }
 
-    /// Advance one observer sample period T (m integrator steps with ĝ held), then take the
-    /// next sample of σ and update ĝ.
-    pub fn advance_sample(&mut self) {
+    /// Advance one observer sample period T (m integrator steps with the held inputs), then
+    /// sample the controller at the new instant (σ and ĝ of the built-in observers).
+    pub fn try_advance_sample(&mut self) -> Result<(), C::Error> {
         let t0 = self.time();
         for j in 0..self.steps_per_sample {
             self.substep(t0 + j as f64 * self.h);
         }
         self.k += 1;
-        self.update_estimates();
+        self.update_estimates()?;
         self.record_peaks(self.time());
+        Ok(())
     }
 }

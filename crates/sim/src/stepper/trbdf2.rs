@@ -11,7 +11,10 @@
 //! tip-state ODE, the observer integrator ν and the energy ledger, so σ_{n+1} − σ_n = h(ḡ − ĝ)
 //! holds to round-off; the energy balance holds up to the scheme's O(h²) numerical dissipation.
 
+use wingcheck_control::Controller;
+
 use super::Stepper;
+use crate::SimError;
 
 /// γ = 2 − √2.
 pub const GAMMA: f64 = 2.0 - std::f64::consts::SQRT_2;
@@ -24,7 +27,10 @@ pub const B: f64 = (1.0 - GAMMA) * (1.0 - GAMMA) / (GAMMA * (2.0 - GAMMA));
 /// Quadrature weights of the step: (w₀, w₁, w₂).
 pub const WEIGHTS: [f64; 3] = [0.5 / (2.0 - GAMMA), 0.5 / (2.0 - GAMMA), (1.0 - GAMMA) / (2.0 - GAMMA)];
 
-impl Stepper {
+impl<C: Controller> Stepper<C>
+where
+    C::Error: Into<SimError>,
+{
     /// Right-hand side (M/α) v − K_c x + f̄ into `self.rhs`, solved in place.
     fn stage_solve(&mut self, use_stage: bool, phi_mean: f64, g_mean: [f64; 2]) {
         if use_stage {
@@ -92,9 +98,10 @@ impl Stepper {
         // Tip states and observers with the same stages and quadrature.
         let xi = self.cfg.wing.xi;
         let [w0, w1, w2] = WEIGHTS;
+        let (mut taus, mut ws) = ([0.0; 2], [0.0; 2]);
         for (ci, c) in self.channels.iter_mut().enumerate() {
-            let s = c.observer.channel.bc_sign();
-            let stiff = c.observer.stiffness;
+            let s = c.sign;
+            let stiff = c.stiffness;
             let g = g_mean[ci];
             let (fn_, fg, f1) = (tau_n[ci] + g, tau_g[ci] + g, tau_1[ci] + g);
             let (wg, w1_) = if xi > 0.0 {
@@ -107,8 +114,9 @@ impl Stepper {
             let w_n = if xi > 0.0 { c.w } else { s * fn_ / stiff };
             let tau_q = w0 * tau_n[ci] + w1 * tau_g[ci] + w2 * tau_1[ci];
             let w_q = w0 * w_n + w1 * wg + w2 * w1_;
-            c.observer.integrate(h, c.g_hat, tau_q, w_q);
+            (taus[ci], ws[ci]) = (tau_q, w_q);
             c.w = w1_;
         }
+        self.control.integrate(h, taus, ws);
     }
 }

@@ -1,0 +1,296 @@
+"""Controllers of your own (issue 43): the paper's PD and explicit FTDO written in Python
+reproduce the built-in ones; a controller that raises, returns NaN, returns three numbers or
+destabilises the loop stops the run with a clear error naming the time, and nothing is written."""
+
+from __future__ import annotations
+
+import math
+import os
+import threading
+import traceback
+
+import numpy as np
+import pytest
+
+import wingcheck
+from wingcheck.errors import ControllerError, DivergedError
+
+PAPER = wingcheck.Config()
+# the state columns of run.csv
+STATE = ["q_tip_m", "theta_tip_rad", "q_tip_rate_m_per_s", "theta_tip_rate_rad_per_s", "energy_J"]
+
+
+class PaperPD:
+    """Law (15) without an observer: the continuous part k(a x + b v) and no held input."""
+
+    def __init__(self, cfg: wingcheck.Config) -> None:
+        c = cfg["control"]
+        self.continuous = wingcheck.Continuous(c["k1"], c["k2"], c["a"], c["b"])
+
+    def __call__(self, t: float, tip: wingcheck.Tip):
+        return (0.0, 0.0)
+
+
+def sign(x: float) -> float:
+    return 0.0 if x == 0.0 else math.copysign(1.0, x)
+
+
+class ExplicitFTDO:
+    """The paper's FTDO (16)–(21), explicit rule ĝ_k = φ(σ_k), written from the paper:
+    σ = s ξ S w − ν (s = −1, S = EI for bending; s = +1, S = GJ for torsion), ν̇ = ĝ + τ − s S w,
+    φ(σ) = κ_lin σ + κ_sw sign σ + κ_frac sign(σ)|σ|^r, r = (2a1 − a2)/a2; u = −ĝ."""
+
+    def __init__(self, cfg: wingcheck.Config) -> None:
+        c, o, w = cfg["control"], cfg["observer"], cfg["wing"]
+        self.continuous = (c["k1"], c["k2"], c["a"], c["b"])
+        self.T = o["sample_period"]
+        self.xi = w["xi"]
+        self.S = (w["ei"], w["gj"])
+        self.s = (-1.0, 1.0)
+        self.gain = (
+            (o["kappa1"], o["kappa2"], o["kappa3"], (2 * o["a1"] - o["a2"]) / o["a2"]),
+            (o["kappa4"], o["kappa5"], o["kappa6"], (2 * o["b1"] - o["b2"]) / o["b2"]),
+        )
+        self.nu0 = (o["nu1_0"], o["nu2_0"])
+        self.reset()
+
+    def reset(self) -> None:
+        self.nu = list(self.nu0)
+        self.g_hat = [0.0, 0.0]
+
+    def phi(self, c: int, sigma: float) -> float:
+        lin, sw, frac, r = self.gain[c]
+        return lin * sigma + sw * sign(sigma) + frac * sign(sigma) * abs(sigma) ** r
+
+    def __call__(self, t: float, tip: wingcheck.Tip):
+        w = (tip.q_shear, tip.theta_slope)
+        tau_int = (tip.tau1_integral, tip.tau2_integral)
+        w_int = (tip.q_shear_integral, tip.theta_slope_integral)
+        out = []
+        for c in range(2):
+            if t > 0.0:
+                # ν over the period that just ended, with the estimate held over it
+                self.nu[c] += self.T * self.g_hat[c] + tau_int[c] - self.s[c] * self.S[c] * w_int[c]
+            sigma = self.s[c] * self.xi * self.S[c] * w[c] - self.nu[c]
+            self.g_hat[c] = self.phi(c, sigma)
+            out.append(-self.g_hat[c])
+        return tuple(out)
+
+
+def test_python_pd_reproduces_the_builtin_pd():
+    # Reference: the built-in PD in the nodal basis (where a Python controller runs). The held
+    # input is 0 either way and the continuous part is the same law (15), so the state is the same
+    # bits (the ĝ columns may differ in the sign of zero only).
+    mine = wingcheck.simulate(controller=PaperPD(PAPER))
+    ref = wingcheck.simulate(controller="pd", set={"discretisation.basis": "nodal"})
+    for col in STATE:
+        assert np.array_equal(mine[col], ref[col]), col
+    # against the built-in PD's default (modal) run: the same discrete equations in another
+    # basis, equal to round-off (tests/basis.rs); measured 1.4e-12 (q), 4e-13 (θ), 5e-12 (energy) relative
+    modal = wingcheck.simulate(controller="pd")
+    for col in STATE:
+        scale = np.max(np.abs(modal[col]))
+        assert np.max(np.abs(mine[col] - modal[col])) <= 1e-9 * scale, col
+
+
+@pytest.mark.parametrize("ab", [{}, {"control.a": 1, "control.b": 3000}])
+def test_python_explicit_ftdo_reproduces_the_builtin_within_1e_9(ab):
+    # Reference: the built-in explicit FTDO in the nodal basis. The Python observer integrates ν
+    # from the period integrals the simulator hands over (its own quadrature), so the two differ
+    # by the rounding of T·ĝ + ∫τ − sS∫w against h(ĝ + τ̄ − sS w̄) only.
+    cfg = PAPER.with_overrides(ab)
+    mine = wingcheck.simulate(cfg, controller=ExplicitFTDO(cfg))
+    ref = wingcheck.simulate(cfg, controller="ftdo", observer="explicit", set={"discretisation.basis": "nodal"})
+    for col in ["q_tip_m", "theta_tip_rad"]:
+        scale = np.max(np.abs(ref[col]))
+        err = np.max(np.abs(mine[col] - ref[col])) / scale
+        print(f"explicit FTDO {ab} {col}: max relative difference {err:.2e}")
+        assert err <= 1e-9, (col, err)
+
+
+def test_the_controller_is_sampled_at_k_ts_and_reset_before_every_run():
+    # __call__ at t_k = k T_s, k = 0..K, once each, in order, in every run; reset() before each
+    # (simulate's base run first, then the initial layer's runs at finer steps, same T_s).
+    class Recorder:
+        def __init__(self) -> None:
+            self.runs = []
+
+        def reset(self) -> None:
+            self.runs.append([])
+
+        def __call__(self, t, tip):
+            assert tip.t == t
+            self.runs[-1].append(t)
+            return (0.0, 0.0)
+
+    rec = Recorder()
+    cfg = PAPER.with_overrides({"horizon.t_end": 0.05})
+    wingcheck.simulate(cfg, controller=rec)
+    T = cfg["observer"]["sample_period"]
+    assert len(rec.runs[0]) == round(0.05 / T) + 1
+    for times in rec.runs:
+        # t_k = k T_s as the simulator computes it
+        assert times == [k * T for k in range(len(times))]
+
+
+def test_an_exception_inside_the_controller_propagates_with_its_traceback():
+    class Boom(RuntimeError):
+        pass
+
+    def f(t, tip):
+        if t >= 0.5:
+            raise Boom(f"controller gave up at {t}")
+        return (0.0, 0.0)
+
+    with pytest.raises(Boom) as info:
+        wingcheck.simulate(PAPER.with_overrides({"horizon.t_end": 1.0}), controller=f)
+    frames = [fr.name for fr in traceback.extract_tb(info.value.__traceback__)]
+    assert "f" in frames, frames
+
+
+@pytest.mark.parametrize(
+    "bad, what",
+    [((float("nan"), 0.0), "tau1 = NaN"), ((0.0, float("inf")), "tau2 = inf"), ((1.0, 2.0, 3.0), "3 or more items")],
+)
+def test_bad_outputs_name_the_time(bad, what, tmp_path):
+    def f(t, tip):
+        return bad if t >= 0.25 else (0.0, 0.0)
+
+    out = tmp_path / "run.csv"
+    with pytest.raises(ControllerError) as info:
+        wingcheck.simulate(PAPER.with_overrides({"horizon.t_end": 1.0}), controller=f, out=out)
+    assert what in str(info.value), str(info.value)
+    assert "t = 0.25" in str(info.value), str(info.value)
+    assert info.value.t == 0.25
+    assert not out.exists()
+
+
+def test_a_destabilising_controller_stops_with_time_and_reason(tmp_path):
+    # positive feedback on the tip rate pumps energy in: the loop diverges
+    def f(t, tip):
+        return (1e3 * tip.q_rate, 1e3 * tip.theta_rate)
+
+    out = tmp_path / "run.csv"
+    with pytest.raises(DivergedError) as info:
+        wingcheck.simulate(controller=f, out=out)
+    assert 0.0 < info.value.t < 20.0
+    assert "diverged at t =" in str(info.value)
+    assert not out.exists()
+    assert os.listdir(tmp_path) == []
+
+
+def test_other_threads_run_while_a_python_controller_runs():
+    # the loop holds the GIL only for the controller's calls
+    ticks = []
+    stop = threading.Event()
+
+    def spin():
+        while not stop.is_set():
+            ticks.append(1)
+
+    th = threading.Thread(target=spin)
+    th.start()
+    try:
+        wingcheck.simulate(controller=lambda t, tip: (0.0, 0.0))
+    finally:
+        stop.set()
+        th.join()
+    assert len(ticks) > 100
+
+
+def test_bad_continuous_part_is_a_config_error():
+    class Neg:
+        continuous = (1.0, 1.0, -1.0, 1.0)
+
+        def __call__(self, t, tip):
+            return (0.0, 0.0)
+
+    with pytest.raises(wingcheck.ConfigError, match=r"controller.continuous: a = -1 is not in \[0, "):
+        wingcheck.simulate(controller=Neg())
+    with pytest.raises(wingcheck.ConfigError, match=r"controller"):
+        wingcheck.simulate(controller=42)  # type: ignore[arg-type]
+
+
+def test_a_modal_basis_is_refused_for_a_python_controller():
+    with pytest.raises(wingcheck.ConfigError, match=r"nodal"):
+        wingcheck.simulate(controller=lambda t, tip: (0.0, 0.0), set={"discretisation.basis": "modal"})
+
+
+def test_the_step_form_gives_the_callback_forms_bits():
+    # Reference: simulate(controller=f) with the same controller; the step form drives the same
+    # stepper with the same held inputs, so the tip values at every output sample are the same bits.
+    cfg = PAPER.with_overrides({"horizon.t_end": 2.0})
+    run = wingcheck.simulate(cfg, controller=ExplicitFTDO(cfg))
+    ctrl = ExplicitFTDO(cfg)
+    c = cfg["control"]
+    wing = wingcheck.Wing(cfg, continuous=(c["k1"], c["k2"], c["a"], c["b"]))
+    tip = wing.reset()
+    every = round(cfg["horizon"]["sample_every"] / cfg["observer"]["sample_period"])
+    q, theta, t = [tip.q], [tip.theta], [tip.t]
+    k = 0
+    while tip.t < 2.0 - 1e-12:
+        tip, info = wing.step(ctrl(tip.t, tip))
+        k += 1
+        assert info["t"] == tip.t
+        if k % every == 0:
+            q.append(tip.q)
+            theta.append(tip.theta)
+            t.append(tip.t)
+    assert np.array_equal(np.array(t), run["t_s"])
+    assert np.array_equal(np.array(q), run["q_tip_m"])
+    assert np.array_equal(np.array(theta), run["theta_tip_rad"])
+
+
+def test_the_step_form_refuses_bad_actions_and_reports_divergence():
+    wing = wingcheck.Wing()
+    wing.reset()
+    with pytest.raises(ControllerError, match="t = 0"):
+        wing.step((1.0, 2.0, 3.0))
+    with pytest.raises(ControllerError, match="tau2 = NaN"):
+        wing.step((0.0, float("nan")))
+    tip = wing.reset()
+    with pytest.raises(DivergedError):
+        for _ in range(20000):
+            tip, _ = wing.step((1e3 * tip.q_rate, 1e3 * tip.theta_rate))
+
+
+def test_gymnasium_env_passes_check_env():
+    gymnasium = pytest.importorskip("gymnasium")
+    from gymnasium.utils.env_checker import check_env
+
+    from wingcheck.gym import WingEnv
+
+    env = WingEnv(set={"horizon.t_end": 0.05})
+    check_env(env, skip_render_check=True)
+    obs, info = env.reset(seed=0)
+    assert obs.shape == (11,)
+    steps, truncated = 0, False
+    while not truncated:
+        obs, r, terminated, truncated, info = env.step(env.action_space.sample() * 0.0)
+        steps += 1
+        assert r <= 0.0 and not terminated
+    assert steps == 50
+
+
+def test_the_tip_record_has_eleven_fields_with_units():
+    assert len(wingcheck.Tip._fields) == 11
+    assert set(wingcheck.Tip.units()) == set(wingcheck.Tip._fields)
+
+
+def test_the_error_estimate_runs_a_python_controller_with_reset_per_run():
+    # Reference: the built-in PD in the nodal basis through the same --error-estimate machinery:
+    # the same refinements give the same tip errors (bits); only the exponential twin (a modal
+    # run) is unavailable to a controller of your own, so the peaks' sub-step part may differ.
+    class PD(PaperPD):
+        resets = 0
+
+        def reset(self) -> None:
+            PD.resets += 1
+
+    mine = wingcheck.simulate(controller=PD(PAPER), error_estimate=True)
+    ref = wingcheck.simulate(controller="pd", set={"discretisation.basis": "nodal"}, error_estimate=True)
+    a, b = mine.summary["error_estimate"], ref.summary["error_estimate"]
+    for key in ["max_q_tip_error", "max_theta_tip_error", "max_space_error", "max_time_error"]:
+        assert a[key] == b[key], key
+    # base run + its initial layer runs + the 2N and dt/2 runs (each with their layers) + 4N
+    assert PD.resets >= 4
