@@ -21,6 +21,7 @@
 mod allocator;
 mod lock;
 mod number;
+pub mod prose;
 mod provenance;
 mod table;
 
