@@ -6,7 +6,7 @@
 #
 # Shard K writes OUT/shard-K; the merged results go to OUT/all. JOBS (default N) sets how
 # many shards run at once. The binary: $WINGCHECK, else `wingcheck` on PATH
-# (`cargo install --path .`), else the checkout's target/release/wingcheck (see
+# (`cargo install --locked --path .`), else the checkout's target/release/wingcheck (see
 # scripts/find-wingcheck.sh). Exit status: that of `wingcheck merge` — 0 every point ok, 3
 # complete but some points failed (see OUT/all/failures.csv), 1 an error — unless a shard
 # failed: then the first such shard's status (2: a usage error, e.g. a misspelt option; 1:

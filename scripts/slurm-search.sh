@@ -2,11 +2,11 @@
 # One shard of a wingcheck search per task of a Slurm job array; submit from the checkout.
 #
 #   jid=$(sbatch --parsable --array=1-16 scripts/slurm-search.sh OUT SEARCH-ARGS...)
-#   sbatch --dependency=afterany:$jid --wrap "wingcheck merge OUT/shard-* --out OUT/all"
+#   sbatch --dependency=afterany:$jid scripts/slurm-merge.sh OUT      # merges into OUT/all
 #
 # The array must be numbered 1..N (task K runs shard K/N, N = SLURM_ARRAY_TASK_COUNT) and
 # writes OUT/shard-K, with SLURM_CPUS_PER_TASK threads (default 1). The binary: $WINGCHECK,
-# else `wingcheck` on PATH (`cargo install --path .`), else the checkout's
+# else `wingcheck` on PATH (`cargo install --locked --path .`), else the checkout's
 # target/release/wingcheck (scripts/find-wingcheck.sh). A task exits 0 when its shard is
 # complete — also when some of its points failed (wingcheck's status 3: they are answered,
 # and merge reports them) — and with wingcheck's own status otherwise, so Slurm shows it

@@ -23,26 +23,11 @@ fn main() {
         }
         default_hook(info);
     }));
-    wingcheck_io::set_build(build_info());
+    wingcheck_app::register_build();
     let args = cli::Cli::parse();
     if let Err(e) = cli::run(args) {
         eprintln!("error: {}", message(&e));
         std::process::exit(1);
-    }
-}
-
-/// The build of this binary, from build.rs.
-fn build_info() -> wingcheck_io::BuildInfo {
-    wingcheck_io::BuildInfo {
-        version: env!("CARGO_PKG_VERSION").to_string(),
-        commit: env!("WINGCHECK_GIT_COMMIT").to_string(),
-        tree: match env!("WINGCHECK_GIT_TREE") {
-            "clean" => wingcheck_io::TreeState::Clean,
-            "dirty" => wingcheck_io::TreeState::Dirty,
-            _ => wingcheck_io::TreeState::Unknown,
-        },
-        describe: env!("WINGCHECK_GIT_DESCRIBE").to_string(),
-        rustc: env!("WINGCHECK_RUSTC_VERSION").to_string(),
     }
 }
 

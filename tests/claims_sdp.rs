@@ -202,7 +202,7 @@ fn the_work_bound_is_an_iteration_budget_not_a_clock() {
     let (w, k) = (lyapunov::to_dense(&f.w), lyapunov::to_dense(&f.kappa));
     let run = |budget: u32| {
         let mut left = budget;
-        let row = sdp::pencil_cross_check_within(&w, &k, &c1, &c2, n, cfg.wing.span, &mut left);
+        let row = sdp::pencil_cross_check_within(&w, &k, &c1, &c2, n, cfg.wing.span, &mut left, &Default::default());
         (row, left)
     };
     let (starved, left) = run(3);

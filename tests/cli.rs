@@ -200,11 +200,12 @@ fn certify_names_the_real_cause_of_io_errors() {
     let dir = tempfile::tempdir().unwrap();
     let blocker = dir.path().join("blocker");
     std::fs::write(&blocker, "").unwrap();
+    // refused before any arithmetic, naming the file in the way (issue 46)
     let o = wingcheck(&["certify", "--out", blocker.join("proofs").to_str().unwrap()]);
-    assert_clean_failure(&o, "cannot create directory");
+    assert_clean_failure(&o, "blocker is a regular file, not a directory");
     assert!(!stderr(&o).contains("numerical"), "{}", stderr(&o));
     let o = wingcheck(&["certify", "--out", blocker.to_str().unwrap()]);
-    assert_clean_failure(&o, "exists and is not a directory");
+    assert_clean_failure(&o, "exists and is a regular file, not a directory");
     assert_eq!(std::fs::read(&blocker).unwrap(), b"", "the file is untouched");
     let names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
     assert_eq!(names.len(), 1, "no staging directory left: {names:?}");
@@ -273,4 +274,18 @@ fn bench_report_measures_the_explicit_observer_beside_the_configured_report() {
     assert!(o.status.success(), "{}", stderr(&o));
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert!(v.get("explicit_over_configured").is_none(), "{v}");
+}
+
+#[test]
+fn simulate_names_the_loop_it_ran_and_an_observer_only_where_there_is_one() {
+    let first_line = |controller: &str| {
+        let o = wingcheck(&["simulate", "--controller", controller, SHORT[0], SHORT[1]]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        String::from_utf8_lossy(&o.stdout).lines().next().unwrap_or_default().to_string()
+    };
+    let none = first_line("none");
+    assert!(none.starts_with("open loop (no controller), "), "{none}");
+    assert!(!none.contains("observer"), "{none}");
+    assert!(first_line("pd").starts_with("pd controller (no observer), "));
+    assert!(first_line("ftdo").starts_with("ftdo controller, implicit observer, "));
 }

@@ -153,9 +153,13 @@ fn exponential_scheme_refuses_the_nodal_basis_with_the_fields_named() {
     .to_string();
     assert!(bad.contains("discretisation.stepper") && bad.contains("discretisation.basis"), "{bad}");
     // auto basis on a grid too large for the modal basis: an error naming the limit, no panic
-    let big = paper_with(&["discretisation.stepper=exponential", "discretisation.elements=400", "horizon.t_end=0.01"]);
+    // (1 100 elements: 3 300 unknowns, above MODAL_MAX_UNKNOWNS = 3 072)
+    let big = paper_with(&["discretisation.stepper=exponential", "discretisation.elements=1100", "horizon.t_end=0.01"]);
     let err = simulate(&big, RunOptions::default()).unwrap_err().to_string();
-    assert!(err.contains("600") && err.contains("discretisation.stepper = exponential needs the modal basis"), "{err}");
+    assert!(
+        err.contains("3072") && err.contains("discretisation.stepper = exponential needs the modal basis"),
+        "{err}"
+    );
     // `auto` on the nodal basis is TR-BDF2, and says so
     let nodal = paper_with(&["observer.rule=explicit", "discretisation.basis=nodal", "horizon.t_end=0.1"]);
     assert_eq!(run(&nodal).stats.stepper, TimeScheme::Trbdf2);

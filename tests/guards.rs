@@ -92,8 +92,12 @@ fn default_work_is_far_inside_the_limits() {
 
 #[test]
 fn config_input_is_bounded_and_strict() {
-    refused(&["config", "--config", "/dev/zero"], &["larger than 1048576 bytes"]);
+    // a device is never opened; a regular file is read up to 1 MiB
+    refused(&["config", "--config", "/dev/zero"], &["it is a device, not a regular file"]);
     let dir = tempfile::tempdir().unwrap();
+    let big = dir.path().join("big.json");
+    std::fs::File::create(&big).unwrap().set_len(2 << 20).unwrap();
+    refused(&["config", "--config", big.to_str().unwrap()], &["larger than 1048576 bytes"]);
     let p = dir.path().join("c.json");
     std::fs::write(&p, format!("{} {{\"x\": 1}}", wingcheck_model::PAPER_JSON)).unwrap();
     refused(&["config", "--config", p.to_str().unwrap()], &["trailing data"]);
@@ -110,4 +114,27 @@ fn bench_is_guarded_like_the_commands_it_times() {
     refused(&["bench", "--set", "discretisation.dt=2e-8"], &["bench refused before starting", "--allow-large"]);
     refused(&["bench", "--set", "horizon.t_end=1e5"], &["bench refused before starting"]);
     refused(&["bench", "--what", "check", "--set", "horizon.t_end=1e4"], &["bench refused before starting"]);
+    // issue 46, item 2: `bench --what search` had no guard (2.31 GB RSS when killed at 40 s, five
+    // unguarded simulate runs first); now its simulate timings and every search it runs are
+    // estimated and refused together, before any work
+    let start = std::time::Instant::now();
+    refused(
+        &["bench", "--what", "search", "--set", "horizon.t_end=1e5", "--set", "horizon.sample_every=1e-3"],
+        &["bench refused before starting", "GB of memory", "--allow-large"],
+    );
+    assert!(start.elapsed().as_secs_f64() < 5.0, "refused before any run ({:?})", start.elapsed());
+    // the default benchmark of each kind is within the limits (it runs); `report` times two
+    // reports five times over and is refused at the defaults (its --repeats lowers it)
+    let cfg = Config::paper();
+    let search = wingcheck_search::bench::bench_estimate(
+        &cfg,
+        wingcheck_search::bench::GRID_POINTS,
+        &wingcheck_search::bench::THREAD_COUNTS,
+    )
+    .unwrap();
+    assert!(search.within(&DEFAULT_LIMITS).is_ok(), "{search:?}");
+    assert!(WorkEstimate::modes(&cfg, cfg.discretisation.method, 50).within(&DEFAULT_LIMITS).is_ok());
+    // `bench --what sim` times `modes` `repeats` times: counted at its worst case (every mesh
+    // at the iteration limit)
+    refused(&["bench", "--repeats", "1000"], &["bench refused before starting"]);
 }

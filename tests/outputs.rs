@@ -112,6 +112,9 @@ impl Schemas {
         let mut index = BTreeMap::new();
         for e in std::fs::read_dir(repo("docs/schema")).unwrap() {
             let path = e.unwrap().path();
+            if !path.to_string_lossy().ends_with(".schema.json") {
+                continue; // the directory's marker, .wingcheck-schema
+            }
             let name = path.file_name().unwrap().to_string_lossy().trim_end_matches(".schema.json").to_string();
             let value: Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
             let loc = format!("file:///schema/{name}.schema.json");
@@ -156,10 +159,13 @@ fn the_committed_schemas_are_the_generated_ones() {
         let committed = std::fs::read_to_string(repo("docs/schema").join(&n)).unwrap();
         assert!(made == committed, "docs/schema/{n} is stale: run `wingcheck schema --out docs/schema` (just schema)");
     }
-    // the validator is not vacuous: a document of any schema needs its fields
+    // the validator is not vacuous: a document of any output's schema needs its fields (the
+    // config's keys are all optional, a partial file being merged over the default: its
+    // schema refuses an unknown key instead; tests/config_schema.rs checks its ranges)
     let schemas = Schemas::committed();
     for (name, &i) in &schemas.index {
-        assert!(schemas.schemas.validate(&serde_json::json!({}), i).is_err(), "{name} accepts an empty object");
+        let vacuous = if name == "config" { serde_json::json!({"wing": {"spam": 1}}) } else { serde_json::json!({}) };
+        assert!(schemas.schemas.validate(&vacuous, i).is_err(), "{name} accepts {vacuous}");
     }
 }
 
@@ -177,6 +183,12 @@ fn every_output_is_documented_and_valid() {
     let csv = d("run.csv");
     let o = wingcheck(&[&["simulate", "--json", "--out", csv.to_str().unwrap()][..], &SHORT].concat());
     schemas.validate("simulate", "simulate --json", &json(&o));
+    let modes = json(&wingcheck(&["modes", "--json", "--count", "3"]));
+    schemas.validate("modes", "modes --json", &modes);
+    assert_eq!(
+        modes["provenance"]["config_sha256"],
+        json(&wingcheck(&["simulate", "--json"]))["provenance"]["config_sha256"]
+    );
     let (header, rows) = read_csv(&csv);
     check_columns(&csv, &header, &docs["run.csv"], &config_units);
     assert_eq!(rows.len(), 51, "0.5 s at 0.01 s: 51 samples");
@@ -203,25 +215,26 @@ fn every_output_is_documented_and_valid() {
 
     // a search
     let out = d("search");
-    let o =
-        Command::new(env!("CARGO_BIN_EXE_wingcheck"))
-            .args(
-                [
-                    &[
-                        "search",
-                        "--over",
-                        "control.a=1e-4,1",
-                        "--over",
-                        "control.b=1,2",
-                        "--out",
-                        out.to_str().unwrap(),
-                    ][..],
-                    &SHORT,
-                ]
-                .concat(),
-            )
-            .output()
-            .unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_wingcheck"))
+        .args(
+            [
+                &[
+                    "search",
+                    "--over",
+                    "control.a=1e-4,1",
+                    "--over",
+                    "control.b=1,2",
+                    "--best",
+                    "-tau1_rms_N",
+                    "--out",
+                    out.to_str().unwrap(),
+                ][..],
+                &SHORT,
+            ]
+            .concat(),
+        )
+        .output()
+        .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     for f in ["results.csv", "failures.csv", "boundary.csv", "timings.csv"] {
         let (header, rows) = read_csv(&out.join(f));
@@ -231,11 +244,20 @@ fn every_output_is_documented_and_valid() {
         }
     }
     let results = schemas.validate_file("results", &out.join("results.json"));
+    // one name per metric: results.json's units and metrics are keyed by results.csv's columns
+    let (header, _) = read_csv(&out.join("results.csv"));
     for (m, u) in results["units"].as_object().unwrap() {
-        let col = docs["results.csv"].keys().find(|c| c.starts_with(m.as_str())).unwrap();
-        assert!(is_unit(&docs["results.csv"][col]), "{m} ({u})");
+        assert!(header.contains(m), "results.json names {m}, which is not a results.csv column");
+        assert!(is_unit(&docs["results.csv"][m]), "{m} ({u})");
     }
-    schemas.validate_file("best", &out.join("best.json"));
+    for p in results["points"].as_array().unwrap() {
+        for m in p["metrics"].as_object().unwrap().keys() {
+            assert!(header.contains(m), "a point's metric {m} is not a results.csv column");
+        }
+    }
+    // --best takes results.csv's column name, and best.json names the metric the same way
+    let best = schemas.validate_file("best", &out.join("best.json"));
+    assert_eq!((best["metric"].as_str(), best["order"].as_str()), (Some("tau1_rms_N"), Some("descending")));
     schemas.validate_file("manifest", &out.join("manifest.json"));
     let prov = schemas.validate_file("provenance", &out.join("provenance.json"));
     let listed: BTreeSet<&str> =
@@ -251,11 +273,8 @@ fn every_output_is_documented_and_valid() {
 /// and settled is false exactly when settling_time_s is empty.
 fn check_result_cells(header: &[String], rows: &[Vec<String>]) {
     let col = |n: &str| header.iter().position(|h| h == n).unwrap_or_else(|| panic!("no column {n}"));
-    let metrics: Vec<(usize, String)> = wingcheck_search::store::metric_columns()
-        .into_iter()
-        .zip(wingcheck_search::METRICS)
-        .map(|(c, m)| (col(&c), m.to_string()))
-        .collect();
+    // missing_metrics names the empty cells by their column names
+    let metrics: Vec<(usize, String)> = wingcheck_search::METRICS.iter().map(|m| (col(m), m.clone())).collect();
     for row in rows {
         let missing: BTreeSet<&str> = match row[col("missing_metrics")].as_str() {
             "none" => BTreeSet::new(),

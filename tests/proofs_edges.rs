@@ -147,8 +147,11 @@ fn duplicate_keys_unknown_and_repeated_claims_and_needs_are_refused() {
         let mut v = original.clone();
         edit(&mut v);
         write_index(&p, &serde_json::to_string_pretty(&v).unwrap());
+        let start = Instant::now();
         let e = verify_set(&p).unwrap_err().to_string();
         assert!(e.contains(mention), "{mention}: {e}");
+        // refused before any arithmetic (issue 46, item 6: a repeated claim after ≈ 3 s of it)
+        assert!(start.elapsed() < Duration::from_secs(1), "{mention}: refused after {:?}", start.elapsed());
     }
     write_index(&p, &text);
     verify_set(&p).unwrap();
@@ -293,7 +296,12 @@ fn messages_name_each_os_error_once_and_abbreviate_long_integers() {
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("f");
     std::fs::write(&file, "a file").unwrap();
+    // an --out under a file is now refused before any work, without an OS error (issue 46)
     let o = wingcheck(&["certify", "--out", file.join("p").to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("is a regular file, not a directory"), "{err}");
+    assert!(err.matches("(os error").count() <= 1, "{err}");
+    let o = wingcheck(&["certify", "--config", dir.path().join("missing.json").to_str().unwrap()]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success() && err.matches("(os error").count() == 1, "{err}");
     // A refuted exact pivot has hundreds of digits: shown as its first and last digits and
@@ -394,4 +402,19 @@ fn verify_prints_each_os_error_once() {
     let o = wingcheck(&["verify", p.to_str().unwrap()]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success() && err.matches("(os error").count() == 1, "{err}");
+}
+
+/// Issue 46, item 6: `certify --set wing.span=1e6` named the certificate's internal `shifts[0]`;
+/// the ω₁ enclosure's shifts (squared frequencies ≈ EI/(ρ span⁴) ≈ 1e-23 s⁻² here) fall below the
+/// certificate numbers' range, and the refusal names the wing keys they follow from, as typed.
+#[test]
+fn an_unrepresentable_enclosure_names_the_wing_keys_not_the_certificates_fields() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("p");
+    let o = wingcheck(&["certify", "--set", "wing.span=1e6", "--out", out.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("wing.span = 1e6") && err.contains("cannot be written as a certificate"), "{err}");
+    assert!(!err.contains("shifts[") && !err.contains("panicked"), "{err}");
+    assert!(!out.exists(), "nothing written");
 }

@@ -1,6 +1,6 @@
 //! Real distributed searches: shards run as separate processes by GNU parallel
 //! (`scripts/parallel-search.sh`) and by a Slurm job array (`scripts/slurm-search.sh`), merged,
-//! must be byte-identical to a single run — once with the README's commands exactly as written
+//! must be byte-identical to a single run — once with docs/search.md's commands exactly as written
 //! there (with `wingcheck` on PATH, as `cargo install --path .` leaves it), once on a small
 //! search; and the scripts' exit statuses.
 //!
@@ -37,9 +37,9 @@ const FILES: [&str; 9] = [
     "best.json",
     "failures.csv",
     "boundary.csv",
-    "heatmap-rms_q_tip.svg",
-    "heatmap-rms_theta_tip.svg",
-    "heatmap-settling_time.svg",
+    "heatmap-rms_q_tip_m.svg",
+    "heatmap-rms_theta_tip_rad.svg",
+    "heatmap-settling_time_s.svg",
 ];
 
 fn checkout() -> &'static Path {
@@ -93,7 +93,7 @@ fn installed(root: &Path) -> String {
     format!("{}:{}", bin.display(), std::env::var("PATH").unwrap_or_default())
 }
 
-/// A working directory with the checkout's `scripts/` in it, so the README's relative paths
+/// A working directory with the checkout's `scripts/` in it, so docs/search.md's relative paths
 /// hold and its `runs/` land in the temporary directory.
 fn workdir(root: &Path) -> PathBuf {
     let dir = root.join("work");
@@ -102,22 +102,22 @@ fn workdir(root: &Path) -> PathBuf {
     dir
 }
 
-/// The README's lines of the distributed route that start with `prefix` (trailing `# …`
+/// docs/search.md's lines of the distributed route that start with `prefix` (trailing `# …`
 /// comments removed), in order.
 fn readme_lines(prefix: &str) -> Vec<String> {
-    let readme = std::fs::read_to_string(checkout().join("README.md")).unwrap();
-    let section = readme.split("Distributed runs").nth(1).expect("README has a 'Distributed runs' section");
+    let readme = std::fs::read_to_string(checkout().join("docs/search.md")).unwrap();
+    let section = readme.split("Distributed runs").nth(1).expect("docs/search.md has a 'Distributed runs' section");
     let block = section.split("```sh").nth(1).and_then(|b| b.split("```").next()).expect("a sh block");
     let lines: Vec<String> = block
         .lines()
         .map(|l| l.split("   #").next().unwrap().trim().to_string())
         .filter(|l| l.starts_with(prefix))
         .collect();
-    assert!(!lines.is_empty(), "no README line starts with {prefix:?}");
+    assert!(!lines.is_empty(), "no line of docs/search.md starts with {prefix:?}");
     lines
 }
 
-/// The words of a README line after the script's name `script` and `skip` more words (N, OUT):
+/// The words of a docs/search.md line after the script's name `script` and `skip` more words (N, OUT):
 /// its search arguments, without the closing `)` of a `$(…)`.
 fn search_args(line: &str, script: &str, skip: usize) -> Vec<String> {
     let words: Vec<&str> = line.split_whitespace().collect();
@@ -135,9 +135,17 @@ fn bash(dir: &Path, path: &str, script: &str) -> Output {
         .unwrap()
 }
 
+/// PATH without any directory that holds a `wingcheck`, as on a machine where it was built
+/// (`cargo build --release`) but never installed.
+fn path_without_wingcheck() -> String {
+    let path = std::env::var("PATH").unwrap_or_default();
+    let kept: Vec<&str> = path.split(':').filter(|d| !Path::new(d).join("wingcheck").exists()).collect();
+    kept.join(":")
+}
+
 #[test]
 #[ignore = "needs GNU parallel: .ci/run installs it and runs this with --ignored"]
-fn the_readme_gnu_parallel_route_as_written_matches_the_single_run() {
+fn the_documented_gnu_parallel_route_as_written_matches_the_single_run() {
     require("parallel", &["--version"], "install GNU parallel (Debian package `parallel`)");
     let root = tempfile::tempdir().unwrap();
     let (path, dir) = (installed(root.path()), workdir(root.path()));
@@ -150,12 +158,18 @@ fn the_readme_gnu_parallel_route_as_written_matches_the_single_run() {
 
 #[test]
 #[ignore = "needs a running Slurm (scripts/local-slurm.sh): .ci/run starts one and runs this with --ignored"]
-fn the_readme_slurm_route_as_written_matches_the_single_run() {
+fn the_documented_slurm_route_as_written_matches_the_single_run_without_an_install() {
     require("timeout", &["5", "sinfo"], "no Slurm controller answers (start one with scripts/local-slurm.sh)");
+    // Not installed: the scripts fall back to the release build (scripts/find-wingcheck.sh),
+    // found through CARGO_TARGET_DIR, which the job array and the merge job inherit.
     let root = tempfile::tempdir().unwrap();
-    let (path, dir) = (installed(root.path()), workdir(root.path()));
+    let dir = workdir(root.path());
+    let target = Path::new(BIN).parent().and_then(Path::parent).expect("BIN is <target>/release/wingcheck");
     let (array, merge) = (readme_lines("jid=$(sbatch").remove(0), readme_lines("sbatch --dependency").remove(0));
-    let out = bash(&dir, &path, &format!("{array}\n{merge}"));
+    let mut cmd = Command::new("bash");
+    cmd.args(["-euo", "pipefail", "-c", &format!("{array}\n{merge}")]).current_dir(&dir);
+    cmd.env("PATH", path_without_wingcheck()).env_remove("WINGCHECK").env("CARGO_TARGET_DIR", target);
+    let out = cmd.output().unwrap();
     assert!(out.status.success(), "{array}\n{merge}\n{}", text(&out));
     // the merge job's "Submitted batch job N": wait for it (the array's tasks come before it)
     let stdout = String::from_utf8_lossy(&out.stdout);
@@ -317,7 +331,7 @@ fn the_scripts_find_a_fresh_checkouts_build_or_say_how_to_get_one() {
     let bare = copied_checkout(&root.path().join("bare"), false);
     let out = run(&bare, &root.path().join("o1"));
     assert_eq!(out.status.code(), Some(1), "{}", text(&out));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("cargo install --path ."), "{}", text(&out));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("cargo install --locked --path ."), "{}", text(&out));
     // after `cargo build --release` in the checkout: target/release/wingcheck is used
     let built = copied_checkout(&root.path().join("built"), true);
     let out = run(&built, &root.path().join("o2"));

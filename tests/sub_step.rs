@@ -49,8 +49,11 @@ fn probed_peaks_are_the_fine_step_values_within_their_error() {
         let out = simulate(&cfg, RunOptions::default()).unwrap();
         let l = out.initial_layer.expect("simulate resolves the layer");
         // the reference: step ends at dt = 1e-7 s, 10⁴ × finer; its own sampling error is the
-        // change to dt = 5e-8 s (a step-end maximum converges to the true one from below)
-        let (reference, finer) = (plain(&cfg, 1e-7), plain(&cfg, 5e-8));
+        // change to dt = 8e-8 s (a step-end maximum converges to the true one from below; the
+        // two grids share few instants — with 5e-8 s, whose instants include all of 1e-7 s's,
+        // both read the θ̇ peak at the same instant 1.9 µs after the jump, 2e-6 below the
+        // maximum the probe finds at 1.92 µs, and their difference said 5e-15)
+        let (reference, finer) = (plain(&cfg, 1e-7), plain(&cfg, 8e-8));
         let mut probed = 0;
         // the time step's own error at the step ends (the held step means of ḡ and φ̄), as the
         // error estimate takes it: Richardson on the run at dt/2
@@ -78,7 +81,7 @@ fn probed_peaks_are_the_fine_step_values_within_their_error() {
             probed += usize::from(inside_a_step);
             assert!(
                 diff <= stated + reference_error,
-                "{name}, signal {i}: {} (t = {}) vs dt = 5e-8 {} (t = {}): off by {diff:e}, stated {stated:e} + \
+                "{name}, signal {i}: {} (t = {}) vs dt = 8e-8 {} (t = {}): off by {diff:e}, stated {stated:e} + \
                  reference {reference_error:e}",
                 p.abs_max,
                 p.t,
@@ -159,4 +162,53 @@ fn a_scheme_without_the_probe_is_checked_by_an_exponential_twin() {
     // an exponential base run needs no twin
     let exponential = simulate_with_error(&configs().remove(0).1, RunOptions::default()).unwrap();
     assert_eq!(exponential.sub_step_check, wingcheck_sim::SubStepCheck::Probed);
+}
+
+/// The meshes of the refinement the error estimate makes and a referee tries: FD 96–384
+/// intervals, FE 24–192 elements graded and uniform.
+const MESHES: [(&str, &[&str]); 7] = [
+    ("FD 96", &["discretisation.method=fd", "discretisation.grading=0", "discretisation.fd_points=96"]),
+    ("FD 192", &["discretisation.method=fd", "discretisation.grading=0", "discretisation.fd_points=192"]),
+    ("FD 384", &["discretisation.method=fd", "discretisation.grading=0", "discretisation.fd_points=384"]),
+    ("FE 24 graded", &["discretisation.elements=24"]),
+    ("FE 96 graded", &["discretisation.elements=96"]),
+    ("FE 192 graded", &["discretisation.elements=192"]),
+    ("FE 192 uniform", &["discretisation.elements=192", "discretisation.grading=0"]),
+];
+
+#[test]
+fn probed_peaks_are_a_microsecond_run_s_on_every_mesh() {
+    // a = 1, b = 3500, explicit FTDO, the exponential scheme: every full-rate peak of q(s),
+    // θ(s), q̇(s), θ̇(s), τ1, τ2 after the initial layer, over the jump at t = 3 ms (its tip
+    // transient peaks 0.5–2.4 µs later, finer meshes sooner) and the next, at dt = 1 ms with
+    // the probe against the same mesh at dt = 1e-6 s (with its own probe: the transient spans
+    // several of its steps, which it probes while an output is still rising at a step's end;
+    // its step ends alone are 0.15–8 % low on these meshes). Reference tolerance: the issue's
+    // 1e-4 relative (measured ≤ 4.8e-6 on all seven meshes, FE 96 graded's τ2; 1.4e-4 on FD 384 and 0.15–0.8 % on FD
+    // 96–192 before the probe's grid was refined and followed the transient past one step).
+    for (name, mesh) in MESHES {
+        let mut sets = vec![
+            "horizon.t_end=0.004",
+            "horizon.sample_every=0.001",
+            "observer.rule=explicit",
+            "discretisation.stepper=exponential",
+            "control.a=1",
+            "control.b=3500",
+        ];
+        sets.extend_from_slice(mesh);
+        let cfg = paper_with(&sets);
+        let coarse = simulate_base(&cfg, RunOptions::default()).unwrap();
+        let mut fine = cfg.clone();
+        fine.discretisation.dt = 1e-6;
+        let fine = simulate_base(&fine, RunOptions::default()).unwrap();
+        for (i, (p, f)) in
+            coarse.peaks_after_layer.signals().iter().zip(fine.peaks_after_layer.signals()).enumerate().take(6)
+        {
+            let rel = (p.abs_max - f.abs_max).abs() / f.abs_max;
+            println!("{name}, signal {i}: {:.7e} (t = {:.7}) vs {:.7e}: {rel:.1e}", p.abs_max, p.t, f.abs_max);
+            assert!(rel <= 1e-4, "{name}, signal {i}: {p:?} vs dt = 1e-6 s {f:?}");
+        }
+        // the transient is there to be found: θ̇(s) peaks inside the step after the jump
+        assert!(coarse.peaks_after_layer.theta_tip_rate.sub_step_error > 0.0, "{name}");
+    }
 }

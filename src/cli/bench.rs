@@ -28,8 +28,8 @@ pub struct BenchArgs {
 }
 
 /// The work of the whole benchmark, estimated before it starts (every timed run times its
-/// repetitions), so `bench` is guarded like the commands it times. `search` is guarded by the
-/// search's own estimate when it starts.
+/// repetitions), so `bench` is guarded like the commands it times; `search` by
+/// `wingcheck_search::bench::bench_estimate` (its `simulate` timings and every search it runs).
 fn estimate(cfg: &Config, what: &str, repeats: usize) -> WorkEstimate {
     let set = |sets: &[String]| apply_overrides(cfg, sets).ok();
     let mut parts: Vec<(f64, WorkEstimate)> = Vec::new();
@@ -46,7 +46,13 @@ fn estimate(cfg: &Config, what: &str, repeats: usize) -> WorkEstimate {
                 parts.push((r, wingcheck_report::report_estimate(&c)));
             }
         }
-        "search" => {}
+        "search" => {
+            use wingcheck_search::bench::{bench_estimate, GRID_POINTS, THREAD_COUNTS};
+            // axes that do not fit this configuration fail in `bench_search` before any work
+            if let Ok(e) = bench_estimate(cfg, GRID_POINTS, &THREAD_COUNTS) {
+                parts.push((1.0, e));
+            }
+        }
         _ => {
             parts.push((r, sim(cfg)));
             for variant in [
@@ -70,6 +76,8 @@ fn estimate(cfg: &Config, what: &str, repeats: usize) -> WorkEstimate {
                 }
             }
             parts.push((r3, WorkEstimate::simulation_with_error(cfg, false, None)));
+            // time_modes: 5 frequencies, `repeats` times
+            parts.push((r, WorkEstimate::modes(cfg, cfg.discretisation.method, 5)));
             let key = if cfg.discretisation.method == wingcheck_model::Method::Fd { "fd_points" } else { "elements" };
             for n in [8usize, 16, 32, 64, 128] {
                 if let Some(c) = set(&[format!("discretisation.{key}={n}")]) {
@@ -386,7 +394,8 @@ fn bench_report(cfg: &wingcheck_model::Config, repeats: usize, as_json: bool) ->
 }
 
 fn bench_search(cfg: &wingcheck_model::Config, as_json: bool) -> anyhow::Result<()> {
-    let b = wingcheck_search::bench::bench_search(cfg, 32, &[1, 2])?;
+    use wingcheck_search::bench::{GRID_POINTS, THREAD_COUNTS};
+    let b = wingcheck_search::bench::bench_search(cfg, GRID_POINTS, &THREAD_COUNTS)?;
     if as_json {
         println!("{}", serde_json::to_string_pretty(&b)?);
         return Ok(());

@@ -1,7 +1,7 @@
 //! `wingcheck check`: the claim ledger.
 
 use clap::Args;
-use wingcheck_claims::check_all;
+use wingcheck_app::Cancel;
 
 use super::common::ConfigArgs;
 
@@ -19,8 +19,10 @@ pub struct CheckArgs {
 
 pub fn run(a: CheckArgs) -> anyhow::Result<()> {
     let cfg = a.config.load()?;
-    a.work.guard(&wingcheck_claims::plan::check_estimate(&cfg, &wingcheck_claims::CheckSettings::default()))?;
-    let ledger = check_all(&cfg)?;
+    let estimate = wingcheck_claims::plan::check_estimate(&cfg, &wingcheck_claims::CheckSettings::default());
+    let ledger = super::progress::while_running("check", estimate.seconds, || {
+        wingcheck_app::ops::check(&cfg, a.work.policy(), &Cancel::new())
+    })?;
     if a.json {
         println!("{}", ledger.to_json());
         return Ok(());

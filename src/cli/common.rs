@@ -1,10 +1,10 @@
 //! Options shared by all commands: the configuration source and overrides.
 
-use std::io::IsTerminal;
 use std::path::PathBuf;
 
 use clap::Args;
-use wingcheck_model::{apply_overrides, Config};
+use wingcheck_app::{ConfigSource, Front, WorkPolicy};
+use wingcheck_model::Config;
 
 /// Where the configuration comes from.
 #[derive(Debug, Clone, Args)]
@@ -18,16 +18,14 @@ pub struct ConfigArgs {
 }
 
 impl ConfigArgs {
+    /// The configuration source these flags name.
+    pub fn source(&self) -> ConfigSource {
+        ConfigSource { file: self.config.clone(), text: None, set: self.set.clone() }
+    }
+
     /// Load, override and validate.
     pub fn load(&self) -> anyhow::Result<Config> {
-        let base = match &self.config {
-            None => Config::paper(),
-            Some(p) => Config::from_file(p).map_err(|e| match e {
-                wingcheck_model::ConfigError::Read { .. } => anyhow::Error::new(e),
-                other => anyhow::Error::new(other).context(format!("in config {}", p.display())),
-            })?,
-        };
-        Ok(apply_overrides(&base, &self.set)?)
+        Ok(self.source().load()?)
     }
 }
 
@@ -41,26 +39,13 @@ pub struct WorkArgs {
 }
 
 impl WorkArgs {
+    /// The work policy these flags ask for.
+    pub fn policy(&self) -> WorkPolicy {
+        WorkPolicy { allow_large: self.allow_large, front: Front::Cli }
+    }
+
     /// Refuse `est` above the default limits unless `--allow-large` was given.
     pub fn guard(&self, est: &wingcheck_model::work::WorkEstimate) -> anyhow::Result<()> {
-        if self.allow_large {
-            return Ok(());
-        }
-        Ok(est.within(&wingcheck_model::work::DEFAULT_LIMITS)?)
+        Ok(self.policy().guard(est)?)
     }
-}
-
-/// A progress bar on stderr when it is a terminal; `None` otherwise (quiet).
-pub fn progress_bar(len: u64, what: &str) -> Option<indicatif::ProgressBar> {
-    if !std::io::stderr().is_terminal() {
-        return None;
-    }
-    let bar = indicatif::ProgressBar::new(len);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{msg} [{bar:40}] {percent}% ({elapsed} / eta {eta})")
-            .expect("valid template")
-            .progress_chars("=> "),
-    );
-    bar.set_message(what.to_string());
-    Some(bar)
 }

@@ -4,6 +4,7 @@ mod bench;
 mod check;
 mod common;
 mod modes;
+mod progress;
 mod proofs;
 mod report;
 mod schema;

@@ -3,7 +3,6 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use anyhow::Context;
 use clap::Args;
 use wingcheck_claims::certify;
 
@@ -35,7 +34,7 @@ pub struct VerifyArgs {
 pub fn certify(a: CertifyArgs) -> anyhow::Result<()> {
     let cfg = a.config.load()?;
     let start = Instant::now();
-    let written = certify::write_set(&cfg, &a.out).with_context(|| format!("certify into {}", a.out.display()))?;
+    let written = wingcheck_app::ops::certify(&cfg, &a.out, &wingcheck_app::Cancel::new())?;
     let files = written.files;
     for f in &files {
         println!("wrote {}", f.display());
@@ -54,18 +53,10 @@ pub fn certify(a: CertifyArgs) -> anyhow::Result<()> {
 }
 
 pub fn verify(a: VerifyArgs) -> anyhow::Result<()> {
-    if a.path.is_file() {
-        anyhow::bail!(
-            "{} is a file: verify takes a certificate set directory (index.json and the files it lists), \
-             because a certificate is only checked against its set's configuration",
-            a.path.display()
-        );
-    }
-    let pinned = a.expected.config.is_some() || !a.expected.set.is_empty();
-    let expected = if pinned { Some(a.expected.load()?) } else { None };
+    let pinned = a.expected.source().is_given();
+    let expected = if pinned && !a.path.is_file() { Some(a.expected.load()?) } else { None };
     let start = Instant::now();
-    let set = certify::verify_set_for(&a.path, expected.as_ref())
-        .with_context(|| format!("REJECTED {}", a.path.display()))?;
+    let set = wingcheck_app::ops::verify(&a.path, expected.as_ref())?;
     let w = &set.config.wing;
     println!(
         "certificate set {} for config sha256 {}\n  wing: span = {}, rho = {}, rho_xc = {}, ei = {}, gj = {}, ip = {}, xi = {}",

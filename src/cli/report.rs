@@ -3,9 +3,10 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use wingcheck_report::{write_report, Overall, ReportOptions};
+use wingcheck_report::{Overall, ReportOptions};
 
-use super::common::{progress_bar, ConfigArgs};
+use super::common::ConfigArgs;
+use super::progress::Progress;
 
 /// Arguments of `wingcheck report`.
 #[derive(Debug, Args)]
@@ -21,21 +22,13 @@ pub struct ReportArgs {
 
 pub fn run(a: ReportArgs) -> anyhow::Result<()> {
     let cfg = a.config.load()?;
-    a.work.guard(&wingcheck_report::report_estimate(&cfg))?;
     // One bar over the whole report (per mille of the overall fraction): it never restarts.
-    let bar = progress_bar(1000, "report");
-    let on_progress = |p: Overall| {
-        if let Some(b) = &bar {
-            b.set_message(format!("report: {}", p.stage));
-            b.set_position((p.fraction * 1000.0).round() as u64);
-        }
-    };
-    let command_line = wingcheck_report::command_text(&std::env::args().collect::<Vec<_>>());
-    let opts = ReportOptions { progress: None, overall: Some(&on_progress), command_line: Some(&command_line) };
-    let summary = write_report(&cfg, &a.out, &opts)?;
-    if let Some(b) = bar {
-        b.finish_and_clear();
-    }
+    let shown = Progress::new("report");
+    let on_progress = |p: Overall| shown.set((p.fraction * 1000.0).round() as u64, 1000, "", p.stage);
+    let command_line = wingcheck_report::command_text(&std::env::args_os().collect::<Vec<_>>());
+    let opts = ReportOptions { overall: Some(&on_progress), command_line: Some(&command_line), ..Default::default() };
+    let summary = wingcheck_app::ops::report(&cfg, &a.out, a.work.policy(), &opts)?;
+    shown.finish();
     println!("report written to {}/index.html ({} files)", summary.out_dir.display(), summary.files.len());
     for t in &summary.timings {
         println!("  {:<12} {:>7.3} s", t.name, t.seconds);

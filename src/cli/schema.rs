@@ -17,33 +17,19 @@ pub struct SchemaArgs {
     out: PathBuf,
 }
 
-/// Every schema: the file name and the schema.
-pub fn schemas() -> Vec<(&'static str, schemars::Schema)> {
-    use schemars::schema_for;
-    vec![
-        ("config", schema_for!(wingcheck_model::Config)),
-        ("check", schema_for!(wingcheck_claims::Ledger)),
-        ("simulate", schema_for!(super::simulate::SimulateSummary)),
-        ("run", schema_for!(wingcheck_sim::output::RunDocument<'static>)),
-        ("results", schema_for!(wingcheck_search::records::ResultsDocument)),
-        ("best", schema_for!(wingcheck_search::records::BestDocument)),
-        ("manifest", schema_for!(wingcheck_search::Manifest)),
-        ("provenance", schema_for!(wingcheck_io::Provenance)),
-        ("proofs-index", schema_for!(wingcheck_claims::certify::manifest::Manifest)),
-    ]
-}
-
-/// The text of one schema file (pretty JSON, trailing newline).
-pub fn schema_text(s: &schemars::Schema) -> String {
-    serde_json::to_string_pretty(s).expect("a schema serialises") + "\n"
-}
+/// Marker of a schema directory: `--out` is replaced (atomically) only when it is missing, empty
+/// or a schema directory holding nothing but the files its marker lists.
+pub const MARKER: &str = ".wingcheck-schema";
 
 pub fn run(a: SchemaArgs) -> anyhow::Result<()> {
-    std::fs::create_dir_all(&a.out).with_context(|| format!("create {}", a.out.display()))?;
-    for (name, s) in schemas() {
-        let path = a.out.join(format!("{name}.schema.json"));
-        wingcheck_io::write_file_atomic(&path, schema_text(&s).as_bytes())?;
-        println!("wrote {}", path.display());
+    let files: Vec<(String, Vec<u8>)> = wingcheck_app::schemas()
+        .into_iter()
+        .map(|(name, s)| (format!("{name}.schema.json"), wingcheck_app::schema_text(&s).into_bytes()))
+        .collect();
+    wingcheck_io::write_marked_dir(&a.out, MARKER, "wingcheck schema", "a schema directory", &files)
+        .with_context(|| format!("schema --out {}", a.out.display()))?;
+    for (name, _) in &files {
+        println!("wrote {}", a.out.join(name).display());
     }
     Ok(())
 }

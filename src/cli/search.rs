@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use wingcheck_search::{merge, run, Progress, RunControl, RunSummary, Search, SearchOptions, Shard};
+use wingcheck_search::{Progress, RunControl, RunSummary, SearchOptions, Shard};
 
 use super::common::ConfigArgs;
 
@@ -25,8 +25,9 @@ pub struct SearchArgs {
     /// Bisect the W ≻ 0 and (32) boundaries to this tolerance (relative on log axes).
     #[arg(long, value_name = "TOL")]
     refine: Option<f64>,
-    /// Metric ranking best.json (minimised; prefix `-` to maximise), e.g. rms_q_tip, -lambda.
-    #[arg(long, default_value = "rms_q_tip", allow_hyphen_values = true)]
+    /// Metric ranking best.json, by its results.csv column name (minimised; prefix `-` to maximise),
+    /// e.g. rms_q_tip_m, -lambda_per_s; the name without its unit suffix (rms_q_tip) is accepted too.
+    #[arg(long, default_value = "rms_q_tip_m", allow_hyphen_values = true)]
     best: wingcheck_search::Ranking,
     /// Metric window `t0,t1` in s (default: the second half of the horizon).
     #[arg(long, value_name = "T0,T1", value_parser = parse_window)]
@@ -40,6 +41,10 @@ pub struct SearchArgs {
     /// Run a search above the work limits (1e6 points or 2 estimated core-hours).
     #[arg(long)]
     allow_large: bool,
+    /// Recompute every point of the chunks found on disk before resuming from them (default:
+    /// one point per chunk, chosen at random) and refuse a chunk whose results differ.
+    #[arg(long)]
+    verify_chunks: bool,
 }
 
 fn parse_window(s: &str) -> Result<(f64, f64), String> {
@@ -56,6 +61,21 @@ pub struct MergeArgs {
     /// Output directory for the combined files.
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
+    /// Recompute every point of every chunk before merging (default: one point per chunk,
+    /// chosen at random) and refuse a chunk whose results differ.
+    #[arg(long)]
+    verify_chunks: bool,
+    /// Recompute above the work limits (with --verify-chunks, the whole search's work).
+    #[arg(long)]
+    allow_large: bool,
+}
+
+fn chunk_check(all: bool) -> wingcheck_search::ChunkCheck {
+    if all {
+        wingcheck_search::ChunkCheck::All
+    } else {
+        wingcheck_search::ChunkCheck::Sample
+    }
 }
 
 pub fn run_search(a: SearchArgs) -> anyhow::Result<()> {
@@ -67,39 +87,25 @@ pub fn run_search(a: SearchArgs) -> anyhow::Result<()> {
         best: a.best,
         ..Default::default()
     };
-    let search = Search::new(base, &a.over, options)?;
-    let bar = indicatif::ProgressBar::new(0);
-    if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
-        bar.set_style(
-            indicatif::ProgressStyle::with_template(
-                "search [{bar:40}] {pos}/{len} points ({per_sec}, {elapsed} / eta {eta})",
-            )
-            .expect("valid template")
-            .progress_chars("=> "),
-        );
-    } else {
-        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
-    }
-    let on_progress = |p: Progress| {
-        if p.done == 0 {
-            bar.set_length(p.total as u64);
-            bar.reset();
-        } else {
-            bar.inc(1);
-        }
+    // the estimate the guard applies, memory buffer by buffer (the search is posed again inside
+    // `ops::search`; posing it is cheap)
+    let posed = wingcheck_search::Search::new(base.clone(), &a.over, options.clone())?;
+    println!("estimated: {}", posed.estimate_for(a.threads).text());
+    let shown = super::progress::Progress::new("search");
+    let on_progress = |p: Progress| shown.set(p.done as u64, p.total as u64, "points", "");
+    let policy = wingcheck_app::WorkPolicy { allow_large: a.allow_large, front: wingcheck_app::Front::Cli };
+    let ctl = RunControl {
+        shard: a.shard,
+        progress: Some(&on_progress),
+        threads: a.threads,
+        verify: chunk_check(a.verify_chunks),
+        ..Default::default()
     };
-    let s = run(
-        &search,
-        &a.out,
-        RunControl {
-            shard: a.shard,
-            progress: Some(&on_progress),
-            threads: a.threads,
-            allow_large: a.allow_large,
-            ..Default::default()
-        },
-    )?;
-    bar.finish_and_clear();
+    let s = wingcheck_app::ops::search(base, &a.over, options, &a.out, policy, ctl)?;
+    shown.finish();
+    if s.verified > 0 {
+        println!("{} points of the chunks found on disk recomputed: the same results", s.verified);
+    }
     println!(
         "{} of {} points evaluated ({} already done), {} of them failed, in {:.1} s; simulation {:.1} s, theory {:.1} s (summed over points)",
         s.evaluated, s.points_total, s.skipped, s.failed, s.wall_seconds, s.sim_seconds, s.theory_seconds
@@ -155,7 +161,8 @@ fn exit_on_failures(s: &RunSummary) {
 }
 
 pub fn run_merge(a: MergeArgs) -> anyhow::Result<()> {
-    let s = merge(&a.dirs, &a.out)?;
+    let s = wingcheck_search::merge_with(&a.dirs, &a.out, chunk_check(a.verify_chunks), a.allow_large)?;
+    println!("{} points of the chunks recomputed: the same results", s.verified);
     println!("merged {} points into {}: {}", s.points_total, s.out_dir.display(), s.files.join(", "));
     exit_on_failures(&s);
     Ok(())

@@ -1,15 +1,14 @@
 //! `wingcheck simulate`.
 
 use std::path::PathBuf;
-use std::time::Instant;
 
 use clap::Args;
-use serde::Serialize;
+use wingcheck_app::{Cancel, SimulateRequest, SimulateSummary};
 use wingcheck_model::{ControllerKind, Method, ObserverRule};
-use wingcheck_sim::{output, simulate_with_error, RunOptions, SubStepCheck, TIP_TOLERANCE};
-use wingcheck_sim::{simulate, EstimatedRun};
+use wingcheck_sim::{SubStepCheck, TIP_TOLERANCE};
 
-use super::common::{progress_bar, ConfigArgs};
+use super::common::ConfigArgs;
+use super::progress::Progress;
 
 /// Arguments of `wingcheck simulate`.
 #[derive(Debug, Args)]
@@ -48,80 +47,38 @@ pub struct SimulateArgs {
 }
 
 pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
-    let mut set = a.config.set.clone();
-    if a.method == Some(Method::Fd) && !set.iter().any(|s| s.trim_start().starts_with("discretisation.grading")) {
-        set.insert(0, "discretisation.grading=0".into());
-    }
-    if let Some(c) = a.controller {
-        set.push(format!("control.kind={}", c.name()));
-    }
-    if let Some(o) = a.observer {
-        set.push(format!("observer.rule={}", o.name()));
-    }
-    if let Some(m) = a.method {
-        set.push(format!("discretisation.method={}", m.name()));
-    }
-    if let Some(s) = a.sample_every {
-        set.push(format!("horizon.sample_every={s}"));
-    }
-    let cfg = super::ConfigArgs { config: a.config.config.clone(), set }.load()?;
-    let sample_times: Vec<f64> = match &a.sample_times {
-        Some(v) => v.clone(),
-        None => {
-            let within: Vec<f64> = [5.0, 10.0, 20.0].into_iter().filter(|&t| t <= cfg.horizon.t_end).collect();
-            if within.is_empty() {
-                vec![cfg.horizon.t_end]
-            } else {
-                within
-            }
-        }
-    };
-    for &t in &sample_times {
-        if !(t.is_finite() && (0.0..=cfg.horizon.t_end).contains(&t)) {
-            anyhow::bail!("--sample-times: {t} is outside the horizon [0, {}]", cfg.horizon.t_end);
-        }
-    }
-    let json_out = a.out.as_ref().map(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("json")));
-    let estimate = if a.error_estimate {
-        wingcheck_model::work::WorkEstimate::simulation_with_error(&cfg, json_out == Some(true), json_out)
-    } else {
-        wingcheck_model::work::WorkEstimate::simulation(&cfg, json_out == Some(true), json_out)
-    };
-    a.work.guard(&estimate)?;
-    if let Some(path) = &a.out {
-        check_writable(path)?;
-    }
-    let bar = progress_bar(1000, "simulate");
-    let mut progress = |f: f64| {
-        if let Some(b) = &bar {
-            b.set_position((f * 1000.0) as u64);
-        }
-    };
     let wants_fields = a.out.as_ref().is_some_and(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("json")));
-    let start = Instant::now();
-    let opts = RunOptions { fields: wants_fields, progress: Some(&mut progress), ..Default::default() };
-    let (out, estimated): (_, Option<EstimatedRun>) = if a.error_estimate {
-        let e = simulate_with_error(&cfg, opts)?;
-        (e.output.clone(), Some(e))
-    } else {
-        (simulate(&cfg, opts)?, None)
+    let req = SimulateRequest {
+        controller: a.controller,
+        observer: a.observer,
+        method: a.method,
+        sample_every: a.sample_every,
+        error_estimate: a.error_estimate,
+        fields: wants_fields,
+        sample_times: a.sample_times.clone(),
+        out: a.out.clone(),
     };
-    let wall = start.elapsed().as_secs_f64();
-    if let Some(b) = bar {
-        b.finish_and_clear();
-    }
-    if let Some(path) = &a.out {
-        output::write_run(path, &cfg, &out)?;
-    }
+    let cfg = req.config(&a.config.source())?;
+    let shown = Progress::new("simulate");
+    let mut progress = |f: f64| shown.set((f * 1000.0).round() as u64, 1000, "", "");
+    let result = wingcheck_app::simulate::run(&cfg, &req, a.work.policy(), Some(&mut progress), &Cancel::new())?;
+    shown.finish();
+    let (out, estimated, sample_times, wall) =
+        (&result.output, result.estimate.as_ref(), &result.sample_times, result.wall_seconds);
     let s = &out.series;
     if a.json {
-        let summary = summary(&cfg, &out, &sample_times, wall, a.out.as_deref(), estimated.as_ref());
+        let summary = SimulateSummary::of(&cfg, &result, a.out.as_deref());
         println!("{}", serde_json::to_string_pretty(&summary)?);
     } else {
+        // the observer's rule matters only to the FTDO
+        let loop_text = match cfg.control.kind {
+            ControllerKind::None => "open loop (no controller)".to_string(),
+            ControllerKind::Pd => "pd controller (no observer)".to_string(),
+            ControllerKind::Dobc => "dobc controller (its linear observer (57))".to_string(),
+            ControllerKind::Ftdo => format!("ftdo controller, {} observer", cfg.observer.rule.name()),
+        };
         println!(
-            "{} controller, {} observer, {} with {} {}, dt = {} s ({}, {} basis): {} steps in {:.3} s",
-            cfg.control.kind.name(),
-            cfg.observer.rule.name(),
+            "{loop_text}, {} with {} {}, dt = {} s ({}, {} basis): {} steps in {:.3} s",
             cfg.discretisation.method.name(),
             cfg.discretisation.grid_size(),
             if cfg.discretisation.method == Method::Fe { "elements" } else { "intervals" },
@@ -131,10 +88,10 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
             out.stats.steps,
             wall
         );
-        match &estimated {
+        match estimated {
             None => {
                 println!("{:>8} {:>14} {:>14}", "t (s)", "q(s,t) (m)", "θ(s,t) (rad)");
-                for &t in &sample_times {
+                for &t in sample_times {
                     println!("{:>8} {:>14.6e} {:>14.6e}", t, s.at(&s.q_tip, t), s.at(&s.theta_tip, t));
                 }
             }
@@ -143,7 +100,7 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
                     "{:>8} {:>14} {:>9} {:>14} {:>9}",
                     "t (s)", "q(s,t) (m)", "± error", "θ(s,t) (rad)", "± error"
                 );
-                for &t in &sample_times {
+                for &t in sample_times {
                     let (q, th) = e.tip_at(t);
                     println!("{:>8} {:>14.6e} {:>9.1e} {:>14.6e} {:>9.1e}", t, q.value, q.error, th.value, th.error);
                 }
@@ -160,24 +117,24 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
                     TIP_TOLERANCE
                 );
                 let p = &e.peaks;
+                let at =
+                    |t: f64| if t == 0.0 { "0".to_string() } else { wingcheck_model::quantity::with_significant(t, 4) };
                 println!(
-                    "full-rate peaks: |τ1| {:.6} ± {:.1e} N at {:.3} s, |τ2| {:.6} ± {:.1e} N m at {:.3} s, |q| {:.6} ± {:.1e} m, |θ| {:.6} ± {:.1e} rad",
-                    p.tau1.abs_max.value, p.tau1.abs_max.error, p.tau1.t,
-                    p.tau2.abs_max.value, p.tau2.abs_max.error, p.tau2.t,
-                    p.q_tip.abs_max.value, p.q_tip.abs_max.error,
-                    p.theta_tip.abs_max.value, p.theta_tip.abs_max.error
+                    "full-rate peaks (± from h on N, 2N, 4N; dt; the initial layer; the sub-step probe; round-off):"
                 );
-                println!(
-                    "tip-rate peaks: |q̇| {:.4e} ± {:.1e} m/s at {:.3e} s{}, |θ̇| {:.4e} ± {:.1e} rad/s at {:.3e} s{}",
-                    p.q_tip_rate.abs_max.value,
-                    p.q_tip_rate.abs_max.error,
-                    p.q_tip_rate.t,
-                    if p.q_tip_rate.grid_converged { "" } else { " (not converged in the grid)" },
-                    p.theta_tip_rate.abs_max.value,
-                    p.theta_tip_rate.abs_max.error,
-                    p.theta_tip_rate.t,
-                    if p.theta_tip_rate.grid_converged { "" } else { " (not converged in the grid)" },
-                );
+                for (name, peak, unit) in [
+                    ("|τ1|", &p.tau1, "N"),
+                    ("|τ2|", &p.tau2, "N m"),
+                    ("|q|", &p.q_tip, "m"),
+                    ("|θ|", &p.theta_tip, "rad"),
+                    ("|q̇|", &p.q_tip_rate, "m/s"),
+                    ("|θ̇|", &p.theta_tip_rate, "rad/s"),
+                ] {
+                    println!("  {name} {} at {} s", peak.text(unit), at(peak.t));
+                }
+                if let wingcheck_sim::ThirdGrid::NotRun { reason } = &e.third_grid {
+                    println!("  (the peaks' 4N grid did not run: {reason}; no peak is called converged in the grid)");
+                }
                 match &e.sub_step_check {
                     SubStepCheck::Probed => {}
                     SubStepCheck::Twin { raised } => println!(
@@ -215,185 +172,4 @@ pub fn run(a: SimulateArgs) -> anyhow::Result<()> {
         }
     }
     Ok(())
-}
-
-/// Fail before any work if the output cannot be written (missing directory, bad extension).
-fn check_writable(path: &std::path::Path) -> anyhow::Result<()> {
-    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
-    if ext != "csv" && ext != "json" {
-        anyhow::bail!("--out {}: use a .csv or .json file name", path.display());
-    }
-    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(std::path::Path::new("."));
-    let md = std::fs::metadata(dir)
-        .map_err(|e| anyhow::anyhow!("--out {}: directory {}: {e}", path.display(), dir.display()))?;
-    if !md.is_dir() {
-        anyhow::bail!("--out {}: {} is not a directory", path.display(), dir.display());
-    }
-    if md.permissions().readonly() {
-        anyhow::bail!("--out {}: directory {} is read-only", path.display(), dir.display());
-    }
-    Ok(())
-}
-
-/// `simulate --json`: the settings run, the cost, the tip values at the requested times and the
-/// full-rate peaks (docs/schema/simulate.schema.json).
-#[derive(Serialize, schemars::JsonSchema)]
-pub struct SimulateSummary {
-    /// Layout version ([`wingcheck_io::SCHEMA_VERSION`]).
-    pub schema_version: u32,
-    /// Tool build and the configuration's SHA-256 (the files listed: `--out`, if given).
-    pub provenance: wingcheck_io::Provenance,
-    /// What was run.
-    pub settings: RunSettings,
-    /// Wall time of the run (s; not reproducible).
-    pub run_seconds: f64,
-    /// Cost statistics.
-    pub stats: wingcheck_sim::RunStats,
-    /// The tip at the sample times.
-    pub tip: TipValues,
-    /// Full-rate peaks (every integrator step, both sides of each jump).
-    pub peaks: wingcheck_sim::Peaks,
-    /// How the initial layer was resolved (peaks within it from runs at finer steps).
-    pub initial_layer: Option<wingcheck_sim::layer::InitialLayer>,
-    /// The output file written, if any.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub out: Option<String>,
-    /// With `--error-estimate`: the discretisation error estimate.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub error_estimate: Option<ErrorSummary>,
-}
-
-/// The settings of a simulate run.
-#[derive(Serialize, schemars::JsonSchema)]
-pub struct RunSettings {
-    /// Controller: none, pd, ftdo, dobc.
-    pub controller: String,
-    /// Observer rule: implicit or explicit.
-    pub observer: String,
-    /// Spatial discretisation: fe or fd.
-    pub method: String,
-    /// Elements (FE) or intervals (FD).
-    pub elements: usize,
-    /// Mesh grading (FE; 0 = uniform).
-    pub grading: f64,
-    /// Integrator step (s).
-    pub dt: f64,
-    /// The time scheme used.
-    pub stepper: wingcheck_model::TimeScheme,
-    /// Observer sample period (s).
-    pub sample_period: f64,
-    /// Horizon T (s).
-    pub t_end: f64,
-    /// Weight a of the control law (15) (dimensionless).
-    pub a: f64,
-    /// Weight b of the control law (15) (s).
-    pub b: f64,
-}
-
-/// Tip values at the sample times, with their errors under `--error-estimate`.
-#[derive(Serialize, schemars::JsonSchema)]
-pub struct TipValues {
-    /// Sample times (s).
-    pub t: Vec<f64>,
-    /// q(s,t) (m).
-    pub q: Vec<f64>,
-    /// θ(s,t) (rad).
-    pub theta: Vec<f64>,
-    /// Estimated error of each q (m), with `--error-estimate`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub q_error: Option<Vec<f64>>,
-    /// Estimated error of each θ (rad), with `--error-estimate`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub theta_error: Option<Vec<f64>>,
-}
-
-/// The error estimate of `--error-estimate`.
-#[derive(Serialize, schemars::JsonSchema)]
-pub struct ErrorSummary {
-    /// Elements (intervals) of the refined grid.
-    pub refined_grid: usize,
-    /// Integrator step of the refined run (s).
-    pub refined_dt: f64,
-    /// Time scheme of the refined runs.
-    pub refined_stepper: wingcheck_model::TimeScheme,
-    /// Largest estimated error of q(s,t) over the horizon (m).
-    pub max_q_tip_error: f64,
-    /// Largest estimated error of θ(s,t) over the horizon (rad).
-    pub max_theta_tip_error: f64,
-    /// Its spatial part (relative to the tip scale).
-    pub max_space_error: f64,
-    /// Its time-step part.
-    pub max_time_error: f64,
-    /// The tolerance the estimate is held against.
-    pub tolerance: f64,
-    /// Whether the estimates meet it.
-    pub meets_tolerance: bool,
-    /// Peaks with their errors.
-    pub peaks: wingcheck_sim::PeakEstimates,
-    /// How the peaks were checked for sub-step transients after the initial layer.
-    pub sub_step_check: SubStepCheck,
-    /// How the estimate is made.
-    pub basis: String,
-}
-
-fn summary(
-    cfg: &wingcheck_model::Config,
-    out: &wingcheck_sim::SimOutput,
-    sample_times: &[f64],
-    wall: f64,
-    path: Option<&std::path::Path>,
-    estimated: Option<&EstimatedRun>,
-) -> SimulateSummary {
-    let s = &out.series;
-    let tips: Option<Vec<_>> = estimated.map(|e| sample_times.iter().map(|&t| e.tip_at(t)).collect());
-    let files = path
-        .map(|p| wingcheck_io::FileRecord {
-            file: p.display().to_string(),
-            contents: "the run written by --out".into(),
-        })
-        .into_iter()
-        .collect();
-    SimulateSummary {
-        schema_version: wingcheck_io::SCHEMA_VERSION,
-        provenance: wingcheck_io::Provenance::new(&cfg.sha256(), files),
-        settings: RunSettings {
-            controller: cfg.control.kind.name().into(),
-            observer: cfg.observer.rule.name().into(),
-            method: cfg.discretisation.method.name().into(),
-            elements: cfg.discretisation.grid_size(),
-            grading: cfg.discretisation.grading,
-            dt: cfg.discretisation.dt,
-            stepper: out.stats.stepper,
-            sample_period: cfg.observer.sample_period,
-            t_end: cfg.horizon.t_end,
-            a: cfg.control.a,
-            b: cfg.control.b,
-        },
-        run_seconds: wall,
-        stats: out.stats.clone(),
-        tip: TipValues {
-            t: sample_times.to_vec(),
-            q: sample_times.iter().map(|&t| s.at(&s.q_tip, t)).collect(),
-            theta: sample_times.iter().map(|&t| s.at(&s.theta_tip, t)).collect(),
-            q_error: tips.as_ref().map(|v| v.iter().map(|x| x.0.error).collect()),
-            theta_error: tips.as_ref().map(|v| v.iter().map(|x| x.1.error).collect()),
-        },
-        peaks: out.peaks,
-        initial_layer: out.initial_layer,
-        out: path.map(|p| p.display().to_string()),
-        error_estimate: estimated.map(|e| ErrorSummary {
-            refined_grid: e.refined_grid,
-            refined_dt: e.refined_dt,
-            refined_stepper: e.refined_stepper,
-            max_q_tip_error: e.max_q_tip_error,
-            max_theta_tip_error: e.max_theta_tip_error,
-            max_space_error: e.max_space_error,
-            max_time_error: e.max_time_error,
-            tolerance: e.tolerance,
-            meets_tolerance: e.meets_tolerance,
-            peaks: e.peaks,
-            sub_step_check: e.sub_step_check.clone(),
-            basis: "Richardson, order 2 in h and dt, safety factor 1.25: (5/3)·|u(N) − u(2N)| + (5/3)·|u(dt) − u(dt/2)| per output sample, maximised over ±0.1 s; peaks at full rate with the initial layer resolved at finer steps (its last change), a 4N grid check inside the layer, the sub-step probe's resolution after later jumps (the exponential scheme's own, or an exponential twin's excess over a scheme without one), and a round-off floor of 256 ulp".into(),
-        }),
-    }
 }

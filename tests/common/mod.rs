@@ -1,6 +1,8 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
+pub mod characteristic;
+
 use wingcheck_model::{apply_overrides, Config};
 
 /// An SI-scale wing: span 6 m, EI 1e7 N m², GJ 1e6 N m², ρ 100 kg/m, I_p 10 kg m (with the

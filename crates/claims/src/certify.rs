@@ -72,6 +72,9 @@ pub enum CertifyError {
         /// The solver's message.
         detail: String,
     },
+    /// Stopped through the cancel token before the set was moved into place.
+    #[error(transparent)]
+    Cancelled(#[from] wingcheck_model::Cancelled),
 }
 
 impl CertifyError {
@@ -478,14 +481,33 @@ pub struct WrittenSet {
 /// is replaced only if it holds nothing but a certificate set's files (`index.json` and the
 /// files it lists); anything else is refused and left untouched.
 pub fn write_set(cfg: &Config, dir: &Path) -> Result<WrittenSet, CertifyError> {
+    write_set_cancellable(cfg, dir, &wingcheck_model::Cancel::default())
+}
+
+/// [`write_set`], stopped through `cancel` ([`CertifyError::Cancelled`]) at any time before
+/// the set is moved into place; the move goes through [`wingcheck_model::Cancel::commit`], so
+/// once `cancel` is set no set appears.
+pub fn write_set_cancellable(
+    cfg: &Config,
+    dir: &Path,
+    cancel: &wingcheck_model::Cancel,
+) -> Result<WrittenSet, CertifyError> {
+    // the target first, before any arithmetic: its name, its type, and that it holds a set
+    wingcheck_io::check_output_dir(dir, true)?;
+    if dir.exists() {
+        wingcheck_io::only_listed_files(dir, &files_of_set(dir))?;
+    }
     let (certs, notes) = certificate_set(cfg)?;
+    cancel.check()?;
     let files = render_files(cfg, &certs, &omega1::compute(cfg)?)?;
     let staging = wingcheck_io::StagingDir::new(dir)?;
     for (name, text) in &files {
         staging.write(name, text.as_bytes())?;
     }
     manifest::verify_set_for(staging.path(), Some(cfg)).map_err(|e| CertifyError::SelfCheck(e.to_string()))?;
-    staging.commit(|old| wingcheck_io::only_listed_files(old, &files_of_set(old)))?;
+    cancel.commit(|| {
+        Ok::<_, CertifyError>(staging.commit(|old| wingcheck_io::only_listed_files(old, &files_of_set(old)))?)
+    })?;
     Ok(WrittenSet { files: files.iter().map(|(n, _)| dir.join(n)).collect(), notes })
 }
 

@@ -120,6 +120,28 @@ fn rel(f: &Metrics, d: &Metrics) -> [f64; 4] {
     [0, 1, 2, 3].map(|j| rel_excess(x[j], y[j]))
 }
 
+/// The (a, b) sweep around the configured weights (each × and ÷ `factor`): the points whose
+/// configuration is valid, and, in words, those left out because a weight leaves the range
+/// the validator allows (`a × 2 = 2e12 is above control.a's range`).
+pub fn sweep_weights(cfg: &Config, factor: f64) -> (Vec<(f64, f64)>, Vec<String>) {
+    let (a0, b0) = (cfg.control.a, cfg.control.b);
+    let f = wingcheck_model::quantity::format_value(factor, None);
+    let points = [
+        (a0 / factor, b0, format!("a ÷ {f}")),
+        (a0 * factor, b0, format!("a × {f}")),
+        (a0, b0 / factor, format!("b ÷ {f}")),
+        (a0, b0 * factor, format!("b × {f}")),
+    ];
+    let (mut kept, mut left_out) = (Vec::new(), Vec::new());
+    for (a, b, name) in points {
+        match variant(cfg, cfg.control.kind, cfg.observer.rule, a, b).validate() {
+            Ok(()) => kept.push((a, b)),
+            Err(e) => left_out.push(format!("{name} (outside the configuration's range: {e})")),
+        }
+    }
+    (kept, left_out)
+}
+
 /// `cfg` with the given controller, rule and weights: the run [`compute`] asks the study for.
 pub fn variant(cfg: &Config, kind: ControllerKind, rule: ObserverRule, a: f64, b: f64) -> Config {
     let mut c = cfg.clone();
@@ -157,6 +179,9 @@ pub struct Computed {
     /// Full-rate RMS τ1, τ2 of the explicit-rule FTDO run, and their errors
     /// ([`explicit_rms_error`]: grid + time step + start spread + round-off).
     pub explicit_rms_tau: [(f64, f64); 2],
+    /// Full-rate RMS τ1, τ2 of the explicit-rule FTDO from the two [`START_NUDGE`]d starts
+    /// (ν(0) + δ, ν(0) − δ), per channel.
+    pub explicit_rms_starts: [[f64; 2]; 2],
     /// The time scheme of the explicit-rule runs.
     pub explicit_stepper: wingcheck_model::TimeScheme,
     /// The largest eigenbasis round-off estimate (relative) of the explicit FTDO's error runs
@@ -242,7 +267,8 @@ impl Runs {
                 c.observer.nu2_0 += sign * START_NUDGE * c.observer.nu2_0.abs().max(1.0);
                 c
             }),
-            sweep: [(a0 / f, b0), (a0 * f, b0), (a0, b0 / f), (a0, b0 * f)]
+            sweep: sweep_weights(cfg, f)
+                .0
                 .into_iter()
                 .map(|(a, b)| {
                     (
@@ -302,6 +328,17 @@ pub fn explicit_rms_error(value: f64, fine: f64, half_dt: f64, nudged: [f64; 2],
         + (EXPLICIT_RMS_GRID_FACTOR + wingcheck_sim::RICHARDSON_2 + 1.0) * eigenbasis_roundoff * value.abs()
 }
 
+/// Whether a full-rate RMS τ of the explicit FTDO is start-sensitive: its [`START_NUDGE`]d
+/// starts (`starts`) move it by more than every other source of its `error`
+/// ([`explicit_rms_error`]) together — the spread is then most of the ±, and the value depends
+/// on the start more than on the grid or the step (measured at a = 0.5, b = 2000 with tip
+/// amplitudes 0.6 and 0.2: RMS τ1 0.45 N and 1.11 N from starts 1e-12 apart; an independent
+/// simulator agrees on both branches).
+pub fn start_sensitive(value: f64, error: f64, starts: [f64; 2]) -> bool {
+    let spread = starts.iter().map(|n| (value - n).abs()).fold(0.0, f64::max);
+    spread > error - spread
+}
+
 /// The runs (through the study) and their metrics. Returns the facts and the two full outputs
 /// behind the plots (FTDO with the configured rule, DOBC).
 pub fn compute(
@@ -331,9 +368,10 @@ pub fn compute(
         .fold(0.0, f64::max);
     let whole = Window::whole(&explicit.series.t);
     let rms_tau = |o: &SimOutput, c| metrics::tau_rms_in(&o.series, c, whole).unwrap_or(0.0);
+    let explicit_rms_starts = [0, 1].map(|c| [rms_tau(&nudged[0], c), rms_tau(&nudged[1], c)]);
     let explicit_rms_tau = [0, 1].map(|c| {
         let v = rms_tau(explicit, c);
-        let starts = [rms_tau(&nudged[0], c), rms_tau(&nudged[1], c)];
+        let starts = explicit_rms_starts[c];
         (v, explicit_rms_error(v, rms_tau(&explicit_fine, c), rms_tau(&explicit_half, c), starts, roundoff))
     });
     let mut sweep = Vec::new();
@@ -349,6 +387,7 @@ pub fn compute(
         ftdo_other: metrics(&other, settings),
         dobc: metrics(&dobc, settings),
         explicit_rms_tau,
+        explicit_rms_starts,
         explicit_stepper: explicit.stats.stepper,
         error_runs_eigenbasis_roundoff: roundoff,
         sweep,

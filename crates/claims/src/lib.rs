@@ -46,6 +46,13 @@ pub enum ClaimsError {
     /// A simulation needed as evidence failed (shared: the study runs each simulation once).
     #[error(transparent)]
     Sim(Arc<wingcheck_sim::SimError>),
+    /// A computation panicked (a bug of wingcheck): caught, so that it becomes its row's
+    /// `inconclusive` with the reason instead of ending the process.
+    #[error(transparent)]
+    Panicked(#[from] wingcheck_io::Panicked),
+    /// The check was stopped through its study's cancel token ([`check_all_cancellable`]).
+    #[error(transparent)]
+    Cancelled(#[from] wingcheck_model::Cancelled),
     /// A numerical step failed.
     #[error("numerical failure in {what}: {detail}")]
     Numerical {
@@ -73,9 +80,28 @@ pub fn check_all(cfg: &Config) -> Result<Ledger, ClaimsError> {
     check_all_with(cfg, &Study::new(), &CheckSettings::default())
 }
 
-/// A row's outcome with its wall time; a failed computation becomes `inconclusive`.
+/// `f()`, with a panic inside it (also in its parallel parts) caught as
+/// [`ClaimsError::Panicked`]: every row's computation runs under it, so a panic in one row
+/// becomes that row's `inconclusive` with the reason and never ends the process.
+pub fn guarded<T>(f: impl FnOnce() -> Result<T, ClaimsError>) -> Result<T, ClaimsError> {
+    wingcheck_io::catch(f).unwrap_or_else(|p| Err(ClaimsError::Panicked(p)))
+}
+
+/// [`check_all_with`] stopped once `study`'s cancel token is set ([`Study::with_cancel`]):
+/// the rows in flight end early as `inconclusive`, and the ledger is then discarded for
+/// [`ClaimsError::Cancelled`], so a cancelled check never returns rows decided on cut-short
+/// evidence.
+pub fn check_all_cancellable(cfg: &Config, study: &Study, settings: &CheckSettings) -> Result<Ledger, ClaimsError> {
+    study.cancel().check()?;
+    let ledger = check_all_with(cfg, study, settings)?;
+    study.cancel().check()?;
+    Ok(ledger)
+}
+
+/// A row's outcome with its wall time; a failed (or panicking) computation becomes
+/// `inconclusive` with the reason.
 fn timed(id: ClaimId, f: impl FnOnce() -> Result<ClaimRow, ClaimsError>) -> (ClaimRow, WallTime) {
-    let (row, seconds) = seconds(f);
+    let (row, seconds) = seconds(|| guarded(f));
     let row = row.unwrap_or_else(|e| ClaimRow::inconclusive(id, Basis::Computation, format!("Not decided: {e}.")));
     (row, WallTime { what: id.name().into(), seconds })
 }
@@ -90,7 +116,7 @@ pub const SDP_CROSS_CHECK: &str = "W-bounds SDP cross-check";
 /// wall time of the finite-time rows' digital runs (computed once for both rows).
 fn simulation_rows(cfg: &Config, study: &Study, settings: &CheckSettings) -> (Vec<(ClaimRow, WallTime)>, WallTime) {
     let finite_rows = || {
-        let (digital, seconds) = seconds(|| finite_time::digital_runs(cfg, settings));
+        let (digital, seconds) = seconds(|| guarded(|| finite_time::digital_runs(cfg, settings)));
         let shared = WallTime { what: DIGITAL_RUNS.into(), seconds };
         let finite = |id: ClaimId, channel: finite_time::Channel| {
             timed(id, || finite_time::check_with(cfg, channel, settings, digital.as_ref().map_err(Clone::clone)?))
@@ -121,10 +147,10 @@ fn theory_rows(cfg: &Config, study: &Study, settings: &CheckSettings) -> (Vec<(C
     // W-bounds, mu-conditions and lemmas are independent: side by side on the pool; UUB needs
     // the first two.
     let ((w, w_seconds), ((m, m_seconds), lemmas)) = rayon::join(
-        || seconds(|| wbounds::check(cfg, settings)),
+        || seconds(|| guarded(|| wbounds::check_cancellable(cfg, settings, study.cancel()))),
         || {
             rayon::join(
-                || seconds(|| mu::check(cfg, study, settings)),
+                || seconds(|| guarded(|| mu::check(cfg, study, settings))),
                 || timed(ClaimId::Lemmas, || lemmas::check(cfg, settings)),
             )
         },
@@ -157,7 +183,8 @@ fn theory_rows(cfg: &Config, study: &Study, settings: &CheckSettings) -> (Vec<(C
 /// The certificate files `certify` writes for `cfg`, per claim (empty with the reason when the
 /// configuration cannot be certified).
 fn certificate_files(cfg: &Config) -> Result<Vec<(ClaimId, String)>, String> {
-    let files = certify::certificates(cfg).map_err(|e| e.to_string())?;
+    let files =
+        wingcheck_io::catch(|| certify::certificates(cfg)).map_err(|p| p.to_string())?.map_err(|e| e.to_string())?;
     Ok(files
         .iter()
         .filter_map(|f| {
@@ -181,10 +208,10 @@ pub fn check_all_with(cfg: &Config, study: &Study, settings: &CheckSettings) -> 
             (theory, extra, certificates)
         },
     );
-    let (sims, shared) = sims.unwrap_or_else(|_| {
+    let (sims, shared) = sims.unwrap_or_else(|p| {
         let rows = [ClaimId::FiniteTime1, ClaimId::FiniteTime2, ClaimId::FtdoVsDobc]
             .map(|id| {
-                let row = ClaimRow::inconclusive(id, Basis::Computation, "Not decided: the computation panicked.");
+                let row = ClaimRow::inconclusive(id, Basis::Computation, format!("Not decided: {p}."));
                 (row, WallTime { what: id.name().into(), seconds: 0.0 })
             })
             .into();
@@ -226,12 +253,12 @@ pub fn check_all_with(cfg: &Config, study: &Study, settings: &CheckSettings) -> 
 pub(crate) fn first_beside<F: Send, T: Send>(
     first: impl FnOnce() -> F + Send,
     then: impl FnOnce() -> T + Send,
-) -> (std::thread::Result<F>, T) {
-    rayon::join(|| std::panic::catch_unwind(std::panic::AssertUnwindSafe(first)), then)
+) -> (Result<F, wingcheck_io::Panicked>, T) {
+    rayon::join(|| wingcheck_io::catch(first), then)
 }
 
 /// Runs `side` beside `main` on the rayon pool and returns both results, `side`'s panic as an
-/// `Err` (recorded by the caller, never fatal). Not on threads of their own: the computations
+/// `Err` with its message (recorded by the caller, never fatal; [`wingcheck_io::catch`]). Not on threads of their own: the computations
 /// use the pool themselves (the enclosure's inertia counts), and a pool worker blocked joining
 /// an OS thread that waits for a free worker never wakes — `report` hung with one worker
 /// (`RAYON_NUM_THREADS=1` or a one-core machine) and two reports in one process hung with two.
@@ -239,25 +266,35 @@ pub(crate) fn first_beside<F: Send, T: Send>(
 pub(crate) fn beside<S: Send, M: Send>(
     side: impl FnOnce() -> S + Send,
     main: impl FnOnce() -> M + Send,
-) -> (std::thread::Result<S>, M) {
-    let (m, s) = rayon::join(main, || std::panic::catch_unwind(std::panic::AssertUnwindSafe(side)));
+) -> (Result<S, wingcheck_io::Panicked>, M) {
+    let (m, s) = rayon::join(main, || wingcheck_io::catch(side));
     (s, m)
 }
 
-/// A non-finite value, or evidence that is not made of labelled leaves, is a bug of the row
-/// that produced it: never print it, say so instead.
+/// Places named in the reason of a row whose values are not finite (the rest are counted).
+const NON_FINITE_SHOWN: usize = 4;
+
+/// A non-finite value, or evidence that is not made of labelled leaves: never print it, say so
+/// instead (the row becomes `inconclusive`, naming where).
 fn reject_unlabelled_or_non_finite(ledger: &mut Ledger) {
     use rayon::prelude::*;
     // the rows are independent: checked side by side (each serialises its evidence and plots)
     ledger.rows.par_iter_mut().for_each(|r| {
         let bad = ledger::non_finite_paths(r);
-        let problem = if !bad.is_empty() {
-            Some(format!("the computation produced non-finite values at {}", bad.join(", ")))
+        let text = if !bad.is_empty() {
+            let shown: Vec<&str> = bad.iter().take(NON_FINITE_SHOWN).map(String::as_str).collect();
+            let more = bad.len().saturating_sub(NON_FINITE_SHOWN);
+            Some(format!(
+                "Not decided: the computation gave values that are not finite in double precision at {}{} \
+                 (configured values this far apart overflow or underflow this row's arithmetic)",
+                shown.join(", "),
+                if more > 0 { format!(" and {more} more places") } else { String::new() }
+            ))
         } else {
-            r.evidence.nodes().err().map(|e| format!("evidence without a label at {e}"))
+            r.evidence.nodes().err().map(|e| format!("Internal error: evidence without a label at {e}"))
         };
-        if let Some(p) = problem {
-            *r = ClaimRow::inconclusive(r.id, Basis::Computation, format!("Internal error: {p}."));
+        if let Some(t) = text {
+            *r = ClaimRow::inconclusive(r.id, Basis::Computation, format!("{t}."));
         }
     });
 }

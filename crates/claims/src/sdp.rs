@@ -163,6 +163,18 @@ pub struct PencilSdpRow {
     pub seconds: f64,
 }
 
+/// `v`, or 0 for a subnormal: the SDP's data are scaled to O(1), so an entry below the smallest
+/// normal f64 (≈ 2.2e-308) is zero to 300 digits, and clarabel's eigen-decompositions fail on
+/// such entries (it panicked at a = 1e12, b = 1e-300, where W's reduced block scaled by σ ≈ 6e12
+/// is ≈ 4e-314).
+fn flush_subnormal(v: f64) -> f64 {
+    if v.abs() < f64::MIN_POSITIVE {
+        0.0
+    } else {
+        v
+    }
+}
+
 fn dense_rows(m: &Mat<f64>, scale: f64) -> Vec<Vec<f64>> {
     // symmetrised exactly; entries below 1e-13 of the largest are round-off of exact zeros
     let max = m.norm_max();
@@ -174,7 +186,7 @@ fn dense_rows(m: &Mat<f64>, scale: f64) -> Vec<Vec<f64>> {
                     if v.abs() <= 1e-13 * max {
                         0.0
                     } else {
-                        v / scale
+                        flush_subnormal(v / scale)
                     }
                 })
                 .collect()
@@ -185,7 +197,14 @@ fn dense_rows(m: &Mat<f64>, scale: f64) -> Vec<Vec<f64>> {
 /// clarabel's point for one side: max λ s.t. sign·W − λκ ⪰ 0 in the reduced form, with data
 /// divided by σ, the 4×4 LMI rescaled by β and each P entry scaled by the size of its
 /// coefficients.
-fn solve_side(r: &ReducedPencil, sign: f64, sigma: f64, beta: f64, budget: &mut u32) -> Result<SideSolution, String> {
+fn solve_side(
+    r: &ReducedPencil,
+    sign: f64,
+    sigma: f64,
+    beta: f64,
+    budget: &mut u32,
+    cancel: &wingcheck_model::Cancel,
+) -> Result<SideSolution, String> {
     use wingcheck_lapack::sdp::{PsdConstraint, SdpProblem};
     let err = |e: wingcheck_lapack::sdp::SdpError| e.to_string();
     // The 4×4 LMI in the congruent form diag(1, 1, β, β)·[[A, B], [Bᵀ, P]]·diag(1, 1, β, β).
@@ -197,9 +216,9 @@ fn solve_side(r: &ReducedPencil, sign: f64, sigma: f64, beta: f64, budget: &mut 
     let mut f0 = vec![vec![0.0; 4]; 4];
     for i in 0..2 {
         for j in 0..2 {
-            f0[i][j] = sign * r.a_b[i][j] / sigma;
-            f0[i][2 + j] = beta * sign * r.b[i][j] / sigma;
-            f0[2 + j][i] = beta * sign * r.b[i][j] / sigma;
+            f0[i][j] = flush_subnormal(sign * r.a_b[i][j] / sigma);
+            f0[i][2 + j] = flush_subnormal(beta * sign * r.b[i][j] / sigma);
+            f0[2 + j][i] = flush_subnormal(beta * sign * r.b[i][j] / sigma);
         }
     }
     let unit = |pairs: &[(usize, usize)], s: f64| {
@@ -236,7 +255,12 @@ fn solve_side(r: &ReducedPencil, sign: f64, sigma: f64, beta: f64, budget: &mut 
         // clarabel stops with status MaxIterations at the budget (recorded, not accepted)
         settings.max_iter = (*budget).max(1);
         settings.time_limit = SDP_SOLVE_GUARD_SECONDS;
-        let sol = problem.solve_with(settings).map_err(err)?;
+        // clarabel panics on some ill-scaled data (an eigen-decomposition failure inside its
+        // cone margins): that solve becomes this side's reason, never the process's end
+        let stop = cancel.clone();
+        let sol = wingcheck_io::catch(|| problem.solve_with_stop(settings, move || stop.is_cancelled()))
+            .map_err(|p| format!("clarabel failed ({p})"))?
+            .map_err(err)?;
         *budget = budget.saturating_sub(sol.iterations.max(1));
         use wingcheck_lapack::sdp::SdpStatus;
         // λ only from a point clarabel calls optimal (an interrupted solve's point means nothing)
@@ -286,12 +310,14 @@ pub fn pencil_cross_check(
     span: f64,
 ) -> PencilSdpRow {
     let mut budget = SDP_ITERATION_BUDGET;
-    pencil_cross_check_within(w, kappa, c1, c2, n, span, &mut budget)
+    pencil_cross_check_within(w, kappa, c1, c2, n, span, &mut budget, &wingcheck_model::Cancel::new())
 }
 
 /// [`pencil_cross_check`] spending at most `budget` interior-point iterations (decremented by
 /// what the solves use); a solve stopped by it ends `MaxIterations`, recorded in the row and
-/// not accepted.
+/// not accepted. Once `cancel` is set, a solve stops at its next interior-point iteration
+/// (clarabel's termination callback) and is not accepted.
+#[allow(clippy::too_many_arguments)]
 pub fn pencil_cross_check_within(
     w: &Mat<f64>,
     kappa: &Mat<f64>,
@@ -300,6 +326,7 @@ pub fn pencil_cross_check_within(
     n: usize,
     span: f64,
     budget: &mut u32,
+    cancel: &wingcheck_model::Cancel,
 ) -> PencilSdpRow {
     let start = std::time::Instant::now();
     let dimension = w.nrows();
@@ -309,8 +336,8 @@ pub fn pencil_cross_check_within(
     };
     let sigma = eig[0].abs().max(eig[dimension - 1].abs()).max(f64::MIN_POSITIVE);
     let reduced = reduce(w, kappa, c1, c2, n, span / n as f64);
-    let lambda2 = pencil_side(&reduced, &c, 1.0, sigma, eig[0], n, budget);
-    let lambda1 = pencil_side(&reduced, &c, -1.0, sigma, eig[dimension - 1], n, budget);
+    let lambda2 = pencil_side(&reduced, &c, 1.0, sigma, eig[0], n, budget, cancel);
+    let lambda1 = pencil_side(&reduced, &c, -1.0, sigma, eig[dimension - 1], n, budget, cancel);
     PencilSdpRow {
         elements: n,
         dimension,
@@ -325,6 +352,7 @@ pub fn pencil_cross_check_within(
 /// One side of the cross-check at N (sign 1: λ2 = min W/κ; −1: λ1 = max W/κ): clarabel on the
 /// reduced pencil, once more rescaled if the first point is not Solved or not re-verified, then
 /// re-verified against the original constraint and compared with the eigenvalue.
+#[allow(clippy::too_many_arguments)]
 fn pencil_side(
     reduced: &Result<ReducedPencil, String>,
     c: &Mat<f64>,
@@ -333,6 +361,7 @@ fn pencil_side(
     lambda_eig: f64,
     n: usize,
     budget: &mut u32,
+    cancel: &wingcheck_model::Cancel,
 ) -> PencilSide {
     let not_run = |reason: &str| PencilSdpRow::not_run(n, reason).lambda2;
     let delta = SDP_TOLERANCE * sigma;
@@ -342,7 +371,7 @@ fn pencil_side(
     };
     let verify =
         |x: &SideSolution| x.status.is_solved() && x.lambda.is_some_and(|l| pencil_feasible(c, sign, l - sign * delta));
-    let first = match solve_side(r, sign, sigma, 1.0, budget) {
+    let first = match solve_side(r, sign, sigma, 1.0, budget, cancel) {
         Ok(x) => x,
         Err(e) => return PencilSide { lambda_eig: Some(lambda_eig), ..not_run(&format!("SDP: {e}")) },
     };
@@ -355,7 +384,7 @@ fn pencil_side(
         first
     } else {
         let scale = first.p_over_sigma.max(first.b_over_sigma * first.b_over_sigma);
-        match (scale > 0.0 && *budget > 0).then(|| solve_side(r, sign, sigma, 1.0 / scale.sqrt(), budget)) {
+        match (scale > 0.0 && *budget > 0).then(|| solve_side(r, sign, sigma, 1.0 / scale.sqrt(), budget, cancel)) {
             Some(Ok(second)) => {
                 attempts = 2;
                 second

@@ -23,6 +23,8 @@ pub struct Study {
     /// The statistics-only runs ([`Study::statistics`]), apart from the full ones.
     statistics: Mutex<HashMap<String, Shared>>,
     performed: Mutex<usize>,
+    /// Handed to every run: once set, the runs stop with `SimError::Cancelled`.
+    cancel: wingcheck_model::Cancel,
 }
 
 impl Study {
@@ -31,10 +33,22 @@ impl Study {
         Study::default()
     }
 
+    /// An empty study whose runs stop once `cancel` is set ([`check_all_cancellable`]).
+    pub fn with_cancel(cancel: wingcheck_model::Cancel) -> Self {
+        Study { cancel, ..Study::default() }
+    }
+
+    /// The study's cancel token (a fresh one unless made [`Study::with_cancel`]).
+    pub fn cancel(&self) -> &wingcheck_model::Cancel {
+        &self.cancel
+    }
+
     /// The simulation of `cfg` with q(z,t), θ(z,t) on the output grid (run once per config;
     /// a second caller of a run in flight waits for it).
     pub fn simulate(&self, cfg: &Config) -> Result<Arc<SimOutput>, ClaimsError> {
-        self.cached(&self.runs, cfg, || simulate(cfg, RunOptions { fields: true, ..Default::default() }))
+        self.cached(&self.runs, cfg, || {
+            simulate(cfg, RunOptions { fields: true, cancel: self.cancel.clone(), ..Default::default() })
+        })
     }
 
     /// A run of `cfg` for its whole-run statistics only (RMS τ over [0, t_end], the final tip
@@ -55,6 +69,7 @@ impl Study {
             let opts = RunOptions {
                 sub_step_probe: wingcheck_sim::SubStepProbe::Off,
                 eigenbasis: Some(wingcheck_sim::MAX_EIGENBASIS_ROUNDOFF),
+                cancel: self.cancel.clone(),
                 ..Default::default()
             };
             wingcheck_sim::simulate_base(&one_interval, opts)

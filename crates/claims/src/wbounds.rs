@@ -36,7 +36,10 @@ use crate::settings::CheckSettings;
 use crate::theory::{self, Decision, Estimate};
 use crate::{ClaimsError, WallTime};
 
-pub use explain::{check, evidence, sdp_sentence, EnclosureEvidence, SdpRecord, WBounds, WBoundsEvidence};
+pub use explain::{
+    check, check_cancellable, evidence, evidence_cancellable, sdp_sentence, EnclosureEvidence, SdpRecord, WBounds,
+    WBoundsEvidence,
+};
 
 /// The printed constants of (26)–(28), exactly.
 #[derive(Debug, Clone)]
@@ -181,10 +184,24 @@ fn richardson(c: f64, f: f64) -> f64 {
 /// with status `MaxIterations` and the remaining N are not run, each saying why. The same
 /// input gives the same rows whatever the machine's speed or load.
 pub fn sdp_cross_check(cfg: &Config, coupling: Coupling, grids: &[usize]) -> Vec<PencilSdpRow> {
+    sdp_cross_check_cancellable(cfg, coupling, grids, &wingcheck_model::Cancel::new())
+}
+
+/// [`sdp_cross_check`] stopped once `cancel` is set: the solve in flight ends at its next
+/// interior-point iteration and the remaining N are not run (their rows say so).
+pub fn sdp_cross_check_cancellable(
+    cfg: &Config,
+    coupling: Coupling,
+    grids: &[usize],
+    cancel: &wingcheck_model::Cancel,
+) -> Vec<PencilSdpRow> {
     let mut budget = crate::sdp::SDP_ITERATION_BUDGET;
     grids
         .iter()
         .map(|&n| {
+            if cancel.is_cancelled() {
+                return PencilSdpRow::not_run(n, "not run: cancelled");
+            }
             if budget == 0 {
                 return PencilSdpRow::not_run(
                     n,
@@ -202,7 +219,7 @@ pub fn sdp_cross_check(cfg: &Config, coupling: Coupling, grids: &[usize]) -> Vec
             let c1 = lyapunov::to_dense(&mesh.mass(Space::DgCubic, Space::Hermite));
             let c2 = lyapunov::to_dense(&mesh.mass(Space::DgCubic, Space::Linear));
             let (w, k) = (lyapunov::to_dense(&f.w), lyapunov::to_dense(&f.kappa));
-            crate::sdp::pencil_cross_check_within(&w, &k, &c1, &c2, n, cfg.wing.span, &mut budget)
+            crate::sdp::pencil_cross_check_within(&w, &k, &c1, &c2, n, cfg.wing.span, &mut budget, cancel)
         })
         .collect()
 }
@@ -291,7 +308,16 @@ pub fn decide(enclosure: &EnclosureSummary, float: Decision) -> Decision {
 /// Compute everything; the SDP cross-check and the ω₁ enclosure (independent of the rest) run
 /// beside it on the thread pool ([`crate::beside`]), and their failure is recorded, never fatal.
 pub fn compute(cfg: &Config, settings: &CheckSettings) -> Result<Computed, ClaimsError> {
-    let sdp = || crate::seconds(|| sdp_cross_check(cfg, Coupling::Corrected, &settings.sdp_grids));
+    compute_cancellable(cfg, settings, &wingcheck_model::Cancel::new())
+}
+
+/// [`compute`] whose SDP cross-check stops once `cancel` is set.
+pub fn compute_cancellable(
+    cfg: &Config,
+    settings: &CheckSettings,
+    cancel: &wingcheck_model::Cancel,
+) -> Result<Computed, ClaimsError> {
+    let sdp = || crate::seconds(|| sdp_cross_check_cancellable(cfg, Coupling::Corrected, &settings.sdp_grids, cancel));
     let enclosure = || crate::seconds(|| EnclosureSummary::deciding(cfg));
     let rest = || -> Result<Computed, ClaimsError> {
         let (a, b) = (cfg.control.a, cfg.control.b);
@@ -326,11 +352,12 @@ pub fn compute(cfg: &Config, settings: &CheckSettings) -> Result<Computed, Claim
     // The SDP ladder is the ledger's longest sequential chain: it starts at once on this thread.
     let (sdp, (enclosure, computed)) = crate::first_beside(sdp, || crate::beside(enclosure, rest));
     let mut computed = computed?;
-    (computed.sdp, computed.sdp_seconds) = sdp.unwrap_or_else(|_| {
-        (settings.sdp_grids.iter().map(|&n| PencilSdpRow::not_run(n, "the SDP computation panicked")).collect(), 0.0)
+    (computed.sdp, computed.sdp_seconds) = sdp.unwrap_or_else(|p| {
+        let why = format!("the SDP computation failed: {p}");
+        (settings.sdp_grids.iter().map(|&n| PencilSdpRow::not_run(n, &why)).collect(), 0.0)
     });
-    (computed.enclosure, computed.enclosure_seconds) = enclosure.unwrap_or_else(|_| {
-        (EnclosureSummary::NotCertified { reason: "the enclosure computation panicked".into() }, 0.0)
+    (computed.enclosure, computed.enclosure_seconds) = enclosure.unwrap_or_else(|p| {
+        (EnclosureSummary::NotCertified { reason: format!("the enclosure computation failed: {p}") }, 0.0)
     });
     Ok(computed)
 }

@@ -20,16 +20,23 @@
 
 mod allocator;
 mod lock;
+pub mod marked;
 mod number;
+pub mod panics;
+pub mod paths;
 pub mod prose;
 mod provenance;
 mod table;
 
 pub use allocator::{tune_allocator, HEAP_LIMITS};
 pub use lock::{is_lock_file, lock_name, lock_owner, owner_alive, remove_stale_locks, DirLock};
+pub use marked::{check_marked_replaceable, write_marked_dir};
 pub use number::{number, push_number};
+pub use panics::{catch, Panicked};
+pub use paths::{check_output_dir, check_output_file, check_output_file_with, read_regular, ReadError};
 pub use provenance::{
     build, set_build, sha256_hex, sidecar_path, BuildInfo, FileRecord, Provenance, TreeState, SCHEMA_VERSION,
+    SIDECAR_SUFFIX,
 };
 pub use table::{column_name, csv_numbers, csv_record, csv_text, grid_number, is_column_name, key_column, CsvWriter};
 
@@ -67,6 +74,14 @@ pub enum IoError {
         /// Why.
         reason: String,
     },
+    /// An output path that cannot be written the way wingcheck writes (see [`paths`]).
+    #[error("{path} cannot be used as an output: {reason}")]
+    BadOutput {
+        /// The path as given.
+        path: PathBuf,
+        /// Why.
+        reason: String,
+    },
 }
 
 fn io<'a>(action: &'static str, path: &'a Path) -> impl FnOnce(std::io::Error) -> IoError + 'a {
@@ -80,8 +95,11 @@ fn parent_of(p: &Path) -> PathBuf {
     }
 }
 
-/// Writes `bytes` to `path` atomically (temp file + fsync + rename), file mode 0644.
+/// Writes `bytes` to `path` atomically (temp file + fsync + rename), file mode 0644. An
+/// existing `path` that is not a regular file (a symlink, FIFO, device, directory) is refused,
+/// never replaced ([`paths::check_replaceable_file`]).
 pub fn write_file_atomic(path: &Path, bytes: &[u8]) -> Result<(), IoError> {
+    paths::check_replaceable_file(path)?;
     let dir = parent_of(path);
     let mut tmp = tempfile::Builder::new()
         .prefix(".wingcheck-tmp-")
@@ -151,16 +169,27 @@ fn unique_suffix() -> String {
     format!("{}-{nanos}", std::process::id())
 }
 
+/// The hidden sibling name `.{name}.{tag}-{suffix}` of `target` (bytes of the name as given:
+/// a name that is not UTF-8 keeps its bytes).
+fn sibling_name(target: &Path, tag: &str, suffix: &str) -> Option<std::ffi::OsString> {
+    let name = target.file_name()?;
+    let mut out = std::ffi::OsString::from(".");
+    out.push(name);
+    out.push(format!(".{tag}-{suffix}"));
+    Some(out)
+}
+
 /// Hidden sibling names of `target` carrying `tag`, with the pid that made them.
 fn own_siblings(target: &Path, tag: &str) -> Vec<(PathBuf, u32)> {
-    let Some(name) = target.file_name().map(|n| n.to_string_lossy().to_string()) else { return vec![] };
-    let prefix = format!(".{name}.{tag}-");
+    let Some(prefix) = sibling_name(target, tag, "") else { return vec![] };
+    let prefix = prefix.as_encoded_bytes().to_vec();
     let Ok(entries) = std::fs::read_dir(parent_of(target)) else { return vec![] };
     let mut out: Vec<(PathBuf, u32)> = entries
         .filter_map(Result::ok)
         .filter_map(|e| {
-            let n = e.file_name().to_string_lossy().to_string();
-            let rest = n.strip_prefix(&prefix)?;
+            let n = e.file_name();
+            let rest = n.as_encoded_bytes().strip_prefix(prefix.as_slice())?;
+            let rest = std::str::from_utf8(rest).ok()?;
             let pid: u32 = rest.split('-').next()?.parse().ok()?;
             Some((e.path(), pid))
         })
@@ -215,6 +244,9 @@ pub fn only_listed_files(dir: &Path, allowed: &BTreeSet<String>) -> Result<(), I
                     continue;
                 }
                 walk(root, &p, allowed, out)?;
+            } else if !ty.is_file() {
+                // a FIFO, device, socket or symlink under a listed name is not a file we wrote
+                out.push(format!("{rel} ({})", paths::kind_of(ty)));
             } else {
                 out.push(rel);
             }
@@ -254,16 +286,17 @@ pub struct StagingDir {
 
 impl StagingDir {
     /// Creates a fresh hidden staging directory beside `target` (creating the parent), after
-    /// [`recover`]ing leftovers of dead processes for the same target.
+    /// [`recover`]ing leftovers of dead processes for the same target. The target is checked
+    /// first ([`check_output_dir`]: its name leaves room for the staging suffix, and it is a
+    /// directory or missing).
     pub fn new(target: &Path) -> Result<StagingDir, IoError> {
-        let name = target
-            .file_name()
-            .ok_or_else(|| IoError::BadTarget { path: target.to_path_buf(), reason: "no file name".into() })?;
+        check_output_dir(target, true)?;
         let parent = parent_of(target);
         std::fs::create_dir_all(&parent).map_err(io("create directory", &parent))?;
         recover(target);
         let lock = DirLock::acquire(&parent).map_err(io("lock", &parent))?;
-        let dir = parent.join(format!(".{}.{STAGING_TAG}-{}", name.to_string_lossy(), unique_suffix()));
+        let staged = sibling_name(target, STAGING_TAG, &unique_suffix()).expect("the name was checked above");
+        let dir = parent.join(staged);
         std::fs::create_dir(&dir).map_err(io("create directory", &dir))?;
         Ok(StagingDir { dir, target: target.to_path_buf(), committed: false, _lock: lock })
     }
@@ -322,8 +355,7 @@ impl StagingDir {
             // The staging path now holds the old directory; dropping self removes it.
             return Ok(());
         }
-        let name = target.file_name().expect("checked in new").to_string_lossy().to_string();
-        let old = parent_of(&target).join(format!(".{name}.{OLD_TAG}-{}", unique_suffix()));
+        let old = parent_of(&target).join(sibling_name(&target, OLD_TAG, &unique_suffix()).expect("checked in new"));
         ops.rename(&target, &old).map_err(io("move the old directory aside from", &target))?;
         if let Err(e) = ops.rename(&self.dir, &target) {
             // Put the old one back; if even that fails, `recover` restores it on the next run.

@@ -3,9 +3,9 @@
 //! output: JSON outputs embed it (`"provenance": {…}`); a CSV file, which has no place for it
 //! that standard loaders skip, gets it in the sidecar `FILE.provenance.json` beside it
 //! ([`sidecar_path`]), and a directory output (report, search) holds one `provenance.json`
-//! naming its data files. The build facts come from the `wingcheck` binary's build script,
-//! registered once at start-up ([`set_build`]); a library used on its own reports
-//! [`BuildInfo::unknown`].
+//! naming its data files. The build facts come from `wingcheck-app`'s build script (the CLI
+//! and the Python extension both register them), registered once at start-up
+//! ([`set_build`]); a library used on its own reports [`BuildInfo::unknown`].
 
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
@@ -79,8 +79,9 @@ impl Default for BuildInfo {
 
 static BUILD: std::sync::OnceLock<BuildInfo> = std::sync::OnceLock::new();
 
-/// Registers the build of the running binary (the `wingcheck` binary does this first thing,
-/// from its build script's facts); later calls are ignored.
+/// Registers the build of the running program (the `wingcheck` binary and the Python
+/// extension do this first thing, from `wingcheck-app`'s build script); later calls are
+/// ignored.
 pub fn set_build(build: BuildInfo) {
     let _ = BUILD.set(build);
 }
@@ -139,9 +140,12 @@ impl Provenance {
     }
 }
 
+/// What a file's provenance sidecar adds to its name ([`sidecar_path`]).
+pub const SIDECAR_SUFFIX: &str = ".provenance.json";
+
 /// The sidecar of a single CSV file: `run.csv` → `run.csv.provenance.json`.
 pub fn sidecar_path(file: &std::path::Path) -> std::path::PathBuf {
     let mut name = file.file_name().map(|n| n.to_os_string()).unwrap_or_default();
-    name.push(".provenance.json");
+    name.push(SIDECAR_SUFFIX);
     file.with_file_name(name)
 }

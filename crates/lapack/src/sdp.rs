@@ -327,9 +327,20 @@ impl SdpProblem {
 
     /// Solve with the given clarabel settings.
     pub fn solve_with(&self, settings: DefaultSettings<f64>) -> Result<SdpSolution, SdpError> {
+        self.solve_with_stop(settings, || false)
+    }
+
+    /// [`SdpProblem::solve_with`], stopped at the next interior-point iteration once `stop`
+    /// returns true (clarabel's termination callback; the status is then not `Solved`).
+    pub fn solve_with_stop(
+        &self,
+        settings: DefaultSettings<f64>,
+        stop: impl Fn() -> bool + Send + Sync + 'static,
+    ) -> Result<SdpSolution, SdpError> {
         crate::link();
         let d = self.to_clarabel();
         let mut solver = DefaultSolver::new(&d.p, &d.q, &d.a, &d.b, &d.cones, settings)?;
+        solver.set_termination_callback(move |_| stop());
         solver.solve();
         let sol = &solver.solution;
         let mut offset = d.b.len() - self.psd.iter().map(|c| c.constant.len()).sum::<usize>();

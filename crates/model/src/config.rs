@@ -254,8 +254,9 @@ pub struct Discretisation {
     /// Time integrator (default `auto`, see [`TimeScheme::Auto`]).
     #[serde(default)]
     pub stepper: TimeScheme,
-    /// Basis the closed loop is stepped in (default `auto`: modal up to
-    /// [`crate::MODAL_AUTO_UNKNOWNS`] unknowns); it changes the cost, not the result beyond round-off.
+    /// Basis the closed loop is stepped in (default `auto`: modal where
+    /// [`Config::expected_modal`] finds it cheaper); it changes the cost, not the result beyond
+    /// round-off.
     #[serde(default)]
     pub basis: StepBasis,
 }
@@ -297,9 +298,18 @@ impl Config {
     /// configuration or only some of its keys, merged over the embedded default
     /// ([`Config::paper`]; objects merged key by key, a value replacing the default's). Unknown
     /// keys, a key given twice and anything after the document (other than whitespace) are
-    /// rejected, naming the key.
+    /// rejected, naming the key. A top-level `"$schema"` string (an editor's pointer to the
+    /// JSON Schema, [`crate::config_schema`]) is ignored.
     pub fn from_json_str(text: &str) -> Result<Config, ConfigError> {
-        let partial = Self::read_document(text)?;
+        let mut partial = Self::read_document(text)?;
+        // an editor's pointer to the schema (docs/schema/config.schema.json): not a parameter
+        if let Some(pointer) = partial.as_object_mut().and_then(|m| m.remove("$schema")) {
+            if !pointer.is_string() {
+                return Err(ConfigError::Parse(format!(
+                    "$schema: must be a string (the URI or path of the configuration's JSON Schema), got {pointer}"
+                )));
+            }
+        }
         let mut merged = serde_json::to_value(Self::paper()).expect("config serialises");
         merge(&mut merged, partial);
         Self::from_json_value(merged)
@@ -321,8 +331,8 @@ impl Config {
         if text.len() as u64 > MAX_CONFIG_BYTES {
             return Err(ConfigError::Parse(format!("{} bytes, at most {MAX_CONFIG_BYTES} allowed", text.len())));
         }
-        if let Some((token, x)) = crate::json::underflowing_number(text) {
-            return Err(crate::json::underflow_error(None, &token, x));
+        if let Some(n) = crate::json::unrepresentable_number(text) {
+            return Err(n.error());
         }
         let de = &mut serde_json::Deserializer::from_str(text);
         let value = serde_json::Value::deserialize(&mut *de).map_err(|e| ConfigError::Parse(e.to_string()))?;
@@ -361,18 +371,13 @@ impl Config {
         serde_json::from_value(v).unwrap_or(self)
     }
 
-    /// Reads a config file of at most [`MAX_CONFIG_BYTES`] (never more, so `/dev/zero` fails
-    /// fast) and parses it with [`Config::from_json_str`].
+    /// Reads a config file of at most [`MAX_CONFIG_BYTES`] and parses it with
+    /// [`Config::from_json_str`]; only a regular file (or a symlink to one) is read: `/dev/zero`,
+    /// `/dev/stdin` or a FIFO is refused without being opened.
     pub fn from_file(path: &std::path::Path) -> Result<Config, ConfigError> {
-        use std::io::Read;
         let read = |reason: String| ConfigError::Read { path: path.display().to_string(), reason };
-        let io = |e: std::io::Error| read(e.to_string());
-        let f = std::fs::File::open(path).map_err(io)?;
-        let mut bytes = Vec::new();
-        f.take(MAX_CONFIG_BYTES + 1).read_to_end(&mut bytes).map_err(io)?;
-        if bytes.len() as u64 > MAX_CONFIG_BYTES {
-            return Err(read(format!("larger than {MAX_CONFIG_BYTES} bytes")));
-        }
+        // a FIFO or device is never opened (it could block or never end)
+        let bytes = wingcheck_io::read_regular(path, MAX_CONFIG_BYTES).map_err(|e| read(e.to_string()))?;
         let text = String::from_utf8(bytes).map_err(|_| read("not UTF-8 text".into()))?;
         Self::from_json_str(&text)
     }
@@ -404,6 +409,14 @@ impl Config {
     /// Total number of observer samples in [0, T].
     pub fn total_samples(&self) -> usize {
         (self.horizon.t_end / self.observer.sample_period).round() as usize
+    }
+
+    /// Output samples of a run: observer samples k = 0, e, 2e, … (e = [`Self::samples_per_output`])
+    /// and the last one, k = K, when K is not a multiple of e. Every runner records exactly
+    /// these (and allocates its series at this length).
+    pub fn output_samples(&self) -> usize {
+        let (every, total) = (self.samples_per_output(), self.total_samples());
+        total / every + 1 + usize::from(total % every != 0)
     }
 }
 

@@ -15,13 +15,13 @@ pub enum ConfigError {
         /// What went wrong.
         reason: String,
     },
-    /// A numeric field is NaN or infinite.
-    #[error("{field} = {value} is not a finite number")]
+    /// A numeric field is NaN or infinite, or a number beyond the largest f64 (`1e5000`).
+    #[error("{field} = {value} is not a finite number (the largest f64 is about 1.8e308)")]
     NotFinite {
         /// Dotted path of the field, e.g. `wing.ei`.
         field: String,
-        /// The offending value.
-        value: f64,
+        /// The offending value as the user typed it (`1e5000`, `NaN`).
+        value: String,
     },
     /// A field lies outside its allowed range.
     #[error("{field} = {value} is out of range: allowed {allowed}")]

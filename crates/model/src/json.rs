@@ -39,40 +39,111 @@ pub fn reject_positional(v: &Value) -> Result<(), ConfigError> {
     walk(v, &mut Vec::new())
 }
 
-/// The first number token of JSON `text` (outside strings) whose magnitude is below the smallest
-/// normal f64 but whose digits are not all zero: `1e-400` would be read as 0 and `1e-310` as a
-/// subnormal with lost digits. Returns the token and the value it would be read as.
-pub fn underflowing_number(text: &str) -> Option<(String, f64)> {
+/// A number of a JSON text that f64 cannot hold as written.
+#[derive(Debug, Clone, PartialEq)]
+pub struct UnrepresentableNumber {
+    /// The dotted key path of the value (`control.a`; array elements as `[i]`), when inside an
+    /// object.
+    pub field: Option<String>,
+    /// The number as written (`1e5000`, `1e-400`).
+    pub token: String,
+    /// `Some(value read)` for a number below the smallest normal f64 (read as 0 or a
+    /// subnormal); `None` for one beyond the largest (read as ∞).
+    pub underflow: Option<f64>,
+}
+
+impl UnrepresentableNumber {
+    /// The error naming the field and the number as written.
+    pub fn error(&self) -> ConfigError {
+        match self.underflow {
+            Some(read_as) => underflow_error(self.field.as_deref(), &self.token, read_as),
+            None => match &self.field {
+                Some(f) => ConfigError::NotFinite { field: f.clone(), value: self.token.clone() },
+                None => {
+                    ConfigError::Parse(format!("the number {} is beyond the largest f64 (about 1.8e308)", self.token))
+                }
+            },
+        }
+    }
+}
+
+/// The key path of the scanner's position: one entry per open object (its current key) or
+/// array (its current index).
+enum Level {
+    Object(Option<String>),
+    Array(usize),
+}
+
+fn path_text(levels: &[Level]) -> Option<String> {
+    let mut out = String::new();
+    for l in levels {
+        match l {
+            Level::Object(Some(k)) => {
+                if !out.is_empty() {
+                    out.push('.');
+                }
+                out.push_str(k);
+            }
+            Level::Object(None) => return None,
+            Level::Array(i) => out.push_str(&format!("[{i}]")),
+        }
+    }
+    (!out.is_empty()).then_some(out)
+}
+
+/// The first number of JSON `text` (outside strings) that f64 cannot hold as written: a
+/// magnitude below the smallest normal f64 whose digits are not all zero (`1e-400` would be
+/// read as 0, `1e-310` as a subnormal with lost digits), or beyond the largest (`1e5000`), with
+/// the key path where it stands. A scan of the text (serde_json has already parsed it, or
+/// reports its own syntax errors).
+pub fn unrepresentable_number(text: &str) -> Option<UnrepresentableNumber> {
     let b = text.as_bytes();
-    let (mut i, mut in_string) = (0, false);
+    let (mut i, mut levels, mut last_string) = (0, Vec::<Level>::new(), None::<String>);
     while i < b.len() {
-        let c = b[i];
-        if in_string {
-            match c {
-                b'\\' => i += 2,
-                b'"' => {
-                    in_string = false;
+        match b[i] {
+            b'"' => {
+                let start = i + 1;
+                i += 1;
+                while i < b.len() && b[i] != b'"' {
+                    i += if b[i] == b'\\' { 2 } else { 1 };
+                }
+                last_string = text.get(start..i.min(b.len())).map(str::to_string);
+                i += 1;
+                continue;
+            }
+            b'{' => levels.push(Level::Object(None)),
+            b'[' => levels.push(Level::Array(0)),
+            b'}' | b']' => {
+                levels.pop();
+            }
+            b':' => {
+                if let Some(Level::Object(k)) = levels.last_mut() {
+                    *k = last_string.take();
+                }
+            }
+            b',' => {
+                if let Some(Level::Array(n)) = levels.last_mut() {
+                    *n += 1;
+                }
+            }
+            c if c == b'-' || c.is_ascii_digit() => {
+                let start = i;
+                while i < b.len() && matches!(b[i], b'0'..=b'9' | b'-' | b'+' | b'.' | b'e' | b'E') {
                     i += 1;
                 }
-                _ => i += 1,
+                let token = &text[start..i];
+                let overflow = token.parse::<f64>().is_ok_and(|x| !x.is_finite());
+                let underflow = underflows(token);
+                if overflow || underflow.is_some() {
+                    return Some(UnrepresentableNumber {
+                        field: path_text(&levels),
+                        token: token.to_string(),
+                        underflow,
+                    });
+                }
+                continue;
             }
-            continue;
-        }
-        if c == b'"' {
-            in_string = true;
-            i += 1;
-            continue;
-        }
-        if c == b'-' || c.is_ascii_digit() {
-            let start = i;
-            while i < b.len() && matches!(b[i], b'0'..=b'9' | b'-' | b'+' | b'.' | b'e' | b'E') {
-                i += 1;
-            }
-            let token = &text[start..i];
-            if let Some(x) = underflows(token) {
-                return Some((token.to_string(), x));
-            }
-            continue;
+            _ => {}
         }
         i += 1;
     }
@@ -90,10 +161,12 @@ pub fn underflows(token: &str) -> Option<f64> {
 
 /// The error for an underflowing number (`field` when known).
 pub fn underflow_error(field: Option<&str>, token: &str, read_as: f64) -> ConfigError {
-    let allowed = format!(
-        "0 or a magnitude of at least {:e} (the smallest normal f64); {token} would silently be read as {read_as:e}",
-        f64::MIN_POSITIVE
-    );
+    let why = if read_as == 0.0 {
+        format!("{token} would be read as 0")
+    } else {
+        format!("{token} is below it: a subnormal f64 keeps fewer significant digits than the 16 of a normal one")
+    };
+    let allowed = format!("0 or a magnitude of at least {:e} (the smallest normal f64); {why}", f64::MIN_POSITIVE);
     match field {
         Some(f) => ConfigError::OutOfRange { field: f.to_string(), value: token.to_string(), allowed },
         None => ConfigError::Parse(format!("the number {token} is out of range: allowed {allowed}")),

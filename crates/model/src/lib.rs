@@ -9,6 +9,8 @@
 //! [`Config::validate`] checks every field and returns a [`ConfigError`] naming the field
 //! and the allowed range.
 
+pub mod bounds;
+pub mod cancel;
 mod config;
 mod disturbance;
 mod error;
@@ -21,12 +23,17 @@ mod scheme;
 mod validate;
 pub mod work;
 
+pub use bounds::{config_schema, FieldBound, FIELD_BOUNDS, MAX_MAGNITUDE, MIN_POSITIVE};
+pub use cancel::{Cancel, Cancelled};
 pub use config::*;
 pub use disturbance::{Distributed, Disturbance, MeanSteps, StepMeans, TipDisturbance, TipValues};
 pub use error::ConfigError;
 pub use overrides::{apply_override, apply_overrides};
 pub use quantity::{Accuracy, ErrorSource, Estimate, Quantity, Shown, Unit, ValueBasis};
-pub use scheme::{StepBasis, TimeScheme, MODAL_AUTO_UNKNOWNS, MODAL_MAX_UNKNOWNS};
+pub use scheme::{
+    StepBasis, TimeScheme, MODAL_AUTO_UNKNOWNS, MODAL_MAX_UNKNOWNS, MODAL_SETUP_SECONDS_PER_CUBE,
+    NODAL_EXTRA_SECONDS_PER_UNKNOWN_STEP,
+};
 
 /// The paper's configuration (`configs/paper.json`), embedded at compile time.
 pub const PAPER_JSON: &str = include_str!("../../../configs/paper.json");

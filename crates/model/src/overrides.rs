@@ -18,7 +18,7 @@ pub fn apply_override(root: &mut Value, expr: &str) -> Result<(), ConfigError> {
     }
     if let Ok(x) = raw.trim().parse::<f64>() {
         if !x.is_finite() {
-            return Err(ConfigError::NotFinite { field: path.to_string(), value: x });
+            return Err(ConfigError::NotFinite { field: path.to_string(), value: raw.trim().to_string() });
         }
     }
     // `1e-400` parses to 0 (and `1e-310` to a subnormal): refused, not silently changed
@@ -54,5 +54,20 @@ pub fn apply_overrides(cfg: &Config, exprs: &[String]) -> Result<Config, ConfigE
     for e in exprs {
         apply_override(&mut value, e)?;
     }
-    Config::from_json_value(value)
+    Config::from_json_value(value).map_err(|e| as_typed(e, exprs))
+}
+
+/// A range error on a field that an override set names the value as the user typed it
+/// (`control.a = 1.00000000000000000001e13`, not the f64's shortest form `1e13`).
+fn as_typed(e: ConfigError, exprs: &[String]) -> ConfigError {
+    let typed = |field: &str| {
+        exprs.iter().rev().find_map(|x| x.split_once('=').filter(|(k, _)| k.trim() == field).map(|(_, v)| v.trim()))
+    };
+    match e {
+        ConfigError::OutOfRange { field, value, allowed } => {
+            let value = typed(&field).map_or(value, str::to_string);
+            ConfigError::OutOfRange { field, value, allowed }
+        }
+        other => other,
+    }
 }

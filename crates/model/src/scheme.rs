@@ -64,27 +64,39 @@ impl std::str::FromStr for TimeScheme {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum StepBasis {
-    /// `modal` up to [`MODAL_AUTO_UNKNOWNS`] unknowns if the modal basis passes its
-    /// orthonormality check, `nodal` otherwise.
+    /// `modal` where [`Config::expected_modal`] expects it (up to [`MODAL_AUTO_UNKNOWNS`]
+    /// unknowns, above it where the basis's setup is repaid by its cheaper steps) if the modal
+    /// basis passes its check, `nodal` otherwise.
     #[default]
     Auto,
-    /// The wing's modal basis (K Φ = M Φ Ω², dense eigenproblem once per run): the step
+    /// The wing's modal basis (K Φ = M Φ Ω², one dense SVD per run): the step
     /// matrix is diagonal plus rank 2, solved by the Woodbury identity in O(n) per solve.
     Modal,
     /// The nodal unknowns: banded Cholesky of the step matrix, O(n·bandwidth) per solve.
     Nodal,
 }
 
-/// Largest number of unknowns stepped in the modal basis at all (the dense eigenproblems are
-/// O(n³) once per run: ≈ 0.3 s at 600 unknowns).
-pub const MODAL_MAX_UNKNOWNS: usize = 600;
+/// Largest number of unknowns stepped in the modal basis at all: FD 1 536 intervals, FE 1 024
+/// elements. The basis is one O(n³) singular value decomposition per run (≈ 2 s CPU at 1 536
+/// unknowns, ≈ 16 s at 3 072; [`crate::work::SECONDS_PER_MODAL_SETUP_CUBE`]), accurate at any
+/// of these sizes (`wingcheck_sim::modal::BasisQuality`).
+pub const MODAL_MAX_UNKNOWNS: usize = 3072;
 
-/// Largest number of unknowns `basis = "auto"` steps in the modal basis (FE ≤ 100 elements,
-/// FD ≤ ~150 intervals): measured, the modal and nodal runs agree within 1e-9 relative on every
-/// series on the default FE and FD grids and FE 48 elements, and at FE 96 elements (288
-/// unknowns) within 3e-10 on the tip series and 3e-7 on the energy; above it the modal basis's
-/// round-off grows (see `wingcheck_sim::modal::MASS_TOLERANCE`) and the nodal stepper is used.
+/// Up to this many unknowns `basis = "auto"` always steps in the modal basis (FE ≤ 100
+/// elements, FD ≤ 150 intervals): its setup is then ≤ 20 ms, below the cost of any run's
+/// steps. Above it `auto` compares the estimated costs ([`Config::expected_modal`]).
 pub const MODAL_AUTO_UNKNOWNS: usize = 300;
+
+/// Measured CPU seconds of the modal basis's setup per unknown³ (the SVD and its check, once
+/// per run): 0.11 s at 576 unknowns (5.8e-10), 0.6 s at 1 152 (3.9e-10), 2.3 s at 1 536
+/// (6.3e-10), on the 2-core development machine; the largest is used. The `auto` choice's
+/// constant, not an upper estimate (that is [`crate::work::SECONDS_PER_MODAL_SETUP_CUBE`]).
+pub const MODAL_SETUP_SECONDS_PER_CUBE: f64 = 6.5e-10;
+
+/// Measured CPU seconds a nodal TR-BDF2 step costs per unknown beyond a modal one: 2.2e-8 s
+/// nodal (banded factor) against 1.7e-9 s modal at 1 152 unknowns (default 20-s run, its
+/// 42 222 steps with the initial layer's: 1.08 s nodal, 0.68 s modal with its setup).
+pub const NODAL_EXTRA_SECONDS_PER_UNKNOWN_STEP: f64 = 2.0e-8;
 
 impl StepBasis {
     /// Name as used on the command line and in outputs.
@@ -127,22 +139,43 @@ impl Config {
     }
 
     /// The time scheme a run is expected to use, before its basis is built: the modal basis is
-    /// expected for `basis = modal`, for `stepper = exponential` and for `basis = auto` up to
-    /// [`MODAL_AUTO_UNKNOWNS`] unknowns (there its orthonormality check may still send the run to
-    /// the nodal basis, and `auto` then means the cheaper TR-BDF2). For work estimates.
+    /// expected for `basis = modal`, for `stepper = exponential` and for `basis = auto` where
+    /// [`Config::expected_modal`] says so (its orthonormality check may still send the run to the
+    /// nodal basis, and `auto` then means the cheaper TR-BDF2). For work estimates.
     pub fn expected_time_scheme(&self) -> TimeScheme {
         self.time_scheme(self.expected_modal())
     }
 
-    /// Whether a run is expected in the modal basis (see [`Config::expected_time_scheme`]).
+    /// Whether a run is expected in the modal basis (see [`Config::expected_time_scheme`]); for
+    /// `basis = auto` the choice the simulator makes: modal for `stepper = exponential` (modal
+    /// only), up to [`MODAL_AUTO_UNKNOWNS`] unknowns, and up to [`MODAL_MAX_UNKNOWNS`] — where the
+    /// modal basis keeps the time scheme (not for the explicit FTDO under `stepper = auto`, which
+    /// the modal basis would step by the exponential scheme, (2n)² per step) — where the
+    /// basis's setup (n³·[`MODAL_SETUP_SECONDS_PER_CUBE`]) costs less than the nodal steps would
+    /// cost beyond the modal ones (n·steps·[`NODAL_EXTRA_SECONDS_PER_UNKNOWN_STEP`], the run's
+    /// steps with the initial layer's, which step in the same basis): for the default 20-s run
+    /// at dt = 1 ms (42 222 steps) up to ≈ 1 140 unknowns (FE 380 elements).
     pub fn expected_modal(&self) -> bool {
         match self.discretisation.basis {
             StepBasis::Modal => true,
             StepBasis::Nodal => false,
             StepBasis::Auto => {
-                self.discretisation.stepper == TimeScheme::Exponential || self.unknowns() <= MODAL_AUTO_UNKNOWNS
+                let n = self.unknowns();
+                self.discretisation.stepper == TimeScheme::Exponential
+                    || n <= MODAL_AUTO_UNKNOWNS
+                    || (n <= MODAL_MAX_UNKNOWNS
+                        && self.time_scheme(true) != TimeScheme::Exponential
+                        && self.modal_setup_repaid())
             }
         }
+    }
+
+    /// Whether the modal basis's estimated setup is repaid by its cheaper steps (see
+    /// [`Config::expected_modal`]).
+    fn modal_setup_repaid(&self) -> bool {
+        let n = self.unknowns() as f64;
+        let steps = (self.horizon.t_end / self.discretisation.dt).ceil() + crate::work::layer_steps_max(self);
+        n.powi(3) * MODAL_SETUP_SECONDS_PER_CUBE <= n * steps * NODAL_EXTRA_SECONDS_PER_UNKNOWN_STEP
     }
 
     /// The time scheme a run of this configuration uses when stepped in the modal basis

@@ -33,9 +33,9 @@ pub fn exponential_seconds(steps: f64, states: f64) -> f64 {
 pub fn sub_step_probe_seconds(probes: f64, states: f64) -> f64 {
     probes * states * states * SECONDS_PER_EXPONENTIAL_ENTRY_STEP
 }
-/// Rows of length `states` the sub-step probe stores: 16 points per octave of s over up to 30
-/// octaves, 6 outputs each.
-pub const SUB_STEP_PROBE_ROWS: f64 = 16.0 * 30.0 * 6.0;
+/// Rows of length `states` the sub-step probe stores: 32 fine points per octave of s and the
+/// coarse grid's copy over up to 30 octaves, 4 rows (q, θ, q̇, θ̇) each.
+pub const SUB_STEP_PROBE_ROWS: f64 = 33.0 * 30.0 * 4.0;
 /// Observer sample periods at the start of a run that `simulate` re-runs at finer steps to
 /// resolve a sub-step transient (the initial layer; sim's `layer` module).
 pub const LAYER_SAMPLES: usize = 2;
@@ -100,9 +100,10 @@ pub fn layer_steps_max(cfg: &Config) -> f64 {
     layer_runs(cfg).iter().map(|r| r.steps).sum()
 }
 
-/// Seconds of a run's modal-basis setup per unknown³ (the dense eigenproblems, once per run):
-/// ≈ 0.3 s at 600 unknowns (1.4e-9), doubled.
-pub const SECONDS_PER_MODAL_SETUP_CUBE: f64 = 3e-9;
+/// Seconds of a run's modal-basis setup per unknown³ (the SVD and its check, once per run):
+/// measured ≤ 6.5e-10 CPU ([`crate::MODAL_SETUP_SECONDS_PER_CUBE`]: 0.11 s at 576 unknowns,
+/// 2.3 s at 1 536), doubled and rounded up.
+pub const SECONDS_PER_MODAL_SETUP_CUBE: f64 = 1.5e-9;
 /// Worst-case seconds of the W-bounds row's SDP cross-check at N = 2 … 32: it is bounded by an
 /// iteration budget (600 interior-point iterations, claims' `SDP_ITERATION_BUDGET`), ≈ 0.4 s on
 /// the paper's wing and ≈ 3 s at the budget.
@@ -184,8 +185,19 @@ pub fn refined_in_time(cfg: &Config) -> Config {
 pub fn g_hmax_seconds(cfg: &Config) -> f64 {
     cfg.horizon.t_end * G_HMAX_SAMPLES_PER_SECOND * SECONDS_PER_G_HMAX_SAMPLE
 }
-/// Bytes per stored output sample of the time series (16 `f64` columns).
-pub const SERIES_BYTES_PER_SAMPLE: f64 = 16.0 * 8.0;
+/// Columns of the simulator's time series: `wingcheck_sim::Series::COLUMNS` is an array of
+/// this length (its type), so the estimate's width follows the series.
+pub const SERIES_COLUMNS: usize = 19;
+/// `f64` values per output sample of the full-rate envelope `wingcheck_sim::Envelope` ((min, max)
+/// of τ1, τ2, g̃1, g̃2; a compile-time assertion there ties it to the type).
+pub const ENVELOPE_VALUES: usize = 8;
+/// Bytes per stored output sample of a run: the series' [`SERIES_COLUMNS`] and the envelope's
+/// [`ENVELOPE_VALUES`] `f64` (the runners allocate them at the run's exact sample count,
+/// `Config::output_samples`).
+pub const SERIES_BYTES_PER_SAMPLE: f64 = ((SERIES_COLUMNS + ENVELOPE_VALUES) * 8) as f64;
+/// Bytes per output sample of the stored fields beyond their values: two `Vec` headers (24 bytes)
+/// and two heap blocks' allocator overhead (16 bytes).
+pub const FIELD_OVERHEAD_BYTES_PER_SAMPLE: f64 = 2.0 * (24.0 + 16.0);
 /// Bytes per number in pretty JSON output (digits, punctuation and indentation), measured on
 /// run.json files of the default configuration (≈ 30) and rounded up.
 pub const JSON_BYTES_PER_NUMBER: f64 = 32.0;
@@ -195,6 +207,41 @@ pub const JSON_BYTES_PER_NUMBER: f64 = 32.0;
 pub const CHECK_SIGMA0_SETUPS: f64 = 3.0;
 /// Element counts of the report's accuracy study.
 pub const REPORT_ACCURACY_GRIDS: [usize; 4] = [8, 16, 32, 64];
+
+/// Coarsest mesh (elements or FD intervals) of `modes`' extrapolation (sim's `converged_frequencies`).
+pub const MODES_COARSEST: usize = 16;
+/// Finest mesh `modes` refines to (FE: 3·N unknowns, FD: 2·N).
+pub const MODES_FINEST: usize = 2048;
+/// Subspace iterations per mesh before `modes` gives up (sim's `lowest_eigenvalues`).
+pub const MODES_ITERATIONS_MAX: usize = 500;
+/// Seconds per subspace iteration per block vector per unknown for its solve: a banded
+/// strain solve, ≈ 1e-8 s per unknown, doubled.
+pub const SECONDS_PER_MODES_SOLVE: f64 = 2e-8;
+/// Seconds per subspace iteration per (block vector)² per unknown (the Ritz matrix and the Ritz
+/// vectors): measured 409 s wall at load 10 on 2 cores for `modes --count 50 --tol 1e-13` on a
+/// wing whose iteration did not converge (block 100, meshes 128…2048: 500 iterations each),
+/// i.e. ≤ 6.9e-9.
+pub const SECONDS_PER_MODES_PRODUCT: f64 = 6.9e-9;
+
+/// The block size of `modes`' subspace iteration for `count` frequencies on `unknowns` unknowns.
+pub fn modes_block(count: usize, unknowns: usize) -> usize {
+    unknowns.min((2 * count).max(count + 8))
+}
+
+/// The meshes `modes` may use for `count` frequencies: from `max(16, next power of two ≥ 2·count)`
+/// doubling to [`MODES_FINEST`].
+pub fn modes_meshes(count: usize) -> Vec<usize> {
+    let mut n = MODES_COARSEST.max((2 * count).next_power_of_two());
+    let mut out = Vec::new();
+    while n <= MODES_FINEST {
+        out.push(n);
+        n *= 2;
+    }
+    out
+}
+
+/// The command-line flag that runs a command above the limits (named in [`WorkRefused`]).
+pub const ALLOW_LARGE_FLAG: &str = "--allow-large";
 
 /// Limits above which a command refuses without `--allow-large`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -228,18 +275,28 @@ pub struct WorkEstimate {
 
 /// A refused estimate.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error(
-    "{what} refused before starting: estimated {details}; the limits are {limits}. \
-     Reduce horizon.t_end, raise discretisation.dt or horizon.sample_every, use fewer elements, \
-     or pass --allow-large to run anyway"
-)]
+#[error("{what} refused before starting: estimated {details}; the limits are {limits}. {advice}, or pass {override_flag} to run anyway")]
 pub struct WorkRefused {
     /// The command.
     pub what: String,
+    /// How the front end that asked overrides the limits ([`ALLOW_LARGE_FLAG`] on the command
+    /// line; the Python binding's keyword argument).
+    pub override_flag: String,
     /// The estimate, in words.
     pub details: String,
     /// The limits, in words.
     pub limits: String,
+    /// What to change to come within the limits.
+    pub advice: String,
+}
+
+/// What to change to bring the work of command `what` within the limits.
+fn advice(what: &str) -> &'static str {
+    if what == "modes" {
+        "Ask for fewer frequencies (--count)"
+    } else {
+        "Reduce horizon.t_end, raise discretisation.dt or horizon.sample_every, use fewer elements"
+    }
 }
 
 fn human_bytes(b: f64) -> String {
@@ -281,15 +338,19 @@ impl WorkEstimate {
     fn run(cfg: &Config, fields: bool, json_output: Option<bool>, layer_steps: f64, runs: usize) -> WorkEstimate {
         let base_steps = (cfg.horizon.t_end / cfg.discretisation.dt).ceil();
         let steps = base_steps + layer_steps;
-        let samples = (cfg.horizon.t_end / cfg.horizon.sample_every).floor() + 1.0;
+        let samples = cfg.output_samples() as f64;
         let n = 2.0 * cfg.unknowns() as f64;
         let field_values = if fields { 2.0 * cfg.horizon.field_points as f64 } else { 0.0 };
-        let memory = samples * (SERIES_BYTES_PER_SAMPLE + 8.0 * field_values) + 200.0 * n * 8.0;
+        let field_bytes = if fields { 8.0 * field_values + FIELD_OVERHEAD_BYTES_PER_SAMPLE } else { 0.0 };
+        let columns = SERIES_COLUMNS as f64;
         let output = match json_output {
             None => 0.0,
-            Some(true) => samples * (16.0 + field_values) * JSON_BYTES_PER_NUMBER,
-            Some(false) => samples * 16.0 * 25.0,
+            Some(true) => samples * (columns + ENVELOPE_VALUES as f64 + field_values) * JSON_BYTES_PER_NUMBER,
+            Some(false) => samples * columns * 25.0,
         };
+        // the series (and fields), the solver's work vectors, and the output's text, which is
+        // built in memory before it is written
+        let memory = samples * (SERIES_BYTES_PER_SAMPLE + field_bytes) + 200.0 * n * 8.0 + output;
         // the exponential scheme (the modal basis, n = displacements + velocities states): one
         // dense product per step after an O(n³) setup, and the sub-step probe of the first step
         // of every sample period with its rows (≈ 16 points per octave of s × 6 outputs)
@@ -311,8 +372,7 @@ impl WorkEstimate {
         }
     }
 
-    /// Seconds of one run's set-up beyond its steps: the modal basis's dense eigenproblems
-    /// (O(unknowns³)) when the run is expected in the modal basis (once per `simulate`: its
+    /// Seconds of one run's set-up beyond its steps: the modal basis's SVD (O(unknowns³)) when the run is expected in the modal basis (once per `simulate`: its
     /// initial-layer re-runs step in the same basis).
     pub fn setup_seconds(cfg: &Config) -> f64 {
         if cfg.expected_modal() {
@@ -323,12 +383,14 @@ impl WorkEstimate {
     }
 
     /// `simulate --error-estimate`: the run, the run on the doubled grid and the run at dt/2,
-    /// and for a scheme without the sub-step probe its exponential twin (modal basis, at the
-    /// configured step only).
+    /// the peaks' 4N run (counted over the whole horizon: it stops one sample period after
+    /// the latest peak), and for a scheme without the sub-step probe its exponential twin
+    /// (modal basis, at the configured step only).
     pub fn simulation_with_error(cfg: &Config, fields: bool, json_output: Option<bool>) -> WorkEstimate {
         let base = Self::simulation(cfg, fields, json_output);
         let space = Self::simulation(&refined_in_space(cfg), false, None);
         let time = Self::simulation(&refined_in_time(cfg), false, None);
+        let fourth = Self::simulation(&refined_in_space(&refined_in_space(cfg)), false, None);
         let twin = if cfg.expected_time_scheme() == crate::TimeScheme::Exponential {
             None
         } else {
@@ -341,9 +403,10 @@ impl WorkEstimate {
             twin.map_or((0.0, 0.0, 0.0), |t| (t.steps, t.seconds, t.memory_bytes));
         WorkEstimate {
             what: "simulate".into(),
-            steps: base.steps + space.steps + time.steps + twin_steps,
-            seconds: base.seconds + space.seconds + time.seconds + twin_seconds,
-            memory_bytes: base.memory_bytes + space.memory_bytes.max(time.memory_bytes).max(twin_memory),
+            steps: base.steps + space.steps + time.steps + fourth.steps + twin_steps,
+            seconds: base.seconds + space.seconds + time.seconds + fourth.seconds + twin_seconds,
+            memory_bytes: base.memory_bytes
+                + space.memory_bytes.max(time.memory_bytes).max(fourth.memory_bytes).max(twin_memory),
             output_bytes: base.output_bytes,
         }
     }
@@ -366,6 +429,27 @@ impl WorkEstimate {
         }
         seconds += CHECK_SIGMA0_SETUPS * Self::setup_seconds(cfg);
         WorkEstimate { what: "check".into(), steps, seconds, memory_bytes: memory, output_bytes: 0.0 }
+    }
+
+    /// `modes` at most: every mesh of [`modes_meshes`] with [`MODES_ITERATIONS_MAX`]
+    /// iterations (a tolerance the extrapolation never meets and an iteration that never
+    /// converges), in the method `method` of `cfg`'s wing. Memory: six blocks of vectors on the
+    /// finest mesh.
+    pub fn modes(cfg: &Config, method: Method, count: usize) -> WorkEstimate {
+        let (mut steps, mut seconds, mut memory) = (0.0, 0.0, 0.0f64);
+        for mesh in modes_meshes(count) {
+            let mut c = cfg.clone();
+            c.discretisation.method = method;
+            c.discretisation.elements = mesh;
+            c.discretisation.fd_points = mesh;
+            let n = c.unknowns();
+            let p = modes_block(count, n) as f64;
+            let iterations = MODES_ITERATIONS_MAX as f64;
+            steps += iterations;
+            seconds += iterations * p * n as f64 * (SECONDS_PER_MODES_SOLVE + p * SECONDS_PER_MODES_PRODUCT);
+            memory = memory.max(6.0 * p * n as f64 * 8.0 + 200.0 * n as f64 * 8.0);
+        }
+        WorkEstimate { what: "modes".into(), steps, seconds, memory_bytes: memory, output_bytes: 0.0 }
     }
 
     /// `Ok` within `limits`, else [`WorkRefused`] naming every exceeded quantity.
@@ -393,6 +477,8 @@ impl WorkEstimate {
         }
         Err(WorkRefused {
             what: self.what.clone(),
+            advice: advice(&self.what).to_string(),
+            override_flag: ALLOW_LARGE_FLAG.into(),
             details: over.join(", "),
             limits: format!(
                 "{} of computing, {} of memory, {} of output",
@@ -426,11 +512,15 @@ mod tests {
         let trbdf2 = seconds(&["observer.rule=explicit", "discretisation.stepper=trbdf2"]);
         let exponential = seconds(&["observer.rule=explicit"]);
         assert!(exponential > 2.0 * trbdf2, "{exponential} vs {trbdf2}");
-        // above MODAL_AUTO_UNKNOWNS `auto` runs nodal TR-BDF2, and is estimated as such
+        // above MODAL_AUTO_UNKNOWNS `auto` runs the explicit FTDO in nodal TR-BDF2 (the modal
+        // basis would mean the exponential scheme's dense steps), and is estimated as such
         let fine = ["observer.rule=explicit", "discretisation.elements=200"];
         let auto = seconds(&fine);
-        let nodal = seconds(&[fine[0], fine[1], "discretisation.stepper=trbdf2"]);
+        let nodal = seconds(&[fine[0], fine[1], "discretisation.stepper=trbdf2", "discretisation.basis=nodal"]);
         assert_eq!(auto, nodal);
+        // TR-BDF2 asked for there is stepped in the modal basis, whose setup the estimate counts
+        let modal = seconds(&[fine[0], fine[1], "discretisation.stepper=trbdf2"]);
+        assert!(modal > nodal, "{modal} vs {nodal}");
         // a forced exponential scheme there is estimated with its dense step
         assert!(seconds(&[fine[0], fine[1], "discretisation.stepper=exponential"]) > 10.0 * nodal);
     }

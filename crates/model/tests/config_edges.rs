@@ -75,3 +75,34 @@ fn a_json_array_is_never_a_configuration() {
     let e = Config::from_json_str("5").unwrap_err().to_string();
     assert!(e.contains("not a JSON object"), "{e}");
 }
+
+/// Issue 46, item 6: messages name the user's field and the value as typed — no "5e-324 would
+/// silently be read as 5e-324", no `1e5000` echoed as `inf`, no range error quoting the f64's
+/// shortest form instead of what was typed.
+#[test]
+fn messages_name_the_field_and_the_value_as_typed() {
+    // a subnormal: below the smallest normal, with lost digits — not "read as itself"
+    let e = set(&["control.a=5e-324"]).unwrap_err().to_string();
+    assert!(e.contains("control.a = 5e-324") && e.contains("subnormal"), "{e}");
+    assert!(!e.contains("read as 5e-324"), "{e}");
+    let e = set(&["control.a=1e-400"]).unwrap_err().to_string();
+    assert!(e.contains("1e-400 would be read as 0"), "{e}");
+    // beyond the largest f64: the token, never `inf`
+    for v in ["1e5000", "-1e5000"] {
+        let e = set(&[&format!("control.a={v}")]).unwrap_err().to_string();
+        assert!(e.contains(&format!("control.a = {v} is not a finite number")) && !e.contains("inf"), "{e}");
+    }
+    // out of range: the value as typed
+    let e = set(&["control.a=1.00000000000000000001e13"]).unwrap_err().to_string();
+    assert!(e.contains("control.a = 1.00000000000000000001e13 is out of range: allowed in [0, 1e12]"), "{e}");
+    // in a file: the field's dotted path and the token, for both ends
+    let text = PAPER_JSON.replace("\"a\": 1.0", "\"a\": 1e5000");
+    let e = Config::from_json_str(&text).unwrap_err().to_string();
+    assert!(e.contains("control.a = 1e5000 is not a finite number"), "{e}");
+    let text = PAPER_JSON.replace("\"xi\": 0.6", "\"xi\": 5e-324");
+    let e = Config::from_json_str(&text).unwrap_err().to_string();
+    assert!(e.contains("wing.xi = 5e-324") && e.contains("subnormal"), "{e}");
+    // a partial file, nested one level
+    let e = Config::from_json_str("{\"horizon\": {\"t_end\": 1e400}}").unwrap_err().to_string();
+    assert!(e.contains("horizon.t_end = 1e400"), "{e}");
+}

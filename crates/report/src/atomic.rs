@@ -9,6 +9,7 @@ use std::collections::BTreeSet;
 use std::path::Path;
 use std::sync::Mutex;
 
+use wingcheck_io::marked::{Owned, FILES_HEADER};
 use wingcheck_io::{only_listed_files, StagingDir};
 
 use crate::ReportError;
@@ -16,33 +17,19 @@ use crate::ReportError;
 /// Name of the marker file that identifies a report directory; it lists the report's files.
 pub const MARKER: &str = ".wingcheck-report";
 
-/// Line of the marker after which the report's files are listed, one per line.
-const FILES_HEADER: &str = "files:";
-
 /// The files a report directory owns according to its marker (the marker included). A marker
 /// of an older version without a file list owns only itself: which of the files beside it that
 /// version wrote cannot be told from their names (a user's `notes.csv` looks like a figure's
-/// data), so such a directory is refused naming them, and nothing is deleted.
+/// data), so such a directory is refused naming them, and nothing is deleted. A marker that is
+/// not a regular file is never opened ([`wingcheck_io::marked::owned_files`]).
 fn owned_files(dir: &Path) -> Option<Owned> {
-    let text = std::fs::read_to_string(dir.join(MARKER)).ok()?;
-    match text.split_once(&format!("\n{FILES_HEADER}\n")) {
-        Some((_, list)) => {
-            let mut set: BTreeSet<String> = list.lines().filter(|l| !l.is_empty()).map(str::to_string).collect();
-            set.insert(MARKER.to_string());
-            Some(Owned::Listed(set))
-        }
-        None => Some(Owned::Legacy),
-    }
-}
-
-enum Owned {
-    Listed(BTreeSet<String>),
-    Legacy,
+    wingcheck_io::marked::owned_files(dir, MARKER)
 }
 
 /// `Ok` if `out` may be replaced: missing, an empty directory, or a report holding only its
 /// own files.
 pub fn check_replaceable(out: &Path) -> Result<(), ReportError> {
+    wingcheck_io::check_output_dir(out, true)?;
     match std::fs::symlink_metadata(out) {
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
         Err(e) => Err(ReportError::io("inspect", out)(e)),

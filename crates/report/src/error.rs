@@ -78,6 +78,10 @@ pub enum ReportError {
         /// What went wrong.
         detail: String,
     },
+    /// The report was stopped through [`crate::ReportOptions::cancel`]; nothing was written
+    /// (the staging directory is removed, an earlier report is unchanged).
+    #[error(transparent)]
+    Cancelled(#[from] wingcheck_model::Cancelled),
     /// The HTML template failed to render.
     #[error("cannot render the HTML template: {0}")]
     Template(#[from] minijinja::Error),

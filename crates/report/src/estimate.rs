@@ -7,6 +7,24 @@ use wingcheck_claims::CheckSettings;
 use wingcheck_model::work::{g_hmax_seconds, WorkEstimate, REGION_MAP_MAX_POINTS, SECONDS_PER_POINT_THEORY};
 use wingcheck_model::Config;
 
+/// Memory of the region map (a search over (a, b), [`crate::region`]) on the rayon pool's
+/// threads, from the search's own model ([`wingcheck_search::limits`]): its signal, basis and
+/// one point's run per thread (the a, b values do not change the cost; the process's base is
+/// counted by the rest of the report). 0 when the map's axes cannot be posed (it is then
+/// skipped).
+fn region_memory(cfg: &Config) -> f64 {
+    let a: Vec<String> = (1..=14).map(|k| format!("{k}")).collect();
+    let b: Vec<String> = (1..=7).map(|k| format!("{k}")).collect();
+    let specs = [format!("control.a={}", a.join(",")), format!("control.b={}", b.join(","))];
+    match wingcheck_search::Search::new(cfg.clone(), &specs, Default::default()) {
+        Ok(s) => {
+            let m = s.estimate_for(None).memory;
+            m.total() - m.process
+        }
+        Err(_) => 0.0,
+    }
+}
+
 /// Estimated work of [`crate::write_report`] at `cfg`.
 pub fn report_estimate(cfg: &Config) -> WorkEstimate {
     let settings = CheckSettings::default();
@@ -30,7 +48,7 @@ pub fn report_estimate(cfg: &Config) -> WorkEstimate {
             + runs.iter().map(|r| r.seconds).sum::<f64>()
             + region * (one.seconds + SECONDS_PER_POINT_THEORY)
             + g_hmax_seconds(cfg),
-        memory_bytes: check.memory_bytes + runs.iter().map(|r| r.memory_bytes).sum::<f64>(),
+        memory_bytes: check.memory_bytes + runs.iter().map(|r| r.memory_bytes).sum::<f64>() + region_memory(cfg),
         output_bytes: csv,
     }
 }

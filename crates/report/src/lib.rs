@@ -39,7 +39,7 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 use wingcheck_claims::certify::DecidingSet;
-use wingcheck_claims::{check_all_with, config_sha256, seconds, CheckSettings, Ledger, Study};
+use wingcheck_claims::{check_all_cancellable, config_sha256, seconds, CheckSettings, Ledger, Study};
 use wingcheck_model::Config;
 
 pub use atomic::MARKER;
@@ -72,6 +72,9 @@ pub struct ReportOptions<'a> {
     pub overall: Option<&'a (dyn Fn(Overall) + Sync)>,
     /// The command line that asked for the report (shown in the provenance section).
     pub command_line: Option<&'a str>,
+    /// Read by every simulation, every region-map point and between the stages: once set, the
+    /// report stops with [`ReportError::Cancelled`] before anything is moved into place.
+    pub cancel: Option<&'a wingcheck_model::Cancel>,
 }
 
 /// Wall time of one stage.
@@ -102,13 +105,14 @@ pub struct ReportSummary {
 fn region_stage(
     cfg: &Config,
     progress: Option<&(dyn Fn(Progress) + Sync)>,
+    cancel: &wingcheck_model::Cancel,
 ) -> Result<Option<region::RegionMap>, ReportError> {
     let Some(omega1) = paper::omega1(cfg) else { return Ok(None) };
     let r_star = wingcheck_claims::mu::MuData::closed_form_ratio(cfg);
     if !(r_star.is_finite() && r_star > 0.0) {
         return Ok(None);
     }
-    region::region_map(cfg, omega1, r_star, progress).map(Some)
+    region::region_map(cfg, omega1, r_star, progress, cancel).map(Some)
 }
 
 /// Render the report for `cfg` into `out_dir` (created, or an earlier report there replaced).
@@ -123,7 +127,9 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     let tracker = Tracker::new(opts);
     let on_progress = |p: Progress| tracker.update(p);
     let progress: Option<&(dyn Fn(Progress) + Sync)> = Some(&on_progress);
-    let (Computed { ledger, runs, proofs, early }, mut timings) = compute(cfg, &staging, progress)?;
+    let cancel = opts.cancel.cloned().unwrap_or_default();
+    let (Computed { ledger, runs, proofs, early }, mut timings) = compute(cfg, &staging, progress, &cancel)?;
+    cancel.check()?;
     let Early {
         fields,
         comparison,
@@ -158,6 +164,7 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     let coarser_enclosure = proofs.as_ref().is_ok_and(|s| s.coarser_enclosure);
     let proofs = write_proofs(proofs, &staging, &mut files)?;
     timings.push(StageTiming { name: "charts".into(), seconds: t.elapsed().as_secs_f64() });
+    cancel.check()?;
 
     // The page.
     let t = Instant::now();
@@ -193,7 +200,8 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     report(progress, "html", 1, 1);
 
     let t = Instant::now();
-    staging.commit(&format!("{}\nconfig sha256 {}\n", ledger.tool, page.config_sha256))?;
+    // the gate: once the front end's cancel has returned, the directory never appears
+    cancel.commit(|| staging.commit(&format!("{}\nconfig sha256 {}\n", ledger.tool, page.config_sha256)))?;
     files.push(MARKER.to_string());
     files.sort();
     timings.push(StageTiming { name: "write".into(), seconds: t.elapsed().as_secs_f64() });
@@ -290,13 +298,14 @@ fn compute(
     cfg: &Config,
     staging: &atomic::Staging,
     progress: Option<&(dyn Fn(Progress) + Sync)>,
+    cancel: &wingcheck_model::Cancel,
 ) -> Result<(Computed, Vec<StageTiming>), ReportError> {
-    let study = Study::new();
+    let study = Study::with_cancel(cancel.clone());
     let settings = CheckSettings::default();
     let ((ledger, lt), ((runs, st), (region, rt), (proofs, pt), early)) = rayon::join(
         || {
             report(progress, "ledger", 0, 1);
-            let l = seconds(|| check_all_with(cfg, &study, &settings).map_err(ReportError::from));
+            let l = seconds(|| check_all_cancellable(cfg, &study, &settings).map_err(ReportError::from));
             report(progress, "ledger", 1, 1);
             l
         },
@@ -305,7 +314,7 @@ fn compute(
                 || {
                     rayon::join(
                         || seconds(|| runs::run_all(cfg, &study, progress)),
-                        || seconds(|| region_stage(cfg, progress)),
+                        || seconds(|| region_stage(cfg, progress, cancel)),
                     )
                 },
                 || seconds(|| wingcheck_claims::certify::render_deciding_set(cfg)),
@@ -319,6 +328,7 @@ fn compute(
             ((runs, st), (region, rt), (proofs, pt), early)
         },
     );
+    cancel.check()?;
     let (ledger, runs) = (ledger?, runs?);
     region?;
     let (early, et) = early.expect("drawn whenever the runs and the region map succeeded");

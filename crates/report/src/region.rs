@@ -100,7 +100,11 @@ fn axes(cfg: &Config, omega1: f64, r_star: f64) -> (Vec<f64>, Vec<f64>) {
         }
     }
     let lb = half_decades(lb0, lb0 - B_DECADES, lb0 + B_DECADES);
-    (la.into_iter().map(|e| 10f64.powf(e)).collect(), lb.into_iter().map(|e| 10f64.powf(e)).collect())
+    // only weights the validator accepts (a map around b = 1e12 would ask for 3e12): the
+    // configured point is always among them
+    let accepted = |x: &f64| x.is_finite() && *x >= f64::MIN_POSITIVE && *x <= wingcheck_model::MAX_MAGNITUDE;
+    let values = |logs: Vec<f64>| logs.into_iter().map(|e| 10f64.powf(e)).filter(accepted).collect::<Vec<f64>>();
+    (values(la), values(lb))
 }
 
 /// Compute the map: every point evaluated by the search code, in parallel.
@@ -109,6 +113,7 @@ pub fn region_map(
     omega1: f64,
     r_star: f64,
     progress: Option<&(dyn Fn(Progress) + Sync)>,
+    cancel: &wingcheck_model::Cancel,
 ) -> Result<RegionMap, ReportError> {
     let (a, b) = axes(cfg, omega1, r_star);
     let list = |v: &[f64]| v.iter().map(|x| format!("{x:e}")).collect::<Vec<_>>().join(",");
@@ -127,14 +132,15 @@ pub fn region_map(
     let points: Vec<PointResult> = (0..total)
         .into_par_iter()
         .map(|p| {
+            cancel.check()?;
             let r = search.evaluate(p, &theory, &runs);
             let k = done.fetch_add(1, Ordering::SeqCst) + 1;
             if let Some(cb) = progress {
                 cb(Progress { stage: "region map", done: k, total });
             }
-            r
+            Ok(r)
         })
-        .collect();
+        .collect::<Result<_, wingcheck_model::Cancelled>>()?;
     let a: Vec<f64> = (0..a.len()).map(|i| search.grid.axes[0].numeric(i).unwrap_or(a[i])).collect();
     let b: Vec<f64> = (0..b.len()).map(|j| search.grid.axes[1].numeric(j).unwrap_or(b[j])).collect();
     let window = wingcheck_search::point::window(cfg, SearchOptions::default().window);
@@ -259,7 +265,7 @@ impl RegionMap {
             "feasible_32_decided".to_string(),
             "feasible_32".to_string(),
             "rms_available".to_string(),
-            wingcheck_io::column_name(METRIC.name(), METRIC.unit().column_suffix()),
+            METRIC.column().to_string(),
         ];
         let flag = |b: bool| if b { "true" } else { "false" }.to_string();
         let mut rows = Vec::with_capacity(self.a.len() * self.b.len());
@@ -449,5 +455,29 @@ impl RegionMap {
             },
         ]);
         marks
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue 46, item 3: a map around b = 1e12 (the validator's largest weight) asked the search
+    /// for b up to 10^13.5, which the search's validation refused. Every weight on the axes is
+    /// one the validator accepts, and the configured point stays on them.
+    #[test]
+    fn the_maps_weights_stay_within_the_validators_range() {
+        let top = wingcheck_model::MAX_MAGNITUDE;
+        for (a, b) in [(1.0, top), (top, 1.0), (top, top)] {
+            let mut cfg = Config::paper();
+            (cfg.control.a, cfg.control.b) = (a, b);
+            let (la, lb) = axes(&cfg, 1.0, 0.5);
+            for x in la.iter().chain(&lb) {
+                assert!(x.is_finite() && *x > 0.0 && *x <= top, "{x} on the axes of a = {a}, b = {b}");
+            }
+            let near = |v: &[f64], x: f64| v.iter().any(|y| (y / x - 1.0).abs() < 1e-12);
+            assert!(near(&la, a) && near(&lb, b), "({a}, {b}) not on {la:?} × {lb:?}");
+            assert!(lb.len() >= 4, "b keeps the decades below: {lb:?}");
+        }
     }
 }

@@ -65,9 +65,7 @@ const KINDS: [ControllerKind; 3] = [ControllerKind::None, ControllerKind::Ftdo, 
 /// scheme the run itself uses: `scheme` from the run, or as `auto` resolves it in the basis
 /// `auto` would choose (for the plan, before anything runs).
 fn refined(c: &Config, scheme: Option<wingcheck_model::TimeScheme>) -> (Config, Config) {
-    let modal = c.discretisation.basis != wingcheck_model::StepBasis::Nodal
-        && 3 * c.discretisation.grid_size() + 3 <= wingcheck_model::MODAL_AUTO_UNKNOWNS;
-    wingcheck_sim::refinements(c, scheme.unwrap_or_else(|| c.time_scheme(modal)))
+    wingcheck_sim::refinements(c, scheme.unwrap_or_else(|| c.expected_time_scheme()))
 }
 
 /// `cfg` with another controller (the paper's figure groups).
@@ -133,7 +131,8 @@ fn tip_errors(c: &Config, out: &SimOutput, study: &Study) -> Result<TipErrors, R
         stats: out.stats.clone(),
     };
     let (space, time) = (space?, time?);
-    let e = wingcheck_sim::estimate_from_runs(lite, &space, &time, &space_cfg, &time_cfg);
+    let no_fourth = String::from("not made: the report uses the series' errors only");
+    let e = wingcheck_sim::estimate_from_runs(lite, &space, &time, Err(&no_fourth), &space_cfg, &time_cfg);
     Ok(TipErrors {
         q: e.q_tip_error,
         theta: e.theta_tip_error,

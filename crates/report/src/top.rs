@@ -48,16 +48,22 @@ pub fn config_changes(cfg: &Config) -> Vec<ConfigChange> {
 }
 
 /// The command as a user would type it again: the program's file name instead of its path,
-/// arguments with spaces or quotes in single quotes.
-pub fn command_text(args: &[String]) -> String {
+/// arguments with spaces or quotes in single quotes. Arguments are taken as the OS gave them
+/// (`std::env::args_os`): one that is not UTF-8 is shown with U+FFFD for its invalid bytes.
+pub fn command_text<A: AsRef<std::ffi::OsStr>>(args: &[A]) -> String {
     let mut out: Vec<String> = Vec::with_capacity(args.len());
     for (i, a) in args.iter().enumerate() {
+        let a = a.as_ref();
         if i == 0 {
-            out.push(std::path::Path::new(a).file_name().map_or(a.clone(), |f| f.to_string_lossy().into_owned()));
-        } else if a.is_empty() || a.contains([' ', '\'', '"', '\\', '$', '*', '?']) {
+            let name = std::path::Path::new(a).file_name().unwrap_or(a);
+            out.push(name.to_string_lossy().into_owned());
+            continue;
+        }
+        let a = a.to_string_lossy().into_owned();
+        if a.is_empty() || a.contains([' ', '\'', '"', '\\', '$', '*', '?']) {
             out.push(format!("'{}'", a.replace('\'', "'\\''")));
         } else {
-            out.push(a.clone());
+            out.push(a);
         }
     }
     out.join(" ")

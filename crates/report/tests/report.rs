@@ -259,13 +259,13 @@ fn refuses_to_overwrite_a_directory_that_is_not_a_report() {
     assert_eq!(read(&out.join("thesis.tex")), "do not delete");
     assert_eq!(others(tmp.path(), &["precious"]), Vec::<String>::new(), "no temp dir left on error");
 
-    // A plain file is refused too.
+    // A plain file is refused too, before any work (wingcheck_io::check_output_dir), untouched.
     let file = tmp.path().join("notes.txt");
     std::fs::write(&file, "x").unwrap();
-    assert!(matches!(
-        write_report(&small_cfg(&[]), &file, &ReportOptions::default()),
-        Err(ReportError::NotAReport { .. })
-    ));
+    let err = write_report(&small_cfg(&[]), &file, &ReportOptions::default()).unwrap_err();
+    assert!(matches!(err, ReportError::Output(wingcheck_io::IoError::BadOutput { .. })), "{err}");
+    assert!(err.to_string().contains("exists and is a regular file, not a directory"), "{err}");
+    assert_eq!(read(&file), "x");
 }
 
 #[test]
@@ -292,8 +292,8 @@ fn unwritable_output_is_a_clear_error_and_an_interrupted_run_leaves_no_temp_dir(
     std::fs::write(&blocker, "").unwrap();
     let out: PathBuf = blocker.join("report");
     let err = write_report(&small_cfg(&[]), &out, &ReportOptions::default()).unwrap_err();
-    assert!(matches!(err, ReportError::Io { .. }), "{err}");
-    assert!(err.to_string().contains(&blocker.display().to_string()), "{err}");
+    assert!(matches!(err, ReportError::Output(wingcheck_io::IoError::BadOutput { .. })), "{err}");
+    assert!(err.to_string().contains(&format!("{} is a regular file, not a directory", blocker.display())), "{err}");
 
     // A run interrupted mid-way (a panicking progress callback while charts are written)
     // removes its staging directory and creates no report.

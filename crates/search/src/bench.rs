@@ -94,6 +94,12 @@ pub struct SearchBench {
 /// the search's ratio (a single run moved it by ±25 % with the machine's load).
 pub const SEARCH_REPEATS: usize = 3;
 
+/// Points per axis of the benchmark's grid (`wingcheck bench --what search`).
+pub const GRID_POINTS: usize = 32;
+
+/// Thread counts the benchmark times the whole search with.
+pub const THREAD_COUNTS: [usize; 2] = [1, 2];
+
 /// The observer rules compared (`observer.rule`), in the order of [`SearchBench::rules`].
 const RULES: [&str; 2] = ["implicit", "explicit"];
 
@@ -146,6 +152,47 @@ fn simulate_seconds(cfg: &Config, repeats: usize) -> Result<Vec<f64>, SearchErro
             Ok(start.elapsed().as_secs_f64())
         })
         .collect()
+}
+
+/// The work of [`bench_search`] on `base` (`n` × `n` grid, `thread_counts`), estimated before it
+/// starts from the models its parts are guarded by: the `simulate` timings
+/// (`wingcheck_model::work::WorkEstimate::simulation`, 5 + 10 per repeat), each whole search and
+/// the rule comparison's searches ([`crate::limits`]: core time, memory at their threads), and
+/// the closed-loop timings. Steps and seconds add up; memory is the largest part's (the parts run
+/// one after another).
+pub fn bench_estimate(
+    base: &Config,
+    n: usize,
+    thread_counts: &[usize],
+) -> Result<wingcheck_model::work::WorkEstimate, SearchError> {
+    use wingcheck_model::work::WorkEstimate as Run;
+    let axes = vec![format!("control.a=1e-4..10:log:{n}"), format!("control.b=1e-2..1e4:log:{n}")];
+    let small = vec!["control.a=1e-4..10:log:8".to_string(), "control.b=1e-2..1e4:log:8".to_string()];
+    let most = thread_counts.iter().copied().max().unwrap_or(1);
+    let sim = Run::simulation(base, false, None);
+    let simulate_runs = (5 + SEARCH_REPEATS * 10) as f64;
+    let mut searches: Vec<crate::WorkEstimate> = Vec::new();
+    let grid = Search::new(base.clone(), &axes, SearchOptions::default())?;
+    searches.extend(thread_counts.iter().map(|&t| grid.estimate_with_threads(t)));
+    searches.extend((0..SEARCH_REPEATS).map(|_| grid.estimate_with_threads(most)));
+    for rule in RULES {
+        let cfg = apply_overrides(base, &[format!("observer.rule={rule}")])
+            .map_err(|e| SearchError::Options(e.to_string()))?;
+        let s = Search::new(cfg, &small, SearchOptions::default())?.estimate_with_threads(most);
+        searches.extend(std::iter::repeat_n(s, RULE_ROUNDS));
+    }
+    // the modal basis, the signal and 5 closed loops of the base point (one thread)
+    let point =
+        Search::new(base.clone(), &["control.a=1".to_string()], SearchOptions::default())?.estimate_with_threads(1);
+    searches.extend(std::iter::repeat_n(point, 6));
+    Ok(Run {
+        what: "bench --what search".into(),
+        steps: simulate_runs * sim.steps
+            + searches.iter().map(|w| w.points as f64 * w.steps_per_point as f64).sum::<f64>(),
+        seconds: simulate_runs * sim.seconds + searches.iter().map(|w| w.core_seconds).sum::<f64>(),
+        memory_bytes: searches.iter().map(|w| w.memory_bytes).fold(sim.memory_bytes, f64::max),
+        output_bytes: 0.0,
+    })
 }
 
 /// Run the benchmark on `base` (the paper config by default): the grid

@@ -14,10 +14,18 @@ use rayon::prelude::*;
 
 use crate::modal::RunCache;
 use crate::point::{PointResult, Status};
+use crate::verify::{ChunkCheck, Verifier};
 use crate::{finalize, limits, store, Manifest, Progress, RunControl, RunSummary, Search, SearchError, TheoryCache};
 
 fn mismatch(dir: &Path, reason: impl Into<String>) -> SearchError {
     SearchError::Mismatch { dir: dir.display().to_string(), reason: reason.into() }
+}
+
+/// The output directory's name and type, before any work ([`wingcheck_io::check_output_dir`]:
+/// a directory or missing; a symlink to a directory is followed, as the files are written into
+/// it).
+fn check_out(out: &Path) -> Result<(), SearchError> {
+    Ok(wingcheck_io::check_output_dir(out, false)?)
 }
 
 /// How `prepare_out` found the output directory.
@@ -154,17 +162,18 @@ fn clean_up(out: &Path, found: Found, force: bool) {
 /// Points evaluated with one set of caches ([`TheoryCache`], [`RunCache`]) before they are
 /// dropped and rebuilt: bounds their memory (the verdict cache holds ≈ 300 bytes per point)
 /// while a sweep over wing keys rebuilds each wing's basis and pencil only once per window.
-const CACHE_POINTS: usize = 1024;
+pub(crate) const CACHE_POINTS: usize = 1024;
 
 /// Run (this shard of) a search into `out`, resuming from chunks already there; when every
 /// chunk of the search is present, write the final files ([`finalize`]). Refused before any
 /// work above the limits ([`limits::check`]) or with a bad thread count.
 pub fn run(search: &Search, out: &Path, ctl: RunControl<'_>) -> Result<RunSummary, SearchError> {
+    check_out(out)?;
     if let Some(n) = ctl.threads {
         limits::check_threads(n)?;
     }
-    let threads = ctl.threads.unwrap_or_else(rayon::current_num_threads);
-    limits::check(&search.estimate_with_threads(threads), ctl.allow_large)?;
+    let flag = ctl.allow_large_flag.unwrap_or(wingcheck_model::work::ALLOW_LARGE_FLAG);
+    limits::check_with_flag(&search.estimate_for(ctl.threads), ctl.allow_large, flag)?;
     if let Some(n) = ctl.threads {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(n)
@@ -174,42 +183,60 @@ pub fn run(search: &Search, out: &Path, ctl: RunControl<'_>) -> Result<RunSummar
     }
     let found = prepare_out(out, &search.manifest_text())?;
     let result = run_in(search, out, &ctl);
-    if result.is_err() {
-        clean_up(out, found, false);
+    match &result {
+        // a cancelled run into a directory it created leaves nothing behind
+        Err(SearchError::Cancelled(_)) => clean_up(out, found, matches!(found, Found::Created | Found::Empty)),
+        Err(_) => clean_up(out, found, false),
+        Ok(_) => {}
     }
     result
 }
 
 fn run_in(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<RunSummary, SearchError> {
     let start = Instant::now();
-    // Two passes over this shard's chunks (streamed, never collected): count what is done,
-    // then evaluate the rest.
-    let is_done = |c: usize| store::read_chunk(out, search, c).map(|p| p.is_some());
-    let (mut skipped, mut owned, mut completed, mut total) = (0, 0usize, 0usize, 0usize);
+    // First pass over this shard's chunks: which are done, each proven this search's own by
+    // recomputing some of its points (all with --verify-chunks) before any new work; chunks are
+    // read one at a time (a bit per chunk is kept).
+    let (mut skipped, mut owned, mut completed, mut total, mut verified) = (0, 0usize, 0usize, 0usize, 0usize);
+    let mut done = vec![false; search.chunks()];
+    let mut verifier = Verifier::new(search, ctl.verify);
     for c in (0..search.chunks()).filter(|&c| ctl.shard.owns(c)) {
         owned += 1;
-        if is_done(c)? {
-            skipped += search.chunk_range(c).len();
-            completed += 1;
-        } else {
-            total += search.chunk_range(c).len();
+        match store::read_chunk(out, search, c)? {
+            Some(points) => {
+                skipped += points.len();
+                completed += 1;
+                done[c] = true;
+                verified += verifier.chosen(c, points.len()).len();
+                verifier.add(out, c, points)?;
+            }
+            None => total += search.chunk_range(c).len(),
         }
     }
-    let done = AtomicUsize::new(0);
+    verifier.flush()?;
+    drop(verifier);
+    let progress_name = format!("progress-{}-of-{}.json", ctl.shard.k, ctl.shard.n);
+    // what is on disk now (a run killed between a chunk and its progress file left it behind)
+    store::write_atomic(&out.join(&progress_name), progress_text(ctl, owned, completed).as_bytes())?;
+    let points_done = AtomicUsize::new(0);
     if let Some(p) = ctl.progress {
         p(Progress { done: 0, total });
     }
-    let mut summary =
-        RunSummary { out_dir: out.to_path_buf(), points_total: search.points(), skipped, ..Default::default() };
+    let mut summary = RunSummary {
+        out_dir: out.to_path_buf(),
+        points_total: search.points(),
+        skipped,
+        verified,
+        ..Default::default()
+    };
     let (mut cache, mut runs, mut cache_points) =
         (TheoryCache::new(search.options.lyapunov_elements), RunCache::new(), 0);
-    let progress_name = format!("progress-{}-of-{}.json", ctl.shard.k, ctl.shard.n);
     let mut written = 0;
     for c in (0..search.chunks()).filter(|&c| ctl.shard.owns(c)) {
         if ctl.stop_after_chunks == Some(written) {
             break;
         }
-        if is_done(c)? {
+        if done[c] {
             continue;
         }
         written += 1;
@@ -224,30 +251,29 @@ fn run_in(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<RunSummar
             .chunk_range(c)
             .into_par_iter()
             .map(|p| {
+                ctl.cancel.check()?;
                 let r = search.evaluate(p, &cache, &runs);
-                let d = done.fetch_add(1, Ordering::Relaxed) + 1;
+                let d = points_done.fetch_add(1, Ordering::Relaxed) + 1;
                 if let Some(cb) = ctl.progress {
                     cb(Progress { done: d, total });
                 }
-                r
+                Ok(r)
             })
-            .collect();
-        store::write_atomic(&store::chunk_path(out, c), store::chunk_text(search, c, &points).as_bytes())?;
+            .collect::<Result<_, wingcheck_model::Cancelled>>()?;
+        // the chunk and the progress file that counts it, written together
         completed += 1;
+        store::write_with_progress(
+            &store::chunk_path(out, c),
+            store::chunk_text(search, c, &points).as_bytes(),
+            &out.join(&progress_name),
+            progress_text(ctl, owned, completed).as_bytes(),
+        )?;
         summary.evaluated += points.len();
         summary.failed += points.iter().filter(|p| p.status != Status::Ok).count();
         summary.sim_seconds += points.iter().map(|p| p.sim_seconds).sum::<f64>();
         summary.theory_seconds += points.iter().map(|p| p.theory_seconds).sum::<f64>();
-        let progress = serde_json::json!({
-            "shard": format!("{}/{}", ctl.shard.k, ctl.shard.n),
-            "chunks_owned": owned,
-            "chunks_completed": completed,
-        });
-        store::write_atomic(
-            &out.join(&progress_name),
-            (serde_json::to_string_pretty(&progress).expect("json") + "\n").as_bytes(),
-        )?;
     }
+    ctl.cancel.check()?;
     if (0..search.chunks()).all(|c| store::chunk_path(out, c).exists()) {
         let (files, failed) = finalize(out)?;
         summary.files = files;
@@ -258,11 +284,35 @@ fn run_in(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<RunSummar
     Ok(summary)
 }
 
+/// The progress file of this shard: `progress-K-of-N.json` with the chunks it owns and has
+/// completed (docs/outputs.md).
+fn progress_text(ctl: &RunControl<'_>, owned: usize, completed: usize) -> String {
+    let progress = serde_json::json!({
+        "shard": format!("{}/{}", ctl.shard.k, ctl.shard.n),
+        "chunks_owned": owned,
+        "chunks_completed": completed,
+    });
+    serde_json::to_string_pretty(&progress).expect("json") + "\n"
+}
+
 /// Combine shard directories into `out`: check that they hold the same search and that every
 /// chunk is present somewhere (before writing anything), copy every chunk (the first valid
 /// copy found, in the order of `dirs`) and [`finalize`]. On failure nothing is left in `out`
 /// that was not there before.
 pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<RunSummary, SearchError> {
+    merge_with(dirs, out, ChunkCheck::Sample, false)
+}
+
+/// [`merge`], recomputing `check`'s points of every chunk copied ([`crate::verify`]) before
+/// anything is written; that recomputation is refused above the search's limits
+/// ([`crate::verify::estimate`], [`limits::check`]) unless `allow_large`.
+pub fn merge_with(
+    dirs: &[PathBuf],
+    out: &Path,
+    check: ChunkCheck,
+    allow_large: bool,
+) -> Result<RunSummary, SearchError> {
+    check_out(out)?;
     let start = Instant::now();
     let first = dirs.first().ok_or_else(|| SearchError::Options("merge needs at least one directory".into()))?;
     let text = store::read(&first.join("manifest.json"))?;
@@ -279,12 +329,16 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<RunSummary, SearchError> {
         detail: e.to_string(),
     })?;
     let search = Search::from_manifest(manifest)?;
+    limits::check(&crate::verify::estimate(&search, check, None), allow_large)?;
     let mut sources = Vec::with_capacity(search.chunks());
     let mut missing = Vec::new();
+    let (mut verifier, mut verified) = (Verifier::new(&search, check), 0);
     for c in 0..search.chunks() {
         let mut found = None;
         for d in dirs {
-            if store::read_chunk(d, &search, c)?.is_some() {
+            if let Some(points) = store::read_chunk(d, &search, c)? {
+                verified += verifier.chosen(c, points.len()).len();
+                verifier.add(d, c, points)?;
                 found = Some(d);
                 break;
             }
@@ -294,6 +348,8 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<RunSummary, SearchError> {
             None => missing.push(c),
         }
     }
+    verifier.flush()?;
+    drop(verifier);
     if !missing.is_empty() {
         return Err(SearchError::MissingChunks {
             missing: missing.len(),
@@ -319,6 +375,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<RunSummary, SearchError> {
         files,
         failed_total: Some(failed),
         wall_seconds: start.elapsed().as_secs_f64(),
+        verified,
         ..Default::default()
     })
 }

@@ -147,7 +147,7 @@ fn metric_text(metric: Metric, window: (f64, f64)) -> (String, String, String) {
             format!("settling time ({unit})"),
             "no value: not settled by t_end, or the point failed".into(),
         ),
-        other => (other.name().to_string(), format!("{other} ({unit})"), failed),
+        other => (other.short_name().to_string(), format!("{} ({unit})", other.short_name()), failed),
     }
 }
 

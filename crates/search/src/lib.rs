@@ -31,6 +31,7 @@ pub mod records;
 mod refine;
 pub mod store;
 pub mod theory;
+pub mod verify;
 
 use std::path::PathBuf;
 
@@ -39,13 +40,14 @@ use wingcheck_model::Config;
 
 pub use assemble::{assemble, finalize, ChunkStream};
 pub use axis::{parse_axes, validate_axes, Axis, Grid, Spacing};
-pub use exec::{merge, run};
+pub use exec::{merge, merge_with, run};
 pub use heatmap::heatmap_svg;
 pub use limits::{WorkEstimate, MAX_CORE_SECONDS, MAX_POINTS, MAX_POINTS_OVERRIDE};
 pub use metric::{Metric, Ranking, METRICS, METRIC_UNITS};
 pub use point::{PointResult, PointVerdicts, Status};
 pub use refine::{boundaries, boundary_csv, BoundaryRow};
 pub use theory::{Theory, TheoryCache, Verdicts};
+pub use verify::ChunkCheck;
 
 /// Errors of a search (a failing point is a status in the results, not an error).
 #[derive(Debug, thiserror::Error)]
@@ -99,6 +101,13 @@ pub enum SearchError {
     /// The search is above a work limit (see [`limits`]).
     #[error("search too large: {0}")]
     TooLarge(String),
+    /// An output path cannot be used (its name, its type; [`wingcheck_io::paths`]).
+    #[error(transparent)]
+    Output(#[from] wingcheck_io::IoError),
+    /// The run was stopped through [`RunControl::cancel`] (nothing of this invocation is
+    /// kept in a directory it created).
+    #[error(transparent)]
+    Cancelled(#[from] wingcheck_model::Cancelled),
     /// A theory computation failed (eigenproblem, SOCP).
     #[error("theory ({what}): {detail}")]
     Theory {
@@ -229,6 +238,12 @@ impl Search {
     /// The work estimate for `threads` worker threads ([`limits::estimate_with_threads`]).
     pub fn estimate_with_threads(&self, threads: usize) -> WorkEstimate {
         limits::estimate_with_threads(&self.base, &self.grid.axes, threads)
+    }
+
+    /// The work estimate [`run`] checks for [`RunControl::threads`] (`None`: the current rayon
+    /// pool's threads).
+    pub fn estimate_for(&self, threads: Option<usize>) -> WorkEstimate {
+        self.estimate_with_threads(threads.unwrap_or_else(rayon::current_num_threads))
     }
 
     /// Number of points.
@@ -375,6 +390,15 @@ pub struct RunControl<'a> {
     pub threads: Option<usize>,
     /// Run even above [`MAX_POINTS`] / [`MAX_CORE_SECONDS`] (never above [`MAX_POINTS_OVERRIDE`]).
     pub allow_large: bool,
+    /// How many points of each chunk found on disk are recomputed before it is resumed from
+    /// ([`verify`]; `--verify-chunks`: all).
+    pub verify: ChunkCheck,
+    /// How the caller's front end spells `allow_large` in the refusal (None:
+    /// [`wingcheck_model::work::ALLOW_LARGE_FLAG`]).
+    pub allow_large_flag: Option<&'a str>,
+    /// Checked before every point: once set, the run stops with [`SearchError::Cancelled`]
+    /// without writing the chunk in progress.
+    pub cancel: wingcheck_model::Cancel,
 }
 
 /// What a run or merge did.
@@ -400,6 +424,8 @@ pub struct RunSummary {
     pub wall_seconds: f64,
     /// Points evaluated in this invocation whose status is not `ok`.
     pub failed: usize,
+    /// Points of chunks found on disk recomputed to prove them this search's own ([`verify`]).
+    pub verified: usize,
     /// When complete: points of the whole search whose status is not `ok` (listed in
     /// `failures.csv`), by status: (diverged, error).
     pub failed_total: Option<(usize, usize)>,

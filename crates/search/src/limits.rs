@@ -29,10 +29,75 @@ pub use wingcheck_model::MODAL_AUTO_UNKNOWNS;
 /// `wingcheck bench --what search` (48 unknowns, one core); rounded up.
 const SECONDS_PER_MODE_STEP: f64 = 4e-9;
 /// Cost per unknown and integrator step (s), the simulator's sparse stepper: ≈ 1 µs per step
-/// at 48 unknowns (README, "Speed"); rounded up.
+/// at 48 unknowns (docs/performance.md); rounded up.
 const SECONDS_PER_UNKNOWN_STEP: f64 = 3e-8;
 /// Theory per point (λ2, λ1, the μ and ε SOCPs).
 use wingcheck_model::work::SECONDS_PER_POINT_THEORY;
+
+/// Resident memory of a search process before its points (the binary, the allocator, the
+/// first thread): measured 10–12 MB (`/usr/bin/time -v`, a 1-point search at 1 thread), rounded up.
+pub const PROCESS_BASE_BYTES: f64 = 16e6;
+/// Resident memory each further worker thread adds before its points (its stack and its
+/// allocator arena): measured 2.7 MB per thread (12.4 MB at 1 thread, 26.3 MB at 8 on an
+/// 8-point search of 50 steps each), rounded up.
+pub const THREAD_BASE_BYTES: f64 = 4e6;
+
+/// What a search holds in memory at its peak, buffer by buffer (bytes): the model the guard
+/// applies ([`MAX_MEMORY_BYTES`]) and `search` prints with its estimate.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MemoryEstimate {
+    /// Worker threads the estimate is for.
+    pub threads: usize,
+    /// The process and its threads before any point ([`PROCESS_BASE_BYTES`],
+    /// [`THREAD_BASE_BYTES`] per further thread).
+    pub process: f64,
+    /// Observer signals held at once: one per distinct signal (each built once, whichever
+    /// thread asks first; a point whose controller is not the FTDO also reads the FTDO's), at
+    /// most the cache's [`crate::modal::CACHE_ENTRIES`] plus one in use per thread.
+    pub signals: f64,
+    /// Bytes of the largest signal (`RecordedSignal::bytes`: 24 per integrator step, 48 per
+    /// observer sample).
+    pub signal_bytes: f64,
+    /// Modal bases held at once (as the signals).
+    pub bases: f64,
+    /// Bytes of the largest basis (its mode shapes at the tip and on the output grid).
+    pub basis_bytes: f64,
+    /// Per worker thread: one point's run (its tip trace at the output samples, the modal
+    /// loop's dense matrices and the basis being built, or the simulator's nodal run above
+    /// [`MODAL_AUTO_UNKNOWNS`] unknowns).
+    pub per_thread: f64,
+    /// The final assembly's per-point summary (2 bytes per point, ≈ 600 on 2-D searches).
+    pub assembly: f64,
+}
+
+impl MemoryEstimate {
+    /// The total (bytes).
+    pub fn total(&self) -> f64 {
+        self.process
+            + self.signals * self.signal_bytes
+            + self.bases * self.basis_bytes
+            + self.threads as f64 * self.per_thread
+            + self.assembly
+    }
+
+    /// The estimate in words, buffer by buffer.
+    pub fn text(&self) -> String {
+        let gb = |b: f64| format!("{:.3} GB", b / 1e9);
+        format!(
+            "{} of memory at {} threads: {:.0} observer signal(s) × {}, {:.0} modal basis(es) × {}, {} per thread \
+             (a point's run), {} for the process, {} for the assembly",
+            gb(self.total()),
+            self.threads,
+            self.signals,
+            gb(self.signal_bytes),
+            self.bases,
+            gb(self.basis_bytes),
+            gb(self.per_thread),
+            gb(self.process),
+            gb(self.assembly)
+        )
+    }
+}
 
 /// What a search will cost, estimated from its axes before any work.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -43,21 +108,24 @@ pub struct WorkEstimate {
     pub steps_per_point: u64,
     /// Largest number of unknowns of a point.
     pub unknowns: usize,
-    /// Estimated core time (s), the largest per-point cost times the number of points.
+    /// Estimated core time (s) of the costliest point (its closed loop and theory).
+    pub point_seconds: f64,
+    /// Estimated core time (s): `point_seconds` times the number of points, and g_hmax's grid
+    /// once per distinct disturbance, span and horizon.
     pub core_seconds: f64,
-    /// Estimated peak memory (bytes): the observer signals held at once (3 f64 per integrator
-    /// step, 4 per sample; the runner keeps up to [`crate::modal::CACHE_ENTRIES`] of them), the
-    /// modal bases, per worker thread one point's run (its trace, or the simulator's nodal run
-    /// above 300 unknowns), and the final assembly's per-point summary.
+    /// Estimated peak memory (bytes): [`MemoryEstimate::total`] of `memory`.
     pub memory_bytes: f64,
+    /// The memory by buffer.
+    pub memory: MemoryEstimate,
 }
 
 /// Config keys the cost of a point depends on ([`point_cost`] and [`point_memory`] read exactly
 /// these, through the horizon, the time step, the sample periods, the grid and the scheme): for
 /// a list axis over any of them every value is estimated, for any other key one value is.
-const COST_KEYS: [&str; 11] = [
+const COST_KEYS: [&str; 12] = [
     "horizon.t_end",
     "horizon.sample_every",
+    "horizon.field_points",
     "observer.sample_period",
     "observer.rule",
     "control.kind",
@@ -84,24 +152,39 @@ const SIGNAL_KEYS: [&str; 10] = [
     "wing.xi",
 ];
 
+/// Config key prefixes a modal basis depends on ([`crate::modal::ModalBasis::key`]).
+const BASIS_KEYS: [&str; 5] =
+    ["wing.", "discretisation.", "initial.", "disturbance.distributed", "horizon.field_points"];
+
 /// Integrator steps and unknowns of one point.
 fn point_cost(cfg: &Config) -> (u64, usize) {
     (cfg.total_samples() as u64 * cfg.steps_per_sample() as u64, cfg.unknowns())
 }
 
-/// Bytes of one point's observer signal, its run (trace at the output samples, or the
-/// simulator's nodal run) and its modal basis.
+/// `f64` vectors of a point's tip trace ([`crate::modal::TipTrace`]: t, q, θ, τ1, τ2, g̃1, g̃2),
+/// allocated at the run's output samples.
+const TRACE_VECTORS: f64 = 7.0;
+
+/// Bytes of one point's observer signal, its run per thread, and its modal basis.
 fn point_memory(cfg: &Config) -> (f64, f64, f64) {
-    let (steps, samples) = (point_cost(cfg).0 as f64, cfg.total_samples() as f64 + 1.0);
-    let signal = 8.0 * (3.0 * steps + 4.0 * samples);
-    let outputs = (cfg.horizon.t_end / cfg.horizon.sample_every).floor() + 2.0;
+    let signal = wingcheck_sim::modal::RecordedSignal::bytes(cfg);
+    let outputs = cfg.output_samples() as f64;
     let n = cfg.unknowns() as f64;
-    let run = if cfg.unknowns() <= MODAL_AUTO_UNKNOWNS {
-        8.0 * 9.0 * outputs + 8.0 * 4.0 * (2.0 * n) * (2.0 * n)
+    let run = if cfg.expected_modal() {
+        // the trace; the loop's dense matrices (4 of (2n)²); the basis's dense eigenproblem
+        // while it is built (8 of n²); the exponential scheme's sub-step probe rows
+        let probe = if cfg.expected_time_scheme() == TimeScheme::Exponential {
+            wingcheck_model::work::SUB_STEP_PROBE_ROWS * 2.0 * n * 8.0
+        } else {
+            0.0
+        };
+        8.0 * TRACE_VECTORS * outputs + 8.0 * 4.0 * (2.0 * n) * (2.0 * n) + 8.0 * 8.0 * n * n + probe
     } else {
         wingcheck_model::work::WorkEstimate::simulation(cfg, false, None).memory_bytes
     };
-    (signal, run, 8.0 * 4.0 * n * n)
+    // ω², Φᵀf, η(0) and both tip rows (5 n), the field rows (2 × field_points × n)
+    let basis = 8.0 * n * (5.0 + 2.0 * cfg.horizon.field_points as f64);
+    (signal, run, basis)
 }
 
 /// The axis's value indices the estimate looks at: every value of a list over a cost key, the
@@ -155,24 +238,68 @@ pub fn estimate_with_threads(base: &Config, axes: &[Axis], threads: usize) -> Wo
     if exponential {
         point_seconds += wingcheck_model::work::exponential_seconds(steps, 2.0 * n);
     }
-    let cached = crate::modal::CACHE_ENTRIES as f64 + threads as f64;
-    let varies = |prefixes: &[&str]| axes.iter().any(|a| prefixes.iter().any(|p| a.key.starts_with(p)));
-    let signals = if varies(&SIGNAL_KEYS) { cached.min(points as f64) } else { 1.0 };
-    let bases = if varies(&["wing.", "discretisation.", "initial.", "disturbance.distributed", "horizon.field_points"])
-    {
-        cached.min(points as f64)
-    } else {
-        1.0
-    };
-    // the assembly keeps 2 bytes per point, ≈ 600 on 2-D searches (heatmaps; tests/assembly.rs)
-    let per_point = if axes.len() == 2 { 600.0 } else { 2.0 };
-    let memory = signals * signal + bases * basis + threads as f64 * run + per_point * points as f64;
+    let memory = memory_model(base, axes, points, threads, (signal, run, basis));
     WorkEstimate {
         points,
         steps_per_point: steps.min(u64::MAX as f64) as u64,
         unknowns: n.min(usize::MAX as f64) as usize,
-        core_seconds: point_seconds * points as f64,
-        memory_bytes: memory,
+        point_seconds,
+        core_seconds: point_seconds * points as f64 + g_hmax_seconds(base, axes, points, threads),
+        memory_bytes: memory.total(),
+        memory,
+    }
+}
+
+/// Core seconds of g_hmax (φ on a 1e-4 s grid over the horizon, `wingcheck_model::work::g_hmax_seconds`,
+/// at the longest horizon): the theory cache computes it once per disturbance, span and horizon
+/// in each window of [`crate::exec::CACHE_POINTS`] points, and each thread may compute it once
+/// more while another is at it.
+fn g_hmax_seconds(base: &Config, axes: &[Axis], points: u128, threads: usize) -> f64 {
+    let longest = axes.iter().filter(|a| a.key == "horizon.t_end").fold(base.clone(), |most, a| {
+        estimated_values(a)
+            .into_iter()
+            .filter_map(|i| apply_overrides(base, &[a.override_expr(i)]).ok())
+            .fold(most, |m, c| if c.horizon.t_end > m.horizon.t_end { c } else { m })
+    });
+    let keys = distinct_values(axes, &["disturbance.distributed", "wing.span", "horizon.t_end"]);
+    let windows = (points as f64 / crate::exec::CACHE_POINTS as f64).ceil().max(1.0);
+    let per_window = (keys + threads as f64).min(points as f64);
+    wingcheck_model::work::g_hmax_seconds(&longest) * per_window * windows
+}
+
+/// Distinct values of the axes over keys starting with one of `prefixes` (their product;
+/// 1 when no axis is over such a key).
+fn distinct_values(axes: &[Axis], prefixes: &[&str]) -> f64 {
+    axes.iter().filter(|a| prefixes.iter().any(|p| a.key.starts_with(p))).map(|a| a.len() as f64).product()
+}
+
+/// The memory model of a search: the largest signal, run and basis of any point
+/// (`largest`), and how many of each are held at once.
+fn memory_model(
+    base: &Config,
+    axes: &[Axis],
+    points: u128,
+    threads: usize,
+    largest: (f64, f64, f64),
+) -> MemoryEstimate {
+    let (signal_bytes, per_thread, basis_bytes) = largest;
+    let held = |distinct: f64| distinct.min(crate::modal::CACHE_ENTRIES as f64 + threads as f64).min(points as f64);
+    // a point whose controller is not the FTDO also reads the FTDO's signal (ζ3, ζ4)
+    let not_ftdo =
+        base.control.kind != wingcheck_model::ControllerKind::Ftdo || axes.iter().any(|a| a.key == "control.kind");
+    let signals = held(distinct_values(axes, &SIGNAL_KEYS) * if not_ftdo { 2.0 } else { 1.0 });
+    let bases = held(distinct_values(axes, &BASIS_KEYS));
+    // the assembly keeps 2 bytes per point, ≈ 600 on 2-D searches (heatmaps; tests/assembly.rs)
+    let per_point = if axes.len() == 2 { 600.0 } else { 2.0 };
+    MemoryEstimate {
+        threads,
+        process: PROCESS_BASE_BYTES + THREAD_BASE_BYTES * threads.saturating_sub(1) as f64,
+        signals,
+        signal_bytes,
+        bases,
+        basis_bytes,
+        per_thread,
+        assembly: per_point * points as f64,
     }
 }
 
@@ -180,17 +307,29 @@ fn short(x: f64) -> String {
     format!("{x:.3e}")
 }
 
+impl WorkEstimate {
+    /// The estimate in words: points, steps, unknowns, core-hours and the memory by buffer.
+    pub fn text(&self) -> String {
+        format!(
+            "{} points × up to {} steps × {} unknowns ≈ {} core-hours; {}",
+            self.points,
+            self.steps_per_point,
+            self.unknowns,
+            short(self.core_seconds / 3600.0),
+            self.memory.text()
+        )
+    }
+}
+
 /// Refuse a search above the limits ([`MAX_POINTS`], [`MAX_CORE_SECONDS`]; with `allow_large`
 /// only above [`MAX_POINTS_OVERRIDE`]), naming the estimate and the flag.
 pub fn check(w: &WorkEstimate, allow_large: bool) -> Result<(), SearchError> {
-    let what = format!(
-        "{} points × up to {} steps × {} unknowns ≈ {} core-hours, {:.3} GB of memory",
-        w.points,
-        w.steps_per_point,
-        w.unknowns,
-        short(w.core_seconds / 3600.0),
-        w.memory_bytes / 1e9
-    );
+    check_with_flag(w, allow_large, wingcheck_model::work::ALLOW_LARGE_FLAG)
+}
+
+/// [`check`] naming `flag` as the override (a front end's spelling of `--allow-large`).
+pub fn check_with_flag(w: &WorkEstimate, allow_large: bool, flag: &str) -> Result<(), SearchError> {
+    let what = w.text();
     if w.points > MAX_POINTS_OVERRIDE as u128 {
         return Err(SearchError::TooLarge(format!(
             "{what}: more than {MAX_POINTS_OVERRIDE} points cannot be searched in one directory \
@@ -203,8 +342,8 @@ pub fn check(w: &WorkEstimate, allow_large: bool) -> Result<(), SearchError> {
     {
         return Err(SearchError::TooLarge(format!(
             "{what}: above the limits of {MAX_POINTS} points, {} core-hours and {:.3} GB of memory; \
-             pass --allow-large to run it anyway (or --shard it over several machines; a long horizon or a \
-             small dt costs memory per point: the observer signal holds 3 numbers per integrator step)",
+             pass {flag} to run it anyway (or --shard it over several machines, or use fewer --threads; a \
+             long horizon or a small dt costs memory: an observer signal holds 24 bytes per integrator step)",
             MAX_CORE_SECONDS / 3600.0,
             MAX_MEMORY_BYTES / 1e9
         )));

@@ -1,6 +1,8 @@
 //! The search's metrics: one typed column per quantity of a point, with its unit and meaning
-//! stated once. Chunks and result files store them as numbers in [`Metric::ALL`] order; the
-//! names are read only at the boundary (the CLI's `--best`, the CSV header).
+//! stated once. Chunks and result files store them as numbers in [`Metric::ALL`] order. A metric
+//! has one name everywhere it is written — its column name, the short name with its unit suffix
+//! (`rms_q_tip_m`, [`Metric::column`]): results.csv and results.json, `missing_metrics`,
+//! best.json, the heatmap files. On input (`--best`) the short name (`rms_q_tip`) is accepted too.
 
 use wingcheck_model::quantity::Unit;
 
@@ -87,8 +89,9 @@ impl Metric {
         self as usize
     }
 
-    /// Column name in result files and `--best`.
-    pub const fn name(self) -> &'static str {
+    /// The name without its unit (`rms_q_tip`): accepted on input as an alias of
+    /// [`Metric::column`], never written.
+    pub const fn short_name(self) -> &'static str {
         match self {
             Metric::Lambda2 => "lambda2",
             Metric::Lambda1 => "lambda1",
@@ -130,15 +133,22 @@ impl Metric {
         }
     }
 
-    /// The metric named `name` ([`Metric::name`]).
+    /// The metric's one written name: the short name with the unit's column suffix
+    /// (`rms_q_tip_m`, `lambda_per_s`, `settling_time_s`), as results.csv heads its column.
+    pub fn column(self) -> &'static str {
+        &METRICS[self.index()]
+    }
+
+    /// The metric whose column name ([`Metric::column`]) or short name
+    /// ([`Metric::short_name`]) is `name`.
     pub fn from_name(name: &str) -> Option<Metric> {
-        Metric::ALL.into_iter().find(|m| m.name() == name)
+        Metric::ALL.into_iter().find(|m| m.column() == name || m.short_name() == name)
     }
 }
 
 impl std::fmt::Display for Metric {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
+        f.write_str(self.column())
     }
 }
 
@@ -181,7 +191,7 @@ impl std::fmt::Display for Ranking {
 }
 
 impl serde::Serialize for Ranking {
-    /// As written on the command line (`rms_q_tip`, `-lambda`).
+    /// As written on the command line, by column name (`rms_q_tip_m`, `-lambda_per_s`).
     fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         serializer.collect_str(self)
     }
@@ -192,9 +202,9 @@ impl schemars::JsonSchema for Ranking {
         "Ranking".into()
     }
 
-    /// A metric name, optionally prefixed `-` (maximised).
+    /// A metric's column name, optionally prefixed `-` (maximised).
     fn json_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
-        let names: Vec<String> = METRICS.iter().flat_map(|m| [m.to_string(), format!("-{m}")]).collect();
+        let names: Vec<String> = METRICS.iter().flat_map(|m| [m.clone(), format!("-{m}")]).collect();
         schemars::json_schema!({
             "type": "string",
             "description": "a metric name (minimised) or -name (maximised)",
@@ -209,16 +219,10 @@ impl<'de> serde::Deserialize<'de> for Ranking {
     }
 }
 
-/// The column names, in output order (the names of [`Metric::ALL`]).
-pub const METRICS: [&str; 21] = {
-    let mut names = [""; 21];
-    let mut i = 0;
-    while i < names.len() {
-        names[i] = Metric::ALL[i].name();
-        i += 1;
-    }
-    names
-};
+/// The column names, in output order ([`Metric::column`] of [`Metric::ALL`]).
+pub static METRICS: std::sync::LazyLock<[String; 21]> = std::sync::LazyLock::new(|| {
+    Metric::ALL.map(|m| wingcheck_io::column_name(m.short_name(), m.unit().column_suffix()))
+});
 
 /// The unit of each metric, in output order (the units of [`Metric::ALL`]): results.csv suffixes
 /// its column with it, results.json lists it under `units`.
@@ -240,13 +244,24 @@ mod tests {
     fn metrics_are_in_order_and_named_once() {
         for (i, m) in Metric::ALL.into_iter().enumerate() {
             assert_eq!(m.index(), i);
-            assert_eq!(Metric::from_name(m.name()), Some(m));
-            assert_eq!(METRICS[i], m.name());
+            assert_eq!(Metric::from_name(m.column()), Some(m));
+            assert_eq!(Metric::from_name(m.short_name()), Some(m));
+            assert_eq!(METRICS[i], m.column());
+            assert!(wingcheck_io::is_column_name(m.column()), "{}", m.column());
         }
+        let mut columns: Vec<&str> = METRICS.iter().map(String::as_str).collect();
+        columns.sort_unstable();
+        columns.dedup();
+        assert_eq!(columns.len(), METRICS.len(), "one column per metric");
+        assert_eq!(Metric::RmsQTip.column(), "rms_q_tip_m");
+        assert_eq!(Metric::Lambda.column(), "lambda_per_s");
+        assert_eq!(Metric::SettlingTime.column(), "settling_time_s");
         assert_eq!(Metric::ALL[Metric::THEORY.end], Metric::RmsQTip);
         assert_eq!(Metric::SIMULATION.end, Metric::ALL.len());
         assert_eq!(Metric::from_name("rms_q"), None);
         assert_eq!("-lambda".parse::<Ranking>(), Ok(Ranking { metric: Metric::Lambda, maximise: true }));
+        assert_eq!("rms_q_tip_m".parse::<Ranking>(), Ok(Ranking::default()));
+        assert_eq!(Ranking::default().to_string(), "rms_q_tip_m");
         assert_eq!(Ranking::default().to_string().parse::<Ranking>(), Ok(Ranking::default()));
         assert!("-rms_q".parse::<Ranking>().unwrap_err().contains("unknown metric `rms_q`"));
     }

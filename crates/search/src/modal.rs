@@ -11,7 +11,7 @@
 //! (tests/modal.rs), and to round-off against the nodal stepper.
 
 use std::collections::HashMap;
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, OnceLock};
 
 use serde::Serialize;
 use wingcheck_model::Config;
@@ -68,6 +68,22 @@ pub struct TipTrace {
 }
 
 impl TipTrace {
+    /// Empty, with room for `samples` output samples (allocated once: the search's memory
+    /// estimate counts exactly these vectors).
+    pub fn with_capacity(samples: usize) -> TipTrace {
+        let v = || Vec::with_capacity(samples);
+        TipTrace {
+            t: v(),
+            q_tip: v(),
+            theta_tip: v(),
+            tau1: v(),
+            tau2: v(),
+            g1_tilde: v(),
+            g2_tilde: v(),
+            ..Default::default()
+        }
+    }
+
     /// The trace of a full simulator run (fallback path and tests).
     pub fn from_output(o: &wingcheck_sim::SimOutput) -> TipTrace {
         let s = &o.series;
@@ -149,7 +165,7 @@ pub fn run(cfg: &Config, basis: &ModalBasis, signal: &RecordedSignal) -> Result<
     cfg.validate().map_err(SimError::Config)?;
     let lp = ModalLoop::with_eigenbasis(cfg, basis)?;
     let mut st = lp.initial_state(cfg, basis);
-    let mut rec = Trace::default();
+    let mut rec = Trace { trace: TipTrace::with_capacity(cfg.output_samples()), ..Default::default() };
     drive(cfg, basis, &lp, &mut st, &mut signal.replay(), &mut rec)?;
     rec.trace.tau_peak = rec.peak;
     // one interval: the whole run (the squares' start is t = 0, their end the last step's)
@@ -157,27 +173,31 @@ pub fn run(cfg: &Config, basis: &ModalBasis, signal: &RecordedSignal) -> Result<
     Ok(rec.trace)
 }
 
-fn cache_get<T>(map: &Mutex<HashMap<String, Arc<T>>>, key: String, make: impl FnOnce() -> T) -> Arc<T> {
-    if let Some(v) = map.lock().expect("cache lock").get(&key) {
-        return v.clone();
-    }
-    let v = Arc::new(make());
-    let mut m = map.lock().expect("cache lock");
-    if m.len() >= CACHE_ENTRIES {
-        m.clear();
-    }
-    m.entry(key).or_insert(v).clone()
+/// A cache's entries: each value is built once, by the first thread that asks for it, while the
+/// others asking for the same key wait for it (a signal of 2 GB was built by every worker at
+/// once: 3 × 1.44 GB at 3 threads).
+type Cells<T> = Mutex<HashMap<String, Arc<OnceLock<Arc<T>>>>>;
+
+fn cache_get<T>(map: &Cells<T>, key: String, make: impl FnOnce() -> T) -> Arc<T> {
+    let cell = {
+        let mut m = map.lock().expect("cache lock");
+        if !m.contains_key(&key) && m.len() >= CACHE_ENTRIES {
+            m.clear();
+        }
+        m.entry(key).or_default().clone()
+    };
+    cell.get_or_init(|| Arc::new(make())).clone()
 }
 
 /// Shared modal bases and input signals of a search (thread-safe; values are pure functions
 /// of their keys, so caching never changes a result).
 #[derive(Default)]
 pub struct RunCache {
-    bases: Mutex<HashMap<String, Arc<Result<ModalBasis, String>>>>,
-    signals: Mutex<HashMap<String, Arc<RecordedSignal>>>,
+    bases: Cells<Result<ModalBasis, String>>,
+    signals: Cells<RecordedSignal>,
     /// [`sup_tilde`] of each signal (it reads the signal and the output sampling and horizon,
     /// which its key contains).
-    sup_tildes: Mutex<HashMap<String, Arc<(f64, f64)>>>,
+    sup_tildes: Cells<(f64, f64)>,
 }
 
 impl RunCache {

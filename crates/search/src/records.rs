@@ -77,7 +77,7 @@ impl PointRecord {
     }
 }
 
-/// The unit of every metric, by name (`"rms_q_tip": "m"`), in [`METRICS`] order.
+/// The unit of every metric, by column name (`"rms_q_tip_m": "m"`), in [`METRICS`] order.
 pub fn metric_units() -> Map<String, Value> {
     METRICS.iter().zip(METRIC_UNITS).map(|(m, u)| (m.to_string(), Value::from(unit_text(u)))).collect()
 }

@@ -10,7 +10,7 @@ use serde_json::{Map, Value};
 use crate::records::{BestDocument, PointRecord};
 
 pub use crate::chunk::{chunk_text, read_chunk};
-use crate::metric::{Metric, Ranking, METRICS, METRIC_UNITS};
+use crate::metric::{Metric, Ranking, METRICS};
 use crate::point::{PointResult, Status};
 use crate::SearchError;
 
@@ -24,13 +24,29 @@ pub const CHUNK_DIR: &str = "chunks";
 /// after a kill holds exactly the files of an uninterrupted run.
 const TMP_TAGS: [&str; 2] = [".tmp-", ".set-tmp-"];
 
+/// The temp file `.{name}{tag}{pid}` of `path` (the name's bytes as given: a name that is not
+/// UTF-8 keeps them).
+fn temp_path(path: &Path, tag: &str) -> PathBuf {
+    let mut name = std::ffi::OsString::from(".");
+    name.push(path.file_name().unwrap_or_default());
+    name.push(format!("{tag}{}", std::process::id()));
+    path.with_file_name(name)
+}
+
+/// Refuses to rename over `path` unless it is missing or a regular file (a FIFO, device or
+/// symlink a user put there is never replaced).
+fn check_replaceable(path: &Path) -> Result<(), SearchError> {
+    wingcheck_io::paths::check_replaceable_file(path)
+        .map_err(|e| SearchError::Io { path: path.display().to_string(), detail: e.to_string() })
+}
+
 /// Write `bytes` to `path` atomically: temp file `.{name}.tmp-{pid}` in the same directory,
-/// fsync, mode 0644, rename over `path`.
+/// fsync, mode 0644, rename over `path` (refused if `path` is not a regular file).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), SearchError> {
+    check_replaceable(path)?;
     use std::io::Write;
     let err = |e: std::io::Error| SearchError::Io { path: path.display().to_string(), detail: e.to_string() };
-    let name = path.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
-    let tmp = path.with_file_name(format!(".{name}{}{}", TMP_TAGS[0], std::process::id()));
+    let tmp = temp_path(path, TMP_TAGS[0]);
     let dir = path.parent().unwrap_or(Path::new("."));
     let _lock = wingcheck_io::DirLock::acquire(dir).map_err(err)?;
     let write = || -> std::io::Result<()> {
@@ -50,14 +66,58 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), SearchError> {
     })
 }
 
+fn io_error(p: &Path) -> impl Fn(std::io::Error) -> SearchError + '_ {
+    move |e| SearchError::Io { path: p.display().to_string(), detail: e.to_string() }
+}
+
+/// Write a chunk and the progress file that counts it together: both staged (temp file, fsync)
+/// before either is renamed into place, the chunk first. A kill between the two renames leaves
+/// the progress file one chunk behind, which the next run rewrites before any work.
+pub fn write_with_progress(
+    chunk: &Path,
+    bytes: &[u8],
+    progress: &Path,
+    progress_bytes: &[u8],
+) -> Result<(), SearchError> {
+    use std::io::Write;
+    check_replaceable(chunk)?;
+    check_replaceable(progress)?;
+    let (chunk_tmp, progress_tmp) = (temp_path(chunk, TMP_TAGS[0]), temp_path(progress, TMP_TAGS[0]));
+    let dir = chunk.parent().unwrap_or(Path::new("."));
+    let pdir = progress.parent().unwrap_or(Path::new("."));
+    let _locks = (
+        wingcheck_io::DirLock::acquire(dir).map_err(io_error(chunk))?,
+        wingcheck_io::DirLock::acquire(pdir).map_err(io_error(progress))?,
+    );
+    let stage = |tmp: &Path, bytes: &[u8]| -> std::io::Result<()> {
+        let mut f = std::fs::File::create(tmp)?;
+        f.write_all(bytes)?;
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            f.set_permissions(std::fs::Permissions::from_mode(0o644))?;
+        }
+        f.sync_all()
+    };
+    let result = stage(&chunk_tmp, bytes)
+        .map_err(io_error(chunk))
+        .and_then(|()| stage(&progress_tmp, progress_bytes).map_err(io_error(progress)))
+        .and_then(|()| std::fs::rename(&chunk_tmp, chunk).map_err(io_error(chunk)))
+        .and_then(|()| std::fs::rename(&progress_tmp, progress).map_err(io_error(progress)));
+    if result.is_err() {
+        let _ = std::fs::remove_file(&chunk_tmp);
+        let _ = std::fs::remove_file(&progress_tmp);
+    }
+    result
+}
+
 /// Create `path` holding `bytes` unless it exists, atomically and without overwriting: the
 /// bytes go to a temp file (as in [`write_atomic`]) that is then hard-linked to `path`, which
 /// fails if another process created `path` first. Returns whether this call created it.
 pub fn write_new(path: &Path, bytes: &[u8]) -> Result<bool, SearchError> {
     use std::io::Write;
     let err = |e: std::io::Error| SearchError::Io { path: path.display().to_string(), detail: e.to_string() };
-    let name = path.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
-    let tmp = path.with_file_name(format!(".{name}{}{}", TMP_TAGS[0], std::process::id()));
+    let tmp = temp_path(path, TMP_TAGS[0]);
     let dir = path.parent().unwrap_or(Path::new("."));
     let _lock = wingcheck_io::DirLock::acquire(dir).map_err(err)?;
     let write = || -> std::io::Result<bool> {
@@ -108,10 +168,15 @@ pub fn is_temp(name: &str) -> bool {
             || wingcheck_io::is_lock_file(name))
 }
 
-/// Read a file to a string.
+/// Largest file a search reads (a manifest, a chunk: ≈ 0.6 kB per point).
+pub const MAX_READ_BYTES: u64 = 4 << 30;
+
+/// Read a regular file to a string (a FIFO or device is refused without being opened:
+/// [`wingcheck_io::read_regular`]).
 pub fn read(path: &Path) -> Result<String, SearchError> {
-    std::fs::read_to_string(path)
-        .map_err(|e| SearchError::Io { path: path.display().to_string(), detail: e.to_string() })
+    let io = |detail: String| SearchError::Io { path: path.display().to_string(), detail };
+    let bytes = wingcheck_io::read_regular(path, MAX_READ_BYTES).map_err(|e| io(e.to_string()))?;
+    String::from_utf8(bytes).map_err(|_| io("not UTF-8 text".into()))
 }
 
 /// Create a directory (and parents).
@@ -179,7 +244,7 @@ pub fn results_csv_header(keys: &[String]) -> String {
 
 /// The metric columns' names: each metric with its unit suffix (`rms_q_tip_m`, `lambda_per_s`).
 pub fn metric_columns() -> Vec<String> {
-    METRICS.iter().zip(METRIC_UNITS).map(|(m, u)| wingcheck_io::column_name(m, u.column_suffix())).collect()
+    METRICS.to_vec()
 }
 
 /// One row of `results.csv` (points in index order; f64 in Rust's shortest round-trip form).
@@ -189,7 +254,8 @@ pub fn results_csv_row(p: &PointResult) -> String {
     let mut row = vec![p.index.to_string()];
     row.extend(p.values.iter().cloned());
     let settling = p.metric(Metric::SettlingTime);
-    let missing: Vec<&str> = METRICS.iter().zip(&p.metrics).filter(|(_, m)| m.is_none()).map(|(n, _)| *n).collect();
+    let missing: Vec<&str> =
+        METRICS.iter().zip(&p.metrics).filter(|(_, m)| m.is_none()).map(|(n, _)| n.as_str()).collect();
     row.extend(
         [
             p.status.name(),
@@ -259,7 +325,7 @@ where
         schema_version: u32,
         provenance: &'a wingcheck_io::Provenance,
         axes: &'a [String],
-        metrics: &'a [&'a str],
+        metrics: &'a [String],
         units: Map<String, Value>,
         points: &'a LazyPoints<'a, I>,
     }
@@ -268,7 +334,7 @@ where
         schema_version: wingcheck_io::SCHEMA_VERSION,
         provenance,
         axes: keys,
-        metrics: &METRICS,
+        metrics: &METRICS[..],
         units: crate::records::metric_units(),
         points: &lazy,
     };
@@ -324,7 +390,7 @@ impl BestPoints {
         let list = |l: &[(f64, PointResult)]| l.iter().map(|(_, p)| point_json(keys, p)).collect::<Vec<PointRecord>>();
         let doc = BestDocument {
             schema_version: wingcheck_io::SCHEMA_VERSION,
-            metric: self.ranking.metric.name().to_string(),
+            metric: self.ranking.metric.column().to_string(),
             order: if self.ranking.maximise { "descending" } else { "ascending" }.to_string(),
             unit: BestDocument::unit_of(self.ranking.metric),
             best: list(&self.overall),
@@ -416,8 +482,12 @@ impl FileSet {
         Ok(Staged { out: std::io::BufWriter::new(file), path })
     }
 
-    /// Rename every staged file into place; returns their names.
+    /// Rename every staged file into place (none if any target is not a regular file); returns
+    /// their names.
     pub fn commit(mut self) -> Result<Vec<String>, SearchError> {
+        for name in &self.staged {
+            check_replaceable(&self.dir.join(name))?;
+        }
         for name in &self.staged {
             std::fs::rename(self.tmp(name), self.dir.join(name)).map_err(|e| SearchError::Io {
                 path: self.dir.join(name).display().to_string(),

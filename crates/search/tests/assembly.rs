@@ -162,5 +162,5 @@ fn streamed_files_equal_a_whole_document_rendering() {
     let got: Vec<u64> =
         best["best_theorem_feasible"].as_array().unwrap().iter().map(|p| p["index"].as_u64().unwrap()).collect();
     assert_eq!(got, feasible);
-    assert!(files.iter().any(|f| f == "heatmap-rms_q_tip.svg"), "{files:?}");
+    assert!(files.iter().any(|f| f == "heatmap-rms_q_tip_m.svg"), "{files:?}");
 }

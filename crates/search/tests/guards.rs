@@ -140,20 +140,26 @@ fn the_estimate_takes_the_costliest_value_of_each_axis() {
     )
     .unwrap()
     .estimate();
-    assert!((w.core_seconds - 4.0 * corner.core_seconds).abs() <= 1e-12 * w.core_seconds, "{w:?} vs {corner:?}");
+    assert_eq!(w.point_seconds, corner.point_seconds, "{w:?} vs {corner:?}");
+    assert!(w.core_seconds >= 4.0 * corner.point_seconds, "{w:?} vs {corner:?}");
 }
 
 #[test]
 fn memory_is_estimated_and_every_value_of_a_list_axis_counts() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("s");
-    // t_end = 1e5 s at dt = 1 ms: 1e8 steps, whose observer signal is 3 × 8 bytes per step
-    // (2.4 GB) plus 4 × 8 bytes per sample (3.2 GB), and the point's trace: above the 4 GiB limit, refused before any
-    // work (it used to run and reach 2.2 GB RSS while `simulate` refused the same horizon).
+    // t_end = 1e5 s at dt = 1 ms: 1e8 steps, whose observer signal is 3 f64 per step (2.4 GB)
+    // plus 6 f64 per observer sample k = 0..=1e8 (4.8 GB: ĝ, σ, g of both channels), and the
+    // point's trace of 7 f64 at 1e7 + 1 output samples (0.56 GB): above the 4 GiB limit, refused
+    // before any work (it used to run and reach 2.2 GB RSS while `simulate` refused the same
+    // horizon; the estimate counted 4 f64 per sample, issue 46).
     let long = apply_overrides(&Config::paper(), &["horizon.t_end=1e5".into()]).unwrap();
     let s = Search::new(long, &["control.a=1".into()], SearchOptions::default()).unwrap();
     let w = s.estimate_with_threads(1);
-    assert!(w.memory_bytes > 5.6e9 && w.memory_bytes < 7e9, "{w:?}");
+    assert_eq!(w.memory.signal_bytes, 24.0 * 1e8 + 48.0 * (1e8 + 1.0), "{w:?}");
+    assert_eq!(w.memory.signals, 1.0, "one signal, whatever the threads: {w:?}");
+    assert!(w.memory.per_thread >= 56.0 * (1e7 + 1.0), "{w:?}");
+    assert!(w.memory_bytes > 7.7e9 && w.memory_bytes < 7.9e9, "{w:?}");
     let e = run(&s, &out, RunControl::default()).unwrap_err().to_string();
     assert!(e.contains("GB of memory") && e.contains("--allow-large"), "{e}");
     assert!(!out.exists());
@@ -172,4 +178,31 @@ fn memory_is_estimated_and_every_value_of_a_list_axis_counts() {
     let many: Vec<String> = (1..=300).map(|k| format!("{k}")).collect();
     let s = Search::new(base(), &[format!("control.a={}", many.join(","))], SearchOptions::default()).unwrap();
     assert_eq!(s.estimate().steps_per_point, 50);
+}
+
+/// `merge` recomputes chunks' points ([`wingcheck_search::verify`]): one per chunk by default,
+/// all with `--verify-chunks`. That work is the search's, guarded by the search's estimate
+/// before any chunk is read: a directory of a search above the memory limit (started with
+/// `--allow-large`) is refused unless the merge is given it too.
+#[test]
+fn merge_recomputation_is_guarded_by_the_searchs_estimate() {
+    use wingcheck_search::{merge_with, ChunkCheck};
+    let dir = tempfile::tempdir().unwrap();
+    let (shard, out) = (dir.path().join("shard"), dir.path().join("merged"));
+    // t_end = 1e5 s: 7.8 GB (memory_is_estimated_and_every_value_of_a_list_axis_counts); the run
+    // stops before its first chunk, leaving the manifest only
+    let long = apply_overrides(&Config::paper(), &["horizon.t_end=1e5".into()]).unwrap();
+    let s = Search::new(long, &["control.a=1".into()], SearchOptions::default()).unwrap();
+    run(&s, &shard, RunControl { allow_large: true, stop_after_chunks: Some(0), ..Default::default() }).unwrap();
+    for check in [ChunkCheck::Sample, ChunkCheck::All] {
+        let start = std::time::Instant::now();
+        let e = merge_with(std::slice::from_ref(&shard), &out, check, false).unwrap_err().to_string();
+        assert!(e.contains("GB of memory") && e.contains("--allow-large") && e.contains("1 points"), "{e}");
+        assert!(start.elapsed().as_secs_f64() < 2.0, "refused before any work: {:?}", start.elapsed());
+        assert!(!out.exists());
+    }
+    // allowed, the merge goes on to find the chunk missing (nothing recomputed, nothing written)
+    let e = merge_with(std::slice::from_ref(&shard), &out, ChunkCheck::All, true).unwrap_err();
+    assert!(matches!(e, SearchError::MissingChunks { .. }), "{e}");
+    assert!(!out.exists());
 }

@@ -60,7 +60,15 @@ fn the_32_by_32_paper_grid_has_no_failed_point() {
         assert_eq!(p["status"], "ok", "{p}");
         assert!(p["w_positive_definite"].is_boolean() && p["feasible_32"].is_boolean(), "{p}");
         assert!(p["w_decided"] == true && p["feasible_32_decided"] == true, "both verdicts decided: {p}");
-        for m in ["lambda2", "lambda1", "lambda3_max", "rms_q_tip", "rms_theta_tip", "tau1_peak", "energy_t_end"] {
+        for m in [
+            "lambda2_J_s",
+            "lambda1_J_s",
+            "lambda3_max_J",
+            "rms_q_tip_m",
+            "rms_theta_tip_rad",
+            "tau1_peak_N",
+            "energy_t_end_J",
+        ] {
             assert!(p["metrics"][m].as_f64().is_some_and(f64::is_finite), "{m} missing: {p}");
         }
     }

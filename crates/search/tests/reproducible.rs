@@ -13,9 +13,9 @@ const FILES: [&str; 8] = [
     "results.json",
     "best.json",
     "boundary.csv",
-    "heatmap-rms_q_tip.svg",
-    "heatmap-rms_theta_tip.svg",
-    "heatmap-settling_time.svg",
+    "heatmap-rms_q_tip_m.svg",
+    "heatmap-rms_theta_tip_rad.svg",
+    "heatmap-settling_time_s.svg",
 ];
 
 /// 3 × 4 grid over (a, b) crossing both theory boundaries, 0.3-s horizon, chunks of 2
@@ -141,6 +141,6 @@ fn result_files_have_the_documented_shape() {
     assert_eq!(manifest["axis_specs"][1], "control.b=0.5,1,2,4");
     // the paper's base point (implicit FTDO): `auto` resolves to TR-BDF2
     assert_eq!(manifest["time_scheme"], "trbdf2");
-    let svg = std::fs::read_to_string(dir.path().join("heatmap-rms_q_tip.svg")).unwrap();
+    let svg = std::fs::read_to_string(dir.path().join("heatmap-rms_q_tip_m.svg")).unwrap();
     assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
 }

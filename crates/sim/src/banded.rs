@@ -126,6 +126,27 @@ impl BandedCholesky {
         b.copy_from_slice(&y[bw..bw + n]);
     }
 
+    /// y = Lᵀ x (the factor's transpose times a vector).
+    pub fn transpose_mul_into(&self, x: &[f64], y: &mut [f64]) {
+        let (n, bw) = (self.n, self.bw);
+        for i in 0..n {
+            let hi = n.min(i + bw + 1);
+            let u = &self.upper[i * bw..i * bw + (hi - i - 1)];
+            y[i] = x[i] / self.inv_diag[i] + u.iter().zip(&x[i + 1..hi]).map(|(a, b)| a * b).sum::<f64>();
+        }
+    }
+
+    /// Overwrite `b` with L⁻ᵀ b (the backward half of [`BandedCholesky::solve_in_place`]).
+    pub fn transpose_solve_in_place(&self, b: &mut [f64]) {
+        let (n, bw) = (self.n, self.bw);
+        for i in (0..n).rev() {
+            let hi = n.min(i + bw + 1);
+            let u = &self.upper[i * bw..i * bw + (hi - i - 1)];
+            let s: f64 = u.iter().zip(&b[i + 1..hi]).map(|(a, x)| a * x).sum();
+            b[i] = (b[i] - s) * self.inv_diag[i];
+        }
+    }
+
     /// Stored band entries of L.
     pub fn stored(&self) -> usize {
         self.n * (self.bw + 1)

@@ -29,13 +29,69 @@ pub struct PeakEstimate {
     pub abs_max: Estimate,
     /// Time of the peak in the base run (s).
     pub t: f64,
-    /// Whether the grid sequence converges for this peak: always for a peak after the initial
-    /// layer (Richardson in h is then taken as valid); inside the layer, whether the N → 2N
-    /// change is at least 3 × the 2N → 4N one. When it is not (the tip-rate peak right after
-    /// t = 0 with strong tip damping: the initial shape violates the tip's boundary law, so the
-    /// layer sharpens with the grid), the error is |u(N) − u(4N)| plus the geometric tail of
-    /// the differences, or the whole value when they do not shrink.
+    /// Whether three grids show the asymptotic order ([`grid_part`]): the N → 2N change is at
+    /// least 3 × the 2N → 4N one (observed order ≥ log₂3; 2 expected), or at round-off level.
+    /// Otherwise (no 4N run, or a change that does not shrink so: the tip-rate peak right after
+    /// t = 0 with strong tip damping, whose layer sharpens with the grid; a post-jump tip-rate
+    /// peak at large b, falling ≈ 3.5 % per halving of h) the grid part of the error is
+    /// |u(N) − u(4N)| plus the geometric tail of the differences, or the whole value when they
+    /// do not shrink, and every printed form says "not converged in the grid" with the trend.
     pub grid_converged: bool,
+    /// The peak on the grid sequence N, 2N, 4N (elements or intervals, [`Self::grids`]); the 4N
+    /// value is absent when that run was not made ([`EstimatedRun::third_grid`]).
+    pub grid_values: [Option<f64>; 3],
+    /// The grid sizes N, 2N, 4N of [`Self::grid_values`].
+    pub grids: [usize; 3],
+}
+
+impl PeakEstimate {
+    /// Whether the bar is at least the value: the peak is unresolved (printed as a range, never
+    /// as "value ± bar").
+    pub fn unresolved(&self) -> bool {
+        self.abs_max.error >= self.abs_max.value || self.abs_max.error.is_nan()
+    }
+
+    /// The one printed form of a peak with its error, in `unit`: `2.2780e-3 ± 1.2e-4 rad/s`;
+    /// an unresolved one as `unresolved: between 0 and 1.383 N`; one whose grid sequence does
+    /// not converge followed by `(not converged in the grid: N 24 …, 2N 48 …, 4N 96 …; −3.5 %
+    /// per halving)`. Used by `simulate` (text); the JSON carries the same fields.
+    pub fn text(&self, unit: &str) -> String {
+        use wingcheck_model::quantity::{format_error, format_value};
+        let (v, e) = (self.abs_max.value, self.abs_max.error);
+        let mut out = if self.unresolved() {
+            format!(
+                "unresolved: between {} and {} {unit}",
+                format_value((v - e).max(0.0), None),
+                format_value(v + e, None)
+            )
+        } else {
+            format!("{} ± {} {unit}", format_value(v, Some(e)), format_error(e))
+        };
+        if !self.grid_converged {
+            out.push_str(&format!(" (not converged in the grid: {})", self.trend()));
+        }
+        out
+    }
+
+    /// The grid sequence as printed: each grid's value and the last relative change per
+    /// halving of h.
+    fn trend(&self) -> String {
+        let values: Vec<(usize, f64)> =
+            self.grids.iter().zip(self.grid_values).filter_map(|(&n, v)| v.map(|v| (n, v))).collect();
+        let mut parts: Vec<String> = values
+            .iter()
+            .map(|(n, v)| format!("{n}: {}", wingcheck_model::quantity::with_significant(*v, 5)))
+            .collect();
+        if let [.., (_, a), (_, b)] = values.as_slice() {
+            if *a != 0.0 {
+                parts.push(format!("{:+.2} % per halving of h", 100.0 * (b / a - 1.0)));
+            }
+        }
+        if values.len() < 3 {
+            parts.push(format!("{} not run", self.grids[2]));
+        }
+        parts.join(", ")
+    }
 }
 
 /// Full-rate peaks with errors.
@@ -90,6 +146,24 @@ pub struct EstimatedRun {
     pub meets_tolerance: bool,
     /// How the peaks were checked for sub-step transients after the initial layer.
     pub sub_step_check: SubStepCheck,
+    /// The third grid (4N) of the peaks' grid sequence ([`third_grid_run`]).
+    pub third_grid: ThirdGrid,
+}
+
+/// The 4N run of the peaks' grid sequence ([`third_grid_run`]).
+#[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]
+#[serde(rename_all = "kebab-case", tag = "kind")]
+pub enum ThirdGrid {
+    /// It ran over [0, `t_end`] (s).
+    Ran {
+        /// Its horizon's end (s): the latest N or 2N peak plus one observer sample period.
+        t_end: f64,
+    },
+    /// It was not made (the reason); no peak is then called converged in the grid.
+    NotRun {
+        /// Why.
+        reason: String,
+    },
 }
 
 /// How a run's full-rate peaks were checked for a transient shorter than dt after a later jump
@@ -159,35 +233,51 @@ impl PeakEstimates {
     }
 }
 
-/// Each peak's error: Richardson in h and dt (the refined runs resolve their own initial
-/// layers; inside the layer the grid sequence is checked on 4N, see
-/// [`PeakEstimate::grid_converged`]), plus, for a peak inside the initial layer, the layer's own
-/// error ([`crate::layer::InitialLayer::errors`]), plus, for a peak found inside a step by the
-/// exponential scheme's sub-step probe, the probe's one-sided resolution
+/// The grid part of a peak's error from its values u = [u(N), u(2N), u(4N)] (the last absent
+/// when the 4N run was not made), and whether the grid sequence converges: with three grids
+/// and the N → 2N change at least 3 × the 2N → 4N one (or at round-off level, 1e-10 relative:
+/// far above it, far below any discretisation error this is used for), Richardson on the
+/// coarse pair, (5/3)·|u(N) − u(2N)| ([`RICHARDSON_2`]; the whole geometric tail from N is at
+/// most 1.5·|u(N) − u(2N)| then); with three grids otherwise, |u(N) − u(4N)| plus the
+/// geometric tail d₂/(ρ − 1) (ρ = d₁/d₂ > 1.05), or |u(N)| when the changes do not shrink; with
+/// two grids, the two-grid Richardson bar, not called converged.
+pub fn grid_part(u: [Option<f64>; 3]) -> (f64, bool) {
+    let (Some(u0), Some(u1)) = (u[0], u[1]) else {
+        return (f64::INFINITY, false);
+    };
+    let d1 = (u0 - u1).abs();
+    let Some(u2) = u[2] else {
+        return (RICHARDSON_2 * d1, false);
+    };
+    let d2 = (u1 - u2).abs();
+    if 3.0 * d2 <= d1 || d1 <= 1e-10 * u0.abs() {
+        return (RICHARDSON_2 * d1, true);
+    }
+    let ratio = d1 / d2;
+    let tail = if ratio > 1.05 { d2 / (ratio - 1.0) } else { u0.abs() };
+    ((u0 - u2).abs() + tail, false)
+}
+
+/// Each peak's error: its grid part from N, 2N and 4N ([`grid_part`]; the refined runs resolve
+/// their own initial layers), Richardson in dt, plus, for a peak inside the initial layer, the
+/// layer's own error ([`crate::layer::InitialLayer::errors`]), plus, for a peak found inside a
+/// step by the exponential scheme's sub-step probe, the probe's one-sided resolution
 /// ([`crate::Peak::sub_step_error`]), plus the round-off floor [`crate::layer::PEAK_ROUND_OFF`]
 /// of its value.
-fn peak_estimates(base: &SimOutput, space: &Peaks, time: &Peaks, layer_4n: Option<&Peaks>) -> PeakEstimates {
+fn peak_estimates(
+    base: &SimOutput,
+    space: &Peaks,
+    time: &Peaks,
+    fourth: Option<&Peaks>,
+    grids: [usize; 3],
+) -> PeakEstimates {
     let layer = base.initial_layer;
     let [b, s, t] = [base.peaks.signals(), space.signals(), time.signals()];
-    let fine = layer_4n.map(|p| p.signals());
+    let fine = fourth.map(|p| p.signals());
     let e: [PeakEstimate; 8] = std::array::from_fn(|i| {
         let inside = layer.filter(|l| b[i].t <= l.t_end);
-        let d1 = (b[i].abs_max - s[i].abs_max).abs();
-        let (grid, grid_converged) = match (inside, fine) {
-            (Some(_), Some(f)) => {
-                let d2 = (s[i].abs_max - f[i].abs_max).abs();
-                // a change at round-off level (1e-10 relative: far above it, far below any
-                // discretisation error this estimate is used for) converges by definition
-                if 3.0 * d2 <= d1 || d1 <= 1e-10 * b[i].abs_max {
-                    (RICHARDSON_2 * d1, true)
-                } else {
-                    let ratio = d1 / d2;
-                    let tail = if ratio > 1.05 { d2 / (ratio - 1.0) } else { b[i].abs_max };
-                    ((b[i].abs_max - f[i].abs_max).abs() + tail, false)
-                }
-            }
-            _ => (RICHARDSON_2 * d1, true),
-        };
+        let grid_values = [Some(b[i].abs_max), Some(s[i].abs_max), fine.map(|f| f[i].abs_max)];
+        let (grid, grid_converged) = grid_part(grid_values);
         let time_part = RICHARDSON_2 * (b[i].abs_max - t[i].abs_max).abs();
         let in_layer = inside.map_or(0.0, |l| l.errors[i]);
         PeakEstimate {
@@ -197,6 +287,8 @@ fn peak_estimates(base: &SimOutput, space: &Peaks, time: &Peaks, layer_4n: Optio
             },
             t: b[i].t,
             grid_converged,
+            grid_values,
+            grids,
         }
     });
     PeakEstimates {
@@ -243,11 +335,13 @@ pub fn simulate_with_error(cfg: &Config, opts: RunOptions<'_>) -> Result<Estimat
     let (mut space_cfg, mut time_cfg) = (refined_space(cfg), refined_time(cfg));
     space_cfg.validate()?;
     time_cfg.validate()?;
+    let cancel = opts.cancel.clone();
+    let refined = || RunOptions { cancel: cancel.clone(), ..Default::default() };
     let output = simulate(cfg, opts)?;
     let scheme = output.stats.stepper;
     space_cfg.discretisation.stepper = scheme;
     time_cfg.discretisation.stepper = scheme;
-    let space = simulate(&space_cfg, RunOptions::default()).map_err(|e| match e {
+    let space = simulate(&space_cfg, refined()).map_err(|e| match e {
         SimError::Numerical(reason) | SimError::NoModalBasis { reason } => SimError::Numerical(format!(
             "the spatial refinement ({} {}) cannot run the base run's {} scheme: {reason}; \
              set discretisation.stepper=trbdf2 to estimate with TR-BDF2, or use a coarser grid",
@@ -257,9 +351,13 @@ pub fn simulate_with_error(cfg: &Config, opts: RunOptions<'_>) -> Result<Estimat
         )),
         other => other,
     })?;
-    let time = simulate(&time_cfg, RunOptions::default())?;
-    let twin = (scheme != wingcheck_model::TimeScheme::Exponential).then(|| sub_step_twin(cfg));
-    let mut estimated = estimate_from_runs(output, &space, &time, &space_cfg, &time_cfg);
+    let time = simulate(&time_cfg, refined())?;
+    let fourth = third_grid_run(&output, &space, &space_cfg, refined());
+    let twin = (scheme != wingcheck_model::TimeScheme::Exponential).then(|| sub_step_twin(cfg, refined()));
+    // the 4N run's, the twin's and the layer check's failures are findings, not errors: a
+    // cancelled one is not
+    cancel.check()?;
+    let mut estimated = estimate_from_runs(output, &space, &time, fourth.as_ref(), &space_cfg, &time_cfg);
     if let Some(twin) = twin {
         estimated.apply_twin(twin);
     }
@@ -268,12 +366,12 @@ pub fn simulate_with_error(cfg: &Config, opts: RunOptions<'_>) -> Result<Estimat
 
 /// The twin of `cfg` that probes inside its steps: the exponential scheme in the modal basis,
 /// at the configured step only (the base run resolves its own initial layer).
-fn sub_step_twin(cfg: &Config) -> Result<SimOutput, String> {
+fn sub_step_twin(cfg: &Config, opts: RunOptions<'_>) -> Result<SimOutput, String> {
     let mut twin = cfg.clone();
     twin.discretisation.stepper = wingcheck_model::TimeScheme::Exponential;
     twin.discretisation.basis = wingcheck_model::StepBasis::Modal;
     twin.validate().map_err(|e| format!("the exponential twin is not a valid configuration: {e}"))?;
-    crate::simulate_base(&twin, RunOptions::default()).map_err(|e| format!("the exponential twin did not run: {e}"))
+    crate::simulate_base(&twin, opts).map_err(|e| format!("the exponential twin did not run: {e}"))
 }
 
 impl EstimatedRun {
@@ -315,12 +413,14 @@ pub fn refinements(cfg: &Config, scheme: wingcheck_model::TimeScheme) -> (Config
     (space_cfg, time_cfg)
 }
 
-/// The error estimates of a base run from its two refinements ([`refinements`]): what
-/// [`simulate_with_error`] returns, for runs simulated elsewhere.
+/// The error estimates of a base run from its two refinements ([`refinements`]) and the peaks'
+/// third grid ([`third_grid_run`], or why it was not made): what [`simulate_with_error`]
+/// returns, for runs simulated elsewhere.
 pub fn estimate_from_runs(
     output: SimOutput,
     space: &SimOutput,
     time: &SimOutput,
+    fourth: Result<&SimOutput, &String>,
     space_cfg: &Config,
     time_cfg: &Config,
 ) -> EstimatedRun {
@@ -344,8 +444,13 @@ pub fn estimate_from_runs(
     debug_assert_eq!(eq, series_error(&b.t, &b.q_tip, &s.q_tip, &t.q_tip));
     let max_q = eq.iter().copied().fold(0.0, f64::max);
     let max_t = et.iter().copied().fold(0.0, f64::max);
-    let layer_4n = layer_grid_check(&output, space_cfg);
-    let peaks = peak_estimates(&output, &space.peaks, &time.peaks, layer_4n.as_ref().map(|o| &o.peaks));
+    let grid = space_cfg.discretisation.grid_size();
+    let grids = [grid / 2, grid, 2 * grid];
+    let peaks = peak_estimates(&output, &space.peaks, &time.peaks, fourth.ok().map(|o| &o.peaks), grids);
+    let third_grid = match fourth {
+        Ok(o) => ThirdGrid::Ran { t_end: o.series.t.last().copied().unwrap_or(0.0) },
+        Err(reason) => ThirdGrid::NotRun { reason: reason.clone() },
+    };
     EstimatedRun {
         output,
         refined_grid: space_cfg.discretisation.grid_size(),
@@ -365,21 +470,40 @@ pub fn estimate_from_runs(
         } else {
             SubStepCheck::Unavailable { reason: "no twin run was made for this estimate".into() }
         },
+        third_grid,
     }
 }
 
-/// The grid sequence inside the initial layer: the layer on 4N (the doubled grid of the spatial
-/// refinement `space_cfg`, its time scheme and step), when a peak of `output` lies in the layer
-/// (a short run: a few sample periods, resolved like every run). None when no peak is inside,
-/// or the 4N grid cannot run (the peaks inside then keep their Richardson bar).
-fn layer_grid_check(output: &SimOutput, space_cfg: &Config) -> Option<SimOutput> {
-    let l = output.initial_layer?;
-    if !output.peaks.signals().iter().any(|p| p.t <= l.t_end) {
-        return None;
+/// The third grid of the peaks' grid sequence ([`grid_part`]): the doubled grid of the spatial
+/// refinement `space_cfg` (4N), its time scheme and step, over [0, t₄] with t₄ the latest time
+/// of any peak of the base run and the 2N run plus one observer sample period (whole periods,
+/// at most the horizon; a 4N maximum later than every N and 2N peak is not seen). Its own
+/// initial layer and sub-step probe are resolved like every run's. The error when it cannot
+/// run (e.g. 4N above the grid limit).
+pub fn third_grid_run(
+    output: &SimOutput,
+    space: &SimOutput,
+    space_cfg: &Config,
+    opts: RunOptions,
+) -> Result<SimOutput, String> {
+    let mut fine = refined_space(space_cfg);
+    fine.horizon = third_grid_horizon(output, space, space_cfg);
+    fine.validate().map_err(|e| format!("the 4N grid is not a valid configuration: {e}"))?;
+    simulate(&fine, opts).map_err(|e| format!("the 4N run did not run: {e}"))
+}
+
+/// The horizon of [`third_grid_run`]: [0, t₄] sampled every observer period.
+fn third_grid_horizon(output: &SimOutput, space: &SimOutput, cfg: &Config) -> wingcheck_model::Horizon {
+    let period = cfg.observer.sample_period;
+    let latest = output.peaks.signals().iter().chain(space.peaks.signals().iter()).map(|p| p.t).fold(0.0, f64::max);
+    let periods = ((latest / period).floor() as usize + 1).max(1);
+    let mut h = cfg.horizon.clone();
+    if periods >= cfg.total_samples() {
+        return h;
     }
-    let fine = crate::layer::layer_config(&refined_space(space_cfg), space_cfg.discretisation.dt);
-    fine.validate().ok()?;
-    simulate(&fine, RunOptions::default()).ok()
+    h.t_end = periods as f64 * period;
+    h.sample_every = period;
+    h
 }
 
 /// The estimated error of any sampled series of a run from the same series of its two
@@ -395,5 +519,6 @@ pub fn series_error(t: &[f64], base: &[f64], space: &[f64], time: &[f64]) -> Vec
 }
 
 /// Work of [`simulate_with_error`] in units of the base run's unknown-steps (for the
-/// bounded-work guards of callers): 1 + 2 (doubled grid) + 2 (half step) = 5.
-pub const WORK_FACTOR: f64 = 5.0;
+/// bounded-work guards of callers): 1 + 2 (doubled grid) + 2 (half step) + at most 4 (the
+/// peaks' 4N grid, [`third_grid_run`]) = 9.
+pub const WORK_FACTOR: f64 = 9.0;

@@ -32,8 +32,8 @@ pub mod strain;
 
 pub use disc::{mass_determinant, Discretisation, Interpolation, Parts};
 pub use error_estimate::{
-    estimate_from_runs, refinements, series_error, simulate_with_error, EstimatedRun, PeakEstimate, PeakEstimates,
-    SubStepCheck, RICHARDSON_2, TIP_TOLERANCE,
+    estimate_from_runs, grid_part, refinements, series_error, simulate_with_error, third_grid_run, EstimatedRun,
+    PeakEstimate, PeakEstimates, SubStepCheck, ThirdGrid, RICHARDSON_2, TIP_TOLERANCE,
 };
 pub use estimate::Estimate;
 pub use run::{
@@ -61,6 +61,9 @@ pub enum SimError {
         /// Why not.
         reason: String,
     },
+    /// The run was stopped through [`RunOptions::cancel`].
+    #[error(transparent)]
+    Cancelled(#[from] wingcheck_model::Cancelled),
     /// The simulation diverged.
     #[error("simulation diverged at t = {t:.4} s: {reason}")]
     Diverged {

@@ -5,7 +5,7 @@
 use std::time::Instant;
 
 use serde::Serialize;
-use wingcheck_model::{Config, StepBasis, TimeScheme, Unit, MODAL_AUTO_UNKNOWNS};
+use wingcheck_model::{Config, StepBasis, TimeScheme, Unit};
 
 use crate::modal::ModalBasis;
 use crate::stepper::{Peaks, Sample, Stepper};
@@ -60,7 +60,9 @@ pub struct Series {
 impl Series {
     /// Column names and units in output order (run.csv writes `name_unitsuffix`,
     /// [`Series::csv_header`]).
-    pub const COLUMNS: [(&'static str, Unit); 19] = [
+    /// Its length is [`wingcheck_model::work::SERIES_COLUMNS`], the width the work estimates
+    /// count per output sample (a column added here without it does not compile).
+    pub const COLUMNS: [(&'static str, Unit); wingcheck_model::work::SERIES_COLUMNS] = [
         ("t", Unit::Second),
         ("q_tip", Unit::Metre),
         ("theta_tip", Unit::Radian),
@@ -87,8 +89,35 @@ impl Series {
         Self::COLUMNS.iter().map(|(n, u)| wingcheck_io::column_name(n, u.column_suffix())).collect()
     }
 
+    /// Every column empty, with room for `samples` output samples (allocated once, so a run
+    /// holds exactly what the work estimate counts).
+    pub fn with_capacity(samples: usize) -> Series {
+        let v = || Vec::with_capacity(samples);
+        Series {
+            t: v(),
+            q_tip: v(),
+            theta_tip: v(),
+            q_tip_rate: v(),
+            theta_tip_rate: v(),
+            tau1: v(),
+            tau2: v(),
+            g1: v(),
+            g2: v(),
+            g1_hat: v(),
+            g2_hat: v(),
+            sigma1: v(),
+            sigma2: v(),
+            energy: v(),
+            displacement_momentum: v(),
+            q_tip_shear: v(),
+            theta_tip_slope: v(),
+            tau1_rms: v(),
+            tau2_rms: v(),
+        }
+    }
+
     /// Columns in the order of [`Series::COLUMNS`].
-    pub fn columns(&self) -> [&Vec<f64>; 19] {
+    pub fn columns(&self) -> [&Vec<f64>; wingcheck_model::work::SERIES_COLUMNS] {
         [
             &self.t,
             &self.q_tip,
@@ -196,7 +225,16 @@ pub struct Envelope {
     pub g2_error: Vec<(f64, f64)>,
 }
 
+// The envelope's width per output sample is what the work estimates count.
+const _: () = assert!(4 * std::mem::size_of::<(f64, f64)>() == 8 * wingcheck_model::work::ENVELOPE_VALUES);
+
 impl Envelope {
+    /// Empty, with room for `samples` output samples.
+    pub fn with_capacity(samples: usize) -> Envelope {
+        let v = || Vec::with_capacity(samples);
+        Envelope { tau1: v(), tau2: v(), g1_error: v(), g2_error: v() }
+    }
+
     /// The values of an output sample: [τ1, τ2, g̃1, g̃2].
     pub(crate) fn values(s: &Sample) -> [f64; 4] {
         [s.tau1, s.tau2, s.g1 - s.g1_hat, s.g2 - s.g2_hat]
@@ -207,6 +245,14 @@ impl Envelope {
         self.tau2.push(r[1]);
         self.g1_error.push(r[2]);
         self.g2_error.push(r[3]);
+    }
+}
+
+impl Fields {
+    /// Empty fields on the grid `z`, with room for the output samples of `cfg`.
+    pub fn with_capacity(z: Vec<f64>, cfg: &Config) -> Fields {
+        let n = cfg.output_samples();
+        Fields { z, q: Vec::with_capacity(n), theta: Vec::with_capacity(n) }
     }
 }
 
@@ -229,6 +275,9 @@ pub struct RunOptions<'a> {
     pub fields: bool,
     /// Called with the fraction done (0..=1) at every output sample.
     pub progress: Option<&'a mut dyn FnMut(f64)>,
+    /// Read at every observer sample (and between the runs of a layer resolution or an error
+    /// estimate): once set, the run stops with [`crate::SimError::Cancelled`].
+    pub cancel: wingcheck_model::Cancel,
     /// The exponential scheme's sub-step probe (`crate::modal`'s probe): screened (the
     /// default), exhaustive, or off.
     pub sub_step_probe: SubStepProbe,
@@ -323,9 +372,10 @@ pub struct SimOutput {
 const DIVERGENCE_FACTOR: f64 = 1e12;
 
 /// The basis `cfg` is stepped in, and the modal basis if that is the modal one:
-/// `discretisation.basis`, with `auto` resolved to `modal` when `disc` has at most
-/// [`MODAL_AUTO_UNKNOWNS`] unknowns and its modal basis passes its orthonormality check
-/// ([`crate::modal::MASS_TOLERANCE`], [`crate::modal::STIFFNESS_TOLERANCE`]), `nodal`
+/// `discretisation.basis`, with `auto` resolved to `modal` where [`Config::expected_modal`]
+/// expects it (up to [`wingcheck_model::MODAL_AUTO_UNKNOWNS`] unknowns, and above where the
+/// basis's setup is repaid by its cheaper steps) and the modal basis passes its check
+/// ([`crate::modal::MASS_TOLERANCE`], [`crate::modal::FREQUENCY_TOLERANCE`]), `nodal`
 /// otherwise. An explicit `modal` (or `auto` with `discretisation.stepper = exponential`, which
 /// runs in the modal basis only) whose basis cannot be built or fails the check is an error
 /// naming the reason.
@@ -344,7 +394,7 @@ pub fn resolved_basis(cfg: &Config, disc: &Discretisation) -> Result<(StepBasis,
         StepBasis::Nodal => Ok((StepBasis::Nodal, None)),
         StepBasis::Modal => Ok((StepBasis::Modal, Some(modal()?))),
         StepBasis::Auto if needs_modal => Ok((StepBasis::Modal, Some(modal()?))),
-        StepBasis::Auto if disc.dim() > MODAL_AUTO_UNKNOWNS => Ok((StepBasis::Nodal, None)),
+        StepBasis::Auto if !cfg.expected_modal() => Ok((StepBasis::Nodal, None)),
         StepBasis::Auto => match ModalBasis::of(disc) {
             Ok(basis) => Ok((StepBasis::Modal, Some(basis))),
             Err(SimError::NoModalBasis { .. }) => Ok((StepBasis::Nodal, None)),
@@ -358,6 +408,7 @@ pub fn resolved_basis(cfg: &Config, disc: &Discretisation) -> Result<(StepBasis,
 /// which).
 pub fn simulate(cfg: &Config, opts: RunOptions<'_>) -> Result<SimOutput, SimError> {
     let sub_step_probe = opts.sub_step_probe;
+    let cancel = opts.cancel.clone();
     let (mut out, basis) = base_run(cfg, opts)?;
     // The layer runs change the step, horizon and output sampling only, none of which the
     // basis depends on: a layer run whose basis key (`ModalBasis::key`, which also fixes the
@@ -366,7 +417,7 @@ pub fn simulate(cfg: &Config, opts: RunOptions<'_>) -> Result<SimOutput, SimErro
     // inputs). Any other layer run is a run of its own.
     let base_key = basis.as_ref().map(|_| ModalBasis::key(cfg));
     let layer = crate::layer::resolve(cfg, &mut out, |c| {
-        let opts = RunOptions { sub_step_probe, ..Default::default() };
+        let opts = RunOptions { sub_step_probe, cancel: cancel.clone(), ..Default::default() };
         match (&basis, &base_key) {
             (Some(basis), Some(key)) if ModalBasis::key(c) == *key => {
                 crate::modal::simulate_modal(c, basis, Instant::now(), opts)
@@ -409,9 +460,9 @@ fn simulate_nodal(
     let start = Instant::now();
     let total = cfg.total_samples();
     let every = cfg.samples_per_output();
-    let mut series = Series::default();
-    let mut envelope = Envelope::default();
-    let mut fields = opts.fields.then(|| Fields { z: stepper.discretisation().interp.z.clone(), ..Default::default() });
+    let mut series = Series::with_capacity(cfg.output_samples());
+    let mut envelope = Envelope::with_capacity(cfg.output_samples());
+    let mut fields = opts.fields.then(|| Fields::with_capacity(stepper.discretisation().interp.z.clone(), cfg));
     let e0 = stepper.sample().energy;
     let mut record = |st: &mut Stepper, series: &mut Series, fields: &mut Option<Fields>| -> Result<(), SimError> {
         let s = st.sample();
@@ -430,6 +481,7 @@ fn simulate_nodal(
     crate::cpu::clear_upper_vector_state();
     for k in 1..=total {
         stepper.advance_sample();
+        opts.cancel.check()?;
         if k % every == 0 || k == total {
             record(&mut stepper, &mut series, &mut fields)?;
             if let Some(p) = opts.progress.as_mut() {

@@ -105,6 +105,14 @@ impl SymMatrix {
         total
     }
 
+    /// Σ_j |A_ij| of row i.
+    pub fn row_abs_sum(&self, i: usize) -> f64 {
+        let m = self.mat.as_ref();
+        let cp = m.symbolic().col_ptr();
+        // symmetric: row i is column i
+        m.val()[cp[i]..cp[i + 1]].iter().map(|v| v.abs()).sum()
+    }
+
     /// Entry (i, j) (zero if not stored).
     pub fn get(&self, i: usize, j: usize) -> f64 {
         let m = self.mat.as_ref();

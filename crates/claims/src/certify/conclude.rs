@@ -53,16 +53,9 @@ pub(super) fn conclusions(
     Ok(statements(cfg_params, certs, lower, omega1))
 }
 
-/// The manifest's claims against the roles table: known, listed once, each need listed once,
-/// every required fact listed, every listed fact present and supporting its claim, every
-/// certificate used.
-fn check_claims(
-    manifest: &Manifest,
-    cfg_params: &ExactParams,
-    certs: &[VerifiedCert],
-    lower: Option<&BigRational>,
-) -> Result<(), CertifyError> {
-    let mut used = BTreeSet::new();
+/// The manifest's claim list on its own, before any arithmetic: every claim known, listed
+/// once, each need listed once.
+pub(super) fn check_claim_list(manifest: &Manifest) -> Result<(), CertifyError> {
     let known: BTreeSet<ClaimId> = ROLES.iter().map(|r| r.claim).collect();
     let mut claims_seen = BTreeSet::new();
     for c in &manifest.claims {
@@ -84,6 +77,19 @@ fn check_claims(
             return Err(bad(INDEX, format!("claim {} lists {id} twice in its needs", c.claim)));
         }
     }
+    Ok(())
+}
+
+/// The manifest's claims against the roles table: [`check_claim_list`], every required fact listed, every listed fact present and supporting its claim, every
+/// certificate used.
+fn check_claims(
+    manifest: &Manifest,
+    cfg_params: &ExactParams,
+    certs: &[VerifiedCert],
+    lower: Option<&BigRational>,
+) -> Result<(), CertifyError> {
+    let mut used = BTreeSet::new();
+    check_claim_list(manifest)?;
     for (claim, ids) in required(cfg_params, lower) {
         let entry = manifest
             .claims

@@ -11,7 +11,6 @@
 //!   certificate re-derives (see [`super::facts`]).
 
 use std::collections::BTreeSet;
-use std::io::Read;
 use std::path::Path;
 
 use num_rational::BigRational;
@@ -158,30 +157,20 @@ pub fn config_params(cfg: &Config) -> Result<ExactParams, CertifyError> {
     })
 }
 
-/// Reads at most [`MAX_FILE_BYTES`] of a regular file. The type is checked before the file is
-/// opened (opening a FIFO for reading blocks until a writer appears) and again on the open file.
+/// Reads at most [`MAX_FILE_BYTES`] of a regular file ([`wingcheck_io::read_regular`]: the type
+/// is checked before the file is opened — opening a FIFO for reading blocks until a writer
+/// appears — and again on the file opened non-blocking).
 pub fn read_bounded(path: &Path) -> Result<Vec<u8>, CertifyError> {
-    let io = |e| CertifyError::Io { path: path.to_path_buf(), source: e };
-    let not_regular = || CertifyError::Invalid {
-        field: path.display().to_string(),
-        message: "not a regular file (a certificate set holds only regular files)".into(),
-    };
-    if !std::fs::metadata(path).map_err(io)?.is_file() {
-        return Err(not_regular());
-    }
-    let f = std::fs::File::open(path).map_err(io)?;
-    if !f.metadata().map_err(io)?.is_file() {
-        return Err(not_regular());
-    }
-    let mut bytes = Vec::new();
-    f.take(MAX_FILE_BYTES + 1).read_to_end(&mut bytes).map_err(io)?;
-    if bytes.len() as u64 > MAX_FILE_BYTES {
-        return Err(CertifyError::Invalid {
+    wingcheck_io::read_regular(path, MAX_FILE_BYTES).map_err(|e| match e {
+        wingcheck_io::ReadError::Io(source) => CertifyError::Io { path: path.to_path_buf(), source },
+        wingcheck_io::ReadError::NotRegular(kind) => CertifyError::Invalid {
             field: path.display().to_string(),
-            message: format!("larger than {MAX_FILE_BYTES} bytes"),
-        });
-    }
-    Ok(bytes)
+            message: format!("{kind}, not a regular file (a certificate set holds only regular files)"),
+        },
+        wingcheck_io::ReadError::TooLarge(max) => {
+            CertifyError::Invalid { field: path.display().to_string(), message: format!("larger than {max} bytes") }
+        }
+    })
 }
 
 /// One verified certificate.
@@ -272,6 +261,8 @@ pub fn verify_set_for(dir: &Path, expected: Option<&Config>) -> Result<VerifiedS
     if let Some(want) = expected {
         check_pinned(&manifest, &cfg, want)?;
     }
+    // everything that needs no arithmetic first: the claim list, the listing
+    super::conclude::check_claim_list(&manifest)?;
     let cfg_params = config_params(&cfg)?;
     check_listing(dir, &manifest)?;
     let (parsed, enclosure) = parse_certificates(dir, &manifest, &cfg_params)?;

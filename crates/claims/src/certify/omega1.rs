@@ -503,7 +503,8 @@ pub fn compute_with(cfg: &Config, plan: &Plan) -> Result<Computed, CertifyError>
     let mut margins = vec![SHIFT_MARGIN; plan.modes - 1];
     for attempt in 0.. {
         let cert = float_certificate(&text, &w, plan, &margins)?;
-        match enclosure::check(&cert.data()?, &LIMITS) {
+        let data = cert.data().map_err(|e| unrepresentable(cfg, e))?;
+        match enclosure::check(&data, &LIMITS) {
             Ok(c) => {
                 let e = cert.enclosure_from(c);
                 let out = Arc::new((cert, e));
@@ -519,6 +520,39 @@ pub fn compute_with(cfg: &Config, plan: &Plan) -> Result<Computed, CertifyError>
         }
     }
     unreachable!("the loop returns")
+}
+
+/// A computed certificate whose shifts or vector cannot be written in the certificate's number
+/// format (at most 32 characters, |decimal exponent| ≤ 32): the error names the configuration's
+/// keys that put them there, not the certificate's internal fields.
+fn unrepresentable(cfg: &Config, e: CertifyError) -> CertifyError {
+    match e {
+        CertifyError::Invalid { field, message } if field.starts_with("shifts") || field.starts_with("vector") => {
+            let what = if field.starts_with("shifts") {
+                "its eigenvalue shifts (squared frequencies, 1/s²)"
+            } else {
+                "its test vector"
+            };
+            let w = &cfg.wing;
+            let f = wingcheck_model::format_number;
+            CertifyError::Invalid {
+                field: "wing".into(),
+                message: format!(
+                    "the ω₁ enclosure of this wing cannot be written as a certificate: {what} fall outside the \
+                     certificate numbers' range ({message}); they follow from wing.span = {}, wing.ei = {}, \
+                     wing.gj = {}, wing.rho = {}, wing.ip = {}, wing.rho_xc = {} (squared frequencies scale as \
+                     EI/(ρ span⁴))",
+                    f(w.span),
+                    f(w.ei),
+                    f(w.gj),
+                    f(w.rho),
+                    f(w.ip),
+                    f(w.rho_xc)
+                ),
+            }
+        }
+        other => other,
+    }
 }
 
 /// The exact ratio a/b of a configuration (its decimals), if b > 0.

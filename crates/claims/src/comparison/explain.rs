@@ -146,6 +146,9 @@ pub struct ComparisonEvidence {
     pub explicit_rms_tau1: Quantity,
     /// Full-rate RMS τ2 of the explicit-rule FTDO with its grid, time-step, start-spread and round-off error.
     pub explicit_rms_tau2: Quantity,
+    /// Whether the explicit-rule FTDO's RMS τ is start-sensitive
+    /// ([`super::start_sensitive`]), with both nudged starts' values when it is.
+    pub explicit_start_sensitivity: Text,
     /// Time scheme of the explicit-rule runs.
     pub explicit_stepper: Text,
     /// How the explicit-rule FTDO's error runs (dt/2, doubled grid, nudged starts) were
@@ -171,6 +174,38 @@ pub struct ComparisonEvidence {
     /// (min, max) over the pairs of the four relative differences (context, not serialised).
     #[serde(skip)]
     pub ranges: [(f64, f64); 4],
+}
+
+/// Which RMS τ of the explicit FTDO are start-sensitive ([`super::start_sensitive`]), naming
+/// both nudged starts' values; or that none is.
+fn start_sensitivity_text(c: &Computed) -> String {
+    use wingcheck_model::quantity::format_value;
+    let sensitive: Vec<String> = (0..2)
+        .filter(|&ch| {
+            let (v, e) = c.explicit_rms_tau[ch];
+            super::start_sensitive(v, e, c.explicit_rms_starts[ch])
+        })
+        .map(|ch| {
+            let (name, unit) = if ch == 0 { ("τ1", Unit::Newton) } else { ("τ2", Unit::NewtonMetre) };
+            let [a, b] = c.explicit_rms_starts[ch];
+            let apart = 100.0 * (a - b).abs() / a.abs().min(b.abs());
+            let [up, down] = [a, b].map(|x| format_value(x, None));
+            format!(
+                "RMS {name} is {up} {u} from ν(0) + δ and {down} {u} from ν(0) − δ ({} % apart)",
+                format_value(apart, None),
+                u = unit.symbol()
+            )
+        })
+        .collect();
+    let nudge = wingcheck_model::format_number(super::START_NUDGE);
+    if sensitive.is_empty() {
+        format!("not start-sensitive: starts ν(0) ± δ (δ = {nudge} relative) move RMS τ1 and τ2 by less than their other error sources together")
+    } else {
+        format!(
+            "start-sensitive (starts ν(0) ± δ, δ = {nudge} relative, differ by more than every other error source together): {}",
+            sensitive.join("; ")
+        )
+    }
 }
 
 /// The explicit-rule error runs' form, for [`ComparisonEvidence::explicit_error_runs`].
@@ -228,6 +263,10 @@ fn evidence_of(c: &Computed, settings: &CheckSettings) -> ComparisonEvidence {
             .map(|q| q.relabel(format!("RMS g̃ over [t_end/2, t_end], DOBC / FTDO with the {other} rule"))),
         explicit_rms_tau1: tau(0),
         explicit_rms_tau2: tau(1),
+        explicit_start_sensitivity: Text::text(
+            "start sensitivity of the explicit-rule FTDO's RMS τ",
+            start_sensitivity_text(c),
+        ),
         explicit_stepper: Text::text("time scheme of the explicit-rule runs", c.explicit_stepper.name()),
         explicit_error_runs: Text::text("how the explicit-rule error runs were stepped", error_runs_text(c)),
         ab_sweep: Table::new(
@@ -385,6 +424,12 @@ impl Explain for ComparisonEvidence {
             self.zeta1.value_text(),
             self.zeta2.value_text()
         ));
+        if self.explicit_start_sensitivity.value.starts_with("start-sensitive") {
+            out.push(format!(
+                "The explicit-rule FTDO's RMS τ is {}: the value depends on the observer's start, not only on the model.",
+                self.explicit_start_sensitivity.value
+            ));
+        }
         out
     }
 }
@@ -424,7 +469,8 @@ pub fn check(cfg: &Config, study: &Study, settings: &CheckSettings) -> Result<Cl
     let fmt = |v: f64| wingcheck_model::quantity::format_value(v, None);
     let (a0, b0) = (cfg.control.a, cfg.control.b);
     let sf = fmt(settings.sweep_factor);
-    let assumptions = vec![
+    let left_out = super::sweep_weights(cfg, settings.sweep_factor).1;
+    let mut assumptions = vec![
         "DOBC (57) corrected: b q̇(s) in τ1, ĝ from d ĝ/dt = g − ĝ with p(0) = 0; the same k1, k2, a, b and sampling rule as the FTDO".into(),
         format!(
             "(a, b) not given by the paper: the configured ({}, {}) and the sweep a × {sf}, a ÷ {sf}, b × {sf}, b ÷ {sf}",
@@ -439,5 +485,8 @@ pub fn check(cfg: &Config, study: &Study, settings: &CheckSettings) -> Result<Cl
         ),
         format!("indistinguishable = tip RMS within {} %", fmt(100.0 * settings.indistinguishable)),
     ];
+    if !left_out.is_empty() {
+        assumptions.push(format!("the sweep leaves out {}", left_out.join("; ")));
+    }
     Ok(ClaimRow::decided(ClaimId::FtdoVsDobc, e, assumptions, plots(c.rule, &f, &d)))
 }

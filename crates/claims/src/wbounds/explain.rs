@@ -3,7 +3,7 @@
 use wingcheck_cert::exact::to_f64;
 use wingcheck_model::{Config, ErrorSource, Quantity, Unit, ValueBasis};
 
-use super::{compute, sdp_wall_times, Computed};
+use super::{compute_cancellable, sdp_wall_times, Computed};
 use crate::certify::omega1::{EnclosureSummary, Position};
 use crate::display::{Fact, Flag, Table, Text};
 use crate::evidence::Explain;
@@ -360,7 +360,17 @@ fn evidence_of(cfg: &Config, c: &Computed) -> WBoundsEvidence {
 
 /// Compute the evidence (and the SDP wall times).
 pub fn evidence(cfg: &Config, settings: &CheckSettings) -> Result<(WBoundsEvidence, Vec<WallTime>), ClaimsError> {
-    let c = compute(cfg, settings)?;
+    evidence_cancellable(cfg, settings, &wingcheck_model::Cancel::new())
+}
+
+/// [`evidence`] whose SDP cross-check stops once `cancel` is set (its rows then say so; the
+/// caller discards the ledger, [`crate::check_all_cancellable`]).
+pub fn evidence_cancellable(
+    cfg: &Config,
+    settings: &CheckSettings,
+    cancel: &wingcheck_model::Cancel,
+) -> Result<(WBoundsEvidence, Vec<WallTime>), ClaimsError> {
+    let c = compute_cancellable(cfg, settings, cancel)?;
     Ok((evidence_of(cfg, &c), sdp_wall_times(&c)))
 }
 
@@ -597,7 +607,16 @@ fn refinement_plot(e: &WBoundsEvidence) -> PlotData {
 
 /// Check Theorem 1.
 pub fn check(cfg: &Config, settings: &CheckSettings) -> Result<WBounds, ClaimsError> {
-    let (e, wall) = evidence(cfg, settings)?;
+    check_cancellable(cfg, settings, &wingcheck_model::Cancel::new())
+}
+
+/// [`check`] whose SDP cross-check stops once `cancel` is set.
+pub fn check_cancellable(
+    cfg: &Config,
+    settings: &CheckSettings,
+    cancel: &wingcheck_model::Cancel,
+) -> Result<WBounds, ClaimsError> {
+    let (e, wall) = evidence_cancellable(cfg, settings, cancel)?;
     let assumptions = vec![
         format!("a = {}, b = {} (the paper does not give them)", fmt(&e.a), fmt(&e.b)),
         "W_o's last term read as −bρx_c∫q̇θ̇ (the paper prints b x_c; the bound (27) uses bρx_c); the printed variant is reported too".into(),

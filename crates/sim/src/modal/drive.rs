@@ -49,6 +49,12 @@ pub trait Recorder {
     /// are the exact ∫τ_c² over the output interval.
     fn deferred_squares(&mut self, squares: [f64; 2]);
 
+    /// Called at every observer sample (every T): an error stops the run there (a cancelled
+    /// run, [`crate::RunOptions::cancel`]). The default never stops.
+    fn checkpoint(&self) -> Result<(), SimError> {
+        Ok(())
+    }
+
     /// What the recorder reads beyond each output's tip values, τ and observer output
     /// ([`Reads`]); the default, [`Reads::ALL`], is always correct, a leaner value saves work.
     fn reads(&self) -> Reads {
@@ -136,6 +142,7 @@ pub fn drive<S: Signal, R: Recorder>(
         let now = signal.current();
         let t = k as f64 * period;
         rec.instant(lp, st, t, now.g_hat, Some(now.g), None);
+        rec.checkpoint()?;
         if k % every == 0 || k == total {
             output(st, &now, t, k, rec)?;
         }

@@ -30,7 +30,7 @@ use faer::{Accum, Mat, Par, Side};
 use crate::SimError;
 
 use super::gemv::RowMajor;
-use super::probe::{ProbeBuilder, SubStepPeak, SubStepProbe, TauRows, PROBED};
+use super::probe::{ProbeBuilder, ProbedStep, SubStepProbe, TauRows, PROBED};
 use super::{ModalBasis, ModalState};
 
 /// Number of held inputs in the state: ḡ1 − ĝ1, ḡ2 − ĝ2, φ̄, ĝ1, ĝ2.
@@ -322,7 +322,7 @@ impl ExactStep {
         running: [f64; PROBED],
         buf: &mut [f64],
         exhaustive: bool,
-    ) -> [Option<SubStepPeak>; PROBED] {
+    ) -> ProbedStep {
         self.probe.probe(&st.exact_x, running, buf, exhaustive)
     }
 

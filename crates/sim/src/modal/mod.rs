@@ -3,8 +3,9 @@
 //! unknowns; TR-BDF2 or the trapezoidal rule, every solve with the step matrix
 //! S = M/α + C + αK_c) written in another basis, O(n) work per step:
 //!
-//! - **Modal basis** ([`ModalBasis`], per wing): K Φ = M Φ Ω², ΦᵀMΦ = I (Cholesky of M,
-//!   symmetric eigenproblem of L⁻¹KL⁻ᵀ). With x = Φη, v = Φζ the step matrix becomes
+//! - **Modal basis** ([`ModalBasis`], per wing): K Φ = M Φ Ω², ΦᵀMΦ = I (one SVD of
+//!   LᵀR⁻¹, M = LLᵀ and K = RᵀR the strain factor, [`wing_modes`]: M-orthonormal to round-off and
+//!   every frequency within its measured bound at any grid). With x = Φη, v = Φζ the step matrix becomes
 //!   D + β UTUᵀ with D = diag(1/α + (ξ + α)ω_i²), β = b + αa and U the tip rows of Φ (n×2):
 //!   diagonal plus rank 2, solved by the Woodbury identity ([`scheme`]); TR-BDF2's two
 //!   solves in one pass over the modes per step (`trbdf2_pass`).
@@ -13,9 +14,8 @@
 //!   quadrature, see `wingcheck_control::ChannelObserver`), so ĝ_k and the tip input ḡ − ĝ of
 //!   every step follow from the disturbances and the observer alone.
 //!
-//! Same discrete equations, so the results agree with the nodal stepper to round-off (tests:
-//! ≤ 4e-9 relative on FE wings, whose modal basis carries the round-off of a dense
-//! eigenproblem with ω² spanning many decades; ≤ 3e-11 on FD wings), not bit for bit.
+//! Same discrete equations, so the results agree with the nodal stepper to round-off
+//! (`tests/basis.rs`), not bit for bit.
 //! [`simulate_modal`] is `simulate` in this basis; `discretisation.basis` chooses.
 
 mod diagonal;
@@ -33,18 +33,20 @@ mod run;
 pub mod scheme;
 mod signal;
 mod trbdf2_pass;
+mod wing_modes;
 mod woodbury;
 
-use faer::{Mat, Side};
 use wingcheck_model::{Config, MODAL_MAX_UNKNOWNS};
 
 use crate::{Discretisation, SimError};
 
 pub use drive::{drive, Reads, Recorder, Signal};
-pub use probe::{SubStepPeak, FINE_PER_OCTAVE, PROBED, PROBE_MARGIN};
+pub use probe::{ProbedStep, SubStepPeak, FINE_PER_OCTAVE, PROBED, PROBE_MARGIN};
 pub use run::simulate_modal;
 pub use scheme::{dot, ModalLoop, ModalState, StepInput};
 pub use signal::{ObserverSignal, RecordedSignal, Replay, SampleInput};
+use wing_modes::wing_modes;
+pub use wing_modes::BasisQuality;
 
 /// The wing in its modal basis (units: ω² in 1/s², modal coordinates in √kg·m).
 #[derive(Debug)]
@@ -63,6 +65,8 @@ pub struct ModalBasis {
     pub field_theta: Vec<Vec<f64>>,
     /// Output-grid points z_j (m).
     pub field_z: Vec<f64>,
+    /// How well Φ diagonalises the pencil, measured after the solve.
+    pub quality: BasisQuality,
 }
 
 impl ModalBasis {
@@ -88,7 +92,7 @@ impl ModalBasis {
     }
 
     /// Modal basis of the configuration's discretised wing; refused above
-    /// [`MODAL_MAX_UNKNOWNS`] unknowns (dense O(n³) eigenproblem).
+    /// [`MODAL_MAX_UNKNOWNS`] unknowns (one dense O(n³) SVD, [`wing_modes`]).
     pub fn new(cfg: &Config) -> Result<ModalBasis, SimError> {
         Self::of(&Discretisation::new(cfg))
     }
@@ -100,18 +104,19 @@ impl ModalBasis {
         let n = disc.dim();
         if n > MODAL_MAX_UNKNOWNS {
             return Err(no_basis(format!(
-                "{n} unknowns: above the modal basis's {MODAL_MAX_UNKNOWNS} (dense eigenproblem)"
+                "{n} unknowns: above the modal basis's {MODAL_MAX_UNKNOWNS} (one dense O(n³) SVD)"
             )));
         }
-        let (omega2, phi) = modes(disc).map_err(|e| match e {
+        let (omega2, phi, quality) = wing_modes(disc).map_err(|e| match e {
             SimError::Numerical(reason) => no_basis(reason),
             other => other,
         })?;
-        let (mass, stiffness) = orthonormality_defect(disc, &omega2, &phi);
-        if !(mass <= MASS_TOLERANCE && stiffness <= STIFFNESS_TOLERANCE) {
+        if !(quality.mass_defect <= MASS_TOLERANCE && quality.frequency_error <= FREQUENCY_TOLERANCE) {
             return Err(no_basis(format!(
-                "modal basis of {n} unknowns is orthonormal only to {mass:.1e} in M (tolerance \
-                 {MASS_TOLERANCE:.0e}) and {stiffness:.1e} in K (tolerance {STIFFNESS_TOLERANCE:.0e})"
+                "modal basis of {n} unknowns is orthonormal only to {:.1e} in M (tolerance \
+                 {MASS_TOLERANCE:.0e}), its frequencies bounded only to {:.1e} relative (tolerance \
+                 {FREQUENCY_TOLERANCE:.0e})",
+                quality.mass_defect, quality.frequency_error
             )));
         }
         let tip = [disc.tip_q, disc.tip_theta].map(|d| (0..n).map(|i| phi[(d, i)]).collect::<Vec<f64>>());
@@ -130,6 +135,7 @@ impl ModalBasis {
             field_q: rows(&disc.interp.q_rows),
             field_theta: rows(&disc.interp.theta_rows),
             field_z: disc.interp.z.clone(),
+            quality,
         })
     }
 
@@ -161,138 +167,16 @@ impl ModalBasis {
     }
 }
 
-/// Largest accepted mass defect of the modal basis, max_ij |φ_iᵀMφ_j − δ_ij|: the modal
-/// equations take ΦᵀMΦ = I. The largest entries are between stiff, heavily damped
-/// (quasi-static) modes, which barely move the response. Measured against the nodal run
-/// (2-s paper runs): defects up to 1e-9 (FE ≤ 48 elements, FD ≤ 96 intervals) left every series
-/// within 1e-10 relative; 4e-7–1.5e-6 (FE 96–192 elements) within 1e-8 (tips) and 4e-7
-/// (energy); 2.3e-4 (FE 192 graded elements) is refused.
-pub const MASS_TOLERANCE: f64 = 1e-6;
+/// Largest accepted mass defect of the modal basis, max_ij |φ_iᵀMφ_j − δ_ij|
+/// ([`BasisQuality::mass_defect`]): the modal equations take ΦᵀMΦ = I. The SVD basis
+/// ([`wing_modes`]) measures ≤ 2e-14 up to 1 536 unknowns (FE 512 graded elements, FD 768
+/// intervals).
+pub const MASS_TOLERANCE: f64 = 1e-10;
 
-/// Largest accepted stiffness defect, max_ij |φ_iᵀKφ_j − δ_ij ω_i²|/(ω_i ω_j): the modal
-/// equations take ΦᵀKΦ = Ω². Measured as for [`MASS_TOLERANCE`]: ≤ 8e-8 at FE ≤ 48 elements
-/// and FD ≤ 192 intervals, 3e-5–2.6e-4 at FE 96–192 elements, 9e-3 at FE 192 graded.
-pub const STIFFNESS_TOLERANCE: f64 = 1e-3;
-
-/// All modes, each from the form in which it is accurate: with κ = ω_max²/ω₁², the
-/// compliance form gives ω_i² to ≈ ε·ω_i²/ω₁² relative and the stiffness form to
-/// ≈ ε·ω_max²/ω_i²; modes up to ω_i² = ω₁·ω_max come from the first, the rest from the second,
-/// so every mode is within ≈ ε√κ. Without a square strain factorisation, the stiffness form.
-fn modes(disc: &Discretisation) -> Result<(Vec<f64>, Mat<f64>), SimError> {
-    let n = disc.dim();
-    let (mut omega2, mut phi) = stiffness_modes(disc)?;
-    if disc.strain.rows.len() == n {
-        let (low_omega2, low_phi) = compliance_modes(disc)?;
-        // split in the widest relative gap within a factor 30 of ω₁·ω_max, so that a cluster of
-        // close frequencies (which the two solves may mix differently) is never cut
-        let middle = (low_omega2[0] * omega2[n - 1]).sqrt();
-        let p = (1..n)
-            .filter(|&p| low_omega2[p - 1] >= middle / 30.0 && low_omega2[p - 1] <= middle * 30.0)
-            .max_by(|&p, &q| (low_omega2[p] / low_omega2[p - 1]).total_cmp(&(low_omega2[q] / low_omega2[q - 1])))
-            .unwrap_or_else(|| low_omega2.iter().take_while(|w| **w <= middle).count());
-
-        for i in 0..p {
-            omega2[i] = low_omega2[i];
-            for r in 0..n {
-                phi[(r, i)] = low_phi[(r, i)];
-            }
-        }
-    }
-    if omega2.iter().any(|w| !(w.is_finite() && *w > 0.0)) {
-        return Err(SimError::Numerical("stiffness matrix is not positive definite".into()));
-    }
-    Ok((omega2, phi))
-}
-
-/// The basis's defects (max_ij |φ_iᵀMφ_j − δ_ij|, max_ij |φ_iᵀKφ_j − δ_ij ω_i²|/(ω_i ω_j)); NaN
-/// becomes ∞ (see [`MASS_TOLERANCE`], [`STIFFNESS_TOLERANCE`]).
-fn orthonormality_defect(disc: &Discretisation, omega2: &[f64], phi: &Mat<f64>) -> (f64, f64) {
-    let n = disc.dim();
-    let (mut mphi, mut kphi) = (Mat::<f64>::zeros(n, n), Mat::<f64>::zeros(n, n));
-    let (mut out_m, mut out_k) = (vec![0.0; n], vec![0.0; n]);
-    for c in 0..n {
-        let col: Vec<f64> = (0..n).map(|r| phi[(r, c)]).collect();
-        disc.mass.mul_into(&col, &mut out_m);
-        disc.stiffness.mul_into(&col, &mut out_k);
-        for r in 0..n {
-            mphi[(r, c)] = out_m[r];
-            kphi[(r, c)] = out_k[r];
-        }
-    }
-    let (gm, gk) = (phi.transpose() * &mphi, phi.transpose() * &kphi);
-    let (mut mass, mut stiffness) = (0.0f64, 0.0f64);
-    for i in 0..n {
-        for j in 0..n {
-            let delta = if i == j { 1.0 } else { 0.0 };
-            mass = mass.max((gm[(i, j)] - delta).abs());
-            stiffness = stiffness.max((gk[(i, j)] - delta * omega2[i]).abs() / (omega2[i] * omega2[j]).sqrt());
-        }
-    }
-    let finite = |d: f64| if d.is_nan() { f64::INFINITY } else { d };
-    (finite(mass), finite(stiffness))
-}
-
-/// Modes from the compliance form (K = RᵀR, R = D^½G the strain factorisation): the symmetric
-/// eigenproblem B y = μ y of B = R⁻ᵀMR⁻¹, μ = 1/ω², φ = R⁻¹y/√μ. Its round-off is
-/// ε·μ_max = ε/ω₁² absolute, so the low modes — which carry the tip response — keep relative
-/// accuracy ε under refinement; the stiffness form L⁻¹KL⁻ᵀ puts ε·ω_max² (∝ h⁻⁴) on every ω²,
-/// which at 192 uniform FE elements moved the tip trajectory by 1.4e-4 relative. Its high
-/// modes are the inaccurate ones (ε·ω_i²/ω₁² relative): see [`modes`].
-fn compliance_modes(disc: &Discretisation) -> Result<(Vec<f64>, Mat<f64>), SimError> {
-    let n = disc.dim();
-    let rows = &disc.strain.rows;
-    // X = R⁻¹ = G⁻¹ D^-½, column by column.
-    let mut x = Mat::<f64>::zeros(n, n);
-    let (mut z, mut col) = (vec![0.0; n], vec![0.0; n]);
-    for c in 0..n {
-        z.iter_mut().for_each(|v| *v = 0.0);
-        z[c] = 1.0 / rows[c].weight.sqrt();
-        disc.strain.integrate(&z, &mut col);
-        for (r, v) in col.iter().enumerate() {
-            x[(r, c)] = *v;
-        }
-    }
-    // M X, then B = Xᵀ(MX) (symmetrised).
-    let mut mx = Mat::<f64>::zeros(n, n);
-    let mut out = vec![0.0; n];
-    for c in 0..n {
-        let xc: Vec<f64> = (0..n).map(|r| x[(r, c)]).collect();
-        disc.mass.mul_into(&xc, &mut out);
-        for (r, v) in out.iter().enumerate() {
-            mx[(r, c)] = *v;
-        }
-    }
-    let b = x.transpose() * &mx;
-    let b = Mat::from_fn(n, n, |i, j| 0.5 * (b[(i, j)] + b[(j, i)]));
-    let evd = b
-        .self_adjoint_eigen(Side::Lower)
-        .map_err(|e| SimError::Numerical(format!("modal eigenproblem failed: {e:?}")))?;
-    // ascending ω² = descending μ
-    let mu: Vec<f64> = (0..n).map(|i| evd.S()[n - 1 - i]).collect();
-    if mu.iter().any(|m| !(m.is_finite() && *m > 0.0)) {
-        return Err(SimError::Numerical("mass matrix is not positive definite in the compliance form".into()));
-    }
-    let y = evd.U();
-    let xy = &x * y;
-    let phi = Mat::from_fn(n, n, |r, i| xy[(r, n - 1 - i)] / mu[i].sqrt());
-    Ok((mu.iter().map(|m| 1.0 / m).collect(), phi))
-}
-
-/// Modes from the stiffness form (ΦᵀMΦ = I: Cholesky M = LLᵀ, eigenproblem of L⁻¹KL⁻ᵀ), for a
-/// discretisation without a square strain factorisation.
-fn stiffness_modes(disc: &Discretisation) -> Result<(Vec<f64>, Mat<f64>), SimError> {
-    let n = disc.dim();
-    let dense = |v: Vec<f64>| Mat::from_fn(n, n, |i, j| v[i * n + j]);
-    let (m, k) = (dense(disc.mass.to_dense()), dense(disc.stiffness.to_dense()));
-    let llt =
-        m.llt(Side::Lower).map_err(|e| SimError::Numerical(format!("mass matrix is not positive definite: {e:?}")))?;
-    let l = llt.L();
-    let evd = crate::dense::congruence(l, &k)
-        .self_adjoint_eigen(Side::Lower)
-        .map_err(|e| SimError::Numerical(format!("modal eigenproblem failed: {e:?}")))?;
-    let omega2: Vec<f64> = (0..n).map(|i| evd.S()[i]).collect();
-    // Φ = L⁻ᵀ V
-    let mut phi = evd.U().to_owned();
-    faer::linalg::triangular_solve::solve_upper_triangular_in_place(l.transpose(), phi.as_mut(), faer::Par::Seq);
-    Ok((omega2, phi))
-}
+/// Largest accepted bound on the frequencies' relative error, |λ_i/ω_i² − 1|
+/// ([`BasisQuality::frequency_error`]): the modal equations take ΦᵀKΦ = Ω², and a basis that
+/// diagonalises K only to E (scaled) steps a wing whose stiffness differs from K by at most this
+/// relative amount in the energy norm, so every frequency, and with it the trajectory, moves by
+/// at most this relative amount — far below the grid's and the time step's errors (≥ 1e-6
+/// relative on the default grids).
+pub const FREQUENCY_TOLERANCE: f64 = 1e-6;

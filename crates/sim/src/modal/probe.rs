@@ -1,5 +1,6 @@
 //! The sub-step probe of the exponential scheme: the exact tip rates and controls *inside* the
-//! first integrator step after each jump of the held inputs, where the step ends alone miss a
+//! first integrator step after each jump of the held inputs (and the following steps while an
+//! output is still rising at a step's end, [`ProbedStep`]), where the step ends alone miss a
 //! transient shorter than the step.
 //!
 //! With strong tip damping (large b) a jump of the held estimate ĝ sets off a tip transient
@@ -17,7 +18,7 @@
 //! passes through E(δ_i) for δ_i = s₀2^i, so the rows c_oᵀE(kδ_i) follow by one product per
 //! point (level i's points stepped by E(δ_i) from c_oᵀE(Fδ_i), which the chain reaches log₂F
 //! levels later). The fine grid has [`FINE_PER_OCTAVE`] = F points per octave of s between s₀
-//! and h (s = kδ_i, k = 8 … 15 at level i ≥ 1, k = 1 … 15 at level 0), plus s = 0 and s = h
+//! and h (s = kδ_i, k = F … 2F − 1 at level i ≥ 1, k = 1 … 2F − 1 at level 0), plus s = 0 and s = h
 //! (the recorded instants); its points at s₀4^m are the coarse grid, one point per two octaves.
 //! Rows are stored for q, θ, q̇, θ̇; τ_c = −k_c(a x_c + b v_c) − ĝ_c is formed from them. A probe
 //! evaluates the coarse grid (4 × ≈ ½ log₂(‖A‖h) dot products of length N); for each output
@@ -33,8 +34,12 @@
 //! value. What it does not see: a sub-step maximum away from the coarse grid's largest value
 //! (two maxima within one step, or an oscillation faster than one point per two octaves of s),
 //! and sub-step transients inside a sample period after the step means of ḡ and φ̄ change
-//! (steps other than the first; their input changes are O(dt·ġ), the jumps of ĝ are O(1) for
-//! the explicit FTDO).
+//! (the later steps once no output is rising at a step's end; their input changes are O(dt·ġ),
+//! the jumps of ĝ are O(1) for the explicit FTDO). With 8 fine points per octave and the first
+//! step alone, a = 1, b = 3500, explicit FTDO: the peaks of a dt = 1e-6 s run of FD 96–192 were
+//! 0.15–0.8 % low (its transient peaks 1.6–2.4 µs after the jump, in its second or third step),
+//! and FD 384's τ2 1.4e-4 below the fine run's; now within 1e-4 on FD 96–384 and FE 24–192
+//! (`tests/sub_step.rs`).
 
 use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, Par};
@@ -42,9 +47,9 @@ use faer::{Accum, Mat, Par};
 use super::gemv::RowMajor;
 use super::scheme::dot;
 
-/// Fine grid points per octave of s (the fine grid's relative spacing is 1/8 to 1/16); a power
+/// Fine grid points per octave of s (the fine grid's relative spacing is 1/32 to 1/64); a power
 /// of two.
-pub const FINE_PER_OCTAVE: usize = 8;
+pub const FINE_PER_OCTAVE: usize = 32;
 
 /// The fine search runs where the coarse grid's largest |y_o| plus this × its range over the
 /// step's coarse points (largest − smallest |y_o|) reaches the signal's running peak: one point
@@ -74,6 +79,19 @@ pub(crate) struct TauRows {
     pub(crate) gain_v: [f64; 2],
     /// Index of ĝ_c in X.
     pub(crate) g_hat_at: [usize; 2],
+}
+
+/// What a probe of one step found: the largest value of each output inside the step (where it
+/// is not at the step's ends), and whether an output that may reach its running peak was still
+/// rising in |y| at the step's end — its maximum may then lie in the next step, which is probed
+/// too ([`crate::modal`]'s runs: a transient longer than the step, as at dt = 1e-6 s after a
+/// jump whose tip transient peaks 1.6 µs later).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ProbedStep {
+    /// Per output (q, θ, q̇, θ̇, τ1, τ2), the largest value found strictly inside the step.
+    pub peaks: [Option<SubStepPeak>; PROBED],
+    /// An output that passed the screen had its largest value at the step's end.
+    pub rising_at_end: bool,
 }
 
 /// The largest value of one output found inside a step.
@@ -231,20 +249,19 @@ impl SubStepProbe {
 
     /// Probe the step starting from the state `x` (X_k of [`super::exact`], padded): for each
     /// output o whose coarse maximum may reach `running[o]` ([`PROBE_MARGIN`]), the largest
-    /// fine-grid value strictly inside the step, if it is not at the step's ends.
+    /// fine-grid value strictly inside the step, if it is not at the step's ends, and whether
+    /// such an output had its largest value at the step's end ([`ProbedStep`]).
     /// With `exhaustive`, every output's whole fine grid instead (no screen; for testing it).
-    pub(crate) fn probe(
-        &self,
-        x: &[f64],
-        running: [f64; PROBED],
-        buf: &mut [f64],
-        exhaustive: bool,
-    ) -> [Option<SubStepPeak>; PROBED] {
+    pub(crate) fn probe(&self, x: &[f64], running: [f64; PROBED], buf: &mut [f64], exhaustive: bool) -> ProbedStep {
         self.coarse.mul_into(x, buf);
         let points = self.coarse_at.len();
-        std::array::from_fn(|o| {
+        let last = self.times.len() - 1;
+        let mut rising_at_end = false;
+        let peaks = std::array::from_fn(|o| {
             if exhaustive {
-                return self.fine_maximum(x, o, 0, self.times.len() - 1);
+                let (found, at_end) = self.fine_maximum(x, o, 0, last);
+                rising_at_end |= at_end;
+                return found;
             }
             let mut bottom = f64::INFINITY;
             let (best, top) = argmax((0..points).map(|j| {
@@ -258,8 +275,11 @@ impl SubStepProbe {
             }
             let lo = self.coarse_at[best.saturating_sub(1)];
             let hi = self.coarse_at[(best + 1).min(points - 1)];
-            self.fine_climb(x, o, lo, hi, self.coarse_at[best])
-        })
+            let (found, at_end) = self.fine_climb(x, o, lo, hi, self.coarse_at[best]);
+            rising_at_end |= at_end;
+            found
+        });
+        ProbedStep { peaks, rising_at_end }
     }
 
     /// Output o from the stored rows' values `row(r)` (r = 0 … 3) and the state x.
@@ -279,8 +299,9 @@ impl SubStepProbe {
     }
 
     /// A local maximum of |y_o| on the fine points lo..=hi, climbing from `start` (the coarse
-    /// grid's largest) toward larger values, if not at the step's ends, with its miss.
-    fn fine_climb(&self, x: &[f64], o: usize, lo: usize, hi: usize, start: usize) -> Option<SubStepPeak> {
+    /// grid's largest) toward larger values, if not at the step's ends, with its miss; and
+    /// whether the climb ended at the step's end.
+    fn fine_climb(&self, x: &[f64], o: usize, lo: usize, hi: usize, start: usize) -> (Option<SubStepPeak>, bool) {
         let value = |j: usize| self.fine_value(x, o, j).abs();
         let (mut m, mut top) = (start, value(start));
         for dir in [1isize, -1] {
@@ -300,14 +321,14 @@ impl SubStepProbe {
                 break;
             }
         }
-        self.peak_at(x, o, m)
+        (self.peak_at(x, o, m), m + 1 == self.times.len())
     }
 
     /// The largest |y_o| over the fine points lo..=hi from the state x, if not at the step's
-    /// ends, with its miss.
-    fn fine_maximum(&self, x: &[f64], o: usize, lo: usize, hi: usize) -> Option<SubStepPeak> {
+    /// ends, with its miss; and whether it is at the step's end.
+    fn fine_maximum(&self, x: &[f64], o: usize, lo: usize, hi: usize) -> (Option<SubStepPeak>, bool) {
         let (m, _) = argmax((lo..=hi).map(|j| (j, self.fine_value(x, o, j).abs())));
-        self.peak_at(x, o, m)
+        (self.peak_at(x, o, m), m + 1 == self.times.len())
     }
 
     /// The value of output o at fine point m with its miss, if m is inside the step.

@@ -36,8 +36,10 @@ struct Simulation<'c, 'o> {
     fields: Option<Fields>,
     full_rate: FullRate,
     progress: Option<&'o mut dyn FnMut(f64)>,
+    cancel: wingcheck_model::Cancel,
     /// Probe the next step ([`ModalLoop::probe_last_step`]): the held inputs jumped (t = 0 and
-    /// every sample), and the probe is on.
+    /// every sample), or the step just probed ended with an output still rising toward its
+    /// running peak ([`crate::modal::ProbedStep`]), and the probe is on.
     probe_next: bool,
     probe_on: bool,
     exhaustive: bool,
@@ -73,6 +75,10 @@ impl Recorder for Simulation<'_, '_> {
         self.full_rate.add_squares(squares);
     }
 
+    fn checkpoint(&self) -> Result<(), SimError> {
+        Ok(self.cancel.check()?)
+    }
+
     fn output(&mut self, st: &ModalState, sample: &Sample, k: usize) -> Result<(), SimError> {
         self.series.push(sample, self.full_rate.take_tau_rms());
         self.envelope.push(self.full_rate.take_range(crate::run::Envelope::values(sample)));
@@ -98,8 +104,9 @@ impl Simulation<'_, '_> {
             return;
         };
         self.probes += 1;
+        self.probe_next = found.rising_at_end;
         let mut raised = false;
-        for (o, peak) in found.iter().enumerate() {
+        for (o, peak) in found.peaks.iter().enumerate() {
             if let Some(p) = peak {
                 let t = start + p.s;
                 raised |= p.value.abs() > self.full_rate.running(t, [o])[0];
@@ -134,11 +141,12 @@ pub fn simulate_modal(
         cfg,
         basis,
         total,
-        series: Series::default(),
-        envelope: Envelope::default(),
-        fields: opts.fields.then(|| Fields { z: basis.field_z.clone(), ..Default::default() }),
+        series: Series::with_capacity(cfg.output_samples()),
+        envelope: Envelope::with_capacity(cfg.output_samples()),
+        fields: opts.fields.then(|| Fields::with_capacity(basis.field_z.clone(), cfg)),
         full_rate: FullRate::new(crate::layer::layer_end(cfg)),
         progress: opts.progress,
+        cancel: opts.cancel,
         probe_next: false,
         probe_on: opts.sub_step_probe != SubStepProbe::Off && lp.probe_points() > 0,
         exhaustive: opts.sub_step_probe == SubStepProbe::Exhaustive,

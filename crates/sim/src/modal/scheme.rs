@@ -256,7 +256,8 @@ impl<'a> ModalLoop<'a> {
     }
 
     /// The exact q(s), θ(s), q̇(s), θ̇(s), τ1, τ2 inside the step just made on `st` where they may exceed
-    /// `running` (their running peaks), for the dense exponential scheme ([`super::probe`];
+    /// `running` (their running peaks), and whether one was still rising at the step's end
+    /// ([`super::ProbedStep`]), for the dense exponential scheme ([`super::probe`];
     /// `exhaustive`: the whole fine grid, no screen); `None` for the schemes without one
     /// (TR-BDF2, the trapezoidal rule, the eigenbasis form).
     pub fn probe_last_step(
@@ -265,7 +266,7 @@ impl<'a> ModalLoop<'a> {
         running: [f64; super::PROBED],
         buf: &mut [f64],
         exhaustive: bool,
-    ) -> Option<[Option<super::SubStepPeak>; super::PROBED]> {
+    ) -> Option<super::ProbedStep> {
         match &self.stepping {
             Stepping::Exponential(exact) => Some(exact.probe_last_step(st, running, buf, exhaustive)),
             _ => None,

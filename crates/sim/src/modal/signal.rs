@@ -133,8 +133,8 @@ impl Signal for ObserverSignal {
 
 /// The whole observer signal of a run, generated once by [`ObserverSignal`] and replayed by
 /// [`RecordedSignal::replay`] for any number of runs that share it (the search's points): the
-/// same numbers as generating it while stepping. Memory: 24 bytes per integrator step and 48
-/// per observer sample.
+/// same numbers as generating it while stepping. Memory: [`RecordedSignal::bytes`], 24 bytes
+/// per integrator step and 48 per observer sample, allocated once at their exact size.
 #[derive(Debug)]
 pub struct RecordedSignal {
     /// Per integrator step: φ̄ and ḡ − ĝ of both channels.
@@ -146,7 +146,18 @@ pub struct RecordedSignal {
     steps_per_sample: usize,
 }
 
+/// Bytes of one integrator step's inputs in a [`RecordedSignal`] (φ̄ and ḡ − ĝ of both channels).
+const STEP_BYTES: usize = std::mem::size_of::<[f64; 3]>();
+
 impl RecordedSignal {
+    /// Bytes the signal of `cfg` holds: [`STEP_BYTES`] per integrator step, one
+    /// [`SampleInput`] per observer sample k = 0..=K (the vectors are allocated at exactly
+    /// these lengths). The search's memory estimate counts signals with this.
+    pub fn bytes(cfg: &Config) -> f64 {
+        let (m, total) = (cfg.steps_per_sample() as f64, cfg.total_samples() as f64);
+        STEP_BYTES as f64 * total * m + std::mem::size_of::<SampleInput>() as f64 * (total + 1.0)
+    }
+
     /// The signal of `cfg` over its horizon (K = `cfg.total_samples()` sample periods).
     pub fn new(cfg: &Config) -> RecordedSignal {
         let (m, total) = (cfg.steps_per_sample(), cfg.total_samples());

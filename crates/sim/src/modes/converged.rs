@@ -15,10 +15,10 @@ use crate::{Discretisation, SimError};
 /// Default relative tolerance on every frequency's error estimate.
 pub const DEFAULT_MODE_TOLERANCE: f64 = 1e-9;
 
-/// Coarsest mesh of the extrapolation.
-const COARSEST: usize = 16;
+/// Coarsest mesh of the extrapolation (the work estimate's, `wingcheck_model::work::modes_meshes`).
+const COARSEST: usize = wingcheck_model::work::MODES_COARSEST;
 /// Finest mesh allowed (FE: 3·N unknowns, FD: 2·N).
-const FINEST: usize = 2048;
+const FINEST: usize = wingcheck_model::work::MODES_FINEST;
 /// At most this many meshes enter the Romberg table (the finest ones).
 const WINDOW: usize = 4;
 

@@ -81,7 +81,7 @@ pub fn lowest_eigenvalues(disc: &Discretisation, count: usize) -> Result<Vec<Rit
     if count == 0 || count > n {
         return Err(SimError::Numerical(format!("asked for {count} eigenvalues of a pencil of dimension {n}")));
     }
-    let p = n.min((2 * count).max(count + 8));
+    let p = wingcheck_model::work::modes_block(count, n);
     let mut q = start_vectors(n, p);
     let mut mq = vec![vec![0.0; n]; p];
     // y = K⁻¹ M x for the start block.
@@ -91,7 +91,7 @@ pub fn lowest_eigenvalues(disc: &Discretisation, count: usize) -> Result<Vec<Rit
         solve(&mut q[j]);
     }
     let mut w = vec![vec![0.0; n]; p];
-    for _iter in 0..500 {
+    for _iter in 0..wingcheck_model::work::MODES_ITERATIONS_MAX {
         if !m_orthonormalise(mass, &mut q, &mut mq) {
             return Err(SimError::Numerical("subspace iteration lost rank (degenerate start block)".into()));
         }
@@ -158,5 +158,8 @@ pub fn lowest_eigenvalues(disc: &Discretisation, count: usize) -> Result<Vec<Rit
         }
         q = y;
     }
-    Err(SimError::Numerical("subspace iteration did not converge in 500 iterations".into()))
+    Err(SimError::Numerical(format!(
+        "subspace iteration did not converge in {} iterations",
+        wingcheck_model::work::MODES_ITERATIONS_MAX
+    )))
 }

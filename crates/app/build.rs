@@ -1,13 +1,14 @@
-//! Build provenance of the `wingcheck` binary, handed to every output through
-//! `wingcheck_io::set_build`: the git commit (`WINGCHECK_GIT_COMMIT`), `git describe --always
+//! Build provenance of wingcheck (the CLI and the Python extension both link this crate and
+//! register [`build_info`](../src/build_info.rs) through `wingcheck_io::set_build`): the git commit (`WINGCHECK_GIT_COMMIT`), `git describe --always
 //! --dirty` (`WINGCHECK_GIT_DESCRIBE`), whether tracked files had uncommitted changes
 //! (`WINGCHECK_GIT_TREE`: clean, dirty or unknown) and the rustc version
 //! (`WINGCHECK_RUSTC_VERSION`). Outside a git checkout (a source tarball) or without git every
 //! git fact is `unknown`, and the build still works.
 //!
 //! Cargo re-runs this script when HEAD, the branch it points to or the index moves, and when a
-//! source file changes (the dirty flag follows the tree). Only the binary crate is rebuilt then:
-//! the libraries get the facts at run time, so an edit never recompiles them for provenance.
+//! source file changes (the dirty flag follows the tree). Only this crate and the front ends
+//! above it are rebuilt then: the libraries below get the facts at run time, so an edit never
+//! recompiles them for provenance. Paths are watched from the workspace root (two levels up).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -23,6 +24,8 @@ fn git(args: &[&str]) -> Option<String> {
 
 /// Watch `path` if it exists (a missing path would make cargo re-run this script every build).
 fn watch(path: &Path) {
+    let root = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").unwrap_or_default()).join("../..");
+    let path = root.join(path);
     if path.exists() {
         println!("cargo:rerun-if-changed={}", path.display());
     }
@@ -54,9 +57,22 @@ fn main() {
             watch(&common.join("packed-refs"));
         }
         // The tracked sources: an edit makes the tree dirty (or clean again).
-        for p in
-            ["src", "crates", "configs", "tests", "scripts", "docs", "proofs", "Cargo.toml", "Cargo.lock", "build.rs"]
-        {
+        for p in [
+            "src",
+            "crates",
+            "configs",
+            "tests",
+            "scripts",
+            "docs",
+            "proofs",
+            "Cargo.toml",
+            "Cargo.lock",
+            "python/src",
+            "python/wingcheck",
+            "python/tests",
+            "python/Cargo.toml",
+            "python/pyproject.toml",
+        ] {
             watch(Path::new(p));
         }
     }

@@ -1,0 +1,260 @@
+//! simulate, check, search, report, modes, the configuration and the build, for Python.
+
+use std::path::PathBuf;
+
+use numpy::{PyArray1, PyArray2};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use wingcheck_app::{ops, ConfigSource, Front, ModesRequest, SimulateRequest, SimulateSummary, WorkPolicy};
+use wingcheck_sim::Series;
+
+use crate::blocking::{self, Writes};
+use crate::errors::{argument, dict};
+
+/// The configuration source of a call: JSON text or a file (the Python layer turns a dict, a
+/// `Config` or a path into one of them), then `key=value` overrides.
+pub fn source(config_text: Option<String>, config_path: Option<PathBuf>, set: Vec<String>) -> ConfigSource {
+    ConfigSource { file: config_path, text: config_text, set }
+}
+
+/// A keyword's value as one of the configuration's names (`"ftdo"`, `"fd"`, …), through the
+/// configuration's own serde names.
+fn parse_name<T: serde::de::DeserializeOwned>(
+    py: Python<'_>,
+    name: &'static str,
+    v: Option<String>,
+) -> PyResult<Option<T>> {
+    v.map(|s| serde_json::from_value(serde_json::Value::String(s)).map_err(|e| argument(py, name, e))).transpose()
+}
+
+fn policy(allow_large: bool) -> WorkPolicy {
+    WorkPolicy { allow_large, front: Front::Python }
+}
+
+/// A run: the columns of run.csv as float64 arrays under their CSV names, their units, the
+/// `simulate --json` document, the configuration and, if asked for, the fields.
+#[pyfunction]
+#[pyo3(signature = (config_text=None, config_path=None, set=Vec::new(), controller=None, observer=None, method=None,
+    sample_every=None, error_estimate=false, fields=false, sample_times=None, out=None, allow_large=false, progress=None))]
+#[allow(clippy::too_many_arguments)]
+pub fn simulate<'py>(
+    py: Python<'py>,
+    config_text: Option<String>,
+    config_path: Option<PathBuf>,
+    set: Vec<String>,
+    controller: Option<String>,
+    observer: Option<String>,
+    method: Option<String>,
+    sample_every: Option<f64>,
+    error_estimate: bool,
+    fields: bool,
+    sample_times: Option<Vec<f64>>,
+    out: Option<PathBuf>,
+    allow_large: bool,
+    progress: Option<Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let req = SimulateRequest {
+        controller: parse_name(py, "controller", controller)?,
+        observer: parse_name(py, "observer", observer)?,
+        method: parse_name(py, "method", method)?,
+        sample_every,
+        error_estimate,
+        fields,
+        sample_times,
+        out,
+    };
+    let base = source(config_text, config_path, set);
+    let run_req = req.clone();
+    let (cfg, result) = blocking::run(py, progress.as_ref(), Writes::Files, move |cancel, sink| {
+        let req = run_req;
+        let cfg = req.config(&base)?;
+        let mut on_progress = |f: f64| sink.set(f, "simulate");
+        let r = wingcheck_app::simulate::run(&cfg, &req, policy(allow_large), Some(&mut on_progress), cancel)?;
+        Ok((cfg, r))
+    })?;
+    let series = &result.output.series;
+    let columns = PyDict::new(py);
+    let units = PyDict::new(py);
+    for ((name, col), (_, unit)) in Series::csv_header().into_iter().zip(series.columns()).zip(Series::COLUMNS) {
+        columns.set_item(&name, PyArray1::from_slice(py, col))?;
+        units.set_item(&name, unit.symbol())?;
+    }
+    let field_arrays = match &result.output.fields {
+        Some(f) => {
+            let q = PyArray2::from_vec2(py, &f.q).map_err(|e| argument(py, "fields", e))?;
+            let theta = PyArray2::from_vec2(py, &f.theta).map_err(|e| argument(py, "fields", e))?;
+            dict(
+                py,
+                vec![
+                    ("z_m", PyArray1::from_slice(py, &f.z).into_any()),
+                    ("q_m", q.into_any()),
+                    ("theta_rad", theta.into_any()),
+                ],
+            )?
+            .into_any()
+        }
+        None => py.None().into_bound(py),
+    };
+    let summary = SimulateSummary::of(&cfg, &result, req.out.as_deref());
+    let summary = serde_json::to_string(&summary).map_err(|e| argument(py, "summary", e))?;
+    dict(
+        py,
+        vec![
+            ("columns", columns.into_any()),
+            ("units", units.into_any()),
+            ("summary", summary.into_pyobject(py)?.into_any()),
+            ("config", serde_json::to_string(&cfg).unwrap_or_default().into_pyobject(py)?.into_any()),
+            ("fields", field_arrays),
+        ],
+    )
+}
+
+/// The claim ledger as `check --json` prints it (without its final newline).
+#[pyfunction]
+#[pyo3(signature = (config_text=None, config_path=None, set=Vec::new(), allow_large=false, progress=None))]
+pub fn check(
+    py: Python<'_>,
+    config_text: Option<String>,
+    config_path: Option<PathBuf>,
+    set: Vec<String>,
+    allow_large: bool,
+    progress: Option<Bound<'_, PyAny>>,
+) -> PyResult<String> {
+    let base = source(config_text, config_path, set);
+    blocking::run(py, progress.as_ref(), Writes::Nothing, move |cancel, _| {
+        let cfg = base.load()?;
+        Ok(ops::check(&cfg, policy(allow_large), cancel)?.to_json())
+    })
+}
+
+/// A search into `out`: its summary (JSON text); the Python layer reads the files.
+#[pyfunction]
+#[pyo3(signature = (over, out, config_text=None, config_path=None, set=Vec::new(), threads=None, refine=None,
+    best=None, window=None, chunk_size=32, allow_large=false, progress=None))]
+#[allow(clippy::too_many_arguments)]
+pub fn search(
+    py: Python<'_>,
+    over: Vec<String>,
+    out: PathBuf,
+    config_text: Option<String>,
+    config_path: Option<PathBuf>,
+    set: Vec<String>,
+    threads: Option<usize>,
+    refine: Option<f64>,
+    best: Option<String>,
+    window: Option<(f64, f64)>,
+    chunk_size: usize,
+    allow_large: bool,
+    progress: Option<Bound<'_, PyAny>>,
+) -> PyResult<String> {
+    let best: wingcheck_search::Ranking = match best {
+        Some(b) => b.parse().map_err(|e| argument(py, "best", e))?,
+        None => Default::default(),
+    };
+    let options = wingcheck_search::SearchOptions { window, chunk_size, refine, best, ..Default::default() };
+    let base = source(config_text, config_path, set);
+    blocking::run(py, progress.as_ref(), Writes::Files, move |cancel, sink| {
+        let cfg = base.load()?;
+        let on_progress = |p: wingcheck_search::Progress| {
+            sink.set(if p.total == 0 { 1.0 } else { p.done as f64 / p.total as f64 }, "search")
+        };
+        let ctl = wingcheck_search::RunControl {
+            progress: Some(&on_progress),
+            threads,
+            cancel: cancel.clone(),
+            ..Default::default()
+        };
+        let s = ops::search(cfg, &over, options, &out, policy(allow_large), ctl)?;
+        Ok(serde_json::to_string(&s).unwrap_or_default())
+    })
+}
+
+/// What `report` returns: (directory, files, stage timings as (name, s), ledger JSON).
+type ReportParts = (PathBuf, Vec<String>, Vec<(String, f64)>, String);
+
+/// The HTML report into `out`: (directory, files, stage timings as (name, s), ledger JSON).
+#[pyfunction]
+#[pyo3(signature = (out, config_text=None, config_path=None, set=Vec::new(), allow_large=false, progress=None))]
+pub fn report(
+    py: Python<'_>,
+    out: PathBuf,
+    config_text: Option<String>,
+    config_path: Option<PathBuf>,
+    set: Vec<String>,
+    allow_large: bool,
+    progress: Option<Bound<'_, PyAny>>,
+) -> PyResult<ReportParts> {
+    let base = source(config_text, config_path, set);
+    blocking::run(py, progress.as_ref(), Writes::Gated, move |cancel, sink| {
+        let cfg = base.load()?;
+        let on_progress = |p: wingcheck_report::Overall| sink.set(p.fraction, p.stage);
+        let opts = wingcheck_report::ReportOptions {
+            overall: Some(&on_progress),
+            command_line: Some("wingcheck.report (Python)"),
+            cancel: Some(cancel),
+            ..Default::default()
+        };
+        let s = ops::report(&cfg, &out, policy(allow_large), &opts)?;
+        let timings = s.timings.iter().map(|t| (t.name.clone(), t.seconds)).collect();
+        Ok((s.out_dir, s.files, timings, s.ledger.to_json()))
+    })
+}
+
+/// The `modes --json` document (JSON text).
+#[pyfunction]
+#[pyo3(signature = (config_text=None, config_path=None, set=Vec::new(), count=5, method=None, tol=None))]
+pub fn modes(
+    py: Python<'_>,
+    config_text: Option<String>,
+    config_path: Option<PathBuf>,
+    set: Vec<String>,
+    count: usize,
+    method: Option<String>,
+    tol: Option<f64>,
+) -> PyResult<String> {
+    let req = ModesRequest {
+        count,
+        method: parse_name(py, "method", method)?,
+        tol: tol.unwrap_or(ModesRequest::default().tol),
+    };
+    let base = source(config_text, config_path, set);
+    blocking::run(py, None, Writes::Nothing, move |_, _| {
+        let cfg = base.load()?;
+        let doc = req.run(&cfg, WorkPolicy { allow_large: false, front: Front::Python })?;
+        Ok(serde_json::to_string(&doc).unwrap_or_default())
+    })
+}
+
+/// The effective configuration: (pretty JSON, SHA-256), validated.
+#[pyfunction]
+#[pyo3(signature = (config_text=None, config_path=None, set=Vec::new()))]
+pub fn load_config(
+    py: Python<'_>,
+    config_text: Option<String>,
+    config_path: Option<PathBuf>,
+    set: Vec<String>,
+) -> PyResult<(String, String)> {
+    let cfg = source(config_text, config_path, set).load().map_err(|e| crate::errors::to_py(py, &e))?;
+    Ok((cfg.to_json_pretty(), cfg.sha256()))
+}
+
+/// The build's provenance: version, commit, tree (clean, dirty, unknown), describe, rustc.
+#[pyfunction]
+pub fn build_info(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+    let b = wingcheck_app::build_info();
+    let tree = match b.tree {
+        wingcheck_io::TreeState::Clean => "clean",
+        wingcheck_io::TreeState::Dirty => "dirty",
+        wingcheck_io::TreeState::Unknown => "unknown",
+    };
+    dict(
+        py,
+        vec![
+            ("version", b.version.into_pyobject(py)?.into_any()),
+            ("commit", b.commit.into_pyobject(py)?.into_any()),
+            ("tree", tree.into_pyobject(py)?.into_any()),
+            ("describe", b.describe.into_pyobject(py)?.into_any()),
+            ("rustc", b.rustc.into_pyobject(py)?.into_any()),
+        ],
+    )
+}

@@ -1,0 +1,93 @@
+"""The compiled extension (Rust, pyo3). Internal: use the functions of :mod:`wingcheck`."""
+
+from os import PathLike
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
+
+__all__ = [
+    "build_info",
+    "certify",
+    "check",
+    "join_stopped",
+    "load_config",
+    "modes",
+    "report",
+    "search",
+    "simulate",
+    "verify",
+]
+
+_Progress = Optional[Callable[[float, str], Optional[bool]]]
+_Path = Union[str, PathLike[str]]
+
+def simulate(
+    config_text: Optional[str] = None,
+    config_path: Optional[_Path] = None,
+    set: Sequence[str] = ...,
+    controller: Optional[str] = None,
+    observer: Optional[str] = None,
+    method: Optional[str] = None,
+    sample_every: Optional[float] = None,
+    error_estimate: bool = False,
+    fields: bool = False,
+    sample_times: Optional[Sequence[float]] = None,
+    out: Optional[_Path] = None,
+    allow_large: bool = False,
+    progress: _Progress = None,
+) -> Dict[str, Any]: ...
+def check(
+    config_text: Optional[str] = None,
+    config_path: Optional[_Path] = None,
+    set: Sequence[str] = ...,
+    allow_large: bool = False,
+    progress: _Progress = None,
+) -> str: ...
+def search(
+    over: Sequence[str],
+    out: _Path,
+    config_text: Optional[str] = None,
+    config_path: Optional[_Path] = None,
+    set: Sequence[str] = ...,
+    threads: Optional[int] = None,
+    refine: Optional[float] = None,
+    best: Optional[str] = None,
+    window: Optional[Tuple[float, float]] = None,
+    chunk_size: int = 32,
+    allow_large: bool = False,
+    progress: _Progress = None,
+) -> str: ...
+def report(
+    out: _Path,
+    config_text: Optional[str] = None,
+    config_path: Optional[_Path] = None,
+    set: Sequence[str] = ...,
+    allow_large: bool = False,
+    progress: _Progress = None,
+) -> Tuple[str, List[str], List[Tuple[str, float]], str]: ...
+def modes(
+    config_text: Optional[str] = None,
+    config_path: Optional[_Path] = None,
+    set: Sequence[str] = ...,
+    count: int = 5,
+    method: Optional[str] = None,
+    tol: Optional[float] = None,
+) -> str: ...
+def load_config(
+    config_text: Optional[str] = None,
+    config_path: Optional[_Path] = None,
+    set: Sequence[str] = ...,
+) -> Tuple[str, str]: ...
+def build_info() -> Dict[str, str]: ...
+def certify(
+    out: _Path,
+    config_text: Optional[str] = None,
+    config_path: Optional[_Path] = None,
+    set: Sequence[str] = ...,
+) -> Tuple[List[str], List[str]]: ...
+def verify(
+    path: _Path,
+    pinned: bool = False,
+    config_text: Optional[str] = None,
+    config_path: Optional[_Path] = None,
+    set: Sequence[str] = ...,
+) -> Dict[str, Any]: ...
+def join_stopped() -> None: ...
