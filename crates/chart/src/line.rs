@@ -125,6 +125,8 @@ impl LineChart {
                 }
             }
         }
+        // the horizontal levels drawn (a threshold) are inside the axis too
+        v.extend(self.hlines.iter().map(|(y, _)| *y).filter(|y| !pd.log_y || *y > 0.0));
         v.retain(|y| y.is_finite());
         v
     }

@@ -265,7 +265,11 @@ fn sigma_plot(c: &Computed, reference: f64) -> Option<PlotData> {
         title: format!(
             "|σ{n}(t)| on [0, {} s]: the Filippov limit reaches 0 {}; bound t_f of ({}) = {} s; digital observers at T_s = {ms} ms",
             fmt(t_window),
-            fil.reach_s.map_or("not within 60 s".to_string(), |t| format!("at t_reach = {} s", fmt(t))),
+            // the ledger's t_reach as its evidence prints it (one symbol, one value)
+            fil.reach_s.map_or("not within 60 s".to_string(), |t| {
+                let q = wingcheck_model::Quantity::with_error("t_reach", t, fil.error_s, wingcheck_model::Unit::Second, &[]);
+                format!("at t_reach = {}", q.value_text())
+            }),
             if n == 1 { 38 } else { 39 },
             fmt(c.bound)
         ),

@@ -199,11 +199,7 @@ impl FigCtx {
 
     /// The link to this figure: its label and title.
     pub fn link(&self) -> Link {
-        Link {
-            href: format!("#{}", self.id),
-            text: format!("{}: {}", self.label, crate::links::short_title(&self.title)),
-            id: None,
-        }
+        Link { href: format!("#{}", self.id), text: crate::links::figure_link_text(&self.label, &self.title), id: None }
     }
 }
 
@@ -399,7 +395,7 @@ pub fn row_ctx(r: &ClaimRow, figures: &[Figure], links: &RowLinks) -> Result<Row
     }
     let own_link = |f: &FigCtx| Link {
         href: format!("#{}", f.id),
-        text: format!("{}: {}", f.label, crate::links::short_title(&f.title)),
+        text: crate::links::figure_link_text(&f.label, &f.title),
         id: None,
     };
     let back =

@@ -324,12 +324,24 @@ fn gerr_chart(r: &RunView, ch: u8) -> LineChart {
     .into();
     c.data.log_y = true;
     c.data.log_x = true;
+    // where g̃ chatters (the explicit rule) the full-rate max and min are the curves to read and
+    // the samples alias them, as for τ
+    let chatter = chatters(env);
+    let every = r.out.series.t.get(1).copied().unwrap_or(0.0);
+    if chatter {
+        c.data.lines[0].label = "output samples (alias the chatter)".into();
+        c.styles = vec![LineStyle::Faint];
+    }
     c.bands.push(Band {
         line: 0,
         lo,
         hi,
-        label: band_label(r.out.series.t.get(1).copied().unwrap_or(0.0)),
-        style: BandStyle::Shade,
+        label: if chatter {
+            format!("full-rate max and min of |g̃{ch}| per {} s", tick(every))
+        } else {
+            band_label(every)
+        },
+        style: if chatter { BandStyle::Edges } else { BandStyle::Shade },
     });
     c.hlines.push((GTILDE_THRESHOLD, format!("|g̃| = {} {}", tick(GTILDE_THRESHOLD), unit(ch))));
     let m = &r.marks[usize::from(ch - 1)];
@@ -354,8 +366,13 @@ fn gerr_figure(r: &RunView, ch: u8, f: &Frame, chart: LineChart, twin: u32) -> F
     let hi = envelope_abs_max(envelope_of(r.out, usize::from(ch + 1)));
     let mut cap = Caption::default()
         .t(format!(
-            "Disturbance estimation error |g̃{ch}(t)| = |g{ch} − ĝ{ch}| {} (paper Figure {n}), log scale; shaded: its full-rate range over each output interval, line: the output samples. Full-rate max |g̃{ch}| over [{}, {}] s: ",
+            "Disturbance estimation error |g̃{ch}(t)| = |g{ch} − ĝ{ch}| {} (paper Figure {n}), log scale; {}. Full-rate max |g̃{ch}| over [{}, {}] s: ",
             r.desc,
+            if chatters(envelope_of(r.out, usize::from(ch + 1))) {
+                "solid lines: its full-rate max and min over each output interval — it chatters at the observer's sample rate, so these are the curves to read; dashed: the output samples, which alias the chatter"
+            } else {
+                "shaded: its full-rate range over each output interval, line: the output samples"
+            },
             tick(f.t_end / 2.0),
             tick(f.t_end)
         ))

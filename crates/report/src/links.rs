@@ -122,14 +122,60 @@ pub fn row_certificates(id: ClaimId, files: &[String]) -> Vec<(Link, String)> {
         .collect()
 }
 
-/// A figure's title shortened for a link: up to the first `;` or ` (`, at most 70 characters.
+/// A figure's title shortened for a link: up to the first `;`, ` (` or `: `, at most 70
+/// characters, cut at a word (never inside a number).
 pub fn short_title(title: &str) -> String {
-    let cut = title.find("; ").into_iter().chain(title.find(" (")).min().unwrap_or(title.len());
+    let cut = ["; ", " (", ": "].iter().filter_map(|p| title.find(p)).min().unwrap_or(title.len());
     let t = title[..cut].trim_end_matches([',', '.', ' ']);
-    if t.chars().count() > 70 {
-        let s: String = t.chars().take(69).collect();
-        format!("{}…", s.trim_end())
+    if t.chars().count() <= 70 {
+        return t.to_string();
+    }
+    let head: String = t.chars().take(69).collect();
+    let at_word = head.rfind(' ').map_or(head.as_str(), |i| &head[..i]);
+    format!("{}…", at_word.trim_end_matches([',', '.', ' ']))
+}
+
+/// The words of a link to a figure: its label and short title ([`short_title`]), or only the
+/// longer of the two when one repeats the other (`W-bounds, λ2/λ1 against a/b`, not
+/// `W-bounds, λ2/λ1 against a/b: λ2/λ1 against a/b`).
+pub fn figure_link_text(label: &str, title: &str) -> String {
+    let short = short_title(title);
+    let tail = label.rsplit(", ").next().unwrap_or(label).to_lowercase();
+    if short.to_lowercase().contains(&tail) || tail.contains(&short.to_lowercase()) {
+        if label.chars().count() >= short.chars().count() {
+            label.to_string()
+        } else {
+            short
+        }
     } else {
-        t.to_string()
+        format!("{label}: {short}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn link_texts_are_short_whole_and_say_things_once() {
+        // the titles of this report's figures (region.rs, wratio.rs, finite_time.rs)
+        assert_eq!(
+            figure_link_text("Region map", "(a, b) region map: hypotheses vs tip performance"),
+            "(a, b) region map"
+        );
+        assert_eq!(
+            figure_link_text("W-bounds, λ2/λ1 against a/b", "λ2/λ1 against a/b: tight and printed"),
+            "W-bounds, λ2/λ1 against a/b"
+        );
+        assert_eq!(
+            figure_link_text(
+                "finite-time-2, plot 1",
+                "|σ2(t)| on [0, 37.46 s]: the Filippov limit reaches 0 at t_reach = 12.49 s"
+            ),
+            "finite-time-2, plot 1: |σ2(t)| on [0, 37.46 s]"
+        );
+        let long = "word ".repeat(20) + "12.4879728586605";
+        let s = short_title(&long);
+        assert!(s.ends_with('…') && !s.contains("12") && s.chars().count() <= 70, "{s}");
     }
 }

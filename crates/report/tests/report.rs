@@ -111,14 +111,16 @@ fn report_is_well_formed_complete_and_matches_the_ledger() {
             .unwrap_or_else(|| panic!("figure {src} links no data"));
         let href = link.attribute("href").unwrap();
         if href == "ledger.json" {
-            // a ledger row's plot: the link names rows[i].plots[j], which holds its lines
+            // a ledger row's plot: the link's data-path names rows[i].plots[j], which holds its
+            // lines; its text is for people (no "rows[")
             let t = text(link);
-            let (i, j) = t
-                .split("rows[")
-                .nth(1)
+            assert!(!t.contains("rows["), "{src}: data link text {t}");
+            let path = link.attribute("data-path").unwrap_or_else(|| panic!("{src}: no data-path on {t}"));
+            let (i, j) = path
+                .strip_prefix("rows[")
                 .and_then(|r| r.split_once("].plots["))
                 .and_then(|(i, r)| Some((i.parse::<usize>().ok()?, r.trim_end_matches(']').parse::<usize>().ok()?)))
-                .unwrap_or_else(|| panic!("{src}: data link {t}"));
+                .unwrap_or_else(|| panic!("{src}: data path {path}"));
             assert!(
                 ledger_json["rows"][i]["plots"][j]["lines"].as_array().is_some_and(|l| !l.is_empty()),
                 "{src}: {t}"

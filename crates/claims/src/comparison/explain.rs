@@ -123,7 +123,9 @@ impl TipDifferences {
 }
 
 fn gratio(v: Option<f64>) -> Option<Quantity> {
-    v.map(|r| Quantity::based("RMS g̃ over [t_end/2, t_end], DOBC / FTDO", r, Unit::Dimensionless, ValueBasis::Simulation))
+    v.map(|r| {
+        Quantity::based("RMS g̃ over [t_end/2, t_end], DOBC / FTDO", r, Unit::Dimensionless, ValueBasis::Simulation)
+    })
 }
 
 /// The evidence of the `ftdo-vs-dobc` row.
@@ -197,7 +199,7 @@ fn start_sensitivity_text(c: &Computed) -> String {
             )
         })
         .collect();
-    let nudge = wingcheck_model::format_number(super::START_NUDGE);
+    let nudge = wingcheck_model::format::exact(super::START_NUDGE);
     if sensitive.is_empty() {
         format!("not start-sensitive: starts ν(0) ± δ (δ = {nudge} relative) move RMS τ1 and τ2 by less than their other error sources together")
     } else {

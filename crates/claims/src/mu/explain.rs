@@ -195,7 +195,12 @@ fn evidence_of(cfg: &Config, c: &Computed, settings: &CheckSettings) -> MuEviden
             Unit::NewtonPerMetre,
             ValueBasis::SearchMaximum,
         ),
-        zeta3: Quantity::based("ζ3 = sup |g̃1| over [0, t_end] of the FTDO run", c.bounds.zeta3, Unit::Newton, ValueBasis::Simulation),
+        zeta3: Quantity::based(
+            "ζ3 = sup |g̃1| over [0, t_end] of the FTDO run",
+            c.bounds.zeta3,
+            Unit::Newton,
+            ValueBasis::Simulation,
+        ),
         zeta4: Quantity::based(
             "ζ4 = sup |g̃2| over [0, t_end] of the FTDO run",
             c.bounds.zeta4,
