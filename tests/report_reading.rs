@@ -456,6 +456,12 @@ fn check(name: &str, sets: &[&str], tmp: &Path) {
         let g = envelope_spread(&gunzip(&out.join("fig11-gtilde1-ftdo.csv.gz")));
         assert!(g > 1.0, "{name}: late |g̃1| spread {g} N");
         assert!(html.contains("full-rate max and min"), "{name}: the envelope is the main curve of τ");
+        // and of |g̃|, whose samples alias the chatter as τ's do
+        let cap = by_id(&doc, "fig11-gtilde1-ftdo")
+            .and_then(|f| f.descendants().find(|n| n.has_tag_name("figcaption")))
+            .map(text)
+            .unwrap_or_default();
+        assert!(cap.contains("full-rate max and min"), "{name}: Figure 11 reads the samples: {cap:.200}");
     }
 
     // bulk

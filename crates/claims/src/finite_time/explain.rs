@@ -124,7 +124,7 @@ fn digital_records(c: &Computed, window_s: f64) -> (Vec<DigitalRecord>, bool, f6
 const DIGITAL_REACH: &str = "σ_k reaches its band (digital)";
 
 /// The chatter window [t_end − window, t_end] of the digital runs, in words.
-fn chatter_window(run_t_end: f64, window_s: f64) -> String {
+pub(super) fn chatter_window(run_t_end: f64, window_s: f64) -> String {
     let v = wingcheck_model::format::exact;
     format!("t ∈ [{}, {}] s", v(((run_t_end - window_s) * 1e9).round() / 1e9), v(run_t_end))
 }
@@ -254,7 +254,7 @@ impl Explain for FiniteTimeEvidence {
         f.push(format!("Over a sweep of σ{n}(0) the worst t_reach/t_f{n} is {sweep}."));
         if let (Some(i), Some(e)) = (self.run(ObserverRule::Implicit), self.run(ObserverRule::Explicit)) {
             f.push(format!(
-                "At T_s = {} the implicit observer {} (max |g̃{n}| over {} = {}); the explicit one chatters (max |g̃{n}| = {}).",
+                "At T_s = {} the implicit observer {} (max |g̃{n}| over {} = {}); the explicit one chatters (max |g̃{n}| over the same window = {}).",
                 i.period.value_text(),
                 if self.implicit_stays_in_band.value { "reaches and stays" } else { "does not stay in its band" },
                 chatter_window(self.run_t_end_s.value, self.chatter_window_s.value),
