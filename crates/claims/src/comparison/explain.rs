@@ -191,7 +191,8 @@ fn start_sensitivity_text(c: &Computed) -> String {
             let (name, unit) = if ch == 0 { ("τ1", Unit::Newton) } else { ("τ2", Unit::NewtonMetre) };
             let [a, b] = c.explicit_rms_starts[ch];
             let apart = 100.0 * (a - b).abs() / a.abs().min(b.abs());
-            let [up, down] = [a, b].map(|x| format_value(x, None));
+            // to the digits of their difference, so two values that differ read differently
+            let [up, down] = [a, b].map(|x| format_value(x, Some((a - b).abs())));
             format!(
                 "RMS {name} is {up} {u} from ν(0) + δ and {down} {u} from ν(0) − δ ({} % apart)",
                 format_value(apart, None),
