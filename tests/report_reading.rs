@@ -15,6 +15,7 @@
 //!   list); ratios without a dimensional unit;
 //! - the keys that differ from configs/paper.json within the first 2 kB of visible text;
 //! - with the explicit observer the τ and |g̃| figures are drawn from envelopes;
+//! - a viewport, a dark theme and a print stylesheet (evidence unfolded, a page per section);
 //! - the folder is at most 4 MB, at t_end = 40 s and 100 s too;
 //! - `wingcheck verify proofs --config config.json` passes in the folder, and the ω₁ enclosure it
 //!   verifies is the one the W-bounds row quotes.
@@ -462,6 +463,18 @@ fn check(name: &str, sets: &[&str], tmp: &Path) {
             .map(text)
             .unwrap_or_default();
         assert!(cap.contains("full-rate max and min"), "{name}: Figure 11 reads the samples: {cap:.200}");
+    }
+
+    // reading elsewhere: a viewport for phones (its 390-px layout is measured by
+    // tests/report_browser.rs), a dark theme, and a print stylesheet that unfolds the evidence
+    // and starts each section on a page
+    let meta = doc.descendants().find(|n| n.has_tag_name("meta") && n.attribute("name") == Some("viewport"));
+    assert!(meta.and_then(|m| m.attribute("content")).is_some_and(|c| c.contains("width=device-width")), "{name}");
+    let style: String = doc.descendants().filter(|n| n.has_tag_name("style")).map(text).collect();
+    assert!(style.contains("@media (prefers-color-scheme: dark)"), "{name}: no dark theme");
+    let print = style.split("@media print").nth(1).unwrap_or_else(|| panic!("{name}: no print stylesheet"));
+    for rule in ["details::details-content", "break-before: page", "break-inside: avoid"] {
+        assert!(print.contains(rule), "{name}: the print stylesheet lacks {rule}");
     }
 
     // bulk
