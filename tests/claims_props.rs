@@ -35,7 +35,7 @@ proptest! {
         let f = filippov_reach(&gain, &|t| mean + amp * (freq * t).sin(), sigma0, 100.0, 400).unwrap();
         let bound = bound_38(lin, frac, a1, a2, sigma0).unwrap();
         let t = f.reach_s.expect("reaches 0");
-        prop_assert_eq!(f.method, "sigma-domain");
+        prop_assert_eq!(f.method, wingcheck_claims::finite_time::reach::SIGMA_DOMAIN);
         prop_assert!(t <= bound * (1.0 + 1e-6) + f.error_s, "t = {} > bound {}", t, bound);
     }
 }

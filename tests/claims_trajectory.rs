@@ -245,7 +245,7 @@ fn ftdo_vs_dobc_follows_the_configured_rule_and_weights() {
     assert!(r < 1.0, "DOBC / explicit FTDO = {r}");
     assert!(!e.gtilde_clearly_smaller.value);
     assert!(
-        row.finding[0].contains("DOBC's disturbance error is") && row.finding[0].contains("explicit rule"),
+        row.finding[0].contains("DOBC's disturbance error (RMS) is") && row.finding[0].contains("explicit rule"),
         "{}",
         row.finding[0]
     );

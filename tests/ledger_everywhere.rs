@@ -2,8 +2,9 @@
 //! each, `wingcheck check --json`, `wingcheck report` and `wingcheck certify` are run as a user
 //! runs them, and
 //! - the report's `ledger.json` is `check --json`, byte for byte;
-//! - every decisive number and every evidence value of the report's ledger is the JSON's, with
-//!   its label, unit and error or basis;
+//! - the ledger table's line per claim is the JSON's deciding comparison, and every decisive
+//!   number and every evidence value of the claim's section is the JSON's, with its label, unit
+//!   and error or basis;
 //! - no sentence carries text that is only true at the paper's point;
 //! - the certificates a row cites are files `certify` writes for that configuration;
 //! - ratios and relative differences are dimensionless.
@@ -95,21 +96,24 @@ fn check_one(name: &str, sets: &[&str], dir: &Path) {
     let rows = ledger["rows"].as_array().unwrap();
     for row in rows {
         let id = row["id"].as_str().unwrap();
-        // the ledger table's decisive numbers: label, value with unit, error or basis, as in the JSON
+        // the ledger table's line: the deciding comparison, as in the JSON
         let tr =
             doc.descendants().find(|n| n.attribute("id") == Some(&format!("ledger-claim-{id}"))).expect("ledger row");
-        let cell = text(tr);
-        for q in row["decisive"].as_array().unwrap() {
-            let q: Quantity = serde_json::from_value(q.clone()).unwrap();
-            let shown = format!("{}: {} ({})", q.label, q.value_text(), q.accuracy_text());
-            assert!(cell.contains(&shown), "{name}, {id}: the ledger table lacks «{shown}»: {cell}");
-        }
-        for s in row["finding"].as_array().unwrap() {
-            assert!(cell.contains(s.as_str().unwrap()), "{name}, {id}: finding not shown");
-        }
-        // every evidence quantity is shown in the row's section with the JSON's value and unit
+        let deciding = row["deciding"].as_str().unwrap();
+        assert!(text(tr).contains(deciding), "{name}, {id}: the ledger table lacks «{deciding}»: {}", text(tr));
+        // the row's section: the decisive numbers (label, value with unit, error or basis) and the
+        // finding, as in the JSON
         let section = doc.descendants().find(|n| n.attribute("id") == Some(&format!("claim-{id}"))).expect("section");
         let shown = text(section);
+        for q in row["decisive"].as_array().unwrap() {
+            let q: Quantity = serde_json::from_value(q.clone()).unwrap();
+            let decisive = format!("{}: {} ({})", q.label, q.value_text(), q.accuracy_text());
+            assert!(shown.contains(&decisive), "{name}, {id}: the section lacks «{decisive}»");
+        }
+        for s in row["finding"].as_array().unwrap() {
+            assert!(shown.contains(s.as_str().unwrap()), "{name}, {id}: finding not shown");
+        }
+        // every evidence quantity is shown in the row's section with the JSON's value and unit
         let mut all = Vec::new();
         quantities(&row["evidence"], &mut all);
         for q in &all {

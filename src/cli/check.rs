@@ -50,6 +50,7 @@ pub fn run(a: CheckArgs) -> anyhow::Result<()> {
     println!("(wall times overlap: the rows and their parts run side by side on the thread pool)");
     for r in &ledger.rows {
         println!("\n[{}] {} ({}) — {}", r.id, r.verdict.name(), r.basis.name(), r.claim);
+        println!("  decided by: {}", r.deciding);
         for s in &r.finding {
             println!("  {s}");
         }

@@ -54,3 +54,31 @@ pub fn richardson(u_coarse: f64, u_fine: f64, p: f64) -> f64 {
     let f = 2f64.powf(p);
     (f * u_fine - u_coarse) / (f - 1.0)
 }
+
+/// The Goland wing (Goland 1945, the standard aeroelastic test wing, in SI units as tabulated
+/// e.g. by Patil, Hodges & Cesnik 2001): semi-span 6.096 m, mass 35.71 kg/m, bending rigidity
+/// 9.77e6 N m², torsional rigidity 0.987e6 N m², chord 1.8288 m with the elastic axis at 33 %
+/// and the centre of mass at 43 % of the chord (x_c = 0.1 c = 0.18288 m, ρx_c = 6.531 kg), mass
+/// moment of inertia 8.64 kg m about the centre of mass (I_p = 8.64 + ρx_c · x_c ≈ 9.83 kg m
+/// about the elastic axis) and the aerodynamic centre at the quarter chord (x_ac = 0.08 c =
+/// 0.1463 m).
+pub const GOLAND: [&str; 7] = [
+    "wing.span=6.096",
+    "wing.rho=35.71",
+    "wing.rho_xc=6.531",
+    "wing.ei=9.77e6",
+    "wing.gj=0.987e6",
+    "wing.ip=9.83",
+    "wing.x_ac=0.1463",
+];
+
+/// The five configurations a referee reads the report at (issue 47): the paper's; a = 1,
+/// b = 3000 (a = 1 is the paper's already); the explicit observer; the Goland wing; k1 = 3,
+/// ξ = 0.3, a = 0.5, b = 100.
+pub const READER_CONFIGS: [(&str, &[&str]); 5] = [
+    ("paper", &[]),
+    ("a = 1, b = 3000", &["control.b=3000"]),
+    ("explicit observer", &["observer.rule=explicit"]),
+    ("Goland wing", &GOLAND),
+    ("k1 = 3, xi = 0.3, a = 0.5, b = 100", &["control.k1=3", "wing.xi=0.3", "control.a=0.5", "control.b=100"]),
+];

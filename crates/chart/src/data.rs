@@ -26,6 +26,47 @@ fn drawing_digits<S: serde::Serializer>(values: &[f64], s: S) -> Result<S::Ok, S
     seq.end()
 }
 
+/// Drawing data (a figure's data file and the series it draws, a row's plot in `ledger.json`)
+/// hold at most this many samples per series; longer series are thinned ([`stride`]), so a
+/// report's folder does not grow with the horizon.
+pub const MAX_DRAWN_SAMPLES: usize = 2001;
+
+/// The stride that thins `n` samples to at most [`MAX_DRAWN_SAMPLES`]: every k-th sample, k =
+/// ⌈(n − 1)/(MAX_DRAWN_SAMPLES − 1)⌉ (1 for n ≤ MAX_DRAWN_SAMPLES).
+pub fn stride(n: usize) -> usize {
+    n.saturating_sub(1).div_ceil(MAX_DRAWN_SAMPLES - 1).max(1)
+}
+
+/// The samples kept of `n` at stride `k`: 0, k, 2k, … and always the last.
+pub fn kept(n: usize, k: usize) -> Vec<usize> {
+    let mut v: Vec<usize> = (0..n).step_by(k.max(1)).collect();
+    if n > 0 && v.last() != Some(&(n - 1)) {
+        v.push(n - 1);
+    }
+    v
+}
+
+/// `v` at the kept samples.
+pub fn thin<T: Copy>(v: &[T], kept: &[usize]) -> Vec<T> {
+    kept.iter().filter_map(|&i| v.get(i).copied()).collect()
+}
+
+/// A band of per-interval extremes (`lo[i]`, `hi[i]` over the interval ending at sample i)
+/// thinned to `kept`: each kept sample's interval is the union of the intervals since the
+/// previous kept one (the minimum of the minima, the maximum of the maxima), so no extreme is
+/// lost.
+pub fn thin_band(lo: &[f64], hi: &[f64], kept: &[usize]) -> (Vec<f64>, Vec<f64>) {
+    let mut start = 0;
+    let (mut l, mut h) = (Vec::with_capacity(kept.len()), Vec::with_capacity(kept.len()));
+    for &i in kept {
+        let (a, b) = (start.min(i), i);
+        l.push(lo[a..=b.min(lo.len() - 1)].iter().copied().fold(f64::INFINITY, f64::min));
+        h.push(hi[a..=b.min(hi.len() - 1)].iter().copied().fold(f64::NEG_INFINITY, f64::max));
+        start = i + 1;
+    }
+    (l, h)
+}
+
 /// One line of a plot: y against x.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Line {
@@ -76,6 +117,21 @@ impl PlotData {
         wingcheck_io::csv_text(["series", "x", "y"], rows)
     }
 
+    /// The plot with every polyline of the longest length thinned to at most
+    /// [`MAX_DRAWN_SAMPLES`] points ([`stride`]; marker lines and shorter lines unchanged).
+    pub fn thinned(mut self) -> PlotData {
+        let n = self.lines.iter().filter(|l| !l.points).map(|l| l.x.len()).max().unwrap_or(0);
+        let k = stride(n);
+        if k > 1 {
+            let keep = kept(n, k);
+            for l in self.lines.iter_mut().filter(|l| !l.points && l.x.len() == n && l.y.len() == n) {
+                l.x = thin(&l.x, &keep);
+                l.y = thin(&l.y, &keep);
+            }
+        }
+        self
+    }
+
     /// What the CSV holds, for the provenance record: the axes' labels with their units.
     pub fn csv_contents(&self) -> String {
         format!("{}: series = line label, x = {}, y = {}", self.title, self.x_label, self.y_label)
@@ -85,6 +141,19 @@ impl PlotData {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn thinning_keeps_the_ends_and_every_extreme() {
+        // 2001 samples (t_end = 20 s at 0.01 s): unchanged; 4001 (40 s): every 2nd; 10001: 5th.
+        assert_eq!((stride(2001), stride(4001), stride(10001), stride(1)), (1, 2, 5, 1));
+        let keep = kept(7, 3);
+        assert_eq!(keep, vec![0, 3, 6]);
+        assert_eq!(kept(8, 3), vec![0, 3, 6, 7]);
+        // per-interval extremes: the kept sample's band covers every merged interval
+        let lo = [0.0, -1.0, -5.0, -2.0, -3.0, -1.0, -4.0];
+        let hi = [0.0, 1.0, 2.0, 9.0, 3.0, 1.0, 4.0];
+        assert_eq!(thin_band(&lo, &hi, &keep), (vec![0.0, -5.0, -4.0], vec![0.0, 9.0, 4.0]));
+    }
 
     #[test]
     fn drawing_values_keep_six_significant_digits() {

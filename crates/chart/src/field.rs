@@ -69,6 +69,25 @@ impl Heatmap {
         self.vmax.filter(|v| v.is_finite() && *v > 0.0).unwrap_or_else(|| self.own_scale())
     }
 
+    /// The map with its sample times thinned to at most [`crate::MAX_DRAWN_SAMPLES`] (every k-th
+    /// row, [`crate::stride`]; the colour scale fixed first, so it is the full data's); the
+    /// stride k too (1: unchanged).
+    pub fn thinned(&self) -> (Heatmap, usize) {
+        let n = self.t.len();
+        let k = crate::stride(n);
+        if k == 1 || self.values.len() != n {
+            return (self.clone(), 1);
+        }
+        let keep = crate::kept(n, k);
+        let h = Heatmap {
+            t: crate::thin(&self.t, &keep),
+            values: keep.iter().map(|&i| self.values[i].clone()).collect(),
+            vmax: Some(self.scale()),
+            ..self.clone()
+        };
+        (h, k)
+    }
+
     /// max |v| over t ≥ `scale_from` (1 if that is 0).
     pub fn own_scale(&self) -> f64 {
         let m = self

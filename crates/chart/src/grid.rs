@@ -402,14 +402,19 @@ fn draw_colour_bar(bar: &Area, h: &GridHeatmap, vmin: f64, vmax: f64) -> Result<
         (all.clone(), all.iter().map(|l| label(*l)).collect())
     } else {
         let t = crate::with_ends(&linear_ticks(vmin, vmax, 6), vmin, vmax, 0.06);
-        (t.clone(), t.iter().map(|v| crate::tick_linear(*v, vmax - vmin)).collect())
+        let f = 10f64.powi(common_exponent(&t).unwrap_or(0));
+        (t.clone(), t.iter().map(|v| crate::tick_linear(*v / f, (vmax - vmin) / f)).collect())
     };
+    // Room for the longest label (≈ 9 px a character at 16 px, the tick and a gap; a narrow
+    // range's ticks read `2.935×10⁻⁶` and were clipped at 76 px), taken from the bar's width.
+    let longest = labels.iter().map(|l| l.chars().count()).max().unwrap_or(0) as u32;
+    let label_w = (9 * longest + 12).clamp(76, 110);
     let mut cb = ChartBuilder::on(bar)
         .margin_top(px(44))
         .margin_bottom(px(62))
         .margin_left(px(10))
         .margin_right(px(4))
-        .right_y_label_area_size(px(76))
+        .right_y_label_area_size(px(label_w))
         .build_cartesian_2d(0.0..1.0, Ticked::<RangedCoordf64>::new(vmin..vmax, ticks.clone()))
         .map_err(|e| e.to_string())?;
     cb.configure_mesh()
@@ -423,13 +428,31 @@ fn draw_colour_bar(bar: &Area, h: &GridHeatmap, vmin: f64, vmax: f64) -> Result<
         .set_all_tick_mark_size(px(4))
         .draw()
         .map_err(|e| e.to_string())?;
-    bar.draw(&Text::new(
-        h.value_label.clone(),
-        (px(4) as i32, px(14) as i32),
-        ("sans-serif", px(16)).into_font().color(&BLACK),
-    ))
-    .map_err(e)?;
+    let title = match (h.log_values, common_exponent(&ticks)) {
+        (false, Some(k)) => scaled_label(&h.value_label, k),
+        _ => h.value_label.clone(),
+    };
+    bar.draw(&Text::new(title, (px(4) as i32, px(14) as i32), ("sans-serif", px(16)).into_font().color(&BLACK)))
+        .map_err(e)?;
     Ok(cb.plotting_area().get_pixel_range())
+}
+
+/// The decimal exponent k shared by every nonzero value of a linear scale whose labels would
+/// all need ×10ᵏ (|v| outside [10⁻³, 10⁵), [`crate::tick`]): a narrow range (the Goland
+/// region map's RMS spans 2.90–2.94×10⁻⁶ m) then reads as mantissas with 10ᵏ in the title.
+fn common_exponent(values: &[f64]) -> Option<i32> {
+    let exps: Vec<i32> = values.iter().filter(|v| **v != 0.0).map(|v| v.abs().log10().floor() as i32).collect();
+    let k = *exps.first()?;
+    (exps.iter().all(|e| *e == k) && !(-3..5).contains(&k)).then_some(k)
+}
+
+/// A scale's title with its values in units of 10ᵏ: `RMS |q| (m)` → `RMS |q| (10⁻⁶ m)`.
+fn scaled_label(label: &str, k: i32) -> String {
+    let p = format!("10{}", wingcheck_io::prose::superscript(k));
+    match label.strip_suffix(')').and_then(|l| l.rsplit_once('(')) {
+        Some((head, unit)) => format!("{head}({p} {unit})"),
+        None => format!("{label} (×{p})"),
+    }
 }
 
 /// The legend below the plot, two entries per row: each mark as drawn, then the grey cells.
@@ -488,6 +511,17 @@ fn draw_legend(area: &Area, entries: &[(String, RGBColor, Option<MarkShape>)]) -
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn a_narrow_scale_reads_as_mantissas_with_its_power_in_the_title() {
+        // the Goland region map's colour scale (2.898e-6 … 2.936e-6 m)
+        let t = [2.9e-6, 2.91e-6, 2.92e-6, 2.936e-6];
+        assert_eq!(super::common_exponent(&t), Some(-6));
+        assert_eq!(super::scaled_label("RMS |q(s,t)| (m)", -6), "RMS |q(s,t)| (10⁻⁶ m)");
+        // fixed-notation values and mixed decades keep their labels
+        assert_eq!(super::common_exponent(&[0.1, 0.2]), None);
+        assert_eq!(super::common_exponent(&[9e-7, 1.1e-6]), None);
+    }
+
     use super::*;
 
     #[test]

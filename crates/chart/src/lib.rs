@@ -22,10 +22,10 @@ mod surface;
 mod symlog;
 mod ticks;
 
-pub use data::{Line, PlotData};
+pub use data::{kept, stride, thin, thin_band, Line, PlotData, MAX_DRAWN_SAMPLES};
 pub use field::{heatmap_svg, Heatmap};
 pub use grid::{grid_heatmap_svg, viridis, GridAxis, GridHeatmap, Mark, MarkShape};
-pub use line::{line_svg, Band, LineChart, LineStyle};
+pub use line::{line_svg, Band, BandStyle, LineChart, LineStyle};
 pub use plotters::style::RGBColor;
 pub use surface::surface_svg;
 pub use symlog::{SymLog, SymLogCoord};
@@ -97,28 +97,10 @@ pub const PALETTE: [RGBColor; 8] = [
     RGBColor(23, 190, 207),
 ];
 
-/// Tick label: short, deterministic.
+/// Tick label: at most four significant digits in the one number format
+/// ([`wingcheck_io::prose::number`]: real minus sign, ×10ⁿ outside 10⁻³ ≤ |v| < 10⁵).
 pub fn tick(v: f64) -> String {
-    if v == 0.0 {
-        return "0".into();
-    }
-    let a = v.abs();
-    if (1e-3..1e4).contains(&a) {
-        let s = format!("{v:.4}");
-        let s = s.trim_end_matches('0').trim_end_matches('.');
-        if s == "-0" {
-            "0".into()
-        } else {
-            s.to_string()
-        }
-    } else {
-        let s = format!("{v:.2e}");
-        // 1.00e-3 → 1e-3
-        match s.split_once('e') {
-            Some((m, e)) => format!("{}e{e}", m.trim_end_matches('0').trim_end_matches('.')),
-            None => s,
-        }
-    }
+    wingcheck_io::prose::number(v, wingcheck_io::prose::Digits::AtMost(4))
 }
 
 /// Whether `v` is an integer power of ten (to rounding).
@@ -128,16 +110,7 @@ fn is_decade(v: f64) -> bool {
 
 /// 10^k with a superscript exponent (`10⁻³`).
 pub fn decade_label(v: f64) -> String {
-    const SUP: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
-    let k = v.log10().round() as i32;
-    let mut s = String::from("10");
-    if k < 0 {
-        s.push('⁻');
-    }
-    for d in k.unsigned_abs().to_string().bytes() {
-        s.push(SUP[(d - b'0') as usize]);
-    }
-    s
+    format!("10{}", wingcheck_io::prose::superscript(v.log10().round() as i32))
 }
 
 /// Labels of log-axis ticks in one format: all as 10ᵏ when every tick is a power of ten and
@@ -201,7 +174,7 @@ mod tests {
     fn ticks_are_short() {
         assert_eq!(tick(0.5), "0.5");
         assert_eq!(tick(20.0), "20");
-        assert_eq!(tick(1e-5), "1e-5");
-        assert_eq!(tick(-0.00001), "-1e-5");
+        assert_eq!(tick(1e-5), "1×10⁻⁵");
+        assert_eq!(tick(-0.00001), "−1×10⁻⁵");
     }
 }

@@ -28,6 +28,9 @@ pub enum LineStyle {
     Step,
     /// Dashed polyline (reference lines, bounds).
     Dashed,
+    /// A thin, light polyline: a secondary line under a band that is the main one (the output
+    /// samples of a chattering signal, which alias it).
+    Faint,
 }
 
 /// A band around a line: the signal's range between its samples (e.g. the full-rate min/max of
@@ -44,6 +47,22 @@ pub struct Band {
     pub hi: Vec<f64>,
     /// Legend text (e.g. `full-rate min … max per 10-ms output interval`).
     pub label: String,
+    /// How it is drawn.
+    pub style: BandStyle,
+}
+
+/// How a [`Band`] is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum BandStyle {
+    /// A translucent fill around its line.
+    #[default]
+    Shade,
+    /// The fill with its edges as solid lines in the line's colour: the band is the main curve
+    /// (a signal that chatters between its samples), not a shading around one.
+    Edges,
+    /// Not drawn and not in the legend (thinner than a line at the chart's scale), but written
+    /// to the data file.
+    Hidden,
 }
 
 /// A chart: the data and how to show it.
@@ -106,6 +125,8 @@ impl LineChart {
                 }
             }
         }
+        // the horizontal levels drawn (a threshold) are inside the axis too
+        v.extend(self.hlines.iter().map(|(y, _)| *y).filter(|y| !pd.log_y || *y > 0.0));
         v.retain(|y| y.is_finite());
         v
     }
@@ -138,6 +159,29 @@ impl LineChart {
             })
         });
         wingcheck_io::csv_text(header.iter().copied(), rows)
+    }
+
+    /// The chart with its longest polylines thinned to at most [`crate::MAX_DRAWN_SAMPLES`]
+    /// points (every k-th sample, [`crate::stride`]) and their bands merged over the k intervals
+    /// (no extreme lost, [`crate::thin_band`]); marker lines and shorter lines unchanged. The
+    /// stride k is returned too (1: unchanged).
+    pub fn thinned(&self) -> (LineChart, usize) {
+        let n = self.data.lines.iter().filter(|l| !l.points).map(|l| l.x.len()).max().unwrap_or(0);
+        let k = crate::stride(n);
+        if k == 1 {
+            return (self.clone(), 1);
+        }
+        let keep = crate::kept(n, k);
+        let mut c = self.clone();
+        let full: Vec<bool> = c.data.lines.iter().map(|l| !l.points && l.x.len() == n && l.y.len() == n).collect();
+        for (l, _) in c.data.lines.iter_mut().zip(&full).filter(|(_, f)| **f) {
+            l.x = crate::thin(&l.x, &keep);
+            l.y = crate::thin(&l.y, &keep);
+        }
+        for b in c.bands.iter_mut().filter(|b| full.get(b.line) == Some(&true) && b.lo.len() == n && b.hi.len() == n) {
+            (b.lo, b.hi) = crate::thin_band(&b.lo, &b.hi, &keep);
+        }
+        (c, k)
     }
 
     /// What the CSV holds, for the provenance record.
@@ -207,10 +251,12 @@ pub fn line_svg(c: &LineChart) -> Result<String, ChartError> {
         };
         let data_x: Vec<f64> = pd.lines.iter().flat_map(|l| l.x.iter().copied()).collect();
         let xt = if pd.log_x { log_ticks(xs.0, xs.1, &data_x) } else { linear_ticks(xs.0, xs.1, 8) };
-        let yt = match c.symlog() {
-            Some(s) => s.ticks(ys.0, ys.1),
-            None if pd.log_y => log_ticks(ys.0, ys.1, &[]),
-            None => linear_ticks(ys.0, ys.1, 6),
+        // the y axis widened to the ticks just outside its range, so every curve lies between
+        // two labelled ticks
+        let (ys, yt) = match c.symlog() {
+            Some(s) => (ys, s.ticks(ys.0, ys.1)),
+            None if pd.log_y => crate::ticks::enclosing_log(ys.0, ys.1),
+            None => crate::ticks::enclosing_linear(ys.0, ys.1, 6),
         };
         // Tick label style per axis: a linear span (round-off snapping), log (10ᵏ or plain), symlog.
         let labels = (
@@ -320,7 +366,7 @@ where
     let keep = |(x, y): &(f64, f64)| {
         x.is_finite() && y.is_finite() && (!log_x || *x > 0.0) && (!log_y || *y > 0.0) && *x >= xa && *x <= xb
     };
-    for b in &c.bands {
+    for b in c.bands.iter().filter(|b| b.style != BandStyle::Hidden) {
         let Some(line) = pd.lines.get(b.line) else { continue };
         let color = colours[b.line];
         let (y_lo, y_hi) = (y_range.start, y_range.end);
@@ -363,6 +409,7 @@ where
             }
         }
         flush(open.take(), &mut upper, &mut lower);
+        let edges = (b.style == BandStyle::Edges).then(|| [upper.clone(), lower.clone()]);
         lower.reverse();
         upper.extend(lower);
         if upper.len() >= 3 {
@@ -370,10 +417,22 @@ where
                 .draw_series(std::iter::once(Polygon::new(upper, color.mix(0.3).filled())))
                 .map_err(|e| e.to_string())?;
         }
+        for edge in edges.into_iter().flatten().filter(|e| e.len() >= 2) {
+            chart
+                .draw_series(std::iter::once(PathElement::new(edge, color.stroke_width(px(2)))))
+                .map_err(|e| e.to_string())?;
+        }
     }
     for (i, line) in pd.lines.iter().enumerate() {
-        let color = colours[i];
-        let width = px(if i == 0 { 3 } else { 2 });
+        let faint = c.style(i) == LineStyle::Faint;
+        let color = if faint { colours[i].mix(0.7) } else { colours[i].mix(1.0) };
+        let width = px(if faint {
+            1
+        } else if i == 0 {
+            3
+        } else {
+            2
+        });
         let mut pts: Vec<(f64, f64)> = line.x.iter().copied().zip(line.y.iter().copied()).collect();
         if line.points {
             let pts: Vec<(f64, f64)> = pts.into_iter().filter(keep).collect();
@@ -416,6 +475,10 @@ where
             if c.style(i) == LineStyle::Dashed {
                 chart
                     .draw_series(DashedLineSeries::new(s, px(8), px(5), color.stroke_width(width)))
+                    .map_err(|e| e.to_string())?;
+            } else if faint {
+                chart
+                    .draw_series(DashedLineSeries::new(s, px(3), px(3), color.stroke_width(width)))
                     .map_err(|e| e.to_string())?;
             } else {
                 chart
@@ -515,6 +578,9 @@ fn draw_legend(area: &DrawingArea<SVGBackend, Shift>, c: &LineChart) -> Result<(
             let w = px(if i == 0 { 3 } else { 2 });
             if c.style(i) == LineStyle::Dashed {
                 area.draw(&DashedPathElement::new(swatch(y), px(8), px(5), color.stroke_width(w))).map_err(e)?;
+            } else if c.style(i) == LineStyle::Faint {
+                let faint = color.mix(0.7).stroke_width(px(1));
+                area.draw(&DashedPathElement::new(swatch(y), px(3), px(3), faint)).map_err(e)?;
             } else {
                 area.draw(&PathElement::new(swatch(y), color.stroke_width(w))).map_err(e)?;
             }
@@ -531,11 +597,17 @@ fn draw_legend(area: &DrawingArea<SVGBackend, Shift>, c: &LineChart) -> Result<(
         };
         y = legend_text(area, &text, (x0 + px(36) as i32, y), &font)? + step;
     }
-    for b in &c.bands {
+    for b in c.bands.iter().filter(|b| b.style != BandStyle::Hidden) {
         let color = colours.get(b.line).copied().unwrap_or(MARK);
-        let r =
-            Rectangle::new([(x0, y - px(7) as i32), (x0 + px(28) as i32, y + px(7) as i32)], color.mix(0.3).filled());
+        let (top, bottom) = (y - px(7) as i32, y + px(7) as i32);
+        let r = Rectangle::new([(x0, top), (x0 + px(28) as i32, bottom)], color.mix(0.3).filled());
         area.draw(&r).map_err(e)?;
+        if b.style == BandStyle::Edges {
+            for edge in [top, bottom] {
+                let l = vec![(x0, edge), (x0 + px(28) as i32, edge)];
+                area.draw(&PathElement::new(l, color.stroke_width(px(2)))).map_err(e)?;
+            }
+        }
         y = legend_text(area, &b.label, (x0 + px(36) as i32, y), &font)? + step;
     }
     let levels = c

@@ -21,6 +21,34 @@ pub fn linear_ticks(lo: f64, hi: f64, target: usize) -> Vec<f64> {
     (first..=last).map(|k| k as f64 * step).collect()
 }
 
+/// A linear axis over [lo, hi] widened to the 1-2-5 ticks just outside it ([`linear_ticks`]'s
+/// step), with those ticks: every value of the range lies between two labelled ticks, so no
+/// curve runs above the top label or below the bottom one.
+pub fn enclosing_linear(lo: f64, hi: f64, target: usize) -> ((f64, f64), Vec<f64>) {
+    let t = linear_ticks(lo, hi, target);
+    if t.len() < 2 {
+        return ((lo, hi), t);
+    }
+    let step = t[1] - t[0];
+    let (first, last) = ((lo / step - 1e-9).floor() as i64, (hi / step + 1e-9).ceil() as i64);
+    let ticks: Vec<f64> = (first..=last).map(|k| k as f64 * step).collect();
+    ((lo.min(first as f64 * step), hi.max(last as f64 * step)), ticks)
+}
+
+/// A logarithmic axis over [lo, hi] (lo > 0) widened to the decades around it (on the grid of
+/// every k-th decade when [`log_ticks`] labels every k-th), with its ticks: every value lies
+/// between two labelled ticks.
+pub fn enclosing_log(lo: f64, hi: f64) -> ((f64, f64), Vec<f64>) {
+    if !(lo > 0.0 && hi > lo && hi.is_finite()) {
+        return ((lo, hi), log_ticks(lo, hi, &[]));
+    }
+    let (k0, k1) = (lo.log10().floor() as i32, hi.log10().ceil() as i32);
+    let every = ((k1 - k0 + 1) as f64 / 8.0).ceil().max(1.0) as i32;
+    let k1 = k0 + every * ((k1 - k0 + every - 1) / every).max(1);
+    let (a, b) = (10f64.powi(k0), 10f64.powi(k1));
+    ((a, b), log_ticks(a, b, &[]))
+}
+
 /// `ticks` with the ends `lo` and `hi` of a colour bar added (each unless a tick lies within
 /// `min_gap` · (hi − lo) of it), so the scale's ends are labelled; sorted.
 pub fn with_ends(ticks: &[f64], lo: f64, hi: f64, min_gap: f64) -> Vec<f64> {
@@ -121,6 +149,23 @@ mod tests {
     fn linear_ticks_are_round() {
         assert_eq!(linear_ticks(0.0, 20.0, 5), vec![0.0, 5.0, 10.0, 15.0, 20.0]);
         assert_eq!(linear_ticks(-0.11, 0.11, 4), vec![-0.1, -0.05, 0.0, 0.05, 0.1]);
+    }
+
+    #[test]
+    fn enclosing_ticks_bound_every_value() {
+        // −4.9 … 3.5 (an explicit-observer τ1): ticks from −5 to 4 (step 1), not −4 to 3
+        let ((lo, hi), t) = enclosing_linear(-4.9, 3.5, 6);
+        assert_eq!((lo, hi), (-5.0, 4.0));
+        assert!(t.first() == Some(&-5.0) && t.last() == Some(&4.0), "{t:?}");
+        // 3e-7 … 40 on a log axis: 1e-7 … 1e3 (every second decade labelled), both ends labelled
+        let ((lo, hi), t) = enclosing_log(3e-7, 40.0);
+        assert_eq!((lo, hi), (1e-7, 1000.0));
+        assert!(t.first() == Some(&1e-7) && t.last() == Some(&1000.0), "{t:?}");
+        let ((lo, hi), t) = enclosing_log(0.03, 40.0);
+        assert_eq!((lo, hi, t.first().copied()), (0.01, 100.0, Some(0.01)));
+        // 14 decades: every second one labelled, the top on that grid
+        let ((_, hi), t) = enclosing_log(2e-13, 5.0);
+        assert!(*t.last().unwrap() >= 5.0 && (hi - t.last().unwrap()).abs() < 1e-9 * hi, "{t:?} {hi}");
     }
 
     #[test]

@@ -93,7 +93,13 @@ pub fn metrics(out: &SimOutput, settings: &CheckSettings) -> Metrics {
         peak_tau2: metrics::tau_peak(out, 1),
         rms_gtilde_full: [rms(&gt[0], whole), rms(&gt[1], whole)],
         rms_gtilde_late: [rms(&gt[0], late), rms(&gt[1], late)],
-        gtilde_settle: [0, 1].map(|c| metrics::settle_time(&s.t, &gt[c], settings.gtilde_threshold)),
+        // t_band at full rate (the simulator tracks it at GTILDE_THRESHOLD); from the output
+        // samples only for another threshold
+        gtilde_settle: if settings.gtilde_threshold == metrics::GTILDE_THRESHOLD {
+            out.gtilde_band_entry
+        } else {
+            [0, 1].map(|c| metrics::settle_time(&s.t, &gt[c], settings.gtilde_threshold))
+        },
     }
 }
 

@@ -57,9 +57,11 @@ pub struct Symbol {
 
 /// The notation of the text, with the values of `cfg` where a symbol is an input. Time:
 /// `t_end` is the horizon, `T_s` the observer's sample (hold) period, `dt` the integrator step,
-/// `t_f1`/`t_f2` the bounds (38)/(39), `t_reach` a measured time; never a bare `T`.
+/// `t_f1`/`t_f2` the bounds (38)/(39), `t_reach` the time σ reaches 0 (the finite-time rows'
+/// Filippov time), `t_band` when a simulated |g̃| enters its threshold band; never a bare `T`.
+/// Units follow from the definitions: W = b·E + a·⟨x, Mv⟩ is in J s.
 pub fn notation(cfg: &wingcheck_model::Config) -> Vec<Symbol> {
-    let v = wingcheck_model::format_number;
+    let v = wingcheck_model::format::exact;
     let (w, c, o, h) = (&cfg.wing, &cfg.control, &cfg.observer, &cfg.horizon);
     let sym = |symbol: &'static str, meaning: String| Symbol { symbol, meaning };
     vec![
@@ -68,7 +70,8 @@ pub fn notation(cfg: &wingcheck_model::Config) -> Vec<Symbol> {
         sym("T_s", format!("the observer's sample (hold) period, here {} s", v(o.sample_period))),
         sym("dt", format!("the integrator step, here {} s", v(cfg.discretisation.dt))),
         sym("t_f1, t_f2, t_f", "the bounds (38), (39) on the time σ1, σ2 take to reach 0 (s); t_f: either".into()),
-        sym("t_reach", "a measured time: when σ reaches 0, or from when |g̃| stays below the threshold (s)".into()),
+        sym("t_reach", "when σ reaches 0 (and with it g̃ = σ̇, (55)): the Filippov reaching time of the finite-time rows, from the continuous-time limit of the observer (s)".into()),
+        sym("t_band", "from when a simulated |g̃| stays below the threshold, measured at full rate (every integrator step, both sides of every sample's jump) (s)".into()),
         sym("s, z", format!("span and position along it, z ∈ [0, s], here s = {} m", v(w.span))),
         sym("q(z,t), θ(z,t)", "bending displacement (m) and twist (rad); q(s,t), θ(s,t) at the tip".into()),
         sym("ρ, I_p", format!("mass (kg/m) and polar inertia (kg m) per length, here {}, {}", v(w.rho), v(w.ip))),
@@ -88,7 +91,7 @@ pub fn notation(cfg: &wingcheck_model::Config) -> Vec<Symbol> {
         sym("p", "the observer exponent ratio a1/a2 (dimensionless)".into()),
         sym("W = W_a + W_o, κ", "the Lyapunov function (22)–(23) (its energy part W_a and cross part W_o) and the norm (25) it is compared with".into()),
         sym("E, ⟨x, Mv⟩", "the simulated wing's mechanical energy (J) and the mass-weighted product of its displacement and velocity (J s); along a run W = b·E + a·⟨x, Mv⟩".into()),
-        sym("W units", "the unit of W and of λ1, λ2, λ3, ε, W(0): a mix of kinetic, elastic and cross terms weighted by a and b".into()),
+        sym("units of W", "W = b·E + a·⟨x, Mv⟩ is in J s, and so are W(0) and the bound (35); ε (a rate of W) is in J. κ (25) adds terms of different SI units as numbers, as the paper does, so λ1, λ2, y1…y3 (W/κ) are in J s and λ3, μ3…μ6 in J per SI unit of κ".into()),
         sym("y1, y2, y3; λ1, λ2", "the paper's constants (26)–(28): printed bounds λ2 κ ≤ W ≤ λ1 κ".into()),
         sym("λ1*, λ2*", "the tight bounds sup W/κ and inf W/κ; λ1(N), λ2(N) on N Galerkin elements".into()),
         sym("μ1 … μ6, η", "the conditions (29)–(32) and their free parameters η".into()),
@@ -323,7 +326,7 @@ mod tests {
     #[test]
     fn evidence_reads_back_as_labelled_nodes_in_field_order() {
         let e = Evidence {
-            lambda: Quantity::with_error("λ", -4.154, 3.3e-4, Unit::LyapunovUnits, &[]),
+            lambda: Quantity::with_error("λ", -4.154, 3.3e-4, Unit::JouleSecond, &[]),
             holds: Flag::new("printed condition holds", false),
             cases: Table::new(
                 "per N",

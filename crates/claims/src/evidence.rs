@@ -25,6 +25,9 @@ pub trait Explain {
     fn finding(&self) -> Vec<String>;
     /// The decisive numbers (two to four), with units and errors or bases.
     fn decisive(&self) -> Vec<Quantity>;
+    /// The one comparison that decides the verdict, in a few words with its numbers (the
+    /// report's first screen: one line per claim, so at most about 70 characters).
+    fn deciding(&self) -> String;
     /// Further sentences for the detail section.
     fn details(&self) -> Vec<String> {
         Vec::new()

@@ -265,7 +265,11 @@ fn sigma_plot(c: &Computed, reference: f64) -> Option<PlotData> {
         title: format!(
             "|σ{n}(t)| on [0, {} s]: the Filippov limit reaches 0 {}; bound t_f of ({}) = {} s; digital observers at T_s = {ms} ms",
             fmt(t_window),
-            fil.reach_s.map_or("not within 60 s".to_string(), |t| format!("at t_reach = {} s", fmt(t))),
+            // the ledger's t_reach as its evidence prints it (one symbol, one value)
+            fil.reach_s.map_or("not within 60 s".to_string(), |t| {
+                let q = wingcheck_model::Quantity::with_error("t_reach", t, fil.error_s, wingcheck_model::Unit::Second, &[]);
+                format!("at t_reach = {}", q.value_text())
+            }),
             if n == 1 { 38 } else { 39 },
             fmt(c.bound)
         ),
@@ -283,7 +287,7 @@ fn sigma_plot(c: &Computed, reference: f64) -> Option<PlotData> {
 }
 
 /// The chatter after reaching against the hold period, both rules.
-fn chatter_plot(c: &Computed, reference: f64) -> PlotData {
+fn chatter_plot(c: &Computed, reference: f64, window: &str) -> PlotData {
     let ix = channel_index(c.channel);
     let n = ix + 1;
     let mut lines = Vec::new();
@@ -299,7 +303,7 @@ fn chatter_plot(c: &Computed, reference: f64) -> PlotData {
     PlotData {
         name: format!("finite-time-chatter{n}"),
         title: format!(
-            "Chatter after reaching against the hold period T_s (channel {n}): explicit max |g̃{n}| = {} {} at T_s = {} ms; implicit O(T_s·ġ)",
+            "Chatter after reaching against the hold period T_s (channel {n}), max over {window}: explicit max |g̃{n}| = {} {} at T_s = {} ms; implicit O(T_s·ġ)",
             wingcheck_model::quantity::format_value(e, None),
             channel_unit(c.channel).symbol(),
             wingcheck_model::quantity::format_value(reference * 1e3, None)
@@ -379,7 +383,7 @@ fn sweep_plot(c: &Computed) -> PlotData {
 pub fn plots(c: &Computed, settings: &CheckSettings) -> Vec<PlotData> {
     let reference = reference_period(settings);
     let mut out: Vec<PlotData> = sigma_plot(c, reference).into_iter().collect();
-    out.push(chatter_plot(c, reference));
+    out.push(chatter_plot(c, reference, &explain::chatter_window(c.run_t_end, settings.chatter_window_s)));
     out.extend(window_plot(c, reference));
     out.push(sweep_plot(c));
     out

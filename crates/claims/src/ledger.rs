@@ -147,6 +147,9 @@ pub struct ClaimRow {
     pub finding: Vec<String>,
     /// The decisive numbers, each with its unit and error or basis.
     pub decisive: Vec<Quantity>,
+    /// The one comparison that decides the verdict, in a few words with its numbers (one line
+    /// of the report's first screen).
+    pub deciding: String,
     /// Further sentences of explanation (the detail section).
     pub details: Vec<String>,
     /// The correction under which the claim holds (for `holds-after-correction`).
@@ -181,6 +184,7 @@ impl ClaimRow {
             basis,
             finding: evidence.finding(),
             decisive: evidence.decisive(),
+            deciding: evidence.deciding(),
             details: evidence.details(),
             correction: evidence.correction(),
             evidence: evidence.into(),
@@ -201,6 +205,7 @@ impl ClaimRow {
             basis,
             finding: vec![reason.into()],
             decisive: Vec::new(),
+            deciding: "not decided: see the finding".into(),
             details: Vec::new(),
             correction: None,
             evidence: Evidence::None,

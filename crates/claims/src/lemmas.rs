@@ -218,7 +218,8 @@ pub fn counterexample(span: f64) -> Result<Counterexample, ClaimsError> {
     })
 }
 
-/// An exact rational's text if short, else its value to 4 significant digits (marked ≈).
+/// An exact rational's text if short, else its value to 4 significant digits marked `≈` (the
+/// sentence that shows it says the value is exact and shown rounded).
 fn short_exact(r: &num_rational::BigRational) -> String {
     let text = exact_text(r);
     if text.len() <= 16 {

@@ -493,18 +493,18 @@ pub fn best_point(d: &MuData, lambda1: f64, bounds: &DisturbanceBounds, k1: f64,
 pub struct UubBound {
     /// Span s (m).
     pub span: f64,
-    /// λ2 > 0 (W units).
+    /// λ2 > 0 (J s per SI unit of κ).
     pub lambda2: f64,
     /// λ = λ3/λ1 > 0 (1/s).
     pub lambda: f64,
-    /// ε of (32) (W units).
+    /// ε of (32) (J).
     pub epsilon: f64,
-    /// W(0) (W units; 0 for the ultimate bound).
+    /// W(0) (J s; 0 for the ultimate bound).
     pub w0: f64,
 }
 
 impl UubBound {
-    /// The bound (35) on W(t): W(0)e^{−λt} + ε/λ (W units).
+    /// The bound (35) on W(t): W(0)e^{−λt} + ε/λ (J s).
     pub fn lyapunov(&self, t: f64) -> f64 {
         self.w0 * (-self.lambda * t).exp() + self.epsilon / self.lambda
     }

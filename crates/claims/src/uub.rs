@@ -47,7 +47,7 @@ impl W0Record {
     fn of(&(n, v): &(usize, f64)) -> W0Record {
         W0Record {
             elements: Quantity::count("uniform FE elements", n),
-            w0: Quantity::based("W(0)", v, Unit::LyapunovUnits, ValueBasis::ClosedForm),
+            w0: Quantity::based("W(0)", v, Unit::JouleSecond, ValueBasis::ClosedForm),
         }
     }
 }
@@ -153,6 +153,18 @@ impl Explain for UubEvidence {
         out
     }
 
+    fn deciding(&self) -> String {
+        if self.bound_violated.value {
+            return "the simulated envelope exceeds the bound (37)".into();
+        }
+        let ratio = self.ratio_bound_over_measured_q.as_ref().map(Quantity::value_text);
+        match (self.w0_diverges.value, ratio) {
+            (true, _) => "W(0) → ∞ under refinement: the bound (37) is infinite".into(),
+            (false, Some(r)) => format!("bound (37) / simulated |q| at t_end = {r}"),
+            (false, None) => "the simulated envelope is 0: the bound's sharpness is not measured".into(),
+        }
+    }
+
     fn details(&self) -> Vec<String> {
         let w0: Vec<String> = self
             .w0_by_elements
@@ -241,7 +253,7 @@ struct Computed {
     field_points: usize,
     /// max |q(s,t)|, |θ(s,t)| over [t_end/2, t_end] at the configured gains.
     config_tail: [f64; 2],
-    /// W(t) = b·E(t) + a·⟨x, Mv⟩ of the operating run at its samples (W units), and b·E(t).
+    /// W(t) = b·E(t) + a·⟨x, Mv⟩ of the operating run at its samples (J s), and b·E(t).
     lyapunov: LyapunovAlongRun,
 }
 
@@ -249,11 +261,11 @@ struct Computed {
 /// coupling ρx_c) evaluated on the run's discretised state, W = b·E + a·⟨x, Mv⟩, against the
 /// bound (35) W(0)e^{−λt} + ε/λ with the run's own W(0).
 struct LyapunovAlongRun {
-    /// W(t_k) (W units).
+    /// W(t_k) (J s).
     w: Vec<f64>,
-    /// b·E(t_k), the part of W without the a-weighted cross term (W units).
+    /// b·E(t_k), the part of W without the a-weighted cross term (J s).
     b_energy: Vec<f64>,
-    /// The bound (35) at t_k with W(0) = w[0] (W units).
+    /// The bound (35) at t_k with W(0) = w[0] (J s).
     bound: Vec<f64>,
     /// max_k W(t_k)/bound(t_k).
     max_ratio: f64,
@@ -306,11 +318,12 @@ fn compute(
 /// Where the row's numbers are evaluated, as their labels say it: the configured point, or the
 /// feasible point the row moves to when the hypotheses fail there.
 fn evaluated_at(a: f64, b: f64, configured: bool) -> String {
-    let fmt = |v: f64| wingcheck_model::quantity::format_value(v, None);
+    // the configured values as typed; the feasible a (r*·b/2, computed) to 4 digits
+    let (exact, fmt) = (wingcheck_model::format::exact, |v: f64| wingcheck_model::quantity::format_value(v, None));
     if configured {
-        format!("at the configured a = {}, b = {} s", fmt(a), fmt(b))
+        format!("at the configured a = {}, b = {} s", exact(a), exact(b))
     } else {
-        format!("at the feasible a = {}, b = {} s (not the configured point)", fmt(a), fmt(b))
+        format!("at the feasible a = {}, b = {} s (not the configured point)", fmt(a), exact(b))
     }
 }
 
@@ -340,11 +353,11 @@ fn evidence_of(c: &Computed, hypotheses_here: bool, cfg: &Config, settings: &Che
             Unit::Second,
             ValueBasis::LowerBound,
         ),
-        epsilon: based(format!("ε of (32) {at}"), best.epsilon, Unit::LyapunovUnits, ValueBasis::ClosedForm),
+        epsilon: based(format!("ε of (32) {at}"), best.epsilon, Unit::Joule, ValueBasis::ClosedForm),
         lambda2_tight: based(
             format!("λ2({n2}) = min W/κ {at} (≥ λ2*)"),
             c.lambda2,
-            Unit::LyapunovUnits,
+            Unit::JouleSecond,
             ValueBasis::UpperBound,
         ),
         w0_by_elements: Table::new("W(0) under refinement", c.w0s.iter().map(W0Record::of).collect()),
@@ -381,7 +394,7 @@ fn evidence_of(c: &Computed, hypotheses_here: bool, cfg: &Config, settings: &Che
         w0_of_run: sim(
             format!("W(0) of the simulated run {at} (its grid, zero initial velocity)"),
             c.lyapunov.w.first().copied().unwrap_or(0.0),
-            Unit::LyapunovUnits,
+            Unit::JouleSecond,
         ),
         max_w_over_bound35: Quantity::based(
             format!("max over t of simulated W(t) / bound (35) {at}"),
@@ -402,7 +415,9 @@ fn evidence_of(c: &Computed, hypotheses_here: bool, cfg: &Config, settings: &Che
     }
 }
 
-/// W(t) along the run against (35), with b·E(t), on a log axis.
+/// W(t) along the run against (35), with b·E(t) on a log axis where it can be told apart from
+/// W (the cross term a·⟨x, Mv⟩ at least 1 % of W somewhere; below that the two lines coincide
+/// at the plot's scale and only W is drawn, its label saying so).
 fn lyapunov_plot(c: &Computed) -> PlotData {
     let stride = (c.t.len() / 400).max(1);
     let pick = |v: &[f64]| v.iter().step_by(stride).copied().collect::<Vec<_>>();
@@ -410,27 +425,46 @@ fn lyapunov_plot(c: &Computed) -> PlotData {
     let top = l.w.iter().chain(&l.bound).copied().fold(0.0, f64::max);
     let floor = |v: &[f64]| pick(v).into_iter().map(|x| x.max(1e-12 * top)).collect::<Vec<_>>();
     let fmt = |v: f64| wingcheck_model::quantity::format_value(v, None);
+    let cross =
+        l.w.iter().zip(&l.b_energy).map(|(w, e)| (w - e).abs() / w.abs().max(f64::MIN_POSITIVE)).fold(0.0, f64::max);
+    let apart = cross >= 0.01;
+    let mut lines = vec![
+        Line { label: "bound (35) W(0)e^(−λt) + ε/λ".into(), x: pick(&c.t), y: floor(&l.bound), points: false },
+        Line {
+            label: if apart {
+                "simulated W(t) = b·E + a·⟨x, Mv⟩".into()
+            } else {
+                format!(
+                    "simulated W(t) = b·E + a·⟨x, Mv⟩ (b·E(t) coincides: a·⟨x, Mv⟩ is at most {} % of W)",
+                    fmt(100.0 * cross)
+                )
+            },
+            x: pick(&c.t),
+            y: floor(&l.w),
+            points: false,
+        },
+    ];
+    if apart {
+        lines.push(Line {
+            label: "b·E(t) (energy part of W)".into(),
+            x: pick(&c.t),
+            y: floor(&l.b_energy),
+            points: false,
+        });
+    }
     PlotData {
         name: "uub-lyapunov-vs-bound".into(),
         title: format!(
             "The Lyapunov function W(t) along the run against the bound (35) at a = {}, b = {}; max W/bound {}",
             fmt(c.best.a),
-            fmt(c.best.b),
+            wingcheck_model::format::exact(c.best.b),
             fmt(l.max_ratio)
         ),
         x_label: "t (s)".into(),
-        y_label: "W (W units)".into(),
+        y_label: "W (J s)".into(),
         log_x: false,
         log_y: true,
-        lines: vec![
-            Line {
-                label: "bound (35) W(0)e^(−λt) + ε/λ".into(), x: pick(&c.t), y: floor(&l.bound), points: false
-            },
-            Line {
-                label: "simulated W(t) = b·E + a·⟨x, Mv⟩".into(), x: pick(&c.t), y: floor(&l.w), points: false
-            },
-            Line { label: "b·E(t) (energy part of W)".into(), x: pick(&c.t), y: floor(&l.b_energy), points: false },
-        ],
+        lines,
     }
 }
 
@@ -443,7 +477,7 @@ fn plot(c: &Computed, e: &UubEvidence) -> PlotData {
         title: format!(
             "Theorem 2's bound (37) against the simulated envelope at a = {}, b = {}{}",
             fmt(c.best.a),
-            fmt(c.best.b),
+            wingcheck_model::format::exact(c.best.b),
             e.ratio_bound_over_measured_q
                 .as_ref()
                 .map_or(String::new(), |r| format!("; ratio at t_end {}", r.value_text()))

@@ -25,6 +25,7 @@ pub mod marked;
 mod number;
 pub mod panics;
 pub mod paths;
+pub mod prose;
 mod provenance;
 mod table;
 

@@ -14,6 +14,7 @@ pub mod cancel;
 mod config;
 mod disturbance;
 mod error;
+pub use wingcheck_io::prose as format;
 pub mod json;
 pub mod oscillator;
 mod overrides;
@@ -28,7 +29,7 @@ pub use config::*;
 pub use disturbance::{Distributed, Disturbance, MeanSteps, StepMeans, TipDisturbance, TipValues};
 pub use error::ConfigError;
 pub use overrides::{apply_override, apply_overrides};
-pub use quantity::{Accuracy, ErrorSource, Estimate, Quantity, Unit, ValueBasis};
+pub use quantity::{Accuracy, ErrorSource, Estimate, Quantity, Shown, Unit, ValueBasis};
 pub use scheme::{
     StepBasis, TimeScheme, MODAL_AUTO_UNKNOWNS, MODAL_MAX_UNKNOWNS, MODAL_SETUP_SECONDS_PER_CUBE,
     NODAL_EXTRA_SECONDS_PER_UNKNOWN_STEP,

@@ -7,10 +7,14 @@
 //! re-verified solver, a simulation at the configured grid, a one-sided bound, …). Units are a
 //! closed enum, so a ratio is [`Unit::Dimensionless`] by construction and never prints "m".
 //!
-//! [`format_value`] is the one number format: significant digits matched to the stated error
-//! (two significant digits of the error), four significant digits without one.
+//! Every number is printed through the one number format, [`crate::format::number`]; this
+//! module decides what is shown around it ([`Quantity::shown`]): digits from the error, an
+//! unresolved value as its range, an exact value with too many digits shown rounded.
 
 use serde::{Deserialize, Serialize};
+
+pub use crate::format::{format_error, format_resolved, format_value, resolution_of, with_significant};
+use crate::format::{is_unresolved, number, unresolved, Digits};
 
 /// A value with an estimated bound on its absolute error (same units as the value).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
@@ -82,10 +86,11 @@ pub enum Unit {
     /// N/m (the distributed load g_h).
     #[serde(rename = "N/m")]
     NewtonPerMetre,
-    /// Joule (the wing's energy).
+    /// Joule (the wing's energy E; ε of (32), and λ3, μ3…μ6 per SI unit of κ (25)).
     #[serde(rename = "J")]
     Joule,
-    /// Joule second (⟨x, Mv⟩, the cross term of the Lyapunov function).
+    /// Joule second (⟨x, Mv⟩; the Lyapunov function W = b·E + a·⟨x, Mv⟩ of (22) and its bounds
+    /// W(0), (35); λ1, λ2, y1…y3 per SI unit of κ (25), whose terms are added as numbers).
     #[serde(rename = "J s")]
     JouleSecond,
     /// 1/m² (the tip shear term q'''(s,t) of the boundary condition).
@@ -94,13 +99,9 @@ pub enum Unit {
     /// rad/m (the tip twist slope θ'(s,t)).
     #[serde(rename = "rad/m")]
     RadianPerMetre,
-    /// The units of the Lyapunov function W and its constants (λ1, λ2, λ3, ε, W(0)): the paper
-    /// mixes kinetic, elastic and cross terms weighted by a and b, so these carry no single
-    /// physical unit; they are stated "in W units".
-    #[serde(rename = "W units")]
-    LyapunovUnits,
     /// Configuration values of different physical units compared as numbers in SI, as the
-    /// paper does (e.g. min{ρ, I_p, EI, GJ} against 2ρx_c).
+    /// paper does (e.g. min{ρ, I_p, EI, GJ} against 2ρx_c): printed without a unit, the label
+    /// says so.
     #[serde(rename = "SI, mixed")]
     MixedSi,
 }
@@ -126,8 +127,7 @@ impl Unit {
             Unit::JouleSecond => "J s",
             Unit::PerSquareMetre => "1/m²",
             Unit::RadianPerMetre => "rad/m",
-            Unit::LyapunovUnits => "W units",
-            Unit::MixedSi => "(SI, mixed)",
+            Unit::MixedSi => "",
         }
     }
 
@@ -153,7 +153,6 @@ impl Unit {
             Unit::JouleSecond => "J_s",
             Unit::PerSquareMetre => "per_m2",
             Unit::RadianPerMetre => "rad_per_m",
-            Unit::LyapunovUnits => "Wu",
             Unit::MixedSi => "si_mixed",
         }
     }
@@ -274,6 +273,21 @@ pub struct Quantity {
     pub accuracy: Accuracy,
 }
 
+/// A [`Quantity`] as printed ([`Quantity::shown`]).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Shown {
+    /// The number without its unit (`0.12085992204661`, `≈ 6.787000×10²⁹`,
+    /// `unresolved: −0.22 … 0.92`).
+    pub number: String,
+    /// The error with its unit, or the basis (`± 3.4×10⁻¹³ 1/s`, `exact`,
+    /// `exact, shown rounded`).
+    pub accuracy: String,
+    /// The unit as it follows a number (` 1/s`; empty for a pure number).
+    pub unit: String,
+    /// The error is at least half the value: the number is its range.
+    pub unresolved: bool,
+}
+
 impl Quantity {
     /// A number resting on `basis`.
     pub fn based(label: impl Into<String>, value: f64, unit: Unit, basis: ValueBasis) -> Quantity {
@@ -330,43 +344,90 @@ impl Quantity {
         self
     }
 
-    /// The number as printed, without its unit: a count as an integer; an exact or configured
-    /// value as its shortest decimal (`0.35`, `1e-3`) when that has at most 8 significant
-    /// digits; a one-sided bound with 7 significant digits; otherwise digits matched to the
-    /// error ([`format_value`]).
-    pub fn number_text(&self) -> String {
-        let exactish = matches!(self.accuracy, Accuracy::Basis { basis: ValueBasis::Exact | ValueBasis::Configured });
-        if self.unit == Unit::Count && self.value.fract() == 0.0 && self.value.abs() < 1e15 {
-            format!("{:.0}", self.value)
-        } else if exactish && significant_digits(self.value) <= 8 {
-            crate::format_number(self.value)
-        } else if matches!(self.accuracy, Accuracy::Basis { basis: ValueBasis::UpperBound | ValueBasis::LowerBound }) {
-            // a one-sided bound is compared with the value it bounds: show enough digits
-            with_significant(self.value, 7)
-        } else {
-            format_value(self.value, self.error())
-        }
-    }
-
-    /// The value as printed ([`Quantity::number_text`]) with the unit (`0.12086 1/s`).
-    pub fn value_text(&self) -> String {
-        let v = self.number_text();
-        match self.unit.symbol() {
-            "" => v,
-            u => format!("{v} {u}"),
-        }
-    }
-
-    /// The value with its error and unit (`0.12085992204661 ± 3.4e-13 1/s`), or with its unit
-    /// alone when it has no error estimate.
-    pub fn pm_text(&self) -> String {
+    /// The quantity as printed ([`Shown`]): the one place that decides what is shown around
+    /// the number ([`crate::format::number`] writes the digits).
+    ///
+    /// - a count: an integer;
+    /// - an exact or configured value: its shortest decimal when that has at most 8 significant
+    ///   digits, else 7 significant digits after "≈" (and the basis says "shown rounded");
+    /// - a one-sided bound: 7 significant digits (it is compared with the value it bounds);
+    /// - a value with an error: digits from the error; unresolved (the error at least half the
+    ///   value, [`crate::format::is_unresolved`]) it is shown as its range instead;
+    /// - any other value: 4 significant digits.
+    ///
+    /// A typed status of a value beyond its error or basis (e.g. "not converged in the grid")
+    /// belongs in the match of this function: [`Shown::accuracy`] carries it in words.
+    pub fn shown(&self) -> Shown {
         let unit = match self.unit.symbol() {
             "" => String::new(),
             u => format!(" {u}"),
         };
+        let v = self.value;
+        let (number, accuracy, unresolved) = match &self.accuracy {
+            Accuracy::Error { error, .. } if is_unresolved(v, *error) => (
+                format!("unresolved: {}", unresolved(v, *error)),
+                format!("± {}{unit}, at least half the value", format_error(*error)),
+                true,
+            ),
+            Accuracy::Error { error, .. } if *error == 0.0 => {
+                (number(v, Digits::Error(0.0)), format!("± 0{unit} (exact up to rounding)"), false)
+            }
+            Accuracy::Error { error, .. } => {
+                (number(v, Digits::Error(*error)), format!("± {}{unit}", format_error(*error)), false)
+            }
+            Accuracy::Basis { basis } => {
+                let exactish = matches!(basis, ValueBasis::Exact | ValueBasis::Configured);
+                if self.unit == Unit::Count && v.fract() == 0.0 && v.abs() < 1e15 {
+                    (format!("{v:.0}"), basis.text().to_string(), false)
+                } else if exactish && significant_digits(v) <= 8 {
+                    (number(v, Digits::Shortest), basis.text().to_string(), false)
+                } else if exactish {
+                    (
+                        format!("≈ {}", number(v, Digits::Significant(7))),
+                        format!("{}, shown rounded", basis.text()),
+                        false,
+                    )
+                } else if matches!(basis, ValueBasis::UpperBound | ValueBasis::LowerBound) {
+                    (number(v, Digits::Significant(7)), basis.text().to_string(), false)
+                } else {
+                    (number(v, Digits::Significant(4)), basis.text().to_string(), false)
+                }
+            }
+        };
+        Shown { number, accuracy, unit, unresolved }
+    }
+
+    /// The number as printed, without its unit ([`Quantity::shown`]).
+    pub fn number_text(&self) -> String {
+        self.shown().number
+    }
+
+    /// The value as printed ([`Quantity::number_text`]) with the unit (`0.12086 1/s`,
+    /// `unresolved: −0.22 … 0.92 N`).
+    pub fn value_text(&self) -> String {
+        let s = self.shown();
+        format!("{}{}", s.number, s.unit)
+    }
+
+    /// "= value unit" for a one-line summary (`= 1 1/s`), or "≈ value unit" with 4 significant
+    /// digits for an exact or configured value shown rounded (`≈ 3.333×10⁻⁴ 1/s`).
+    pub fn equals_text(&self) -> String {
+        let s = self.shown();
+        if s.number.starts_with('≈') {
+            format!("≈ {}{}", number(self.value, Digits::Significant(4)), s.unit)
+        } else {
+            format!("= {}{}", s.number, s.unit)
+        }
+    }
+
+    /// The value with its error and unit (`0.12085992204661 ± 3.4×10⁻¹³ 1/s`), an unresolved
+    /// value as its range (`unresolved: −0.22 … 0.92 N`), or the value with its unit alone when
+    /// it has no error estimate.
+    pub fn pm_text(&self) -> String {
+        let s = self.shown();
         match self.error() {
-            Some(e) => format!("{} ± {}{unit}", format_value(self.value, Some(e)), format_error(e)),
-            None => format!("{}{unit}", self.number_text()),
+            Some(e) if !s.unresolved && e > 0.0 => format!("{} ± {}{}", s.number, format_error(e), s.unit),
+            _ => format!("{}{}", s.number, s.unit),
         }
     }
 
@@ -382,41 +443,16 @@ impl Quantity {
         })
     }
 
-    /// The error or basis as printed (`± 3.4e-13`, `exact`, `simulation`).
+    /// The error with its unit, or the basis, as printed (`± 3.4×10⁻¹³ 1/s`, `exact`,
+    /// `simulation`; [`Quantity::shown`]).
     pub fn accuracy_text(&self) -> String {
-        match &self.accuracy {
-            Accuracy::Error { error, .. } => format!("± {}", format_error(*error)),
-            Accuracy::Basis { basis } => basis.text().to_string(),
-        }
+        self.shown().accuracy
     }
 
     /// Is the value (and the error) finite?
     pub fn is_finite(&self) -> bool {
         self.value.is_finite() && self.error().is_none_or(f64::is_finite)
     }
-}
-
-/// A number as printed: with an error, rounded to the decade of the error's second significant
-/// digit (`0.120859922046612 ± 3.4e-13` → `0.12085992204661`), at least one and at most 15
-/// significant digits; without one, 4 significant digits. Fixed notation for
-/// 1e-3 ≤ |v| < 1e5, else scientific (`1.23e-5`). Deterministic; parses back as f64.
-pub fn format_value(value: f64, error: Option<f64>) -> String {
-    if !value.is_finite() {
-        return format!("{value}");
-    }
-    if value == 0.0 {
-        return match error {
-            Some(e) if e > 0.0 => format!("0 (± {})", format_error(e)),
-            _ => "0".into(),
-        };
-    }
-    let mag = value.abs().log10().floor() as i32;
-    let digits = match error {
-        Some(e) if e > 0.0 && e.is_finite() => (mag - (e.log10().floor() as i32 - 1) + 1).clamp(1, 15),
-        Some(_) => 15,
-        None => 4,
-    } as usize;
-    with_significant(value, digits)
 }
 
 /// Significant digits of the shortest round-trip decimal of `x` (0 for 0).
@@ -426,106 +462,21 @@ fn significant_digits(x: f64) -> usize {
     mantissa.chars().filter(|c| c.is_ascii_digit()).count()
 }
 
-/// An error bar as printed: two significant digits (`3.4e-13`, `0.0021`).
-pub fn format_error(error: f64) -> String {
-    if error == 0.0 || !error.is_finite() {
-        return format!("{error}");
-    }
-    with_significant(error, 2)
-}
-
-/// `value` with `digits` significant digits, fixed notation for 1e-3 ≤ |v| < 1e5 (trailing
-/// zeros kept: they are significant), else scientific with a bare exponent (`1.2e-5`). A value
-/// that is not finite prints as Rust prints it (`inf`, `NaN`): the ledger refuses to show such a
-/// row's value (it becomes `inconclusive`, naming the quantity), but formatting never fails.
-pub fn with_significant(value: f64, digits: usize) -> String {
-    if !value.is_finite() {
-        return format!("{value}");
-    }
-    let digits = digits.max(1);
-    let sci = format!("{:.*e}", digits - 1, value);
-    // The exponent after rounding (9.99 → 1.00e1 moves the decade).
-    let (_, exp) = sci.split_once('e').expect("exponent");
-    let exp: i32 = exp.parse().expect("integer exponent");
-    if (-3..5).contains(&exp) {
-        let decimals = (digits as i32 - 1 - exp).max(0) as usize;
-        format!("{value:.decimals$}")
-    } else {
-        sci
-    }
-}
-
-/// The resolution a number with error `error` is written to: the decade of the error's second
-/// significant digit (the rule of [`format_value`]: 1.4e-4 → 1e-5). None for an error that is
-/// 0 or not finite (then the shortest round-trip decimal is exact).
-pub fn resolution_of(error: f64) -> Option<f64> {
-    (error > 0.0 && error.is_finite()).then(|| 10f64.powi(error.log10().floor() as i32 - 1))
-}
-
-/// `value` written to `resolution` (a power of ten, [`resolution_of`]): in fixed notation with
-/// the resolution's decimals (none for a resolution ≥ 1), trailing zeros dropped, `0` for a value that rounds to zero. The
-/// data files' format (`0.04952` for 0.0495234… at 1e-5); deterministic, parses back as f64.
-pub fn format_resolved(value: f64, resolution: f64) -> String {
-    if !(value.is_finite() && resolution > 0.0 && resolution.is_finite()) {
-        return format!("{value}");
-    }
-    let decimals = (-resolution.log10().round()).max(0.0) as usize;
-    let s = format!("{value:.decimals$}");
-    let s = if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.') } else { s.as_str() };
-    if s == "-0" || s.is_empty() {
-        "0".into()
-    } else {
-        s.to_string()
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
-    fn data_files_carry_the_digits_of_the_error() {
-        // 1.4e-4 m (the default grid's tip error): two significant digits of it → 1e-5
-        assert_eq!(resolution_of(1.4e-4), Some(1e-5));
-        assert_eq!(resolution_of(0.0), None);
-        assert_eq!(format_resolved(0.0495234750843, 1e-5), "0.04952");
-        assert_eq!(format_resolved(-3.2e-9, 1e-5), "0");
-        assert_eq!(format_resolved(0.9999999999999876, 1e-5), "1");
-        assert_eq!(format_resolved(-1.5, 1e-5), "-1.5");
-        assert_eq!(format_resolved(12345.678, 100.0), "12346");
-        // rounding error of the written value ≤ half the resolution
-        for v in [0.12345678, -0.98765432, 3.3333333] {
-            let back: f64 = format_resolved(v, 1e-5).parse().unwrap();
-            assert!((back - v).abs() <= 0.5e-5 + 1e-15);
-        }
-    }
-
-    #[test]
-    fn digits_follow_the_error() {
-        // ω₁ of the paper wing with its Romberg error: down to the error's second digit (1e-14).
-        assert_eq!(format_value(0.120859922046612, Some(3.4e-13)), "0.12085992204661");
-        assert_eq!(format_value(-4.15400123, Some(3.3e-4)), "-4.15400");
-        assert_eq!(format_value(-215.9000001, None), "-215.9");
-        assert_eq!(format_value(1.5e-5, None), "1.500e-5");
-        assert_eq!(format_value(9.9996, None), "10.00");
-        assert_eq!(format_value(123456.0, None), "1.235e5");
-        assert_eq!(format_error(3.39e-13), "3.4e-13");
-        assert_eq!(format_error(0.0021), "0.0021");
-        // Every printed number parses back.
-        for v in [0.1208599220466, -215.9, 1.5e-5, 3.1e7] {
-            assert!(format_value(v, None).parse::<f64>().is_ok());
-        }
-        // a value that is not finite is printed, never a panic (`check` exited 101 at
-        // control.a = 1e-300, control.b = 1e12 formatting UUB's infinite bound)
-        assert_eq!(with_significant(f64::INFINITY, 3), "inf");
-        assert_eq!(with_significant(f64::NAN, 2), "NaN");
-        assert_eq!(format_value(f64::NEG_INFINITY, Some(1e-3)), "-inf");
-    }
-
-    #[test]
     fn ratios_print_no_unit_and_serialise_their_basis() {
-        let q = Quantity::exact("printed λ2", -215.9, Unit::LyapunovUnits);
-        assert_eq!(q.value_text(), "-215.9 W units");
+        let q = Quantity::exact("printed λ2", -215.9, Unit::JouleSecond);
+        assert_eq!(q.value_text(), "−215.9 J s");
+        let big = Quantity::exact("ω(f)²", 6.787e29 + 1.234e22, Unit::Dimensionless);
+        assert_eq!((big.number_text(), big.accuracy_text()), ("≈ 6.787000×10²⁹".into(), "exact, shown rounded".into()));
+        let u = Quantity::with_error("RMS τ1", 0.35, 0.57, Unit::Newton, &[ErrorSource::Spread]);
+        assert_eq!(u.pm_text(), "unresolved: −0.22 … 0.92 N");
+        assert_eq!(u.accuracy_text(), "± 0.57 N, at least half the value");
+        let w = Quantity::with_error("ω₁", 0.120859922046612, 3.4e-13, Unit::PerSecond, &[]);
+        assert_eq!(w.pm_text(), "0.12085992204661 ± 3.4×10⁻¹³ 1/s");
         let r = Quantity::based("DOBC / FTDO", 2094.0, Unit::Dimensionless, ValueBasis::Simulation);
         assert_eq!(r.value_text(), "2094");
         let json = serde_json::to_value(&r).unwrap();

@@ -3,11 +3,12 @@
 
 use serde::Serialize;
 use wingcheck_claims::display::{Cell, Column, Node};
-use wingcheck_claims::{ClaimRow, Ledger};
+use wingcheck_claims::{Basis, ClaimRow, Ledger, Verdict};
 use wingcheck_model::{Config, Quantity};
 
 use crate::accuracy::AccuracyRow;
 use crate::figure::{Figure, Part};
+use crate::links::Link;
 use crate::top::{pieces, Piece};
 use crate::ReportError;
 
@@ -58,6 +59,14 @@ pub struct Page {
     pub notation: Vec<wingcheck_claims::display::Symbol>,
     /// The certificate set in `proofs/` (file names), or why there is none.
     pub proofs: Result<Vec<String>, String>,
+    /// The certificates of `proofs/` with their statements and rows.
+    pub certificates: Vec<crate::links::Certificate>,
+    /// The verdict tally, in the legend's order (verdicts that occur only).
+    pub tally: Vec<Tally>,
+    /// How many verdicts rest on each basis (bases that occur only).
+    pub basis_tally: Vec<Tally>,
+    /// The paper's statements against the measured numbers.
+    pub statements: Vec<crate::statements::Statement>,
     /// Whether its ω₁ enclosure is coarser than the one `wingcheck certify` writes.
     pub coarser_enclosure: bool,
 }
@@ -81,8 +90,63 @@ pub struct Build {
     pub machine: Option<crate::provenance::Machine>,
 }
 
-/// A figure as the template sees it.
+/// How many of something (a verdict, a basis), in words.
 #[derive(Serialize)]
+pub struct Tally {
+    /// The verdict's or basis's name (kebab-case: the CSS class).
+    pub name: &'static str,
+    /// How many.
+    pub count: usize,
+    /// `2 fail`, `1 holds after correction`, `3 on simulation`.
+    pub text: String,
+}
+
+/// The verdict tally of the ledger, in [`Verdict::ALL`]'s order.
+pub fn tally(ledger: &Ledger) -> Vec<Tally> {
+    Verdict::ALL
+        .iter()
+        .filter_map(|v| {
+            let count = ledger.rows.iter().filter(|r| r.verdict == *v).count();
+            (count > 0).then(|| Tally { name: v.name(), count, text: format!("{count} {}", verdict_words(*v, count)) })
+        })
+        .collect()
+}
+
+/// A verdict in words, agreeing with a count (`1 holds`, `2 hold`; `2 fail`).
+pub fn verdict_words(v: Verdict, count: usize) -> String {
+    let one = count == 1;
+    match v {
+        Verdict::Holds => if one { "holds" } else { "hold" }.into(),
+        Verdict::Fails => if one { "fails" } else { "fail" }.into(),
+        Verdict::HoldsAfterCorrection => format!("{} after correction", if one { "holds" } else { "hold" }),
+        other => other.name().replace('-', " "),
+    }
+}
+
+/// How many verdicts rest on each basis, in [`Basis::ALL`]'s order.
+pub fn basis_tally(ledger: &Ledger) -> Vec<Tally> {
+    Basis::ALL
+        .iter()
+        .filter_map(|b| {
+            let count = ledger.rows.iter().filter(|r| r.basis == *b).count();
+            (count > 0).then(|| Tally { name: b.name(), count, text: format!("{count} on {}", basis_words(*b)) })
+        })
+        .collect()
+}
+
+/// A basis in words (`exact certificate`, `analytic argument`).
+pub fn basis_words(b: Basis) -> &'static str {
+    match b {
+        Basis::ExactCertificate => "exact certificates",
+        Basis::Analytic => "analytic arguments",
+        Basis::FloatSolver => "float solvers",
+        Basis::Computation => "computation",
+        Basis::Simulation => "simulation",
+    }
+}
+
+/// A figure as the template sees it.
+#[derive(Serialize, Clone)]
 pub struct FigCtx {
     /// Anchor id.
     pub id: String,
@@ -98,6 +162,10 @@ pub struct FigCtx {
     pub csv: String,
     /// How the data link reads.
     pub data_label: String,
+    /// Where in `ledger.json` the data is, for a row's plot (an attribute, not shown).
+    pub data_path: Option<String>,
+    /// The ledger rows that rest on it (links back).
+    pub claims: Vec<Link>,
 }
 
 impl From<&Figure> for FigCtx {
@@ -110,7 +178,28 @@ impl From<&Figure> for FigCtx {
             svg: format!("{}.svg", f.file),
             csv: f.data_file(),
             data_label: f.data_label(),
+            data_path: f.data_path(),
+            claims: Vec::new(),
         }
+    }
+}
+
+impl FigCtx {
+    /// The figure with links back to the rows of `ledger` that rest on it
+    /// ([`crate::links::paper_figures`]).
+    pub fn with_claims(mut self, ledger: &Ledger) -> FigCtx {
+        self.claims = ledger
+            .rows
+            .iter()
+            .filter(|r| crate::links::paper_figures(r.id).contains(&self.id.as_str()))
+            .map(|r| crate::links::row_link(ledger, r.id))
+            .collect();
+        self
+    }
+
+    /// The link to this figure: its label and title.
+    pub fn link(&self) -> Link {
+        Link { href: format!("#{}", self.id), text: crate::links::figure_link_text(&self.label, &self.title), id: None }
     }
 }
 
@@ -204,8 +293,16 @@ pub struct RowCtx {
     pub claim: String,
     /// Verdict name.
     pub verdict: String,
+    /// The verdict in words (`holds after correction`).
+    pub verdict_text: String,
     /// Basis name.
     pub basis: String,
+    /// The basis in words.
+    pub basis_text: String,
+    /// Where in the paper, short (`Theorem 1`).
+    pub theorem: String,
+    /// The one comparison that decides the verdict, as text and number pieces.
+    pub deciding: Vec<Piece>,
     /// The finding: short sentences, as text and number pieces.
     pub finding: Vec<Vec<Piece>>,
     /// The decisive numbers.
@@ -222,10 +319,15 @@ pub struct RowCtx {
     pub lead_figure: Option<FigCtx>,
     /// Assumptions, as pieces.
     pub assumptions: Vec<Vec<Piece>>,
-    /// Certificate files.
-    pub certificates: Vec<String>,
+    /// The certificates of `proofs/` that support the row, with what each proves.
+    pub certificates: Vec<(Link, String)>,
+    /// Certificate files the ledger names that `proofs/` does not hold (when certify could not
+    /// write the set).
+    pub certificates_missing: Vec<String>,
     /// The row's other plots.
     pub figures: Vec<FigCtx>,
+    /// Links to every figure the row rests on: its own plots, then the paper's figures.
+    pub figure_links: Vec<Link>,
 }
 
 fn header(c: &Column) -> String {
@@ -261,8 +363,19 @@ fn table_ctx(label: &str, columns: &[Column], rows: &[Vec<Cell>]) -> TableCtx {
     TableCtx { label: label.into(), columns: head, rows: body }
 }
 
+/// What a row links to besides its own plots: the ids of every figure of the page (links to a
+/// figure that was not drawn are left out) and the files of `proofs/`.
+pub struct RowLinks<'a> {
+    /// Every figure id of the page.
+    pub figure_ids: &'a [String],
+    /// Every paper figure of the page, by id.
+    pub figures: &'a [FigCtx],
+    /// The files of `proofs/` (empty when certify could not write the set).
+    pub proofs: &'a [String],
+}
+
 /// The ledger row's context; `figures` are the row's plots already turned into figures.
-pub fn row_ctx(r: &ClaimRow, figures: &[Figure]) -> Result<RowCtx, ReportError> {
+pub fn row_ctx(r: &ClaimRow, figures: &[Figure], links: &RowLinks) -> Result<RowCtx, ReportError> {
     let id = r.id.to_string();
     let nodes = r.evidence.nodes().map_err(|e| ReportError::Evidence { claim: id.clone(), detail: e })?;
     let (mut evidence, mut tables) = (Vec::new(), Vec::new());
@@ -280,7 +393,25 @@ pub fn row_ctx(r: &ClaimRow, figures: &[Figure]) -> Result<RowCtx, ReportError> 
             Node::Table { label, columns, rows } => tables.push(table_ctx(label, columns, rows)),
         }
     }
-    let mut figs = figures.iter().map(FigCtx::from);
+    let own_link = |f: &FigCtx| Link {
+        href: format!("#{}", f.id),
+        text: crate::links::figure_link_text(&f.label, &f.title),
+        id: None,
+    };
+    let back =
+        Link { href: format!("#{}", claim_anchor(&id)), text: format!("{} ({})", id, r.verdict.name()), id: None };
+    let own: Vec<FigCtx> = figures.iter().map(|f| FigCtx { claims: vec![back.clone()], ..FigCtx::from(f) }).collect();
+    let mut figure_links: Vec<Link> = own.iter().map(own_link).collect();
+    figure_links.extend(
+        crate::links::paper_figures(r.id)
+            .iter()
+            .filter(|f| links.figure_ids.iter().any(|id| id == *f))
+            .filter_map(|f| links.figures.iter().find(|g| g.id == *f).map(FigCtx::link)),
+    );
+    let certificates = crate::links::row_certificates(r.id, links.proofs);
+    let certificates_missing =
+        r.certificates.iter().filter(|c| !links.proofs.contains(c)).cloned().collect::<Vec<String>>();
+    let mut figs = own.into_iter();
     let lead_figure = figs.next();
     Ok(RowCtx {
         anchor: claim_anchor(&id),
@@ -288,7 +419,11 @@ pub fn row_ctx(r: &ClaimRow, figures: &[Figure]) -> Result<RowCtx, ReportError> 
         equation: r.equation.clone(),
         claim: r.claim.clone(),
         verdict: r.verdict.name().into(),
+        verdict_text: verdict_words(r.verdict, 1),
         basis: r.basis.name().into(),
+        basis_text: r.basis.name().replace('-', " "),
+        theorem: r.id.spec().theorem.to_string(),
+        deciding: pieces(&r.deciding),
         finding: r.finding.iter().map(|s| pieces(s)).collect(),
         decisive: r.decisive.iter().map(NumberCtx::from).collect(),
         details: r.details.iter().map(|s| pieces(s)).collect(),
@@ -297,8 +432,10 @@ pub fn row_ctx(r: &ClaimRow, figures: &[Figure]) -> Result<RowCtx, ReportError> 
         tables,
         lead_figure,
         assumptions: r.assumptions.iter().map(|a| pieces(a)).collect(),
-        certificates: r.certificates.clone(),
+        certificates,
+        certificates_missing,
         figures: figs.collect(),
+        figure_links,
     })
 }
 
@@ -306,16 +443,17 @@ pub fn row_ctx(r: &ClaimRow, figures: &[Figure]) -> Result<RowCtx, ReportError> 
 pub fn assumptions(cfg: &Config) -> Vec<Assumption> {
     let o = &cfg.observer;
     let d = &cfg.discretisation;
+    let v = wingcheck_model::format::exact;
     let a = |what: &str, used: String, key: &str| Assumption { what: what.into(), used, key: key.into() };
     vec![
         a(
             "weights a, b of the control law (15)",
-            format!("a = {}, b = {}", cfg.control.a, cfg.control.b),
+            format!("a = {}, b = {} s", v(cfg.control.a), v(cfg.control.b)),
             "control.a, control.b",
         ),
         a(
             "observer sampling (digital observer, zero-order hold)",
-            format!("T_s = {} s, {} rule", o.sample_period, o.rule.name()),
+            format!("T_s = {} s, {} rule", v(o.sample_period), o.rule.name()),
             "observer.sample_period, observer.rule",
         ),
         a("analogue part −k(a·tip + b·tip rate) of (15)", "continuous (inside the implicit step)".into(), "—"),
@@ -327,14 +465,14 @@ pub fn assumptions(cfg: &Config) -> Vec<Assumption> {
                     wingcheck_model::InitialShape::Linear => "linear",
                     wingcheck_model::InitialShape::Cantilever => "cantilever",
                 },
-                cfg.initial.q_tip,
-                cfg.initial.theta_tip
+                v(cfg.initial.q_tip),
+                v(cfg.initial.theta_tip)
             ),
             "initial.shape, initial.q_tip, initial.theta_tip",
         ),
         a(
             "initial observer states ν(0), p(0)",
-            format!("ν1(0) = {}, ν2(0) = {}", o.nu1_0, o.nu2_0),
+            format!("ν1(0) = {}, ν2(0) = {}", v(o.nu1_0), v(o.nu2_0)),
             "observer.nu1_0, observer.nu2_0",
         ),
         a(
@@ -344,8 +482,8 @@ pub fn assumptions(cfg: &Config) -> Vec<Assumption> {
                 d.method.name().to_uppercase(),
                 d.grid_size(),
                 if d.method == wingcheck_model::Method::Fe { "elements" } else { "intervals" },
-                d.grading,
-                d.dt,
+                v(d.grading),
+                v(d.dt),
                 match d.stepper {
                     wingcheck_model::TimeScheme::Auto => {
                         "auto (TR-BDF2; the exponential scheme, exact for the held estimate, for the explicit-FTDO runs in the modal basis)".to_string()
@@ -359,7 +497,9 @@ pub fn assumptions(cfg: &Config) -> Vec<Assumption> {
             "horizon and output sampling",
             format!(
                 "t_end = {} s, output every {} s, {} field points",
-                cfg.horizon.t_end, cfg.horizon.sample_every, cfg.horizon.field_points
+                v(cfg.horizon.t_end),
+                v(cfg.horizon.sample_every),
+                cfg.horizon.field_points
             ),
             "horizon.*",
         ),

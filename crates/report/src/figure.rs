@@ -37,6 +37,18 @@ impl Caption {
         self.0.push(Part { text: fmt_num(v), key: Some(key.into()) });
         self
     }
+    /// Append a quantity as the ledger prints it: its number with the key, then its error and
+    /// unit (`0.0540814241193751` ` ± 9.0×10⁻¹⁵ s`).
+    pub fn q(mut self, key: impl Into<String>, q: &wingcheck_model::Quantity) -> Self {
+        let shown = q.shown();
+        let rest = match q.error() {
+            Some(e) if !shown.unresolved => format!(" ± {}{}", wingcheck_model::format::format_error(e), shown.unit),
+            _ => shown.unit.clone(),
+        };
+        self.0.push(Part { text: shown.number, key: Some(key.into()) });
+        self.0.push(Part { text: rest, key: None });
+        self
+    }
 }
 
 /// How the values of a data file are written.
@@ -104,8 +116,10 @@ pub enum Chart {
     InLedger {
         /// The chart.
         chart: LineChart,
-        /// Where in ledger.json (`rows[5].plots[0]`).
+        /// Where in ledger.json (`rows[5].plots[0]`), for tools.
         path: String,
+        /// The same in words (`the UUB row's plot 2`), for the link.
+        what: String,
     },
     /// A field over (t, z); its data file has the values to `resolution` (the digits of their
     /// estimated error, [`wingcheck_model::quantity::format_resolved`]; None: shortest
@@ -176,18 +190,31 @@ impl Figure {
             Chart::Line(c) => {
                 Rendered { svg: line_svg(c)?, csv: Some(c.to_csv().into_bytes()), contents: c.csv_contents() }
             }
-            Chart::Measured { chart, digits } => Rendered {
-                svg: line_svg(chart)?,
-                csv: Some(gzip(&chart.to_csv_with(|v| digits.format(v)))),
-                contents: format!("{} (digits from the stated error)", chart.csv_contents()),
-            },
+            Chart::Measured { chart, digits } => {
+                let (chart, _) = chart.thinned();
+                Rendered {
+                    svg: line_svg(&chart)?,
+                    csv: Some(gzip(&chart.to_csv_with(|v| digits.format(v)))),
+                    contents: format!(
+                        "{} (digits from the stated error{})",
+                        chart.csv_contents(),
+                        self.thinning_note()
+                    ),
+                }
+            }
             Chart::InLedger { chart, .. } => Rendered { svg: line_svg(chart)?, csv: None, contents: String::new() },
             Chart::Heat { map, resolution } => {
+                let (map, _) = map.thinned();
+                let map = &map;
                 let csv = match resolution {
                     Some(r) => map.to_csv_with(|v| wingcheck_model::quantity::format_resolved(v, *r)),
                     None => map.to_csv(),
                 };
-                Rendered { svg: heatmap_svg(map)?, csv: Some(gzip(&csv)), contents: map.csv_contents() }
+                Rendered {
+                    svg: heatmap_svg(map)?,
+                    csv: Some(gzip(&csv)),
+                    contents: format!("{}{}", map.csv_contents(), self.thinning_note()),
+                }
             }
             Chart::Surface(s) => Rendered { svg: surface_svg(s)?, csv: None, contents: String::new() },
             Chart::Grid { map, csv } => Rendered {
@@ -209,14 +236,62 @@ impl Figure {
         }
     }
 
+    /// Where in `ledger.json` the data of a row's plot is (`rows[5].plots[0]`), for tools.
+    pub fn data_path(&self) -> Option<String> {
+        match &self.chart {
+            Chart::InLedger { path, .. } => Some(path.clone()),
+            _ => None,
+        }
+    }
+
+    /// The stride its drawing data is thinned at ([`crate::chart::stride`]: 1 up to
+    /// [`crate::chart::MAX_DRAWN_SAMPLES`] output samples).
+    pub fn thinning(&self) -> usize {
+        match &self.chart {
+            Chart::Measured { chart, .. } => crate::chart::stride(
+                chart.data.lines.iter().filter(|l| !l.points).map(|l| l.x.len()).max().unwrap_or(0),
+            ),
+            Chart::Heat { map, .. } | Chart::Surface(map) => crate::chart::stride(map.t.len()),
+            _ => 1,
+        }
+    }
+
+    /// `; every k-th output sample, …` when the drawing data is thinned, else "".
+    fn thinning_note(&self) -> String {
+        match self.thinning() {
+            1 => String::new(),
+            k => format!(
+                "; every {} output sample, at most {} per series, full-rate ranges merged",
+                ordinal(k),
+                crate::chart::MAX_DRAWN_SAMPLES
+            ),
+        }
+    }
+
     /// How the data link reads.
     pub fn data_label(&self) -> String {
+        let thinned = match self.thinning() {
+            1 => String::new(),
+            k => format!(", every {} output sample", ordinal(k)),
+        };
         match &self.chart {
-            Chart::Heat { .. } | Chart::Surface(_) | Chart::Measured { .. } => "data (CSV, gzip)".into(),
-            Chart::InLedger { path, .. } => format!("data: ledger.json, {path}"),
+            Chart::Heat { .. } | Chart::Surface(_) | Chart::Measured { .. } => format!("data (CSV, gzip{thinned})"),
+            Chart::InLedger { what, .. } => format!("data: ledger.json, {what}"),
             _ => "data (CSV)".into(),
         }
     }
+}
+
+/// `2nd`, `3rd`, `5th`, `11th`, `21st`.
+pub fn ordinal(k: usize) -> String {
+    let suffix = match (k % 10, k % 100) {
+        (_, 11..=13) => "th",
+        (1, _) => "st",
+        (2, _) => "nd",
+        (3, _) => "rd",
+        _ => "th",
+    };
+    format!("{k}{suffix}")
 }
 
 /// Make a string file-name safe (`[A-Za-z0-9_-]`, others become `-`).

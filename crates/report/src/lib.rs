@@ -23,11 +23,13 @@ mod error;
 mod estimate;
 mod figure;
 mod lines;
+mod links;
 mod paper;
 mod progress;
 mod provenance;
 mod region;
 mod runs;
+mod statements;
 mod stats;
 mod top;
 mod wratio;
@@ -48,7 +50,10 @@ pub use runs::GRIDS;
 pub use stats::fmt_num;
 pub use top::command_text;
 
-use crate::context::{assumptions, claim_anchor, row_assumptions, row_ctx, Build, FigCtx, GroupCtx, Page, Timing};
+use crate::context::{
+    assumptions, basis_tally, claim_anchor, row_assumptions, row_ctx, tally, Build, FigCtx, GroupCtx, Page, RowLinks,
+    Timing,
+};
 use crate::figure::{safe_name, Caption, Chart, Figure};
 use crate::progress::{report, Tracker};
 
@@ -138,7 +143,7 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     // The figures that need the ledger, side by side.
     let t = Instant::now();
     let (series, mut row_figs) = rayon::join(
-        || paper::series_figures(cfg, &runs, paper::ftdo_bounds(&ledger)),
+        || paper::series_figures(cfg, &runs, paper::ftdo_marks(&ledger)),
         || ledger.rows.iter().enumerate().map(|(i, r)| claim_figures(i, r)).collect::<Vec<_>>(),
     );
     timings.push(StageTiming { name: "figure data".into(), seconds: t.elapsed().as_secs_f64() });
@@ -386,6 +391,30 @@ struct PageFigures<'a> {
 
 /// The template's context (wall times are filled in by the caller).
 fn page(cfg: &Config, opts: &ReportOptions, ledger: &Ledger, figs: PageFigures) -> Result<Page, ReportError> {
+    let with_claims = |f: &Figure| FigCtx::from(f).with_claims(ledger);
+    let groups: Vec<GroupCtx> = figs
+        .groups
+        .iter()
+        .map(|g| GroupCtx {
+            id: g.id.into(),
+            title: g.title.clone(),
+            intro: g.intro.clone(),
+            figures: g.figures.iter().map(with_claims).collect(),
+        })
+        .collect();
+    let region = figs.region.map(with_claims);
+    let comparison: Vec<FigCtx> = figs.comparison.iter().map(with_claims).collect();
+    // every figure a row may link to, by id
+    let paper_figs: Vec<FigCtx> = groups
+        .iter()
+        .flat_map(|g| g.figures.iter())
+        .chain(region.iter())
+        .chain(comparison.iter())
+        .map(|f| FigCtx { claims: Vec::new(), caption: Vec::new(), ..f.clone() })
+        .collect();
+    let figure_ids: Vec<String> = paper_figs.iter().map(|f| f.id.clone()).collect();
+    let proof_files: Vec<String> = figs.proofs.clone().unwrap_or_default();
+    let links = RowLinks { figure_ids: &figure_ids, figures: &paper_figs, proofs: &proof_files };
     Ok(Page {
         tool: ledger.tool.clone(),
         build: Build {
@@ -403,7 +432,7 @@ fn page(cfg: &Config, opts: &ReportOptions, ledger: &Ledger, figs: PageFigures) 
             total_seconds: String::new(),
             machine: None,
         },
-        region: figs.region.map(FigCtx::from),
+        region,
         region_missing: if figs.region.is_none() {
             "The region map was not drawn: the fundamental frequency or the closed-form (32) boundary of this configuration is not a positive finite number.".into()
         } else {
@@ -412,18 +441,9 @@ fn page(cfg: &Config, opts: &ReportOptions, ledger: &Ledger, figs: PageFigures) 
         config_sha256: config_sha256(cfg),
         config_json: cfg.to_json_pretty(),
         platform: format!("{}/{}", std::env::consts::OS, std::env::consts::ARCH),
-        rows: ledger.rows.iter().zip(figs.rows).map(|(r, f)| row_ctx(r, f)).collect::<Result<_, _>>()?,
-        groups: figs
-            .groups
-            .iter()
-            .map(|g| GroupCtx {
-                id: g.id.into(),
-                title: g.title.clone(),
-                intro: g.intro.clone(),
-                figures: g.figures.iter().map(FigCtx::from).collect(),
-            })
-            .collect(),
-        comparison: figs.comparison.iter().map(FigCtx::from).collect(),
+        rows: ledger.rows.iter().zip(figs.rows).map(|(r, f)| row_ctx(r, f, &links)).collect::<Result<_, _>>()?,
+        groups,
+        comparison,
         accuracy_figure: FigCtx::from(figs.accuracy.0),
         accuracy_rows: figs.accuracy.1,
         grids: GRIDS.to_vec(),
@@ -435,8 +455,12 @@ fn page(cfg: &Config, opts: &ReportOptions, ledger: &Ledger, figs: PageFigures) 
         basis_legend: wingcheck_claims::Basis::ALL.iter().map(|b| (b.name(), b.meaning())).collect(),
         changes: top::config_changes(cfg),
         notation: wingcheck_claims::display::notation(cfg),
+        certificates: crate::links::certificates(ledger, &proof_files),
         proofs: figs.proofs.clone(),
         coarser_enclosure: figs.coarser_enclosure,
+        tally: tally(ledger),
+        basis_tally: basis_tally(ledger),
+        statements: crate::statements::statements(ledger),
     })
 }
 
@@ -459,10 +483,14 @@ fn claim_figures(index: usize, r: &wingcheck_claims::ClaimRow) -> Vec<Figure> {
             }
             Figure {
                 file: format!("{}-{}", claim_anchor(&r.id.to_string()), safe_name(&pd.name)),
-                label: format!("{} plot {}", r.id, i + 1),
+                label: format!("{}, plot {}", r.id, i + 1),
                 title: pd.title.clone(),
                 caption: caption.0,
-                chart: Chart::InLedger { chart, path: format!("rows[{index}].plots[{i}]") },
+                chart: Chart::InLedger {
+                    chart,
+                    path: format!("rows[{index}].plots[{i}]"),
+                    what: format!("the {} row's plot {}", r.id, i + 1),
+                },
             }
         })
         .collect()

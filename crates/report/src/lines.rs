@@ -7,15 +7,16 @@
 //! - the tips with the estimated error of the configured grid as a band (the `--error-estimate`
 //!   machinery) and the uncontrolled tip for comparison; an axis that would magnify a small
 //!   change includes 0;
-//! - |g̃| with the measured t_reach and, for the FTDO, the bound t_f of (38)/(39).
+//! - |g̃| with t_band (from when the simulated |g̃| stays below the threshold, at full rate) and,
+//!   for the FTDO, the ledger's t_reach and bound t_f of (38)/(39) (one symbol, one value).
 
-use wingcheck_sim::metrics::{envelope_abs_max, envelope_abs_min, envelope_of, settle_time, GTILDE_THRESHOLD};
+use wingcheck_sim::metrics::{envelope_abs_max, envelope_abs_min, envelope_of, GTILDE_THRESHOLD};
 use wingcheck_sim::SimOutput;
 
-use crate::chart::{padded_range, tick, Band, LineChart};
+use crate::chart::{padded_range, tick, Band, BandStyle, LineChart, LineStyle};
 use crate::figure::{line_plot, Caption, Chart, Digits, Figure};
 use crate::runs::TipErrors;
-use crate::stats::{max_abs, rms};
+use crate::stats::{fmt_num, max_abs, rms};
 
 /// One controlled run as the figures need it.
 pub struct RunView<'a> {
@@ -29,8 +30,8 @@ pub struct RunView<'a> {
     pub out: &'a SimOutput,
     /// Its tip errors.
     pub err: &'a TipErrors,
-    /// The bounds t_f1, t_f2 of (38)/(39) to mark (the FTDO's), if any.
-    pub bounds: [Option<f64>; 2],
+    /// The ledger's bound t_f and reaching time t_reach per channel to mark (the FTDO's).
+    pub marks: [crate::paper::FiniteTimeMarks; 2],
 }
 
 /// The horizon, the late window and the uncontrolled run.
@@ -74,26 +75,58 @@ fn band_label(every: f64) -> String {
     format!("full-rate range per {} s", tick(every))
 }
 
-/// τ of channel `ch`: the samples as a line, the full-rate range per output interval as a band.
-fn tau_chart(r: &RunView, ch: u8, f: &Frame) -> LineChart {
+/// Whether a full-rate envelope chatters: in more than half of the output intervals of the
+/// second half of the run, the signal's full-rate range is wider than half its size there (the
+/// explicit observer's τ jumps between ≈ ±3.5 N every sample; the implicit one's moves by a
+/// small fraction of its value per interval). Then the envelope is the curve to read and the
+/// output samples alias it.
+pub fn chatters(env: &[(f64, f64)]) -> bool {
+    let late = &env[env.len() / 2..];
+    let wide = late.iter().filter(|(lo, hi)| hi - lo > 0.5 * lo.abs().max(hi.abs()) && hi > lo).count();
+    !late.is_empty() && 2 * wide > late.len()
+}
+
+/// τ of channel `ch` over the first `m` samples: the samples as a line, the full-rate range per
+/// output interval as a band; where the signal chatters the band's edges are the main curve and
+/// the samples a faint dashed line. Whether it chatters is returned too.
+fn tau_lines(r: &RunView, ch: u8, m: usize, name: &str, title: String, every: f64) -> (LineChart, bool) {
     let s = &r.out.series;
     let v = if ch == 1 { &s.tau1 } else { &s.tau2 };
     let env = envelope_of(r.out, usize::from(ch - 1));
-    let n = r.first + u32::from(ch - 1);
-    let mut c: LineChart = line_plot(
-        &format!("fig{n}"),
-        &format!("τ{ch}(t) {}", r.desc),
-        &format!("τ{ch} ({})", unit(ch)),
-        vec![("samples".into(), &s.t, v.clone())],
-    )
-    .into();
+    let chatter = chatters(env);
+    let label = if chatter { "output samples (alias the chatter)" } else { "output samples" };
+    let mut c: LineChart =
+        line_plot(name, &title, &format!("τ{ch} ({})", unit(ch)), vec![(label.into(), &s.t[..m], v[..m].to_vec())])
+            .into();
+    c.styles = vec![if chatter { LineStyle::Faint } else { LineStyle::Solid }];
     c.bands.push(Band {
         line: 0,
-        lo: env.iter().map(|e| e.0).collect(),
-        hi: env.iter().map(|e| e.1).collect(),
-        label: band_label(f.every),
+        lo: env[..m].iter().map(|e| e.0).collect(),
+        hi: env[..m].iter().map(|e| e.1).collect(),
+        label: if chatter {
+            format!("full-rate max and min per {} s (the command)", tick(every))
+        } else {
+            band_label(every)
+        },
+        style: if chatter { BandStyle::Edges } else { BandStyle::Shade },
     });
-    c
+    (c, chatter)
+}
+
+/// τ of channel `ch` over the whole run.
+fn tau_chart(r: &RunView, ch: u8, f: &Frame) -> LineChart {
+    let n = r.first + u32::from(ch - 1);
+    let m = r.out.series.t.len();
+    tau_lines(r, ch, m, &format!("fig{n}"), format!("τ{ch}(t) {}", r.desc), f.every).0
+}
+
+/// How the τ figures' curves read, for a caption.
+fn tau_reading(r: &RunView, ch: u8, inside: &str) -> String {
+    if chatters(envelope_of(r.out, usize::from(ch - 1))) {
+        format!("Solid lines: the full-rate max and min of τ{ch} over each output interval (every integrator step, both sides of every sample's jump{inside}) — the command chatters at the observer's sample rate, so these are the curves to read; dashed: the output samples, which alias the chatter")
+    } else {
+        format!("Shaded: the full-rate range of τ{ch} over each output interval (every integrator step, both sides of every sample's jump{inside}); line: the output samples")
+    }
 }
 
 fn tau_figure(r: &RunView, ch: u8, f: &Frame, chart: LineChart, twin: u32) -> Figure {
@@ -108,8 +141,9 @@ fn tau_figure(r: &RunView, ch: u8, f: &Frame, chart: LineChart, twin: u32) -> Fi
     };
     let caption = Caption::default()
         .t(format!(
-            "Control command τ{ch}(t) {} (paper Figure {n}). Shaded: the full-rate range of τ{ch} over each output interval (every integrator step, both sides of every sample's jump{inside}); line: the output samples, which alias a command that chatters at the observer's sample rate. Full-rate max |τ{ch}| over [0, {}] s: ",
+            "Control command τ{ch}(t) {} (paper Figure {n}). {}. Full-rate max |τ{ch}| over [0, {}] s: ",
             r.desc,
+            tau_reading(r, ch, inside),
             tick(f.t_end)
         ))
         .n(format!("fig{n}.max_abs"), max_abs(&s.t, &peak, 0.0, f.t_end))
@@ -126,51 +160,52 @@ fn tau_figure(r: &RunView, ch: u8, f: &Frame, chart: LineChart, twin: u32) -> Fi
     }
 }
 
-/// Both commands over the first 0.2 s (where the peaks are), full-rate range per interval.
-fn tau_zoom(r: &RunView, f: &Frame) -> Figure {
+/// The first 0.2 s of τ of channel `ch` (where the commands peak), on its own axis (τ1 in N, τ2
+/// in N m), with the full-rate peak of the whole run marked when it falls in the zoom (the
+/// initial layer, resolved by finer steps, can peak between the first samples).
+fn tau_zoom_chart(r: &RunView, ch: u8, f: &Frame) -> LineChart {
     let s = &r.out.series;
     let zoom = 0.2_f64.min(f.t_end);
     // the zoom's samples only (the whole run is in Figures 7–8's data)
     let m = s.t.partition_point(|t| *t <= zoom * (1.0 + 1e-12));
-    let mut c: LineChart = line_plot(
-        &format!("tau-zoom-{}", r.tag),
-        &format!("τ1, τ2 over the first {} s {}", tick(zoom), r.desc),
-        "τ1 (N), τ2 (N m)",
-        vec![("τ1 (N)".into(), &s.t[..m], s.tau1[..m].to_vec()), ("τ2 (N m)".into(), &s.t[..m], s.tau2[..m].to_vec())],
-    )
-    .into();
-    for (i, env) in [envelope_of(r.out, 0), envelope_of(r.out, 1)].into_iter().enumerate() {
-        c.bands.push(Band {
-            line: i,
-            lo: env[..m].iter().map(|e| e.0).collect(),
-            hi: env[..m].iter().map(|e| e.1).collect(),
-            label: if i == 0 { band_label(f.every) } else { String::new() },
+    let n = r.first + u32::from(ch - 1);
+    let title = format!("τ{ch} over the first {} s {}", tick(zoom), r.desc);
+    let (mut c, _) = tau_lines(r, ch, m, &format!("tau{ch}-zoom-{}", r.tag), title, f.every);
+    let p = if ch == 1 { r.out.peaks.tau1 } else { r.out.peaks.tau2 };
+    if p.t <= zoom {
+        c.data.lines.push(wingcheck_claims::Line {
+            label: format!("full-rate peak of Figure {n}: |τ{ch}| = {} {}", fmt_num(p.abs_max), unit(ch)),
+            x: vec![p.t],
+            y: vec![p.value],
+            points: true,
         });
     }
-    c.bands.retain(|b| !b.label.is_empty() || b.line == 1);
     c.x_range = Some((0.0, zoom));
-    let caption = Caption::default().t(format!(
-        "Zoom of Figures {}–{} on [0, {}] s, where the commands peak: output samples as lines, the full-rate range per {}-s output interval shaded. Full-rate peaks over the run: |τ1| ",
-        r.first,
-        r.first + 1,
-        tick(zoom),
-        tick(f.every)
-    ))
-    .n(format!("tau-zoom-{}.peak1", r.tag), r.out.peaks.tau1.abs_max)
-    .t(" N at t = ")
-    .n(format!("tau-zoom-{}.t1", r.tag), r.out.peaks.tau1.t)
-    .t(" s, |τ2| ")
-    .n(format!("tau-zoom-{}.peak2", r.tag), r.out.peaks.tau2.abs_max)
-    .t(" N m at t = ")
-    .n(format!("tau-zoom-{}.t2", r.tag), r.out.peaks.tau2.t)
-    .t(" s.");
-    let err = r.err.tau[0].min(r.err.tau[1]);
+    c
+}
+
+fn tau_zoom_figure(r: &RunView, ch: u8, f: &Frame, chart: LineChart, twin: u32) -> Figure {
+    let zoom = 0.2_f64.min(f.t_end);
+    let n = r.first + u32::from(ch - 1);
+    let p = if ch == 1 { r.out.peaks.tau1 } else { r.out.peaks.tau2 };
+    let u = unit(ch);
+    let caption = Caption::default()
+        .t(format!(
+            "Zoom of Figure {n} on [0, {}] s, where the command peaks. {}. Full-rate peak |τ{ch}| over the run: ",
+            tick(zoom),
+            tau_reading(r, ch, "")
+        ))
+        .n(format!("tau{ch}-zoom-{}.peak", r.tag), p.abs_max)
+        .t(format!(" {u} at t = "))
+        .n(format!("tau{ch}-zoom-{}.t", r.tag), p.t)
+        .t(format!(" s{}. Same axes as the zoom of Figure {twin}.", if p.t <= zoom { " (the dot)" } else { "" }));
+    let err = r.err.tau[usize::from(ch - 1)];
     Figure {
-        file: format!("tau-zoom-{}", r.tag),
-        label: format!("Figures {}–{}, zoom", r.first, r.first + 1),
-        title: format!("τ1, τ2 over the first {} s {}", tick(zoom), r.desc),
-        caption: caption.0.into_iter().chain(data_note(err, "N or N m")).collect(),
-        chart: Chart::Measured { chart: c, digits: Digits::absolute(err) },
+        file: format!("tau{ch}-zoom-{}", r.tag),
+        label: format!("Figure {n}, zoom"),
+        title: format!("τ{ch} over the first {} s {}", tick(zoom), r.desc),
+        caption: caption.0.into_iter().chain(data_note(err, u)).collect(),
+        chart: Chart::Measured { chart, digits: Digits::absolute(err) },
     }
 }
 
@@ -194,6 +229,7 @@ fn tip_chart(r: &RunView, is_q: bool, f: &Frame) -> LineChart {
         lo: v.iter().zip(e).map(|(v, e)| v - e).collect(),
         hi: v.iter().zip(e).map(|(v, e)| v + e).collect(),
         label: format!("± estimated grid error (2N = {}, dt/2 = {} s)", r.err.refined_grid, tick(r.err.refined_dt)),
+        style: BandStyle::Shade,
     });
     c
 }
@@ -214,7 +250,22 @@ fn include_zero(a: &mut LineChart, b: &mut LineChart) -> Option<f64> {
     Some((vhi - vlo) / size)
 }
 
+/// Hide the bands of a chart that are thinner than about two pixels of its y range (0.5 % of
+/// it: the plot is ≈ 370 px tall), which would be listed in the legend but not seen (they stay
+/// in the data file); true if the bands are drawn.
+fn keep_visible_bands(c: &mut LineChart) -> bool {
+    let (lo, hi) = c.y_range.unwrap_or((0.0, 0.0));
+    let span = hi - lo;
+    let thin = span > 0.0 && c.bands.iter().all(|b| b.lo.iter().zip(&b.hi).all(|(l, h)| (h - l).abs() < 0.005 * span));
+    if thin {
+        c.bands.iter_mut().for_each(|b| b.style = BandStyle::Hidden);
+    }
+    !thin
+}
+
 fn tip_figure(r: &RunView, is_q: bool, f: &Frame, chart: LineChart, twin: u32, small: Option<f64>) -> Figure {
+    let mut chart = chart;
+    let drawn = keep_visible_bands(&mut chart);
     let pick = |o: &SimOutput| if is_q { o.series.q_tip.clone() } else { o.series.theta_tip.clone() };
     let (s, u, what) = if is_q { ("q", "m", "bending") } else { ("θ", "rad", "twist") };
     let n = r.first + if is_q { 2 } else { 3 };
@@ -232,7 +283,10 @@ fn tip_figure(r: &RunView, is_q: bool, f: &Frame, chart: LineChart, twin: u32, s
         .n(format!("fig{n}.none_max_abs_late"), max_abs(&f.none.series.t, &v0, t0, t1))
         .t(format!(" {u}); RMS over the same window: "))
         .n(format!("fig{n}.rms_late"), rms(t, &v, t0, t1))
-        .t(format!(" {u}. Shaded: the estimated discretisation error of the configured grid (from runs at 2N and dt/2, Richardson, safety factor 1.25), at most "))
+        .t(format!(
+            " {u}. {} the estimated discretisation error of the configured grid (from runs at 2N and dt/2, Richardson, safety factor 1.25), at most ",
+            if drawn { "Shaded:" } else { "Not drawn, because it is thinner than the line at this scale:" }
+        ))
         .n(format!("fig{n}.max_error"), if is_q { r.err.max_q } else { r.err.max_theta })
         .t(format!(" {u}. Same axes as Figure {twin}."));
     if let Some(rel) = small {
@@ -252,14 +306,14 @@ fn tip_figure(r: &RunView, is_q: bool, f: &Frame, chart: LineChart, twin: u32, s
 }
 
 /// |g̃| of channel `ch` on a log axis: the samples as a line, the full-rate range of |g̃| per
-/// interval as a band, the threshold, t_reach (from the full-rate maximum per interval) and
-/// the bound t_f of (38)/(39) when given (times > 0: the time axis is logarithmic); and t_reach.
-fn gerr_chart(r: &RunView, ch: u8) -> (LineChart, Option<f64>) {
+/// interval as a band, the threshold, t_band (the simulator's full-rate entry into the band),
+/// and the ledger's t_reach and bound t_f of (38)/(39) when given (times > 0: the time axis is
+/// logarithmic).
+fn gerr_chart(r: &RunView, ch: u8) -> LineChart {
     let s = &r.out.series;
     let v: Vec<f64> = wingcheck_sim::metrics::observer_error(s, usize::from(ch - 1)).iter().map(|x| x.abs()).collect();
     let env = envelope_of(r.out, usize::from(ch + 1));
     let (lo, hi) = (envelope_abs_min(env), envelope_abs_max(env));
-    let reach = settle_time(&s.t, &hi, GTILDE_THRESHOLD);
     let n = r.first + 3 + u32::from(ch);
     let mut c: LineChart = line_plot(
         &format!("fig{n}"),
@@ -270,19 +324,41 @@ fn gerr_chart(r: &RunView, ch: u8) -> (LineChart, Option<f64>) {
     .into();
     c.data.log_y = true;
     c.data.log_x = true;
-    c.bands.push(Band { line: 0, lo, hi, label: band_label(r.out.series.t.get(1).copied().unwrap_or(0.0)) });
+    // where g̃ chatters (the explicit rule) the full-rate max and min are the curves to read and
+    // the samples alias them, as for τ
+    let chatter = chatters(env);
+    let every = r.out.series.t.get(1).copied().unwrap_or(0.0);
+    if chatter {
+        c.data.lines[0].label = "output samples (alias the chatter)".into();
+        c.styles = vec![LineStyle::Faint];
+    }
+    c.bands.push(Band {
+        line: 0,
+        lo,
+        hi,
+        label: if chatter {
+            format!("full-rate max and min of |g̃{ch}| per {} s", tick(every))
+        } else {
+            band_label(every)
+        },
+        style: if chatter { BandStyle::Edges } else { BandStyle::Shade },
+    });
     c.hlines.push((GTILDE_THRESHOLD, format!("|g̃| = {} {}", tick(GTILDE_THRESHOLD), unit(ch))));
+    let m = &r.marks[usize::from(ch - 1)];
     // (a time 0 has no place on the log time axis; the caption states it)
-    if let Some(ts) = reach.filter(|t| *t > 0.0) {
-        c.vlines.push((ts, format!("t_reach ≤ {} s", tick(ts))));
+    if let Some(q) = m.reach.as_ref().filter(|q| q.value > 0.0) {
+        c.vlines.push((q.value, format!("t_reach = {} (ledger)", q.value_text())));
     }
-    if let Some(tf) = r.bounds[usize::from(ch - 1)].filter(|t| *t > 0.0) {
-        c.vlines.push((tf, format!("bound t_f{ch} = {} s of ({})", tick(tf), if ch == 1 { 38 } else { 39 })));
+    if let Some(tb) = r.out.gtilde_band_entry[usize::from(ch - 1)].filter(|t| *t > 0.0) {
+        c.vlines.push((tb, format!("t_band = {} s", tick(tb))));
     }
-    (c, reach)
+    if let Some(q) = m.bound.as_ref().filter(|q| q.value > 0.0) {
+        c.vlines.push((q.value, format!("bound t_f{ch} = {} of ({})", q.value_text(), if ch == 1 { 38 } else { 39 })));
+    }
+    c
 }
 
-fn gerr_figure(r: &RunView, ch: u8, f: &Frame, chart: LineChart, reach: Option<f64>, twin: u32) -> Figure {
+fn gerr_figure(r: &RunView, ch: u8, f: &Frame, chart: LineChart, twin: u32) -> Figure {
     let s = &r.out.series;
     let n = r.first + 3 + u32::from(ch);
     let u = unit(ch);
@@ -290,25 +366,35 @@ fn gerr_figure(r: &RunView, ch: u8, f: &Frame, chart: LineChart, reach: Option<f
     let hi = envelope_abs_max(envelope_of(r.out, usize::from(ch + 1)));
     let mut cap = Caption::default()
         .t(format!(
-            "Disturbance estimation error |g̃{ch}(t)| = |g{ch} − ĝ{ch}| {} (paper Figure {n}), log scale; shaded: its full-rate range over each output interval, line: the output samples. Full-rate max |g̃{ch}| over [{}, {}] s: ",
+            "Disturbance estimation error |g̃{ch}(t)| = |g{ch} − ĝ{ch}| {} (paper Figure {n}), log scale; {}. Full-rate max |g̃{ch}| over [{}, {}] s: ",
             r.desc,
+            if chatters(envelope_of(r.out, usize::from(ch + 1))) {
+                "solid lines: its full-rate max and min over each output interval — it chatters at the observer's sample rate, so these are the curves to read; dashed: the output samples, which alias the chatter"
+            } else {
+                "shaded: its full-rate range over each output interval, line: the output samples"
+            },
             tick(f.t_end / 2.0),
             tick(f.t_end)
         ))
         .n(format!("fig{n}.max_abs_late"), max_abs(&s.t, &hi, f.t_end / 2.0, f.t_end))
         .t(format!(" {u}"));
-    cap = match reach {
-        Some(ts) => cap
-            .t(format!("; at full rate |g̃{ch}| stays ≤ {thr} {u} (the threshold used throughout) from within the output interval ending at t_reach = "))
-            .n(format!("fig{n}.settle_time"), ts)
-            .t(format!(" s (resolved to the {} s of an output interval)", tick(f.every))),
-        None => cap.t(format!("; at full rate |g̃{ch}| still exceeds {thr} {u} (the threshold used throughout) in the last output interval")),
+    cap = match r.out.gtilde_band_entry[usize::from(ch - 1)] {
+        Some(tb) => cap
+            .t(format!("; at full rate (every integrator step, both sides of every sample's jump) |g̃{ch}| stays ≤ {thr} {u} (the threshold used throughout) from t_band = "))
+            .n(format!("fig{n}.t_band"), tb)
+            .t(" s"),
+        None => cap.t(format!("; at full rate |g̃{ch}| still exceeds {thr} {u} (the threshold used throughout) at the end of the run")),
     };
-    if let Some(tf) = r.bounds[usize::from(ch - 1)] {
+    let m = &r.marks[usize::from(ch - 1)];
+    if let Some(q) = &m.reach {
+        cap = cap
+            .t(format!(". The finite-time-{ch} row's t_reach, when σ{ch} (and with it g̃{ch}) reaches 0 in the continuous-time (Filippov) limit, is "))
+            .q(format!("fig{n}.t_reach"), q);
+    }
+    if let Some(q) = &m.bound {
         cap = cap
             .t(format!("; the bound t_f{ch} of ({}) is ", if ch == 1 { 38 } else { 39 }))
-            .n(format!("fig{n}.bound"), tf)
-            .t(" s");
+            .q(format!("fig{n}.bound"), q);
     }
     cap = cap.t(format!(
         ". The time axis is logarithmic from the first output sample ({} s), so the convergence and the late level both show; same axes as Figure {twin}.",
@@ -344,8 +430,13 @@ pub fn paired(a: &RunView, b: &RunView, f: &Frame) -> (Vec<Figure>, Vec<Figure>)
         fa.push(tau_figure(a, ch, f, ca, twin(b, k)));
         fb.push(tau_figure(b, ch, f, cb, twin(a, k)));
     }
-    fa.push(tau_zoom(a, f));
-    fb.push(tau_zoom(b, f));
+    for ch in [1u8, 2] {
+        let (mut ca, mut cb) = (tau_zoom_chart(a, ch, f), tau_zoom_chart(b, ch, f));
+        share_y(&mut ca, &mut cb, false);
+        let k = u32::from(ch - 1);
+        fa.push(tau_zoom_figure(a, ch, f, ca, twin(b, k)));
+        fb.push(tau_zoom_figure(b, ch, f, cb, twin(a, k)));
+    }
     for is_q in [true, false] {
         let (mut ca, mut cb) = (tip_chart(a, is_q, f), tip_chart(b, is_q, f));
         share_y(&mut ca, &mut cb, false);
@@ -355,11 +446,11 @@ pub fn paired(a: &RunView, b: &RunView, f: &Frame) -> (Vec<Figure>, Vec<Figure>)
         fb.push(tip_figure(b, is_q, f, cb, twin(a, k), small));
     }
     for ch in [1u8, 2] {
-        let ((mut ca, ra), (mut cb, rb)) = (gerr_chart(a, ch), gerr_chart(b, ch));
+        let (mut ca, mut cb) = (gerr_chart(a, ch), gerr_chart(b, ch));
         share_y(&mut ca, &mut cb, true);
         let k = 3 + u32::from(ch);
-        fa.push(gerr_figure(a, ch, f, ca, ra, twin(b, k)));
-        fb.push(gerr_figure(b, ch, f, cb, rb, twin(a, k)));
+        fa.push(gerr_figure(a, ch, f, ca, twin(b, k)));
+        fb.push(gerr_figure(b, ch, f, cb, twin(a, k)));
     }
     (fa, fb)
 }

@@ -238,14 +238,15 @@ pub fn field_figures(cfg: &Config, runs: &Runs) -> FieldFigures {
 const PROPOSED: &str = "with the proposed control (FTDO)";
 const DOBC: &str = "with DOBC";
 
-/// The time-series figures of Figures 7–12 and 15–20 (FTDO/DOBC pairs on common axes); `bounds`
-/// are the bounds t_f1, t_f2 of (38)/(39) (the ledger's), marked on the FTDO's |g̃|.
-pub fn series_figures(cfg: &Config, runs: &Runs, bounds: [Option<f64>; 2]) -> (Vec<Figure>, Vec<Figure>) {
+/// The time-series figures of Figures 7–12 and 15–20 (FTDO/DOBC pairs on common axes); `marks`
+/// are the ledger's bounds t_f1, t_f2 of (38)/(39) and its reaching times t_reach, marked on the
+/// FTDO's |g̃|.
+pub fn series_figures(cfg: &Config, runs: &Runs, marks: [FiniteTimeMarks; 2]) -> (Vec<Figure>, Vec<Figure>) {
     let frame = Frame { t_end: cfg.horizon.t_end, every: cfg.horizon.sample_every, none: &runs.none };
-    let view = |tag, desc, first, out, err, bounds| RunView { tag, desc, first, out, err, bounds };
+    let view = |tag, desc, first, out, err, marks| RunView { tag, desc, first, out, err, marks };
     paired(
-        &view("ftdo", PROPOSED, 7, &runs.ftdo, &runs.errors[1], bounds),
-        &view("dobc", DOBC, 15, &runs.dobc, &runs.errors[2], [None, None]),
+        &view("ftdo", PROPOSED, 7, &runs.ftdo, &runs.errors[1], marks),
+        &view("dobc", DOBC, 15, &runs.dobc, &runs.errors[2], Default::default()),
         &frame,
     )
 }
@@ -324,17 +325,31 @@ pub fn comparison_figures(cfg: &Config, runs: &Runs) -> Vec<Figure> {
     figs
 }
 
-/// The bounds t_f1, t_f2 of (38)/(39) as the ledger's finite-time rows state them (None where a
-/// row computed nothing).
-pub fn ftdo_bounds(ledger: &wingcheck_claims::Ledger) -> [Option<f64>; 2] {
-    let mut b = [None, None];
+/// What a finite-time row states about one observer channel, for its |g̃| figure: the bound
+/// t_f of (38)/(39) and the reaching time t_reach, as the ledger prints them (one symbol, one
+/// value: the figure shows the ledger's numbers).
+#[derive(Debug, Clone, Default)]
+pub struct FiniteTimeMarks {
+    /// The bound t_f1 or t_f2.
+    pub bound: Option<wingcheck_model::Quantity>,
+    /// The Filippov reaching time t_reach with its error.
+    pub reach: Option<wingcheck_model::Quantity>,
+}
+
+/// The bounds t_f1, t_f2 of (38)/(39) and the reaching times t_reach as the ledger's
+/// finite-time rows state them (None where a row computed nothing).
+pub fn ftdo_marks(ledger: &wingcheck_claims::Ledger) -> [FiniteTimeMarks; 2] {
+    let mut m: [FiniteTimeMarks; 2] = Default::default();
     for r in &ledger.rows {
         if let wingcheck_claims::Evidence::FiniteTime(e) = &r.evidence {
             let i = usize::from(r.id == wingcheck_claims::ClaimId::FiniteTime2);
-            b[i] = Some(e.bound_s.value).filter(|v| v.is_finite());
+            m[i] = FiniteTimeMarks {
+                bound: Some(e.bound_s.clone()).filter(|q| q.value.is_finite()),
+                reach: e.measured_s.quantity().cloned(),
+            };
         }
     }
-    b
+    m
 }
 
 /// The fundamental (lowest natural) angular frequency ω1 (rad/s) of the configured wing: the

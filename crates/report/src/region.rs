@@ -4,7 +4,8 @@
 //! crate's own code ([`wingcheck_search::Search::evaluate`]: the closed loop of the configured
 //! controller in the modal basis, the tight λ2 of W/κ and the best λ3 of (29)–(32) per point).
 //! Drawn as the chart crate's grid heatmap ([`GridHeatmap`], the search's own heatmap): the RMS
-//! tip deflection over the search's metric window (colour, log scale), the cells where the
+//! tip deflection over the search's metric window (colour; log scale when the values span a
+//! decade, linear below, [`LOG_SCALE_RATIO`]), the cells where the
 //! search finds W ≻ 0 and (32) feasible (markers), the closed-form boundaries a/b = ω1 (W ≻ 0
 //! below it; drawn at both bounds of the certified enclosure ω̲1 ≤ ω1 ≤ ω̄1 when there is one)
 //! and a/b = r* ((32) feasible below it) as lines, the region where both hold hatched, and the
@@ -25,6 +26,7 @@ use wingcheck_search::{modal::RunCache, PointResult, Search, SearchOptions, Stat
 
 use crate::chart::{tick, GridAxis, GridHeatmap, Mark, MarkShape, RGBColor};
 use crate::figure::{Caption, Chart, Figure};
+use crate::stats::fmt_num;
 use crate::{Progress, ReportError};
 
 /// Grid spacing in decades.
@@ -35,6 +37,10 @@ pub const B_DECADES: f64 = 1.5;
 const MAX_A: usize = 14;
 /// The performance metric shown.
 pub const METRIC: wingcheck_search::Metric = wingcheck_search::Metric::RmsQTip;
+
+/// The region map's colour scale is logarithmic when its values span at least this factor
+/// (a decade), linear below.
+pub const LOG_SCALE_RATIO: f64 = 10.0;
 
 /// The map's data.
 #[derive(Debug, Clone)]
@@ -287,9 +293,19 @@ impl RegionMap {
     pub fn figure(&self) -> Figure {
         let s = self.stats();
         let (t0, t1) = self.window;
+        let (_, log, ratio) = self.colour_scale();
+        let scale = if log {
+            format!("log colour scale: the values span a factor of {}", fmt_num(ratio))
+        } else {
+            format!(
+                "linear colour scale: the values differ by only {} % (a log scale is used from a factor of {} up)",
+                fmt_num(100.0 * (ratio - 1.0)),
+                tick(LOG_SCALE_RATIO)
+            )
+        };
         let mut cap = Caption::default()
             .t(format!(
-                "RMS tip deflection |q(s,t)| over [{}, {}] s of the {} closed loop (colour, log scale) at each (a, b) of a {} × {} grid, computed by the search code; ",
+                "RMS tip deflection |q(s,t)| over [{}, {}] s of the {} closed loop (colour; {scale}) at each (a, b) of a {} × {} grid, computed by the search code; ",
                 tick(t0),
                 tick(t1),
                 self.controller,
@@ -300,17 +316,20 @@ impl RegionMap {
             .n("region.omega1", self.omega1)
             .t(match &self.omega1_certified {
                 EnclosureSummary::Certified { lower_exact, upper_exact, relative_width, .. } => format!(
-                    " 1/s, certified for the continuous model as {lower_exact} ≤ ω₁ ≤ {upper_exact} 1/s (exact certificate, relative width {relative_width:.1e}; white lines at both bounds, indistinguishable at this scale)"
+                    " 1/s, certified for the continuous model as {lower_exact} ≤ ω₁ ≤ {upper_exact} 1/s (exact certificate, relative width {}; white lines at both bounds, indistinguishable at this scale)",
+                    wingcheck_model::format::format_error(*relative_width)
                 ),
                 EnclosureSummary::NotCertified { reason } => format!(" 1/s (white line; no certified enclosure: {reason})"),
             })
             .t(", (32) feasible iff a/b < r* = ")
             .n("region.r_star", self.r_star)
-            .t(" 1/s (red dashed line); hatched: a/b < min(ω₁, r*), where both hold and Theorem 2 applies. The search's verdicts agree with the closed forms in ")
+            .t(" 1/s (red dashed line); hatched: a/b < min(ω₁, r*), where both hold and Theorem 2 applies. Of the ")
+            .count("region.cells", s.cells)
+            .t(" cells, the search's W ≻ 0 verdict agrees with the closed form in ")
             .count("region.w_agree", s.w_agree)
-            .t(" and ")
+            .t(" and its (32) verdict in ")
             .count("region.mu_agree", s.mu_agree)
-            .t(format!(" of {} cells. ", s.cells));
+            .t(". ");
         if let (Some(fi), Some(inf)) = (s.median_feasible, s.median_infeasible) {
             cap = cap
                 .t("Median RMS where both hypotheses hold: ")
@@ -353,6 +372,19 @@ impl RegionMap {
     /// The map as a chart-crate grid heatmap: the metric per cell (log colour scale), the
     /// search's verdicts per cell, the closed-form boundaries as lines across the plot, the
     /// region where both closed forms hold shaded, and the configured point.
+    /// The RMS values the map colours (runs that succeeded), and whether their colour scale is
+    /// logarithmic: when they span at least a factor of [`LOG_SCALE_RATIO`] (else linear, so a
+    /// small relative range is not spread over the whole scale as if it were decades).
+    fn colour_scale(&self) -> (Vec<Option<f64>>, bool, f64) {
+        let values: Vec<Option<f64>> =
+            self.points.iter().map(|p| p.metric(METRIC).filter(|v| v.is_finite() && p.status == Status::Ok)).collect();
+        let positive = values.iter().flatten().copied().filter(|v| *v > 0.0);
+        let (lo, hi) = positive.fold((f64::INFINITY, 0.0f64), |(l, h), v| (l.min(v), h.max(v)));
+        let ratio = if lo.is_finite() && lo > 0.0 { hi / lo } else { 1.0 };
+        (values, ratio >= LOG_SCALE_RATIO, ratio)
+    }
+
+    /// The map's cells, axes and marks as a chart.
     pub fn heatmap(&self) -> GridHeatmap {
         let axis = |label: &str, centres: &[f64]| GridAxis {
             label: label.into(),
@@ -360,15 +392,14 @@ impl RegionMap {
             log: true,
             words: None,
         };
-        let values =
-            self.points.iter().map(|p| p.metric(METRIC).filter(|v| v.is_finite() && p.status == Status::Ok)).collect();
+        let (values, log_values, _) = self.colour_scale();
         GridHeatmap {
             name: "region-map-ab".into(),
             title: String::new(),
             x: axis(&wingcheck_search::heatmap::axis_title("control.a", true), &self.a),
             y: axis(&wingcheck_search::heatmap::axis_title("control.b", true), &self.b),
             values,
-            log_values: true,
+            log_values,
             value_label: "RMS |q(s,t)| (m)".into(),
             missing_label: "run failed or diverged".into(),
             marks: self.marks(),

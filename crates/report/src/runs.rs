@@ -127,6 +127,7 @@ fn tip_errors(c: &Config, out: &SimOutput, study: &Study) -> Result<TipErrors, R
         peaks_after_layer: out.peaks_after_layer,
         initial_layer: None,
         envelope: Default::default(),
+        gtilde_band_entry: out.gtilde_band_entry,
         stats: out.stats.clone(),
     };
     let (space, time) = (space?, time?);

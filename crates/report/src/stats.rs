@@ -48,7 +48,7 @@ mod tests {
     fn numbers_and_windows() {
         assert_eq!(fmt_num(0.012345), "0.01235");
         assert_eq!(fmt_num(123.456), "123.5");
-        assert_eq!(fmt_num(1.5e-5), "1.500e-5");
+        assert_eq!(fmt_num(1.5e-5), "1.500×10⁻⁵");
         let t = [0.0, 1.0, 2.0, 3.0];
         let v = [5.0, -2.0, 0.5, 0.1];
         assert_eq!(max_abs(&t, &v, 1.0, 3.0), 2.0);

@@ -124,7 +124,7 @@ fn caption_of(s: &Sweep, omega1: f64, elements: usize, chart: &LineChart, rescal
         Some(x) => cap
             .t("it crosses zero at a/b = ")
             .n("w-ratio.crossing", x)
-            .t(format!(" 1/s (to 1e-12 relative; ω₁ of the {elements}-element space, an upper bound of ω₁), against the converged ω₁ = "))
+            .t(format!(" 1/s (to 10⁻¹² relative; ω₁ of the {elements}-element space, an upper bound of ω₁), against the converged ω₁ = "))
             .n("w-ratio.omega1", omega1)
             .t(" 1/s."),
         None => cap.t("it does not change sign on this sweep."),

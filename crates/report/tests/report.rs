@@ -80,11 +80,11 @@ fn report_is_well_formed_complete_and_matches_the_ledger() {
 
     // Every image is a non-empty, well-formed SVG; every figure links its CSV.
     let figures: Vec<_> = doc.descendants().filter(|n| n.has_tag_name("figure")).collect();
-    // 18 paper figures (3–20) + a 3-D view of each of the 6 field figures (3–6, 13–14) + the τ zoom
-    // of each controlled run + 2 DOBC − FTDO difference maps + 1 accuracy figure + the region map
-    // + the W-bounds row's λ2/λ1 against a/b + the ledger's own plots.
+    // 18 paper figures (3–20) + a 3-D view of each of the 6 field figures (3–6, 13–14) + the
+    // zooms of τ1 and τ2 of each controlled run + 2 DOBC − FTDO difference maps + 1 accuracy
+    // figure + the region map + the W-bounds row's λ2/λ1 against a/b + the ledger's own plots.
     let ledger_plots: usize = summary.ledger.rows.iter().map(|r| r.plots.len()).sum();
-    assert_eq!(figures.len(), 18 + 6 + 2 + 2 + 1 + 1 + 1 + ledger_plots);
+    assert_eq!(figures.len(), 18 + 6 + 4 + 2 + 1 + 1 + 1 + ledger_plots);
     let ledger_json: serde_json::Value = serde_json::from_str(&read(&out.join("ledger.json"))).unwrap();
     // The FTDO and DOBC q and θ fields have a 3-D view, with its axes labelled with units.
     for f in ["fig05-q-ftdo", "fig06-theta-ftdo", "fig13-q-dobc", "fig14-theta-dobc"] {
@@ -111,14 +111,16 @@ fn report_is_well_formed_complete_and_matches_the_ledger() {
             .unwrap_or_else(|| panic!("figure {src} links no data"));
         let href = link.attribute("href").unwrap();
         if href == "ledger.json" {
-            // a ledger row's plot: the link names rows[i].plots[j], which holds its lines
+            // a ledger row's plot: the link's data-path names rows[i].plots[j], which holds its
+            // lines; its text is for people (no "rows[")
             let t = text(link);
-            let (i, j) = t
-                .split("rows[")
-                .nth(1)
+            assert!(!t.contains("rows["), "{src}: data link text {t}");
+            let path = link.attribute("data-path").unwrap_or_else(|| panic!("{src}: no data-path on {t}"));
+            let (i, j) = path
+                .strip_prefix("rows[")
                 .and_then(|r| r.split_once("].plots["))
                 .and_then(|(i, r)| Some((i.parse::<usize>().ok()?, r.trim_end_matches(']').parse::<usize>().ok()?)))
-                .unwrap_or_else(|| panic!("{src}: data link {t}"));
+                .unwrap_or_else(|| panic!("{src}: data path {path}"));
             assert!(
                 ledger_json["rows"][i]["plots"][j]["lines"].as_array().is_some_and(|l| !l.is_empty()),
                 "{src}: {t}"
@@ -358,12 +360,21 @@ fn ledger_digest_charts_sizes_links_and_provenance() {
         }
         assert!(!r.finding.is_empty());
     }
-    // Every row has a one-sentence finding and at least two decisive numbers.
+    // Every ledger line states what decides its verdict; every row's section has a finding of
+    // whole sentences and at least two decisive numbers.
     for tr in table.descendants().filter(|n| n.has_tag_name("tr") && n.attribute("id").is_some()) {
-        let finding = tr.children().find(|c| has_class(c, "finding")).map(text).unwrap_or_default();
-        assert!(finding.trim().ends_with('.'), "finding is a sentence: {finding}");
-        let numbers = tr.descendants().filter(|n| n.has_tag_name("li")).count();
-        assert!(numbers >= 2, "{:?}: {numbers} decisive numbers", tr.attribute("id"));
+        let deciding = tr.children().find(|c| has_class(c, "deciding")).map(text).unwrap_or_default();
+        assert!(!deciding.trim().is_empty(), "{:?}: nothing decides", tr.attribute("id"));
+        let section_id = tr.attribute("id").unwrap().trim_start_matches("ledger-");
+        let section = doc.descendants().find(|n| n.attribute("id") == Some(section_id)).unwrap();
+        let finding = section.descendants().find(|p| p.has_tag_name("p") && text(*p).starts_with("Finding:")).map(text);
+        assert!(finding.is_some_and(|f| f.trim().ends_with('.')), "{section_id}: finding is a sentence");
+        let numbers = section
+            .descendants()
+            .filter(|n| n.has_tag_name("ul") && has_class(n, "decisive"))
+            .flat_map(|ul| ul.children().filter(|li| li.has_tag_name("li")))
+            .count();
+        assert!(numbers >= 2, "{section_id}: {numbers} decisive numbers");
     }
 
     // Every chart — the report's own (paper figures, difference maps, accuracy, region map) and

@@ -9,15 +9,15 @@ use wingcheck_model::quantity::Unit;
 /// One metric column of a search point, in output order ([`Metric::ALL`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Metric {
-    /// λ2: min W/κ on the Galerkin space (N = 8), in W units.
+    /// λ2: min W/κ on the Galerkin space (N = 8), in J s per SI unit of κ (25).
     Lambda2,
-    /// λ1: max W/κ on the Galerkin space (N = 8), in W units.
+    /// λ1: max W/κ on the Galerkin space (N = 8), in J s per SI unit of κ (25).
     Lambda1,
-    /// max over the η's of min μ3..μ6 ((32) feasible iff > 0), in W units.
+    /// max over the η's of min μ3..μ6 ((32) feasible iff > 0), in J per SI unit of κ (25).
     Lambda3Max,
     /// Decay rate λ = λ3/λ1 (1/s) at the η's minimising ε/λ.
     Lambda,
-    /// ε of (32) at the η's minimising ε/λ, in W units.
+    /// ε of (32) at the η's minimising ε/λ, in J.
     Epsilon,
     /// Theorem 2's ultimate bound √(s³/λ2 · ε/λ) on |q| (m).
     UubBoundQ,
@@ -120,7 +120,8 @@ impl Metric {
     /// The metric's unit.
     pub const fn unit(self) -> Unit {
         match self {
-            Metric::Lambda2 | Metric::Lambda1 | Metric::Lambda3Max | Metric::Epsilon => Unit::LyapunovUnits,
+            Metric::Lambda2 | Metric::Lambda1 => Unit::JouleSecond,
+            Metric::Lambda3Max | Metric::Epsilon => Unit::Joule,
             Metric::Lambda => Unit::PerSecond,
             Metric::UubBoundQ | Metric::RmsQTip | Metric::MaxQTip => Unit::Metre,
             Metric::GHmax => Unit::NewtonPerMetre,

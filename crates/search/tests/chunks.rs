@@ -91,7 +91,7 @@ fn edited_chunks_off_grid_values_and_non_finite_metrics_are_refused() {
         (false, |l| l["status"] = "diverged".into(), "do not hash"),
         (true, |l| l["values"][0] = "3.5".into(), "the grid has"),
         (true, |l| l["metrics"][9] = "NaN".into(), "metric rms_q_tip_m = \"NaN\" is not a finite number"),
-        (true, |l| l["metrics"][0] = "inf".into(), "metric lambda2_Wu = \"inf\" is not a finite number"),
+        (true, |l| l["metrics"][0] = "inf".into(), "metric lambda2_J_s = \"inf\" is not a finite number"),
         (true, |l| l["message"] = "".into(), "status"),
     ];
     for (rehash, edit, mention) in cases {

@@ -61,9 +61,9 @@ fn the_32_by_32_paper_grid_has_no_failed_point() {
         assert!(p["w_positive_definite"].is_boolean() && p["feasible_32"].is_boolean(), "{p}");
         assert!(p["w_decided"] == true && p["feasible_32_decided"] == true, "both verdicts decided: {p}");
         for m in [
-            "lambda2_Wu",
-            "lambda1_Wu",
-            "lambda3_max_Wu",
+            "lambda2_J_s",
+            "lambda1_J_s",
+            "lambda3_max_J",
             "rms_q_tip_m",
             "rms_theta_tip_rad",
             "tau1_peak_N",

@@ -119,7 +119,7 @@ fn result_files_have_the_documented_shape() {
     assert!(
         head.starts_with(
             "index,control__a,control__b,status,w_decided,w_positive_definite,feasible_32_decided,feasible_32,\
-             theorem_feasible,settled,missing_metrics,lambda2_Wu,"
+             theorem_feasible,settled,missing_metrics,lambda2_J_s,"
         ),
         "{head}"
     );

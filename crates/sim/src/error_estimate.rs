@@ -45,10 +45,11 @@ pub struct PeakEstimate {
 }
 
 impl PeakEstimate {
-    /// Whether the bar is at least the value: the peak is unresolved (printed as a range, never
-    /// as "value ± bar").
+    /// Whether the bar is at least half the value: the peak is unresolved (printed as a range,
+    /// never as "value ± bar"), by the one rule of the number format
+    /// ([`wingcheck_model::format::is_unresolved`]).
     pub fn unresolved(&self) -> bool {
-        self.abs_max.error >= self.abs_max.value || self.abs_max.error.is_nan()
+        wingcheck_model::format::is_unresolved(self.abs_max.value, self.abs_max.error) || self.abs_max.error.is_nan()
     }
 
     /// The one printed form of a peak with its error, in `unit`: `2.2780e-3 ± 1.2e-4 rad/s`;

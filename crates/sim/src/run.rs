@@ -371,6 +371,12 @@ pub struct SimOutput {
     pub initial_layer: Option<crate::layer::InitialLayer>,
     /// Full-rate (min, max) of τ and g̃ per output interval (one entry per output sample).
     pub envelope: Envelope,
+    /// From when |g̃1|, |g̃2| stay ≤ [`crate::metrics::GTILDE_THRESHOLD`] (s), measured at full
+    /// rate (every integrator step's end and both sides of every sample's jump) in the run at
+    /// the configured step: the first instant after the last one above; None if the last
+    /// instant is above. Not serialised (`t_band` of the report's notation).
+    #[serde(skip)]
+    pub gtilde_band_entry: [Option<f64>; 2],
     /// Cost statistics (wall times vary; everything else is deterministic).
     pub stats: RunStats,
 }
@@ -526,6 +532,7 @@ where
         peaks_after_layer: *stepper.peaks_after_layer(),
         initial_layer: None,
         envelope,
+        gtilde_band_entry: stepper.band_entry(),
         stats: RunStats {
             unknowns,
             factor_nnz,

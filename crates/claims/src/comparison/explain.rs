@@ -61,20 +61,20 @@ impl RunRecord {
             run: Text::text("run", run),
             rms_q_full: sim("RMS q(s,t) over [0, t_end]", m.rms_q_full, Unit::Metre),
             rms_q_late: sim("RMS q(s,t) over [t_end/2, t_end]", m.rms_q_late, Unit::Metre),
-            peak_q: sim("peak |q(s,t)|", m.peak_q, Unit::Metre),
+            peak_q: sim("peak |q(s,t)| over [0, t_end]", m.peak_q, Unit::Metre),
             rms_theta_full: sim("RMS θ(s,t) over [0, t_end]", m.rms_theta_full, Unit::Radian),
             rms_theta_late: sim("RMS θ(s,t) over [t_end/2, t_end]", m.rms_theta_late, Unit::Radian),
-            peak_theta: sim("peak |θ(s,t)|", m.peak_theta, Unit::Radian),
+            peak_theta: sim("peak |θ(s,t)| over [0, t_end]", m.peak_theta, Unit::Radian),
             settle_q: settle(format!("q(s,t) settles to {pct} % of q(s,0)"), m.settle_q),
             settle_theta: settle(format!("θ(s,t) settles to {pct} % of θ(s,0)"), m.settle_theta),
-            rms_tau1: sim("RMS τ1", m.rms_tau1, Unit::Newton),
-            peak_tau1: sim("peak |τ1|", m.peak_tau1, Unit::Newton),
-            rms_tau2: sim("RMS τ2", m.rms_tau2, Unit::NewtonMetre),
-            peak_tau2: sim("peak |τ2|", m.peak_tau2, Unit::NewtonMetre),
+            rms_tau1: sim("RMS τ1 over [0, t_end] (full rate)", m.rms_tau1, Unit::Newton),
+            peak_tau1: sim("peak |τ1| over [0, t_end] (full rate)", m.peak_tau1, Unit::Newton),
+            rms_tau2: sim("RMS τ2 over [0, t_end] (full rate)", m.rms_tau2, Unit::NewtonMetre),
+            peak_tau2: sim("peak |τ2| over [0, t_end] (full rate)", m.peak_tau2, Unit::NewtonMetre),
             rms_gtilde1_late: sim("RMS g̃1 over [t_end/2, t_end]", m.rms_gtilde_late[0], Unit::Newton),
             rms_gtilde2_late: sim("RMS g̃2 over [t_end/2, t_end]", m.rms_gtilde_late[1], Unit::NewtonMetre),
-            gtilde1_settle: settle(format!("|g̃1| stays ≤ {thr} N from"), m.gtilde_settle[0]),
-            gtilde2_settle: settle(format!("|g̃2| stays ≤ {thr} N m from"), m.gtilde_settle[1]),
+            gtilde1_settle: settle(format!("t_band: |g̃1| stays ≤ {thr} N from (full rate)"), m.gtilde_settle[0]),
+            gtilde2_settle: settle(format!("t_band: |g̃2| stays ≤ {thr} N m from (full rate)"), m.gtilde_settle[1]),
         }
     }
 }
@@ -123,7 +123,9 @@ impl TipDifferences {
 }
 
 fn gratio(v: Option<f64>) -> Option<Quantity> {
-    v.map(|r| Quantity::based("late RMS g̃, DOBC / FTDO", r, Unit::Dimensionless, ValueBasis::Simulation))
+    v.map(|r| {
+        Quantity::based("RMS g̃ over [t_end/2, t_end], DOBC / FTDO", r, Unit::Dimensionless, ValueBasis::Simulation)
+    })
 }
 
 /// The evidence of the `ftdo-vs-dobc` row.
@@ -189,7 +191,8 @@ fn start_sensitivity_text(c: &Computed) -> String {
             let (name, unit) = if ch == 0 { ("τ1", Unit::Newton) } else { ("τ2", Unit::NewtonMetre) };
             let [a, b] = c.explicit_rms_starts[ch];
             let apart = 100.0 * (a - b).abs() / a.abs().min(b.abs());
-            let [up, down] = [a, b].map(|x| format_value(x, None));
+            // to the digits of their difference, so two values that differ read differently
+            let [up, down] = [a, b].map(|x| format_value(x, Some((a - b).abs())));
             format!(
                 "RMS {name} is {up} {u} from ν(0) + δ and {down} {u} from ν(0) − δ ({} % apart)",
                 format_value(apart, None),
@@ -197,7 +200,7 @@ fn start_sensitivity_text(c: &Computed) -> String {
             )
         })
         .collect();
-    let nudge = wingcheck_model::format_number(super::START_NUDGE);
+    let nudge = wingcheck_model::format::exact(super::START_NUDGE);
     if sensitive.is_empty() {
         format!("not start-sensitive: starts ν(0) ± δ (δ = {nudge} relative) move RMS τ1 and τ2 by less than their other error sources together")
     } else {
@@ -221,7 +224,7 @@ fn error_runs_text(c: &Computed) -> String {
     } else {
         format!("{} scheme", c.explicit_stepper.name())
     };
-    format!("statistics runs (no layer re-run, no sub-step probe), {form}")
+    format!("runs that record the RMS only (the start not re-run at a finer step, no search for peaks inside a step), {form}")
 }
 
 fn evidence_of(c: &Computed, settings: &CheckSettings) -> ComparisonEvidence {
@@ -240,7 +243,7 @@ fn evidence_of(c: &Computed, settings: &CheckSettings) -> ComparisonEvidence {
         let (v, e) = c.explicit_rms_tau[ch];
         let (name, unit) = if ch == 0 { ("τ1", Unit::Newton) } else { ("τ2", Unit::NewtonMetre) };
         Quantity::with_error(
-            format!("full-rate RMS {name}, FTDO explicit rule"),
+            format!("full-rate RMS {name} over [0, t_end], FTDO explicit rule"),
             v,
             e,
             unit,
@@ -260,7 +263,7 @@ fn evidence_of(c: &Computed, settings: &CheckSettings) -> ComparisonEvidence {
         rel: TipDifferences::of(&c.here()),
         gtilde_ratio_late: gratio(ratio),
         gtilde_ratio_late_other_rule: gratio(super::gtilde_ratio(&c.ftdo_other, &c.dobc))
-            .map(|q| q.relabel(format!("late RMS g̃, DOBC / FTDO with the {other} rule"))),
+            .map(|q| q.relabel(format!("RMS g̃ over [t_end/2, t_end], DOBC / FTDO with the {other} rule"))),
         explicit_rms_tau1: tau(0),
         explicit_rms_tau2: tau(1),
         explicit_start_sensitivity: Text::text(
@@ -339,13 +342,16 @@ impl Explain for ComparisonEvidence {
         let rule = &self.rule.value;
         let g = match &self.gtilde_ratio_late {
             Some(r) if r.value >= 1.0 => {
-                format!("Late on, FTDO's ({rule} rule) disturbance error is {} × smaller than DOBC's.", r.value_text())
+                format!(
+                    "Over [t_end/2, t_end], FTDO's ({rule} rule) disturbance error (RMS) is {} × smaller than DOBC's.",
+                    r.value_text()
+                )
             }
             Some(r) => format!(
-                "Late on, DOBC's disturbance error is {} × smaller than FTDO's ({rule} rule).",
+                "Over [t_end/2, t_end], DOBC's disturbance error (RMS) is {} × smaller than FTDO's ({rule} rule).",
                 wingcheck_model::quantity::format_value(1.0 / r.value, None)
             ),
-            None => format!("Late on, FTDO's ({rule} rule) disturbance error vanishes."),
+            None => format!("Over [t_end/2, t_end], FTDO's ({rule} rule) disturbance error vanishes."),
         };
         let [fq, ft, lq, lt] = self.ranges;
         let lo = fq.0.min(ft.0).min(lq.0).min(lt.0);
@@ -360,9 +366,22 @@ impl Explain for ComparisonEvidence {
             }
         );
         let (f, d) = (self.run(0), self.run(1));
-        let cost =
-            format!("FTDO's peak |τ2| is {} against DOBC's {}.", f.peak_tau2.value_text(), d.peak_tau2.value_text());
+        let cost = format!(
+            "FTDO's peak |τ2| over [0, t_end] is {} against DOBC's {}.",
+            f.peak_tau2.value_text(),
+            d.peak_tau2.value_text()
+        );
         vec![g, tip, cost]
+    }
+
+    fn deciding(&self) -> String {
+        let [fq, ft, lq, lt] = self.ranges;
+        let (lo, hi) = (fq.0.min(ft.0).min(lq.0).min(lt.0), fq.1.max(ft.1).max(lq.1).max(lt.1));
+        let g = match &self.gtilde_ratio_late {
+            Some(r) => format!("RMS g̃ on [t_end/2, t_end]: DOBC/FTDO = {}", r.value_text()),
+            None => "FTDO's g̃ on [t_end/2, t_end] vanishes".into(),
+        };
+        format!("{g}; tip RMS DOBC − FTDO: {}", fmt_pct_range((lo, hi)))
     }
 
     fn decisive(&self) -> Vec<Quantity> {
@@ -432,7 +451,8 @@ fn plots(rule: ObserverRule, f: &SimOutput, d: &SimOutput) -> Vec<PlotData> {
         lines: vec![line(ftdo.clone(), &fs.t, yf), line("DOBC".into(), &ds.t, yd)],
     };
     let gt = |s: &wingcheck_sim::Series, c| wingcheck_sim::metrics::observer_error(s, c);
-    vec![
+    // drawing data: at most MAX_DRAWN_SAMPLES per line, whatever the horizon
+    [
         mk("q-tip", "tip bending q(s,t)", Unit::Metre, fs.q_tip.clone(), ds.q_tip.clone()),
         mk("theta-tip", "tip twist θ(s,t)", Unit::Radian, fs.theta_tip.clone(), ds.theta_tip.clone()),
         mk("gtilde1", "g̃1 = g1 − ĝ1", Unit::Newton, gt(fs, 0), gt(ds, 0)),
@@ -440,6 +460,9 @@ fn plots(rule: ObserverRule, f: &SimOutput, d: &SimOutput) -> Vec<PlotData> {
         mk("tau1", "τ1", Unit::Newton, fs.tau1.clone(), ds.tau1.clone()),
         mk("tau2", "τ2", Unit::NewtonMetre, fs.tau2.clone(), ds.tau2.clone()),
     ]
+    .into_iter()
+    .map(PlotData::thinned)
+    .collect()
 }
 
 /// Compare FTDO and DOBC (Section 4, Figs 3–20).

@@ -24,11 +24,12 @@ pub struct DigitalRecord {
     pub rule: Text,
     /// The hold period T_s.
     pub period: Quantity,
-    /// The reaching time (implicit: entry into |σ_k| ≤ T_s κ2 (κ5) for good; explicit: first crossing).
+    /// When σ_k reaches its band (implicit: entry into |σ_k| ≤ T_s κ2 (κ5) for good; explicit:
+    /// first crossing of 0) — not t_reach, the Filippov time.
     pub reach: Maybe,
     /// max |σ_k| after reaching.
     pub sigma_after_max: Maybe,
-    /// max |g(t_k) − ĝ_k| over the chatter window.
+    /// max |g(t_k) − ĝ_k| over the chatter window (named in the label).
     pub gtilde_max: Quantity,
     /// max |ĝ_{k+1} − ĝ_k| over the chatter window.
     pub ghat_jump_max: Quantity,
@@ -61,6 +62,9 @@ pub struct FiniteTimeEvidence {
     pub gdot_sup: Quantity,
     /// Horizon of the digital runs.
     pub run_t_end_s: Quantity,
+    /// Length of the chatter window at the end of each digital run, over which the runs' max
+    /// |g̃|, |Δĝ|, |Δτ| are taken.
+    pub chatter_window_s: Quantity,
     /// Filippov time / bound for g ≡ κ2 sign σ0 (κ5) (1: the bound is sharp).
     pub sharp_ratio: Maybe,
     /// Worst Filippov time / bound over the σ(0) sweep.
@@ -81,10 +85,11 @@ pub struct FiniteTimeEvidence {
 
 /// The digital runs of the channel as records, whether the implicit rule stays in its band at
 /// every hold period, and the largest delay of its reaching time behind the Filippov time.
-fn digital_records(c: &Computed) -> (Vec<DigitalRecord>, bool, f64) {
+fn digital_records(c: &Computed, window_s: f64) -> (Vec<DigitalRecord>, bool, f64) {
     let ix = channel_index(c.channel);
     let n = ix + 1;
     let u = channel_unit(c.channel);
+    let window = chatter_window(c.run_t_end, window_s);
     let not_reached = |label: &str| Text::text(label, crate::NOT_REACHED);
     let sim = |label: String, v: f64| Quantity::based(label, v, u, ValueBasis::Simulation);
     let mut stays_band = true;
@@ -96,16 +101,16 @@ fn digital_records(c: &Computed) -> (Vec<DigitalRecord>, bool, f64) {
             rule: Text::text("sampling rule", r.rule.name()),
             period: Quantity::exact("hold period T_s", r.period, Unit::Second),
             reach: Maybe::of(
-                ch.reach_s.map(|t| Quantity::based("t_reach (digital)", t, Unit::Second, ValueBasis::Simulation)),
-                || not_reached("t_reach (digital)"),
+                ch.reach_s.map(|t| Quantity::based(DIGITAL_REACH, t, Unit::Second, ValueBasis::Simulation)),
+                || not_reached(DIGITAL_REACH),
             ),
             sigma_after_max: Maybe::of(
                 ch.reach_s.map(|_| sim("max |σ_k| after reaching".into(), ch.sigma_after_max)),
                 || not_reached("max |σ_k| after reaching"),
             ),
-            gtilde_max: sim(format!("max |g̃{n}| in the chatter window"), ch.gtilde_max),
-            ghat_jump_max: sim(format!("max |Δĝ{n}| per sample"), ch.ghat_jump_max),
-            tau_jump_max: sim(format!("max |Δτ{n}| per sample"), ch.tau_jump_max),
+            gtilde_max: sim(format!("max |g̃{n}| over {window}"), ch.gtilde_max),
+            ghat_jump_max: sim(format!("max |Δĝ{n}| per sample over {window}"), ch.ghat_jump_max),
+            tau_jump_max: sim(format!("max |Δτ{n}| per sample over {window}"), ch.tau_jump_max),
         });
         if r.rule == ObserverRule::Implicit {
             stays_band &= ch.reach_s.is_some() && ch.sigma_after_max <= r.period * c.zeta * (1.0 + 1e-9) + 1e-15;
@@ -115,13 +120,22 @@ fn digital_records(c: &Computed) -> (Vec<DigitalRecord>, bool, f64) {
     (digital, stays_band, excess)
 }
 
+/// What the digital runs' band entry is called (not t_reach: that is the Filippov time).
+const DIGITAL_REACH: &str = "σ_k reaches its band (digital)";
+
+/// The chatter window [t_end − window, t_end] of the digital runs, in words.
+pub(super) fn chatter_window(run_t_end: f64, window_s: f64) -> String {
+    let v = wingcheck_model::format::exact;
+    format!("t ∈ [{}, {}] s", v(((run_t_end - window_s) * 1e9).round() / 1e9), v(run_t_end))
+}
+
 fn evidence_of(c: &Computed, settings: &CheckSettings) -> FiniteTimeEvidence {
     let ix = channel_index(c.channel);
     let n = ix + 1;
     let u = channel_unit(c.channel);
     let rate = if ix == 0 { Unit::NewtonPerSecond } else { Unit::NewtonMetrePerSecond };
     let s = |label: String, v: f64| Quantity::based(label, v, Unit::Second, ValueBasis::ClosedForm);
-    let (digital, stays_band, excess) = digital_records(c);
+    let (digital, stays_band, excess) = digital_records(c, settings.chatter_window_s);
     let sweep_max = c.sweep.iter().try_fold(0.0f64, |m, (_, r)| r.map(|r| m.max(r)));
     let ratio = |label: &str, v: Option<f64>| {
         Maybe::of(v.map(|r| Quantity::based(label, r, Unit::Dimensionless, ValueBasis::Derived)), || {
@@ -155,15 +169,20 @@ fn evidence_of(c: &Computed, settings: &CheckSettings) -> FiniteTimeEvidence {
         ),
         gdot_sup: Quantity::based(format!("sup |ġ{n}|"), (c.g.amp * c.g.freq).abs(), rate, ValueBasis::ClosedForm),
         run_t_end_s: Quantity::exact("horizon of the digital runs", c.run_t_end, Unit::Second),
+        chatter_window_s: Quantity::exact(
+            "chatter window (the end of each digital run)",
+            settings.chatter_window_s,
+            Unit::Second,
+        ),
         sharp_ratio: ratio(&format!("t_reach / t_f{n} for g{n} ≡ {} sign σ{n}(0)", kappa_sw(ix)), c.sharp_ratio),
-        sweep_max_ratio: ratio(&format!("worst t_reach / t_f{n} over σ{n}(0) ∈ ±[1e-3, 1e2]"), sweep_max),
+        sweep_max_ratio: ratio(&format!("worst t_reach / t_f{n} over σ{n}(0) ∈ ±[10⁻³, 10²]"), sweep_max),
         digital: Table::new("digital observer runs", digital),
         implicit_stays_in_band: Flag::new(
             "the implicit rule stays in |σ_k| ≤ T_s ζ after reaching, every T_s",
             stays_band,
         ),
         implicit_reach_excess_max_s: Quantity::based(
-            "max over T_s of implicit t_reach − Filippov t_reach",
+            "max over T_s of (implicit band entry − t_reach)",
             excess,
             Unit::Second,
             ValueBasis::Simulation,
@@ -235,9 +254,10 @@ impl Explain for FiniteTimeEvidence {
         f.push(format!("Over a sweep of σ{n}(0) the worst t_reach/t_f{n} is {sweep}."));
         if let (Some(i), Some(e)) = (self.run(ObserverRule::Implicit), self.run(ObserverRule::Explicit)) {
             f.push(format!(
-                "At T_s = {} the implicit observer {} (max |g̃{n}| = {}); the explicit one chatters (max |g̃{n}| = {}).",
+                "At T_s = {} the implicit observer {} (max |g̃{n}| over {} = {}); the explicit one chatters (max |g̃{n}| over the same window = {}).",
                 i.period.value_text(),
                 if self.implicit_stays_in_band.value { "reaches and stays" } else { "does not stay in its band" },
+                chatter_window(self.run_t_end_s.value, self.chatter_window_s.value),
                 i.gtilde_max.value_text(),
                 e.gtilde_max.value_text()
             ));
@@ -258,6 +278,28 @@ impl Explain for FiniteTimeEvidence {
             )));
         }
         out
+    }
+
+    fn deciding(&self) -> String {
+        let n = self.n();
+        let bound = self.bound_s.value_text();
+        if !self.hypothesis_holds.value {
+            return format!(
+                "{} = {} < ζ{n} = {}: the theorem does not apply",
+                kappa_sw(n - 1),
+                self.kappa_switching.value_text(),
+                self.zeta.value_text()
+            );
+        }
+        match self.measured_s.quantity() {
+            None => format!("σ{n} does not reach 0 within 60 s; t_f{n} = {bound}"),
+            Some(m) if !self.within_bound() => format!("t_reach = {} > t_f{n} = {bound}", m.value_text()),
+            Some(_) if !self.sweep_ok() => {
+                format!("worst t_reach/t_f{n} over σ{n}(0) = {} > 1", self.sweep_max_ratio.text())
+            }
+            Some(_) if self.sigma0.value == 0.0 => format!("σ{n}(0) = 0, so t_f{n} = {bound}: nothing is tested"),
+            Some(m) => format!("t_reach = {} ≤ t_f{n} = {bound}", m.value_text()),
+        }
     }
 
     fn details(&self) -> Vec<String> {
@@ -283,7 +325,7 @@ impl Explain for FiniteTimeEvidence {
             None => format!("For g{n} ≡ {} sign σ{n}(0) σ{n} does not reach 0 within 60 s.", kappa_sw(n - 1)),
         });
         d.push(format!(
-            "The implicit rule enters its band at most {} after the Filippov time; the theorem promises g̃{n} = σ̇{n} = 0 after t_f{n} in continuous time, which a digital observer gets only to O(T_s) and only with the implicit rule.",
+            "The implicit rule enters its band at most {} after t_reach; the theorem promises g̃{n} = σ̇{n} = 0 after t_f{n} in continuous time, which a digital observer gets only to O(T_s) and only with the implicit rule.",
             self.implicit_reach_excess_max_s.value_text()
         ));
         d.push(format!(
@@ -321,10 +363,10 @@ pub fn check_with(
         "exponents read as Q0^((a2−a1)/a2), 2^(a1/a2 − 1), σ^((2a1−a2)/a2) = sig^r(σ)".into(),
         "continuous-time claim checked in the Filippov sense (σ slides on 0; ĝ takes the equivalent value g)".into(),
         format!(
-            "digital runs: FTDO, hold periods T_s ∈ {:?} s, integrator step T_s/⌈T_s/dt⌉ with the configured dt, horizon {}, chatter window the last {} s",
-            settings.hold_periods,
+            "digital runs: FTDO, hold periods T_s ∈ {{{}}} s, integrator step T_s/⌈T_s/dt⌉ with the configured dt, horizon {}, chatter window the last {}",
+            settings.hold_periods.map(wingcheck_model::format::exact).join(", "),
             e.run_t_end_s.value_text(),
-            wingcheck_model::quantity::format_value(settings.chatter_window_s, None)
+            e.chatter_window_s.value_text()
         ),
         "σ(0) from the configured initial state and ν(0) (q'''(s,0), θ'(s,0) of the initial shape)".into(),
     ];

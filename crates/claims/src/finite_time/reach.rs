@@ -60,6 +60,9 @@ pub fn zeta(g: &TipDisturbance) -> f64 {
     }
 }
 
+/// [`Filippov::method`] when σ is integrated as the independent variable.
+pub const SIGMA_DOMAIN: &str = "in σ instead of t (an exact change of variable: σ is monotone)";
+
 /// Continuous-time (Filippov) limit of σ̇ = g(t) − φ(σ), σ(0) = σ0.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Filippov {
@@ -71,7 +74,8 @@ pub struct Filippov {
     pub t: Vec<f64>,
     /// Trajectory: σ (units of g).
     pub sigma: Vec<f64>,
-    /// `"sigma-domain"` (exact reparametrisation, used when σ is monotone) or `"time-domain"`.
+    /// How it was integrated, in words: in σ (an exact change of variable, used when σ is
+    /// monotone) or in time.
     pub method: &'static str,
 }
 
@@ -95,18 +99,12 @@ pub fn filippov_reach(
         return Err(num_err("filippov_reach", format!("bad input σ0 = {sigma0}, r = {}", gain.exponent)));
     }
     if sigma0 == 0.0 {
-        return Ok(Filippov {
-            reach_s: Some(0.0),
-            error_s: 0.0,
-            t: vec![0.0],
-            sigma: vec![0.0],
-            method: "sigma-domain",
-        });
+        return Ok(Filippov { reach_s: Some(0.0), error_s: 0.0, t: vec![0.0], sigma: vec![0.0], method: SIGMA_DOMAIN });
     }
     match sigma_domain(gain, g, sigma0, steps) {
         Some((t1, tr, sg)) => {
             let (t2, _, _) = sigma_domain(gain, g, sigma0, 2 * steps).unwrap_or((t1, vec![], vec![]));
-            Ok(Filippov { reach_s: Some(t2), error_s: (t2 - t1).abs(), t: tr, sigma: sg, method: "sigma-domain" })
+            Ok(Filippov { reach_s: Some(t2), error_s: (t2 - t1).abs(), t: tr, sigma: sg, method: SIGMA_DOMAIN })
         }
         None => Ok(time_domain(gain, g, sigma0, t_max)),
     }
@@ -180,7 +178,7 @@ fn time_domain(gain: &ObserverGain, g: &dyn Fn(f64) -> f64, sigma0: f64, t_max: 
             sg.push(s);
         }
     }
-    Filippov { reach_s: reach, error_s: h, t: tr, sigma: sg, method: "time-domain" }
+    Filippov { reach_s: reach, error_s: h, t: tr, sigma: sg, method: "in time (fixed steps, σ not monotone)" }
 }
 
 /// Per-channel results of one digital run.

@@ -165,12 +165,18 @@ impl Explain for LemmasEvidence {
                 format!("Lemma 1 (11) fails here: max xy/(x²/c + c y²) = {} > 1.", self.lemma1_max_ratio.value_text())
             },
             if cx.printed_violated.value {
+                let rounded = [&cx.lhs_omega_f_sq, &cx.rhs_printed].iter().any(|t| t.value.starts_with('≈'));
+                let eq = |t: &Text| match t.value.strip_prefix('≈') {
+                    Some(v) => format!("≈ {v}"),
+                    None => format!("= {}", t.value),
+                };
                 format!(
-                    "Lemma 2 (12) is false as printed: on [0, {}] ω = {} has ω(f)² = {} > f∫ω² = {} (exact); the corrected ω(z)² ≤ z∫ω'² holds{}.",
+                    "Lemma 2 (12) is false as printed: on [0, {}] ω = {} has ω(f)² {} > f∫ω² {} ({}); the corrected ω(z)² ≤ z∫ω'² holds{}.",
                     cx.f.value_text(),
                     cx.omega.value,
-                    cx.lhs_omega_f_sq.value,
-                    cx.rhs_printed.value,
+                    eq(&cx.lhs_omega_f_sq),
+                    eq(&cx.rhs_printed),
+                    if rounded { "exact rationals, compared exactly, shown rounded" } else { "exact" },
                     if self.corrected_ok() { " with sharp constant 1" } else { " NOT in the search" }
                 )
             } else {
@@ -195,6 +201,21 @@ impl Explain for LemmasEvidence {
 
     fn decisive(&self) -> Vec<Quantity> {
         vec![self.lemma1_max_ratio.clone(), self.lemma2_corrected_max_ratio.clone(), self.lemma3_max_rel_err.clone()]
+    }
+
+    fn deciding(&self) -> String {
+        let cx = &self.lemma2_counterexample;
+        if !self.lemma1_holds.value {
+            format!("Lemma 1: max xy/(x²/c + c y²) = {} > 1", self.lemma1_max_ratio.value_text())
+        } else if !self.corrected_ok() {
+            format!("corrected Lemma 2: max ω(f)²/(f∫ω'²) = {} > 1", self.lemma2_corrected_max_ratio.value_text())
+        } else if !self.lemma3_holds() {
+            format!("Lemma 3: RK4 differs from (14) by up to {}", self.lemma3_max_rel_err.value_text())
+        } else if cx.printed_violated.value {
+            format!("Lemma 2 as printed: ω = {} has ω(f)² > f∫ω² (exact)", cx.omega.value)
+        } else {
+            format!("all three reproduced; Lemma 3 to {}", self.lemma3_max_rel_err.value_text())
+        }
     }
 
     fn details(&self) -> Vec<String> {
@@ -284,7 +305,7 @@ pub fn check(cfg: &Config, settings: &CheckSettings) -> Result<ClaimRow, ClaimsE
             e.lemma2_counterexample.f.value_text()
         ),
         format!(
-            "Lemma 3 grid: φ1 ∈ {{0.1, 1.6, 10}}, φ2 ∈ {{0.1, 2^p·4, 50}}, φ3 ∈ {{0.1, p, 0.9}} with p = a1/a2 = {}, Q0 ∈ {{1e-4, σ2(0)²/2 = {}, 1, 100}}; inequality cases ψ = c φ2 (1 + sin 5t), c ∈ {{0.1, 1}}",
+            "Lemma 3 grid: φ1 ∈ {{0.1, 1.6, 10}}, φ2 ∈ {{0.1, 2^p·4, 50}}, φ3 ∈ {{0.1, p, 0.9}} with p = a1/a2 = {}, Q0 ∈ {{10⁻⁴, σ2(0)²/2 = {}, 1, 100}}; inequality cases ψ = c φ2 (1 + sin 5t), c ∈ {{0.1, 1}}",
             fmt(c.p),
             fmt(c.q0_config)
         ),

@@ -52,13 +52,8 @@ impl CrossCheckRecord {
             quantity: Text::text("quantity", what),
             status: Text::text("clarabel status", c.status.name()),
             accepted: Flag::new("accepted", c.accepted),
-            solver_value: Quantity::based("clarabel", c.solver_value, Unit::LyapunovUnits, ValueBasis::Solver),
-            closed_form_value: Quantity::based(
-                "closed form",
-                c.closed_form_value,
-                Unit::LyapunovUnits,
-                ValueBasis::ClosedForm,
-            ),
+            solver_value: Quantity::based("clarabel", c.solver_value, Unit::Joule, ValueBasis::Solver),
+            closed_form_value: Quantity::based("closed form", c.closed_form_value, Unit::Joule, ValueBasis::ClosedForm),
             relative_difference: Quantity::based(
                 "relative difference",
                 c.relative_difference,
@@ -100,7 +95,7 @@ impl BestPointEvidence {
                 ValueBasis::UpperBound,
             )
         };
-        let w = |label: &str, v: f64| Quantity::based(label, v, Unit::LyapunovUnits, ValueBasis::ClosedForm);
+        let w = |label: &str, v: f64| Quantity::based(label, v, Unit::Joule, ValueBasis::ClosedForm);
         BestPointEvidence {
             a: Quantity::based("a of the ε/λ-optimal point", p.a, Unit::Dimensionless, ValueBasis::ClosedForm),
             b: Quantity::configured("b of the ε/λ-optimal point", p.b, Unit::Second),
@@ -180,7 +175,7 @@ fn evidence_of(cfg: &Config, c: &Computed, settings: &CheckSettings) -> MuEviden
             Quantity::based(
                 "λ3* = sup over the η's of min μ3…μ6, at the configured a, b",
                 v,
-                Unit::LyapunovUnits,
+                Unit::Joule,
                 ValueBasis::ClosedForm,
             )
         }),
@@ -200,9 +195,14 @@ fn evidence_of(cfg: &Config, c: &Computed, settings: &CheckSettings) -> MuEviden
             Unit::NewtonPerMetre,
             ValueBasis::SearchMaximum,
         ),
-        zeta3: Quantity::based("ζ3 = sup |g̃1| of the FTDO run", c.bounds.zeta3, Unit::Newton, ValueBasis::Simulation),
+        zeta3: Quantity::based(
+            "ζ3 = sup |g̃1| over [0, t_end] of the FTDO run",
+            c.bounds.zeta3,
+            Unit::Newton,
+            ValueBasis::Simulation,
+        ),
         zeta4: Quantity::based(
-            "ζ4 = sup |g̃2| of the FTDO run",
+            "ζ4 = sup |g̃2| over [0, t_end] of the FTDO run",
             c.bounds.zeta4,
             Unit::NewtonMetre,
             ValueBasis::Simulation,
@@ -261,6 +261,17 @@ impl Explain for MuEvidence {
             );
         }
         out
+    }
+
+    fn deciding(&self) -> String {
+        let (ratio, r_star) = (self.a_over_b.equals_text(), self.a_over_b_boundary.value_text());
+        let above = self.a_over_b.value >= self.a_over_b_boundary.value;
+        match &self.obstruction {
+            None => format!("a/b {ratio} < r* = {r_star}: μ1…μ6 > 0 can be met"),
+            Some(_) if self.a_over_b_boundary.value <= 0.0 => "no a/b satisfies (32) for this wing".into(),
+            Some(_) if above => format!("a/b {ratio} ≥ r* = {r_star}: (32) cannot hold"),
+            Some(o) => format!("(32) cannot hold: {}", o.value),
+        }
     }
 
     fn details(&self) -> Vec<String> {
@@ -331,7 +342,7 @@ fn lambda3_plot(cfg: &Config, e: &MuEvidence) -> Option<PlotData> {
             e.a_over_b_boundary.value_text()
         ),
         x_label: "a/b (1/s)".into(),
-        y_label: "λ3*/b (W units / s)".into(),
+        y_label: "λ3*/b (J/s)".into(),
         log_x: true,
         log_y: false,
         lines: vec![

@@ -72,11 +72,11 @@ pub struct SdpRecord {
 impl SdpRecord {
     fn of(r: &PencilSdpRow) -> SdpRecord {
         let side = |s: &crate::sdp::PencilSide, name: &str| {
-            s.lambda_sdp.map(|l| Quantity::based(format!("{name} by SDP"), l, Unit::LyapunovUnits, ValueBasis::Solver))
+            s.lambda_sdp.map(|l| Quantity::based(format!("{name} by SDP"), l, Unit::JouleSecond, ValueBasis::Solver))
         };
         let eig = |s: &crate::sdp::PencilSide, name: &str| {
             s.lambda_eig
-                .map(|l| Quantity::based(format!("{name} by eigenvalues"), l, Unit::LyapunovUnits, ValueBasis::Solver))
+                .map(|l| Quantity::based(format!("{name} by eigenvalues"), l, Unit::JouleSecond, ValueBasis::Solver))
         };
         let diff = [&r.lambda2, &r.lambda1].iter().filter_map(|s| s.difference).reduce(f64::max);
         let reasons: Vec<String> = [("λ2", &r.lambda2), ("λ1", &r.lambda1)]
@@ -89,7 +89,7 @@ impl SdpRecord {
             lambda2_eigenvalue: eig(&r.lambda2, "λ2(N)"),
             lambda1_sdp: side(&r.lambda1, "λ1(N)"),
             lambda1_eigenvalue: eig(&r.lambda1, "λ1(N)"),
-            scale: Quantity::based("max |W/κ|", r.scale, Unit::LyapunovUnits, ValueBasis::Solver),
+            scale: Quantity::based("max |W/κ|", r.scale, Unit::JouleSecond, ValueBasis::Solver),
             difference: diff.filter(|_| r.scale > 0.0).map(|d| {
                 Quantity::based("|SDP − eigenvalue| / max |W/κ|", d / r.scale, Unit::Dimensionless, ValueBasis::Solver)
             }),
@@ -274,15 +274,16 @@ pub struct WBoundsEvidence {
     pub witness_kappa: Option<Quantity>,
 }
 
-fn w_units(label: &str, v: f64) -> Quantity {
-    Quantity::exact(label, v, Unit::LyapunovUnits)
+/// An exact value of W or of a W/κ constant (J s; per SI unit of κ for the constants).
+fn w_exact(label: &str, v: f64) -> Quantity {
+    Quantity::exact(label, v, Unit::JouleSecond)
 }
 
 fn tight(label: &str, e: theory::Estimate) -> Quantity {
     Quantity::estimate(
         label,
         e,
-        Unit::LyapunovUnits,
+        Unit::JouleSecond,
         &[ErrorSource::Grid, ErrorSource::Extrapolation, ErrorSource::RoundOff],
     )
 }
@@ -295,19 +296,19 @@ fn evidence_of(cfg: &Config, c: &Computed) -> WBoundsEvidence {
     let (total, neg, cond) = c.printed_grid;
     let per_n = |(n, l2, l1): &(usize, f64, f64)| GalerkinRecord {
         elements: Quantity::count("elements N", *n),
-        lambda2: Quantity::based("λ2(N) = min W/κ (≥ λ2*)", *l2, Unit::LyapunovUnits, ValueBasis::UpperBound),
-        lambda1: Quantity::based("λ1(N) = max W/κ (≤ λ1*)", *l1, Unit::LyapunovUnits, ValueBasis::LowerBound),
+        lambda2: Quantity::based("λ2(N) = min W/κ (≥ λ2*)", *l2, Unit::JouleSecond, ValueBasis::UpperBound),
+        lambda1: Quantity::based("λ1(N) = max W/κ (≤ λ1*)", *l1, Unit::JouleSecond, ValueBasis::LowerBound),
     };
     let upper = |label: &str, v: f64| Quantity::based(label, v, Unit::PerSecond, ValueBasis::UpperBound);
     WBoundsEvidence {
         a: Quantity::configured("weight a of (15)", a, Unit::Dimensionless),
         b: Quantity::configured("weight b of (15)", b, Unit::Second),
         a_over_b: Quantity::configured("a/b", if b > 0.0 { a / b } else { 0.0 }, Unit::PerSecond),
-        y1: w_units("printed y1", to_f64(&p.y1)),
-        y2: w_units("printed y2", to_f64(&p.y2)),
-        y3: w_units("printed y3", to_f64(&p.y3)),
-        lambda1_printed: w_units("printed λ1 = y1 + y3", to_f64(&(&p.y1 + &p.y3))),
-        lambda2_printed: w_units("printed λ2 = y2 − y3", to_f64(&(&p.y2 - &p.y3))),
+        y1: w_exact("printed y1", to_f64(&p.y1)),
+        y2: w_exact("printed y2", to_f64(&p.y2)),
+        y3: w_exact("printed y3", to_f64(&p.y3)),
+        lambda1_printed: w_exact("printed λ1 = y1 + y3", to_f64(&(&p.y1 + &p.y3))),
+        lambda2_printed: w_exact("printed λ2 = y2 − y3", to_f64(&(&p.y2 - &p.y3))),
         printed_condition: Flag::new("printed condition b > 2y3/min{ρ, I_p, EI, GJ} holds", p.condition_holds),
         min_rho_ip_ei_gj: Quantity::configured(
             "min{ρ, I_p, EI, GJ}",
@@ -350,8 +351,10 @@ fn evidence_of(cfg: &Config, c: &Computed) -> WBoundsEvidence {
             super::decide(&c.enclosure, theory::w_positive_definite(a, b, c.omega1)),
         ),
         sdp_cross_check: Table::new("SDP cross-check of λ2(N), λ1(N)", c.sdp.iter().map(SdpRecord::of).collect()),
-        witness_w: c.witness.map(|(wx, _)| w_units("W(x) of the exact witness state", wx)),
-        witness_kappa: c.witness.map(|(_, kx)| w_units("κ(x) of the witness state", kx)),
+        witness_w: c.witness.map(|(wx, _)| w_exact("W(x) of the exact witness state", wx)),
+        witness_kappa: c
+            .witness
+            .map(|(_, kx)| Quantity::exact("κ(x) of the witness state (SI values as numbers)", kx, Unit::MixedSi)),
     }
 }
 
@@ -439,7 +442,7 @@ impl Explain for WBoundsEvidence {
         let l2 = &self.lambda2_printed;
         let printed = if l2.value < 0.0 && self.structural() {
             format!(
-                "As printed, λ2 = y2 − y3 = {} < 0 for every a, b > 0 here, because min{{ρ, I_p, EI, GJ}} = {} ≤ 2ρx_c = {}.",
+                "As printed, λ2 = y2 − y3 = {} < 0 for every a, b > 0 here, because min{{ρ, I_p, EI, GJ}} = {} ≤ 2ρx_c = {} (SI values compared as numbers, as the paper does).",
                 fmt(l2),
                 fmt(&self.min_rho_ip_ei_gj),
                 fmt(&self.two_rho_xc)
@@ -477,11 +480,41 @@ impl Explain for WBoundsEvidence {
         ]
     }
 
+    /// The printed and the tight λ2, ω₁, the certified bound that decides (the upper one when
+    /// a/b lies above the enclosure, the lower one below it, both inside it) and a/b.
     fn decisive(&self) -> Vec<Quantity> {
         let mut out = vec![self.lambda2_printed.clone(), self.lambda2_tight.clone(), self.a_over_b_max.clone()];
-        out.extend(self.omega1_enclosure.lower.iter().cloned());
+        let e = &self.omega1_enclosure;
+        match e.position() {
+            Some(Position::Above) => out.extend(e.upper.iter().cloned()),
+            Some(Position::Below) => out.extend(e.lower.iter().cloned()),
+            _ => out.extend(e.lower.iter().chain(&e.upper).cloned()),
+        }
         out.push(self.a_over_b.clone());
         out
+    }
+
+    fn deciding(&self) -> String {
+        // a/b to 4 digits when it is not a short decimal (1/3000), so the line stays one line
+        let ratio = self.a_over_b.equals_text();
+        let e = &self.omega1_enclosure;
+        let omega = self.a_over_b_max.pm_text();
+        let printed = if self.lambda2_printed.value < 0.0 { ", but the printed λ2 < 0" } else { "" };
+        match (self.w_positive_definite.value, e.position(), &e.lower, &e.upper) {
+            (Decision::No, Some(Position::Above), _, Some(u)) => {
+                format!("a/b {ratio} > ω̄₁ = {}: W is indefinite (proved)", u.value_text())
+            }
+            (Decision::Yes, Some(Position::Below), Some(l), _) => {
+                format!("a/b {ratio} < ω̲₁ = {}: W ≻ 0 (proved){printed}", l.value_text())
+            }
+            (Decision::No, _, _, _) if self.witness_w.is_some() => format!(
+                "W(x) = {} < 0 for an exact state x: W is indefinite",
+                self.witness_w.as_ref().map_or_else(String::new, Quantity::value_text)
+            ),
+            (Decision::No, _, _, _) => format!("a/b {ratio} > ω₁ = {omega}: W is indefinite"),
+            (Decision::Yes, _, _, _) => format!("a/b {ratio} < ω₁ = {omega}: W ≻ 0{printed}"),
+            (Decision::Undecided, _, _, _) => format!("a/b {ratio} is within the error of ω₁ = {omega}"),
+        }
     }
 
     fn details(&self) -> Vec<String> {
@@ -552,7 +585,7 @@ fn refinement_plot(e: &WBoundsEvidence) -> PlotData {
             fmt(&e.lambda1_tight)
         ),
         x_label: "elements N".into(),
-        y_label: "W/κ extremes (W units)".into(),
+        y_label: "W/κ extremes (J s)".into(),
         log_x: true,
         log_y: false,
         lines: vec![

@@ -163,6 +163,7 @@ pub fn simulate_modal(
         peaks_after_layer: rec.full_rate.after_layer,
         initial_layer: None,
         envelope: rec.envelope,
+        gtilde_band_entry: rec.full_rate.band_entry(),
         stats: RunStats {
             unknowns: basis.len(),
             factor_nnz: 0,

@@ -399,6 +399,12 @@ where
         self.full_rate.take_tau_rms()
     }
 
+    /// From when |g̃1|, |g̃2| stay in the band |g̃| ≤ [`crate::metrics::GTILDE_THRESHOLD`], at
+    /// full rate so far (see [`crate::SimOutput::gtilde_band_entry`]).
+    pub fn band_entry(&self) -> [Option<f64>; 2] {
+        self.full_rate.band_entry()
+    }
+
     /// Full-rate (min, max) of [τ1, τ2, g̃1, g̃2] since the previous call, including `at`, the
     /// values at the output instant ([`crate::run::Envelope`]); `simulate` calls it at every
     /// output sample.

@@ -182,6 +182,45 @@ impl IntervalRange {
     }
 }
 
+/// When |g̃| enters the band |g̃| ≤ [`crate::metrics::GTILDE_THRESHOLD`] for good, at full rate:
+/// the first recorded instant after the last one outside the band.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct BandEntry {
+    /// Whether an instant has been recorded.
+    seen: bool,
+    /// Whether some instant so far was outside the band.
+    left: bool,
+    /// The first instant inside the band since the last one outside (None while outside).
+    entry: Option<f64>,
+    /// The first recorded instant.
+    first: f64,
+}
+
+impl BandEntry {
+    fn update(&mut self, t: f64, g_error: f64) {
+        if !self.seen {
+            self.seen = true;
+            self.first = t;
+        }
+        if g_error.abs() > crate::metrics::GTILDE_THRESHOLD {
+            self.left = true;
+            self.entry = None;
+        } else if self.entry.is_none() {
+            self.entry = Some(t);
+        }
+    }
+
+    /// The entry time (s): the first instant if the signal never left the band; None if it is
+    /// outside at the last instant (or nothing was recorded).
+    pub(crate) fn time(&self) -> Option<f64> {
+        match (self.seen, self.left) {
+            (false, _) => None,
+            (true, false) => Some(self.first),
+            (true, true) => self.entry,
+        }
+    }
+}
+
 /// What is tracked at every recorded instant of a run (every integrator step's end and both
 /// sides of every jump): the extremes and the τ square integrals, fed the same values
 /// [q, θ, q̇, θ̇, τ1, τ2, g̃1, g̃2].
@@ -194,6 +233,7 @@ pub(crate) struct FullRate {
     layer_end: f64,
     squares: SquareIntegral,
     range: IntervalRange,
+    band: [BandEntry; 2],
 }
 
 impl FullRate {
@@ -216,6 +256,8 @@ impl FullRate {
         }
         self.squares.update_step(t, [v[4], v[5]], exact);
         self.range.update([v[4], v[5], v[6], v[7]]);
+        self.band[0].update(t, v[6]);
+        self.band[1].update(t, v[7]);
     }
 
     /// Fold in the value v of signal `index` ([`Peaks::signals`]'s order) found inside a step at
@@ -245,6 +287,12 @@ impl FullRate {
         self.range.take(at)
     }
 
+    /// From when |g̃1|, |g̃2| stay in the band |g̃| ≤ [`crate::metrics::GTILDE_THRESHOLD`], at full
+    /// rate ([`BandEntry::time`]).
+    pub(crate) fn band_entry(&self) -> [Option<f64>; 2] {
+        [self.band[0].time(), self.band[1].time()]
+    }
+
     /// See [`SquareIntegral::add_squares`].
     pub(crate) fn add_squares(&mut self, squares: [f64; 2]) {
         self.squares.add_squares(squares);
@@ -258,7 +306,25 @@ impl FullRate {
 
 #[cfg(test)]
 mod tests {
-    use super::{IntervalRange, SquareIntegral};
+    use super::{BandEntry, IntervalRange, SquareIntegral};
+
+    #[test]
+    fn band_entry_is_the_first_instant_after_the_last_one_outside() {
+        // Reference: the instants fed in, by inspection (threshold 1e-4).
+        let mut b = BandEntry::default();
+        assert_eq!(b.time(), None);
+        for (t, g) in [(0.0, 1.0), (0.001, 5e-5), (0.002, 2e-4), (0.003, 2e-4), (0.003, 3e-5), (0.004, 1e-6)] {
+            b.update(t, g);
+        }
+        // both sides of a jump at 0.003: outside before it, inside after it
+        assert_eq!(b.time(), Some(0.003));
+        b.update(0.005, -2e-4);
+        assert_eq!(b.time(), None, "outside at the last instant");
+        let mut inside = BandEntry::default();
+        inside.update(0.5, 0.0);
+        inside.update(0.6, -1e-5);
+        assert_eq!(inside.time(), Some(0.5), "never outside: from the first instant");
+    }
 
     #[test]
     fn interval_range_holds_every_instant_and_restarts() {
