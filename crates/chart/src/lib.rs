@@ -18,6 +18,7 @@ mod data;
 mod field;
 mod grid;
 mod line;
+mod line_legend;
 mod surface;
 mod symlog;
 mod ticks;

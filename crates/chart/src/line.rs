@@ -8,7 +8,6 @@ use plotters::coord::combinators::LogCoord;
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
-use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 
 use crate::symlog::{SymLog, SymLogCoord};
@@ -103,12 +102,12 @@ impl From<PlotData> for LineChart {
 }
 
 impl LineChart {
-    fn style(&self, i: usize) -> LineStyle {
+    pub(crate) fn style(&self, i: usize) -> LineStyle {
         self.styles.get(i).copied().unwrap_or_default()
     }
 
     /// The symmetric-log transform of the y axis, if it has one.
-    fn symlog(&self) -> Option<SymLog> {
+    pub(crate) fn symlog(&self) -> Option<SymLog> {
         self.symlog_y.filter(|_| !self.data.log_y)
     }
 
@@ -218,7 +217,7 @@ impl Labels {
 }
 
 /// Width (displayed px) of the legend panel right of the plot.
-const LEGEND_W: u32 = 230;
+pub(crate) const LEGEND_W: u32 = 230;
 
 /// Render the chart as an SVG document.
 pub fn line_svg(c: &LineChart) -> Result<String, ChartError> {
@@ -278,7 +277,7 @@ pub fn line_svg(c: &LineChart) -> Result<String, ChartError> {
         };
         r.map_err(err)?;
         if let Some(area) = legend {
-            draw_legend(&area, c).map_err(err)?;
+            crate::line_legend::draw_legend(&area, c).map_err(err)?;
         }
         root.present().map_err(|e| err(e.to_string()))?;
     }
@@ -299,7 +298,7 @@ fn symlog(r: (f64, f64), s: SymLog, ticks: Vec<f64>) -> Ticked<SymLogCoord> {
 
 /// Colour index of each line: a labelled line takes the next colour; an unlabelled one
 /// (e.g. the markers of the previous line) reuses the last.
-fn colours(pd: &PlotData) -> Vec<RGBColor> {
+pub(crate) fn colours(pd: &PlotData) -> Vec<RGBColor> {
     let mut next = 0usize;
     pd.lines
         .iter()
@@ -313,11 +312,11 @@ fn colours(pd: &PlotData) -> Vec<RGBColor> {
 }
 
 /// Colour of markers and levels.
-const MARK: RGBColor = RGBColor(90, 90, 90);
+pub(crate) const MARK: RGBColor = RGBColor(90, 90, 90);
 
 /// Dash, gap (canvas px) and colour of the `k`-th vertical marker: each marker of a chart drawn
 /// differently, so two close ones (a measured time and its bound) stay apart in the legend.
-fn vline_style(k: usize) -> (u32, u32, RGBColor) {
+pub(crate) fn vline_style(k: usize) -> (u32, u32, RGBColor) {
     const STYLES: [(u32, u32, RGBColor); 3] = [(6, 4, MARK), (14, 4, RGBColor(0, 0, 0)), (2, 3, RGBColor(140, 60, 0))];
     let (d, g, c) = STYLES[k % STYLES.len()];
     (px(d), px(g), c)
@@ -499,133 +498,6 @@ where
         chart
             .draw_series(DashedLineSeries::new(s, px(3), px(4), MARK.stroke_width(px(2))))
             .map_err(|e| e.to_string())?;
-    }
-    Ok(())
-}
-
-/// Characters per line of the legend panel's text (17-px sans-serif in [`LEGEND_W`] px less
-/// the swatch).
-const LEGEND_CHARS: usize = 23;
-
-/// `text` wrapped at word boundaries into lines of at most [`LEGEND_CHARS`] characters (a
-/// longer word is a line of its own).
-fn wrap(text: &str) -> Vec<String> {
-    let mut lines: Vec<String> = Vec::new();
-    for w in text.split(' ') {
-        match lines.last_mut() {
-            Some(l) if l.chars().count() + 1 + w.chars().count() <= LEGEND_CHARS => {
-                l.push(' ');
-                l.push_str(w);
-            }
-            _ => lines.push(w.to_string()),
-        }
-    }
-    lines
-}
-
-/// Whether a line has a point that can be drawn on the chart's axes (finite, positive on a
-/// log axis, inside a zoomed x range).
-fn drawable(c: &LineChart, l: &crate::Line) -> bool {
-    let (xa, xb) = c.x_range.unwrap_or((f64::NEG_INFINITY, f64::INFINITY));
-    l.x.iter().zip(&l.y).any(|(x, y)| {
-        x.is_finite()
-            && y.is_finite()
-            && (!c.data.log_x || *x > 0.0)
-            && (!c.data.log_y || *y > 0.0)
-            && *x >= xa
-            && *x <= xb
-    })
-}
-
-/// Draw a legend entry's text wrapped ([`wrap`]) with its first line beside the swatch at
-/// height `y`; the height of its last line.
-fn legend_text(
-    area: &DrawingArea<SVGBackend, Shift>,
-    text: &str,
-    (x, y): (i32, i32),
-    font: &TextStyle,
-) -> Result<i32, String> {
-    let mut y = y;
-    for (i, line) in wrap(text).into_iter().enumerate() {
-        if i > 0 {
-            y += px(21) as i32;
-        }
-        area.draw(&Text::new(line, (x, y - px(9) as i32), font.clone())).map_err(|e| e.to_string())?;
-    }
-    Ok(y)
-}
-
-/// The legend panel: one entry per labelled line (swatch as drawn: the same line width and
-/// dash pattern, or the marker), each band (a filled swatch), then the markers and levels. A
-/// line with nothing drawable on these axes (e.g. 0 throughout on a log axis) says so.
-fn draw_legend(area: &DrawingArea<SVGBackend, Shift>, c: &LineChart) -> Result<(), String> {
-    let pd = &c.data;
-    let colours = colours(pd);
-    let font = ("sans-serif", px(17)).into_font().color(&BLACK);
-    let mut y = px(24) as i32;
-    let x0 = px(10) as i32;
-    let step = px(26) as i32;
-    let swatch = |y: i32| vec![(x0, y), (x0 + px(28) as i32, y)];
-    let e = |e: DrawingAreaErrorKind<std::io::Error>| e.to_string();
-    for (i, line) in pd.lines.iter().enumerate() {
-        if line.label.is_empty() {
-            continue;
-        }
-        let color = colours[i];
-        // A line followed by an unlabelled marker series of the same colour gets both.
-        let marked = line.points || pd.lines.get(i + 1).is_some_and(|n| n.label.is_empty() && n.points);
-        if !line.points {
-            let w = px(if i == 0 { 3 } else { 2 });
-            if c.style(i) == LineStyle::Dashed {
-                area.draw(&DashedPathElement::new(swatch(y), px(8), px(5), color.stroke_width(w))).map_err(e)?;
-            } else if c.style(i) == LineStyle::Faint {
-                let faint = color.mix(0.7).stroke_width(px(1));
-                area.draw(&DashedPathElement::new(swatch(y), px(3), px(3), faint)).map_err(e)?;
-            } else {
-                area.draw(&PathElement::new(swatch(y), color.stroke_width(w))).map_err(e)?;
-            }
-        }
-        if marked {
-            area.draw(&Circle::new((x0 + px(14) as i32, y), px(4), color.filled())).map_err(e)?;
-        }
-        let text = if drawable(c, line) {
-            line.label.clone()
-        } else if pd.log_y {
-            format!("{} (≤ 0 throughout: not on the log axis)", line.label)
-        } else {
-            format!("{} (outside the plotted range)", line.label)
-        };
-        y = legend_text(area, &text, (x0 + px(36) as i32, y), &font)? + step;
-    }
-    for b in c.bands.iter().filter(|b| b.style != BandStyle::Hidden) {
-        let color = colours.get(b.line).copied().unwrap_or(MARK);
-        let (top, bottom) = (y - px(7) as i32, y + px(7) as i32);
-        let r = Rectangle::new([(x0, top), (x0 + px(28) as i32, bottom)], color.mix(0.3).filled());
-        area.draw(&r).map_err(e)?;
-        if b.style == BandStyle::Edges {
-            for edge in [top, bottom] {
-                let l = vec![(x0, edge), (x0 + px(28) as i32, edge)];
-                area.draw(&PathElement::new(l, color.stroke_width(px(2)))).map_err(e)?;
-            }
-        }
-        y = legend_text(area, &b.label, (x0 + px(36) as i32, y), &font)? + step;
-    }
-    let levels = c
-        .vlines
-        .iter()
-        .enumerate()
-        .map(|(k, v)| (v, vline_style(k)))
-        .chain(c.hlines.iter().map(|h| (h, (px(3), px(4), MARK))));
-    for ((_, label), (dash, gap, colour)) in levels {
-        area.draw(&DashedPathElement::new(swatch(y), dash, gap, colour.stroke_width(px(2)))).map_err(e)?;
-        y = legend_text(area, label, (x0 + px(36) as i32, y), &font)? + step;
-    }
-    if let Some(s) = c.symlog() {
-        y += step / 2;
-        for line in s.note() {
-            area.draw(&Text::new(line, (x0, y - px(9) as i32), font.clone())).map_err(e)?;
-            y += step;
-        }
     }
     Ok(())
 }

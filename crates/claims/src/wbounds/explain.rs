@@ -10,7 +10,9 @@ use crate::evidence::Explain;
 use crate::sdp::PencilSdpRow;
 use crate::settings::CheckSettings;
 use crate::theory::{self, Decision};
-use crate::{Basis, ClaimId, ClaimRow, ClaimsError, Line, PlotData, Verdict, WallTime};
+use crate::{Basis, ClaimId, ClaimRow, ClaimsError, Verdict, WallTime};
+
+use super::text::{fmt, refinement_plot, sdp_sentence};
 
 /// What the W-bounds row found, reused by the mu-conditions and UUB rows.
 #[derive(Debug, Clone)]
@@ -374,10 +376,6 @@ pub fn evidence_cancellable(
     Ok((evidence_of(cfg, &c), sdp_wall_times(&c)))
 }
 
-fn fmt(q: &Quantity) -> String {
-    q.value_text()
-}
-
 impl WBoundsEvidence {
     fn structural(&self) -> bool {
         self.min_rho_ip_ei_gj.value <= self.two_rho_xc.value
@@ -385,30 +383,6 @@ impl WBoundsEvidence {
 
     fn sdp_sentence(&self) -> String {
         sdp_sentence(&self.sdp_cross_check.rows)
-    }
-}
-
-/// The SDP cross-check in one sentence: where it agrees with the eigenvalues and to what, and
-/// every N not accepted with the reason.
-pub fn sdp_sentence(rows: &[SdpRecord]) -> String {
-    {
-        let good: Vec<String> = rows.iter().filter(|r| r.accepted.value).map(|r| fmt(&r.elements)).collect();
-        let worst = rows.iter().filter(|r| r.accepted.value).filter_map(|r| r.difference.as_ref()).map(|d| d.value);
-        let worst = worst.fold(0.0f64, f64::max);
-        let mut s = if good.is_empty() {
-            "The SDP cross-check (clarabel) was not accepted at any N.".to_string()
-        } else {
-            format!(
-                "An SDP (clarabel) agrees with the eigenvalues at N = {} to {} of max |W/κ|, each answer re-verified against W − λκ ⪰ 0 (float evidence, not proof).",
-                good.join(", "),
-                wingcheck_model::quantity::format_value(worst, None)
-            )
-        };
-        for r in rows.iter().filter(|r| !r.accepted.value) {
-            let why = r.reason.as_ref().map_or("no reason recorded", |t| t.value.as_str());
-            s.push_str(&format!(" Not accepted at N = {}: {why}.", fmt(&r.elements)));
-        }
-        s
     }
 }
 
@@ -569,39 +543,6 @@ impl Explain for WBoundsEvidence {
             }),
             Decision::Undecided => None,
         }
-    }
-}
-
-fn refinement_plot(e: &WBoundsEvidence) -> PlotData {
-    let rows = &e.lambda_by_elements.rows;
-    let x: Vec<f64> = rows.iter().map(|r| r.elements.value).collect();
-    PlotData {
-        name: "w-bounds-refinement".into(),
-        title: format!(
-            "Tight bounds of W/κ against the Galerkin elements N (a = {}, b = {}); extrapolated λ2* = {}, λ1* = {}",
-            fmt(&e.a),
-            fmt(&e.b),
-            fmt(&e.lambda2_tight),
-            fmt(&e.lambda1_tight)
-        ),
-        x_label: "elements N".into(),
-        y_label: "W/κ extremes (J s)".into(),
-        log_x: true,
-        log_y: false,
-        lines: vec![
-            Line {
-                label: "λ2(N) = min W/κ".into(),
-                x: x.clone(),
-                y: rows.iter().map(|r| r.lambda2.value).collect(),
-                points: true,
-            },
-            Line {
-                label: "λ1(N) = max W/κ".into(),
-                x,
-                y: rows.iter().map(|r| r.lambda1.value).collect(),
-                points: true,
-            },
-        ],
     }
 }
 
