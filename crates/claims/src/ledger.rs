@@ -251,6 +251,9 @@ pub struct Ledger {
     pub tool: String,
     /// SHA-256 of the configuration's canonical JSON.
     pub config_sha256: String,
+    /// The tool's build (version, commit, tree state, rustc) and the configuration's SHA-256:
+    /// the provenance record every JSON output carries (docs/schema/provenance.schema.json).
+    pub provenance: wingcheck_io::Provenance,
     /// The checker's numerical settings (grids, tolerances, thresholds) used for every row.
     pub settings: CheckSettings,
     /// One row per claim, in the paper's order.

@@ -240,6 +240,7 @@ pub fn check_all_with(cfg: &Config, study: &Study, settings: &CheckSettings) -> 
         schema_version: wingcheck_io::SCHEMA_VERSION,
         tool: format!("wingcheck {}", env!("CARGO_PKG_VERSION")),
         config_sha256: config_sha256(cfg),
+        provenance: wingcheck_io::Provenance::new(&config_sha256(cfg), Vec::new()),
         settings: settings.clone(),
         rows,
         wall_seconds,
