@@ -5,10 +5,10 @@
 //! (`KeyboardInterrupt`) or a callback that raises or returns `False` sets the computation's
 //! cancel token; the worker stops at its next checkpoint without writing anything.
 //!
-//! A computation that writes files as it goes ([`Writes::Files`]: simulate's output, a search
-//! directory) is waited for before the exception is raised, so nothing of it can appear
+//! A computation that writes files as it goes ([`Writes::Files`]: a search directory, a run
+//! with a Python controller) is waited for before the exception is raised, so nothing of it can appear
 //! afterwards. One that moves its output into place through the cancel token's gate
-//! ([`Writes::Gated`]: report, certify; [`Cancel::commit`]) or writes nothing
+//! ([`Writes::Gated`]: simulate's output, report, certify; [`Cancel::commit`]) or writes nothing
 //! ([`Writes::Nothing`]: check, modes, verify) is left to finish its current stretch in the
 //! background (exact arithmetic without a checkpoint can take seconds) and the exception is
 //! raised at once: once `cancel` has returned, a gated output never appears. A gated worker

@@ -72,7 +72,11 @@ pub fn simulate<'py>(
     };
     let base = source(config_text, config_path, set);
     let run_req = req.clone();
-    let (cfg, result) = blocking::run(py, progress.as_ref(), Writes::Files, move |cancel, sink| {
+    // The output file goes into place through the cancel token's gate (app::simulate): a stop
+    // raises at once. A run with a Python controller is waited for: its worker calls back
+    // into the interpreter until it reaches its next checkpoint.
+    let writes = if own.is_some() { Writes::Files } else { Writes::Gated };
+    let (cfg, result) = blocking::run(py, progress.as_ref(), writes, move |cancel, sink| {
         let req = run_req;
         let cfg = req.config(&base)?;
         let mut on_progress = |f: f64| sink.set(f, "simulate");

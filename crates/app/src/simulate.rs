@@ -187,7 +187,10 @@ pub fn run_with<'a>(
     let wall_seconds = start.elapsed().as_secs_f64();
     cancel.check()?;
     if let Some(path) = &req.out {
-        output::write_run(path, cfg, &output)?;
+        // rendered first, then moved into place through the cancel token's gate: once
+        // `cancel()` has returned, the files are either complete already or never appear
+        let files = output::render_run(path, cfg, &output)?;
+        cancel.commit(|| output::write_rendered(&files).map_err(AppError::from))?;
     }
     Ok(SimulateResult { output, estimate, sample_times, wall_seconds })
 }

@@ -1,7 +1,7 @@
 //! Writing results: atomic file writes (temp file + rename) and the CSV/JSON forms of a run,
 //! each with its provenance (a CSV's in its sidecar `FILE.provenance.json`).
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 use wingcheck_model::Config;
@@ -87,15 +87,30 @@ pub fn csv_provenance(path: &Path, cfg: &Config) -> String {
 }
 
 /// Write a run to `path` (`.csv`: the series, and its provenance sidecar beside it; `.json`:
-/// [`run_json`], provenance inside), each file atomically.
+/// [`run_json`], provenance inside), each file atomically: [`render_run`] then
+/// [`write_rendered`].
 pub fn write_run(path: &Path, cfg: &Config, output: &SimOutput) -> Result<(), OutputError> {
+    write_rendered(&render_run(path, cfg, output)?)
+}
+
+/// The files [`write_run`] writes and their text, rendered in memory (the slow part of writing
+/// a long run), so that a caller can decide after it whether to move them into place.
+pub fn render_run(path: &Path, cfg: &Config, output: &SimOutput) -> Result<Vec<(PathBuf, String)>, OutputError> {
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
     match ext.as_str() {
-        "csv" => {
-            write_atomic(path, series_csv(&output.series).as_bytes())?;
-            write_atomic(&wingcheck_io::sidecar_path(path), csv_provenance(path, cfg).as_bytes())
-        }
-        "json" => write_atomic(path, run_json(cfg, output).as_bytes()),
+        "csv" => Ok(vec![
+            (path.to_path_buf(), series_csv(&output.series)),
+            (wingcheck_io::sidecar_path(path), csv_provenance(path, cfg)),
+        ]),
+        "json" => Ok(vec![(path.to_path_buf(), run_json(cfg, output))]),
         _ => Err(OutputError::Format(path.display().to_string())),
     }
+}
+
+/// Write rendered files ([`render_run`]), each atomically, in order.
+pub fn write_rendered(files: &[(PathBuf, String)]) -> Result<(), OutputError> {
+    for (path, text) in files {
+        write_atomic(path, text.as_bytes())?;
+    }
+    Ok(())
 }
