@@ -2,8 +2,8 @@
 //! configurations, a number in the ledger is either the `value` of a labelled quantity with a
 //! unit and an `error` (with the sources it `covers`) or a named `basis`, or the `error` of such
 //! a quantity, or plot data (the samples behind a figure), or one of the checker's settings
-//! (exact by definition: chosen values), or the document's `schema_version`. A schema-level walk
-//! of the JSON, not a spot check.
+//! (exact by definition: chosen values), or the layout version `schema_version` of the document
+//! and of its provenance record. A schema-level walk of the JSON, not a spot check.
 
 use proptest::prelude::*;
 use serde_json::Value;
@@ -38,9 +38,10 @@ fn bare_numbers(v: &Value, path: &str, out: &mut Vec<String>) {
         Value::Object(m) => {
             for (k, x) in m {
                 // exempt: the checker's settings, the data behind the figures, and the layout
-                // version `schema_version` (an identifier of the document's shape, not a number
-                // of the run)
+                // versions `schema_version` of the document and of its provenance record (an
+                // identifier of a shape, not a number of the run)
                 if (path == "$" && (k == "settings" || k == "schema_version"))
+                    || (path == "$.provenance" && k == "schema_version")
                     || (k == "plots" && path.starts_with("$.rows"))
                 {
                     continue;
