@@ -28,17 +28,10 @@ pub fn machine() -> Machine {
                 .map(|(_, v)| v.trim().to_string())
         })
         .unwrap_or_else(|| "unknown".into());
-    let load = std::fs::read_to_string("/proc/loadavg")
-        .ok()
-        .map(|t| t.split_whitespace().take(3).collect::<Vec<_>>().join(", "))
-        .filter(|s| !s.is_empty())
+    let load = wingcheck_io::clock::load_averages()
+        .map(|l| l.map(|x| format!("{x:.2}")).join(", "))
         .unwrap_or_else(|| "unknown".into());
-    Machine {
-        cpu,
-        hardware_threads: std::thread::available_parallelism().map_or(1, |n| n.get()),
-        threads: rayon::current_num_threads(),
-        load,
-    }
+    Machine { cpu, hardware_threads: wingcheck_io::clock::cores(), threads: rayon::current_num_threads(), load }
 }
 
 /// UTC date and time `YYYY-MM-DD HH:MM:SS UTC` of `t` (jiff's formatting, whole seconds).

@@ -203,7 +203,7 @@ pub(crate) fn estimated_values(a: &Axis) -> Vec<usize> {
 /// ratios to the base (they are products of independent factors: horizon/dt, elements/method),
 /// and the cost per point is that of the costliest combination. `threads`: worker threads.
 pub fn estimate(base: &Config, axes: &[Axis]) -> WorkEstimate {
-    estimate_with_threads(base, axes, std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1))
+    estimate_with_threads(base, axes, wingcheck_io::clock::cores())
 }
 
 /// [`estimate`] for `threads` worker threads (memory holds one run per thread).
@@ -354,7 +354,7 @@ pub fn check_with_flag(w: &WorkEstimate, allow_large: bool, flag: &str) -> Resul
 
 /// Largest `--threads`: 4 × the cores available (at least 4).
 pub fn max_threads() -> usize {
-    4 * std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1)
+    4 * wingcheck_io::clock::cores()
 }
 
 /// Refuse a thread count outside [1, [`max_threads`]].

@@ -16,11 +16,13 @@ pub(crate) const GRID_SIZES: [usize; 5] = [8, 16, 32, 64, 128];
 /// Horizons of the horizon scaling (s).
 pub(crate) const HORIZONS: [f64; 4] = [5.0, 10.0, 20.0, 40.0];
 
+/// The overrides of the explicit FTDO stepped with `scheme`.
+fn explicit(scheme: &str) -> Vec<String> {
+    vec!["control.kind=ftdo".into(), "observer.rule=explicit".into(), format!("discretisation.stepper={scheme}")]
+}
+
 /// The overrides of every variant the bench may time beside the configured run.
 pub(crate) fn variants() -> Vec<Vec<String>> {
-    let explicit = |scheme: &str| {
-        vec!["control.kind=ftdo".into(), "observer.rule=explicit".into(), format!("discretisation.stepper={scheme}")]
-    };
     vec![
         vec!["discretisation.stepper=trapezoid".into()],
         vec!["discretisation.stepper=trbdf2".into()],
@@ -93,9 +95,6 @@ pub(crate) fn bench_sim(cfg: &Config, repeats: usize) -> Result<SimBench, AppErr
     let base = time_config(cfg, repeats)?;
     let other_stepper = if base.stepper == TimeScheme::Trapezoid { "trbdf2" } else { "trapezoid" };
     let other_basis = if base.basis == StepBasis::Modal { "nodal" } else { "modal" };
-    let explicit = |scheme: &str| {
-        vec!["control.kind=ftdo".into(), "observer.rule=explicit".into(), format!("discretisation.stepper={scheme}")]
-    };
     let few = repeats.min(3);
     let key = if cfg.discretisation.method == Method::Fd { "fd_points" } else { "elements" };
     let mut grid_scaling = Vec::new();
