@@ -92,3 +92,21 @@ proptest! {
         prop_assert!(tmax.is_finite() && tmax <= 10.0 * scale, "θ max {}", tmax);
     }
 }
+
+/// Filippov reaching time against its closed form: with no fractional term and a constant g,
+/// σ̇ = −(κ_lin σ + c) with c = κ_sw − s0·g > 0 reaches 0 at t = ln((κ_lin|σ0| + c)/c)/κ_lin
+/// (|σ0|/c for κ_lin = 0; integrate dσ/(κ_lin σ + c)). The computed ± covers the difference
+/// and is never below the summation's round-off floor ((2·steps) ε t).
+#[test]
+fn filippov_reaching_time_matches_its_closed_form_within_its_error() {
+    for (lin, sw, g, s0) in [(0.5, 1.0, 0.3, 2.0), (3.0, 0.2, -0.1, -0.7), (0.0, 1.5, 0.5, 0.05), (20.0, 0.8, 0.7, 40.0)] {
+        let gain = ObserverGain { linear: lin, switching: sw, fractional: 0.0, exponent: 0.6 };
+        let c: f64 = sw - f64::signum(s0) * g;
+        let exact = if lin > 0.0 { ((lin * f64::abs(s0) + c) / c).ln() / lin } else { f64::abs(s0) / c };
+        let steps = 2000;
+        let f = filippov_reach(&gain, &|_| g, s0, 100.0, steps).unwrap();
+        let t = f.reach_s.expect("reaches 0");
+        assert!((t - exact).abs() <= f.error_s, "{lin} {sw} {g} {s0}: |{t} − {exact}| > {}", f.error_s);
+        assert!(f.error_s >= (2 * steps) as f64 * f64::EPSILON * exact, "{}: below the round-off floor", f.error_s);
+    }
+}
