@@ -11,7 +11,8 @@ use wingcheck_sim::SimOutput;
 use crate::chart::{LineChart, LineStyle};
 use crate::figure::{Caption, Chart, Figure};
 use crate::runs::{GRIDS, METHODS};
-use crate::stats::{fmt_num, loglog_slope};
+use crate::stats::fmt_num;
+use wingcheck_sim::metrics::loglog_slope;
 
 /// Start of the error window (s).
 pub const T_SKIP: f64 = 0.1;

@@ -19,21 +19,6 @@ pub fn diff(a: &[f64], b: &[f64]) -> Vec<f64> {
     a.iter().zip(b).map(|(x, y)| x - y).collect()
 }
 
-/// Least-squares slope of log(y) against log(x) (pairs with x, y > 0 only; NaN if < 2).
-pub fn loglog_slope(x: &[f64], y: &[f64]) -> f64 {
-    let pts: Vec<(f64, f64)> =
-        x.iter().zip(y).filter(|(a, b)| **a > 0.0 && **b > 0.0).map(|(a, b)| (a.ln(), b.ln())).collect();
-    let n = pts.len() as f64;
-    if pts.len() < 2 {
-        return f64::NAN;
-    }
-    let mx = pts.iter().map(|p| p.0).sum::<f64>() / n;
-    let my = pts.iter().map(|p| p.1).sum::<f64>() / n;
-    let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
-    let sxx: f64 = pts.iter().map(|p| (p.0 - mx) * (p.0 - mx)).sum();
-    sxy / sxx
-}
-
 /// A number with 4 significant digits ([`wingcheck_model::quantity::format_value`], the one
 /// number format). Deterministic, and parses back with `str::parse::<f64>`.
 pub fn fmt_num(v: f64) -> String {
@@ -52,7 +37,5 @@ mod tests {
         let t = [0.0, 1.0, 2.0, 3.0];
         let v = [5.0, -2.0, 0.5, 0.1];
         assert_eq!(max_abs(&t, &v, 1.0, 3.0), 2.0);
-        // y = x^-2 exactly.
-        assert!((loglog_slope(&[1.0, 2.0, 4.0], &[1.0, 0.25, 0.0625]) + 2.0).abs() < 1e-12);
     }
 }

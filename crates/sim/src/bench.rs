@@ -110,18 +110,6 @@ pub fn time_solve(cfg: &Config) -> Result<f64, SimError> {
     Ok(median(samples))
 }
 
-/// Least-squares slope of log(y) against log(x): the empirical scaling exponent.
-pub fn loglog_slope(x: &[f64], y: &[f64]) -> f64 {
-    let lx: Vec<f64> = x.iter().map(|v| v.ln()).collect();
-    let ly: Vec<f64> = y.iter().map(|v| v.ln()).collect();
-    let n = lx.len() as f64;
-    let mx = lx.iter().sum::<f64>() / n;
-    let my = ly.iter().sum::<f64>() / n;
-    let sxy: f64 = lx.iter().zip(&ly).map(|(a, b)| (a - mx) * (b - my)).sum();
-    let sxx: f64 = lx.iter().map(|a| (a - mx) * (a - mx)).sum();
-    sxy / sxx
-}
-
 /// Cost of `wingcheck modes` at its defaults: converged frequencies with error estimates.
 #[derive(Debug, Clone, Serialize, schemars::JsonSchema)]
 pub struct ModesTiming {

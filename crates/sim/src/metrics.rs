@@ -198,6 +198,23 @@ pub fn median(mut v: Vec<f64>) -> Option<f64> {
     Some(if n % 2 == 1 { v[n / 2] } else { 0.5 * (v[n / 2 - 1] + v[n / 2]) })
 }
 
+/// Least-squares slope of log(y) against log(x) (pairs with x, y > 0 only; NaN for fewer than
+/// two such pairs): the one fitted exponent of wingcheck (the benchmarks' scaling exponents, the
+/// report's convergence orders).
+pub fn loglog_slope(x: &[f64], y: &[f64]) -> f64 {
+    let pts: Vec<(f64, f64)> =
+        x.iter().zip(y).filter(|(a, b)| **a > 0.0 && **b > 0.0).map(|(a, b)| (a.ln(), b.ln())).collect();
+    let n = pts.len() as f64;
+    if pts.len() < 2 {
+        return f64::NAN;
+    }
+    let mx = pts.iter().map(|p| p.0).sum::<f64>() / n;
+    let my = pts.iter().map(|p| p.1).sum::<f64>() / n;
+    let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    let sxx: f64 = pts.iter().map(|p| (p.0 - mx) * (p.0 - mx)).sum();
+    sxy / sxx
+}
+
 #[cfg(test)]
 mod median_tests {
     #[test]
@@ -206,5 +223,16 @@ mod median_tests {
         assert_eq!(super::median(vec![9.0, 1.0, 2.0]), Some(2.0));
         assert_eq!(super::median(vec![10.0, 3.0, 1.0, 2.0]), Some(2.5));
         assert_eq!(super::median(vec![]), None);
+    }
+
+    #[test]
+    fn loglog_slope_of_a_power_law_and_of_bad_pairs() {
+        use super::loglog_slope;
+        // y = x^-2 exactly: slope −2 (by hand)
+        assert!((loglog_slope(&[1.0, 2.0, 4.0], &[1.0, 0.25, 0.0625]) + 2.0).abs() < 1e-12);
+        // non-positive pairs are left out (ln undefined), not turned into NaN or −∞: y = x³
+        assert!((loglog_slope(&[1.0, 0.0, 2.0, 3.0], &[1.0, 5.0, 8.0, -1.0]) - 3.0).abs() < 1e-12);
+        // fewer than two usable pairs: no slope
+        assert!(loglog_slope(&[1.0, 2.0], &[1.0, 0.0]).is_nan());
     }
 }

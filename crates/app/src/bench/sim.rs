@@ -6,7 +6,8 @@
 use serde::Serialize;
 use wingcheck_io::clock::Elapsed;
 use wingcheck_model::{apply_overrides, Config, Method, StepBasis, TimeScheme};
-use wingcheck_sim::bench::{loglog_slope, time_config, time_error_estimate, time_modes, ModesTiming, Timing};
+use wingcheck_sim::bench::{time_config, time_error_estimate, time_modes, ModesTiming, Timing};
+use wingcheck_sim::metrics::loglog_slope;
 
 use crate::AppError;
 
