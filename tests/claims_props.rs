@@ -99,7 +99,9 @@ proptest! {
 /// and is never below the summation's round-off floor ((2·steps) ε t).
 #[test]
 fn filippov_reaching_time_matches_its_closed_form_within_its_error() {
-    for (lin, sw, g, s0) in [(0.5, 1.0, 0.3, 2.0), (3.0, 0.2, -0.1, -0.7), (0.0, 1.5, 0.5, 0.05), (20.0, 0.8, 0.7, 40.0)] {
+    for (lin, sw, g, s0) in
+        [(0.5, 1.0, 0.3, 2.0), (3.0, 0.2, -0.1, -0.7), (0.0, 1.5, 0.5, 0.05), (20.0, 0.8, 0.7, 40.0)]
+    {
         let gain = ObserverGain { linear: lin, switching: sw, fractional: 0.0, exponent: 0.6 };
         let c: f64 = sw - f64::signum(s0) * g;
         let exact = if lin > 0.0 { ((lin * f64::abs(s0) + c) / c).ln() / lin } else { f64::abs(s0) / c };

@@ -191,11 +191,6 @@ impl Distributed {
             + self.cos_amp * (self.cos_freq * mid).cos() * factors[0]
             + self.sin_amp * (self.sin_freq * mid).sin() * factors[1]
     }
-    /// sup over z ∈ [0,s], t ≥ 0 of |g_h| = (|mean| + |cos_amp| + |sin_amp|)·|slope|·s: Assumption 1's g_hmax
-    /// (an upper bound; attained for the paper's data at t = 0 … up to the phase alignment).
-    pub fn sup_abs(&self, span: f64) -> f64 {
-        (self.mean.abs() + self.cos_amp.abs() + self.sin_amp.abs()) * self.slope.abs() * span
-    }
 }
 
 /// sin(x)/x with sinc(0) = 1: ∫ of sin/cos over [m − δ, m + δ] is 2δ·sinc(ωδ)·(value at m).
@@ -239,13 +234,5 @@ impl TipDisturbance {
     /// instead of two.
     pub fn step_mean(&self, t0: f64, h: f64, factor: f64) -> f64 {
         self.mean + self.amp * (self.freq * (t0 + 0.5 * h)).sin() * factor
-    }
-    /// Time derivative at t.
-    pub fn rate(&self, t: f64) -> f64 {
-        self.amp * self.freq * (self.freq * t).cos()
-    }
-    /// sup_t |g(t)| = |mean| + |amp| (Assumption 1's ζ for this channel; tight when the sine reaches ±1).
-    pub fn sup_abs(&self) -> f64 {
-        self.mean.abs() + self.amp.abs()
     }
 }

@@ -3,7 +3,7 @@
 //! the interpolation onto an output grid. Built by [`crate::fd`] or [`crate::fe`]
 //! from the shared pieces of [`crate::assembly`].
 
-use wingcheck_model::{Config, Method, Wing};
+use wingcheck_model::{Config, Method};
 
 pub use crate::assembly::{Interpolation, Parts};
 use crate::sparse::SymMatrix;
@@ -93,9 +93,4 @@ impl Discretisation {
     pub fn energy(&self, x: &[f64], v: &[f64]) -> f64 {
         0.5 * self.mass.form(v, v) + 0.5 * self.stiffness.form(x, x)
     }
-}
-
-/// Mass-matrix determinant condition ρ I_p − (ρx_c)² (> 0 by validation).
-pub fn mass_determinant(w: &Wing) -> f64 {
-    w.rho * w.ip - w.rho_xc * w.rho_xc
 }

@@ -30,7 +30,7 @@ pub mod sparse;
 mod stepper;
 pub mod strain;
 
-pub use disc::{mass_determinant, Discretisation, Interpolation, Parts};
+pub use disc::{Discretisation, Interpolation, Parts};
 pub use error_estimate::{
     estimate_from_runs, grid_part, refinements, series_error, simulate_with_error, third_grid_run, EstimatedRun,
     PeakEstimate, PeakEstimates, SubStepCheck, ThirdGrid, RICHARDSON_2, TIP_TOLERANCE,
