@@ -37,12 +37,16 @@ fn statistics_runs_match_the_full_run_within_their_eigenbasis_roundoff() {
     // (overrides, whether the eigenbasis is expected to pass its checks): the paper's point
     // with the explicit FTDO; the doubled grid (48 elements: estimate 8.5e-7 over this 2-s
     // horizon, 7.4e-6 over 20 s, where the search's 1e-6 refuses it and the statistics runs'
-    // 1e-4 accepts it); the slow loop a = 1, b = 3000 (4.0e-8); and the stiff SI-scale wing
-    // with a large gain (refused: dense form).
-    let stiff: Vec<&str> = [&SI_WING[..], &["wing.rho_xc=5", "control.k1=2e4", "control.k2=2e3"]].concat();
-    let cases: [(&[&str], bool); 4] = [
+    // 4e-3 accepts it); 192 elements, the doubled grid of a 96-element check (576 unknowns, the
+    // exponential scheme pinned as check pins it);
+    // the slow loop a = 1, b = 3000 (4.0e-8); and the stiff SI-scale wing with a large gain on
+    // 96 elements (refused: dense form).
+    let stiff: Vec<&str> =
+        [&SI_WING[..], &["wing.rho_xc=5", "control.k1=2e4", "control.k2=2e3", "discretisation.elements=96"]].concat();
+    let cases: [(&[&str], bool); 5] = [
         (&[], true),
         (&["discretisation.elements=48"], true),
+        (&["discretisation.elements=192", "discretisation.stepper=exponential"], true),
         (&["control.a=1", "control.b=3000"], true),
         (&stiff, false),
     ];

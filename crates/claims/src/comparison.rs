@@ -152,6 +152,16 @@ pub fn variant(cfg: &Config, kind: ControllerKind, rule: ObserverRule, a: f64, b
     c
 }
 
+/// `refined` stepped with the time scheme `base` is expected to step
+/// ([`Config::expected_time_scheme`]), as `simulate --error-estimate` pins its refinements to
+/// the base run's: under `stepper = auto` the explicit FTDO's doubled grid could otherwise cross
+/// [`wingcheck_model::MODAL_AUTO_UNKNOWNS`] into the nodal basis and TR-BDF2 (from 96 elements
+/// on), and the grid part of the error would absorb the two schemes' difference (1–2 % of RMS τ).
+fn same_scheme(mut refined: Config, base: &Config) -> Config {
+    refined.discretisation.stepper = base.expected_time_scheme();
+    refined
+}
+
 /// One point of the (a, b) sweep (configured rule).
 #[derive(Debug, Clone, PartialEq)]
 pub struct SweepPoint {
@@ -259,8 +269,8 @@ impl Runs {
             ftdo: variant(cfg, ControllerKind::Ftdo, rule, a0, b0),
             other: variant(cfg, ControllerKind::Ftdo, other_rule(rule), a0, b0),
             dobc: variant(cfg, ControllerKind::Dobc, rule, a0, b0),
-            explicit_half: wingcheck_model::work::refined_in_time(&explicit),
-            explicit_fine: wingcheck_model::work::refined_in_space(&explicit),
+            explicit_half: same_scheme(wingcheck_model::work::refined_in_time(&explicit), &explicit),
+            explicit_fine: same_scheme(wingcheck_model::work::refined_in_space(&explicit), &explicit),
             explicit_nudged: [1.0, -1.0].map(|sign| {
                 let mut c = explicit.clone();
                 c.observer.nu1_0 += sign * START_NUDGE * c.observer.nu1_0.abs().max(1.0);
@@ -394,4 +404,31 @@ pub fn compute(
         zetas: (zeta(&d.tip_bending), zeta(&d.tip_torsion)),
     };
     Ok((computed, ftdo, dobc))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The explicit FTDO's refinements step the scheme its run steps. At 96 elements (288
+    /// unknowns, modal, exponential under `auto`) the doubled grid has 576 unknowns, above
+    /// `MODAL_AUTO_UNKNOWNS` = 300, where `auto` alone would pick the nodal basis and TR-BDF2;
+    /// at 24 elements both are modal and exponential either way.
+    #[test]
+    fn refinements_step_the_explicit_runs_scheme() {
+        for elements in [24, 96] {
+            let mut cfg = Config::paper();
+            cfg.discretisation.elements = elements;
+            let plan = Runs::of(&cfg, &CheckSettings::default());
+            let base = plan.explicit_nudged[0].expected_time_scheme();
+            assert_eq!(base, wingcheck_model::TimeScheme::Exponential, "{elements}");
+            for refined in [&plan.explicit_fine, &plan.explicit_half] {
+                assert_eq!(refined.expected_time_scheme(), base, "{elements}");
+                assert!(refined.expected_modal(), "{elements}");
+            }
+            let mut unpinned = wingcheck_model::work::refined_in_space(&plan.explicit_nudged[0]);
+            unpinned.discretisation.stepper = cfg.discretisation.stepper;
+            assert_eq!(unpinned.expected_modal(), elements == 24, "{elements}: auto alone");
+        }
+    }
 }

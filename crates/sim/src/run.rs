@@ -305,10 +305,14 @@ pub type ControllerFactory<'a> = &'a (dyn Fn() -> BoxedController + Sync);
 
 /// Largest round-off estimate [`RunOptions::eigenbasis`] accepts (relative of the state). The
 /// estimate is checked against the dense scheme over whole 20-s horizons by the eigenbasis unit
-/// test in `modal::scheme`, with the search's limit lifted, up to 7.9e-4 (a stiff SI-scale
-/// wing: measured 3.0e-4 of the state, 0.4 × the estimate; 48 elements 7.4e-6, 0.23 ×), and
-/// by `tests/statistics_runs.rs` through `check`'s own statistics runs.
-pub const MAX_EIGENBASIS_ROUNDOFF: f64 = 1e-4;
+/// test in `modal::scheme`, with the search's limit lifted, up to 3.1e-3 (the paper's wing on
+/// 192 elements: measured 1.8e-3 of the modal state, 0.58 × the estimate, and 7.4e-5 of the
+/// whole run's ∫τ²; 96 elements 1.5e-4, 0.61 ×; a stiff SI-scale wing 7.9e-4, 0.70 ×), and by
+/// `tests/statistics_runs.rs` through `check`'s own statistics runs. Their users add the
+/// estimate to the quantity's error (the explicit FTDO's RMS τ: ×4.8 of the value), so a run
+/// near the limit widens its ± instead of hiding a difference. Up to it the doubled grid of a
+/// 96-element check (576 unknowns) steps in O(N) instead of a dense (2n)² product per step.
+pub const MAX_EIGENBASIS_ROUNDOFF: f64 = 4e-3;
 
 /// How a run of the exponential scheme looks inside its steps after each jump of the held
 /// inputs (the other schemes have no probe).

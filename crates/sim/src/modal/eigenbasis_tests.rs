@@ -31,7 +31,7 @@ fn the_eigenbasis_step_matches_the_dense_exponential_step() {
     let soft_si: &[&str] =
         &["wing.span=6", "wing.ei=1e5", "wing.gj=1e4", "wing.rho=10", "wing.ip=1", "wing.rho_xc=0.5", "wing.xi=0.01"];
     // (overrides, the reason it is refused at the search's limit, if it is)
-    let cases: [(&[&str], Option<&str>); 11] = [
+    let cases: [(&[&str], Option<&str>); 13] = [
         (&[], None),
         (&["control.a=1", "control.b=3000"], None),
         (&["control.a=0.014", "control.b=190"], None),
@@ -43,6 +43,8 @@ fn the_eigenbasis_step_matches_the_dense_exponential_step() {
         (&["discretisation.elements=48"], Some("round-off")),
         (&["wing.xi=0", "control.b=2"], Some("Re λ ≥ 0")),
         (&["control.a=1e-4", "control.b=1e4"], None),
+        (&["discretisation.elements=96"], Some("round-off")),
+        (&["discretisation.elements=192"], Some("round-off")),
     ];
     for (sets, refusal) in cases {
         let mut over: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
