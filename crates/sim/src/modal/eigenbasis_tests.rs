@@ -13,7 +13,7 @@ use super::{ModalBasis, ModalLoop, StepInput};
 /// slow loops a = 1 b = 3000, a = 0.014 b = 190, a = 1e-4 b = 1400, a = 1e-4 b = 1e4,
 /// slowest rates down to 3.8e-6 1/s, where the unrefined eigen-solve's drift reached 1.2 × the
 /// estimate and the telescoped ∫τ² terms are 2.7e8 steps' integrals). The loops it refuses
-/// say why: a stiff and a soft SI-scale wing and 48 elements by their round-off estimates
+/// say why: a stiff and a soft SI-scale wing and 48, 96 and 192 elements by their round-off estimates
 /// (with the limit lifted, the estimate still covers their differences: the stiff wing's 3e-4
 /// is 0.4 × it), no Kelvin–Voigt damping (an eigenvalue on the imaginary axis to round-off).
 #[test]
