@@ -13,7 +13,6 @@
 //! each μ_i must be ≥ t − [`ROW_TOLERANCE`]·max(m_i, |t|), η ≥ 0, η3, η4 ≤ b/(2a) to the same
 //! relative tolerance. Any other status is recorded and the answer is not used.
 
-use clarabel::solver::SolverStatus;
 use serde::Serialize;
 
 use crate::socp::Socp;
@@ -152,10 +151,10 @@ fn violation(d: &MuData, sc: &Scales, e: &Etas, t: f64) -> f64 {
     worst
 }
 
-/// A point worth re-verifying: `Solved`, or `AlmostSolved` (reduced accuracy; its point is
-/// used only if it passes the same re-verification, and the status is recorded).
+/// A point worth re-verifying ([`crate::status::worth_reverifying`]); used only if it passes
+/// the re-verification, and the status is recorded.
 fn usable(out: &crate::socp::SocpOutcome) -> bool {
-    matches!(out.status, SolverStatus::Solved | SolverStatus::AlmostSolved) && out.x.iter().all(|v| v.is_finite())
+    crate::status::worth_reverifying(out.status, &out.x)
 }
 
 /// Passes of re-scaling: after each solve every η scale is multiplied by the solver's y, so

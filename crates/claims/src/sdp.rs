@@ -264,8 +264,8 @@ fn solve_side(
         *budget = budget.saturating_sub(sol.iterations.max(1));
         use wingcheck_lapack::sdp::SdpStatus;
         // λ only from a point clarabel calls optimal (an interrupted solve's point means nothing)
-        let optimal = matches!(sol.status, SdpStatus::Solved | SdpStatus::AlmostSolved);
-        let lambda = (optimal && sol.x.first().is_some_and(|x| x.is_finite())).then(|| sign * sigma * sol.x[0]);
+        let optimal = crate::status::worth_reverifying(sol.raw_status, &sol.x) && !sol.x.is_empty();
+        let lambda = optimal.then(|| sign * sigma * sol.x[0]);
         let solved = sol.status == SdpStatus::Solved;
         // P/σ back from the scaled variables (p̃_k = m_k β² P_k/σ)
         let p_over_sigma =

@@ -30,11 +30,6 @@ pub struct SocpOutcome {
 }
 
 impl SocpOutcome {
-    /// Solved to full accuracy (`AlmostSolved` is not accepted: its point may violate the
-    /// constraints; callers re-verify solved points anyway).
-    pub fn solved(&self) -> bool {
-        matches!(self.status, SolverStatus::Solved)
-    }
     /// Clarabel found a primal infeasibility certificate.
     pub fn infeasible(&self) -> bool {
         matches!(self.status, SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible)

@@ -27,6 +27,14 @@ impl SolveStatus {
     }
 }
 
+/// The one acceptance rule for a solver's point: clarabel called it optimal — `Solved`, or
+/// `AlmostSolved` (reduced accuracy) — and every coordinate is finite. Such a point is only a
+/// candidate: every caller re-verifies it against the original constraints before using it
+/// (an interrupted or failed solve's point means nothing and is never looked at).
+pub fn worth_reverifying(status: SolverStatus, x: &[f64]) -> bool {
+    matches!(status, SolverStatus::Solved | SolverStatus::AlmostSolved) && x.iter().all(|v| v.is_finite())
+}
+
 impl std::fmt::Display for SolveStatus {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
@@ -51,5 +59,30 @@ impl schemars::JsonSchema for SolveStatus {
             "type": "string",
             "description": "clarabel's status name (Solved, AlmostSolved, MaxTime, …) or `not run`"
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The rule as documented: optimal statuses with a finite point only; an interrupted,
+    /// stalled or infeasible solve's point is never re-verified.
+    #[test]
+    fn only_optimal_finite_points_are_worth_reverifying() {
+        let ok = [1.0, -2.0];
+        assert!(worth_reverifying(SolverStatus::Solved, &ok));
+        assert!(worth_reverifying(SolverStatus::AlmostSolved, &ok));
+        assert!(!worth_reverifying(SolverStatus::Solved, &[1.0, f64::NAN]));
+        for other in [
+            SolverStatus::MaxIterations,
+            SolverStatus::MaxTime,
+            SolverStatus::CallbackTerminated,
+            SolverStatus::NumericalError,
+            SolverStatus::PrimalInfeasible,
+            SolverStatus::InsufficientProgress,
+        ] {
+            assert!(!worth_reverifying(other, &ok), "{other:?}");
+        }
     }
 }
