@@ -130,11 +130,7 @@ pub fn lemma3_numeric(phi1: f64, phi2: f64, phi3: f64, q0: f64, psi: &dyn Fn(f64
             return t + togo.max(0.0);
         }
         let h = 0.01 * togo;
-        let k1 = d;
-        let k2 = f(t + 0.5 * h, q + 0.5 * h * k1);
-        let k3 = f(t + 0.5 * h, q + 0.5 * h * k2);
-        let k4 = f(t + h, q + h * k3);
-        let next = q + h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+        let next = crate::ode::rk4_step_with(|t, q| Some(f(t, q)), t, q, h, d).unwrap_or(f64::NAN);
         if next <= 0.0 {
             // Crossed within the step: locate linearly.
             return t + h * q / (q - next);

@@ -18,6 +18,7 @@ mod ledger;
 pub mod lemmas;
 pub mod lyapunov;
 pub mod mu;
+pub mod ode;
 pub mod plan;
 pub mod sdp;
 pub mod settings;

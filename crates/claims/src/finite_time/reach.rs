@@ -8,6 +8,7 @@ use wingcheck_sim::metrics::max_abs;
 use wingcheck_sim::modal::{drive, ModalBasis, ModalLoop, ModalState, ObserverSignal, Reads, Recorder};
 use wingcheck_sim::{Sample, Stepper};
 
+use crate::ode::rk4_step;
 use crate::ClaimsError;
 
 /// Lemma 3, (14): t_f = ln((φ1 Q0^{1−φ3} + φ2)/φ2) / (φ1 (1 − φ3)) (s), the exact time at which
@@ -155,11 +156,7 @@ fn sigma_domain(
     let (mut t, mut tr, mut sg) = (0.0, vec![0.0], vec![sigma0]);
     for i in 0..steps {
         let v = i as f64 * du;
-        let k1 = rate(v, t)?;
-        let k2 = rate(v + 0.5 * du, t + 0.5 * du * k1)?;
-        let k3 = rate(v + 0.5 * du, t + 0.5 * du * k2)?;
-        let k4 = rate(v + du, t + du * k3)?;
-        t += du / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+        t = rk4_step(rate, v, t, du)?;
         if (i + 1) % stride == 0 || i + 1 == steps {
             tr.push(t);
             sg.push(s0 * (u0 - v - du).max(0.0).powf(m));
@@ -176,11 +173,7 @@ fn time_domain(gain: &ObserverGain, g: &dyn Fn(f64) -> f64, sigma0: f64, t_max: 
     let mut reach = None;
     let mut k = 0usize;
     while t < t_max {
-        let k1 = f(t, s);
-        let k2 = f(t + 0.5 * h, s + 0.5 * h * k1);
-        let k3 = f(t + 0.5 * h, s + 0.5 * h * k2);
-        let k4 = f(t + h, s + h * k3);
-        let next = s + h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+        let next = rk4_step(|t, s| Some(f(t, s)), t, s, h).unwrap_or(f64::NAN);
         if next == 0.0 || next.signum() != sigma0.signum() {
             reach = Some(t + h * s / (s - next));
             break;
