@@ -42,9 +42,6 @@ impl MuData {
     }
 }
 
-/// Elements of the tight λ1 (sup W/κ) in λ = λ3/λ1 ([`CheckSettings::mu_lambda1_elements`]).
-pub const LAMBDA1_ELEMENTS: usize = 8;
-
 /// Tight λ1 (sup W/κ) at weights (a, b) on `elements` Galerkin elements (a lower bound of
 /// sup W/κ: the maximum over a subspace).
 pub fn lambda1_on(cfg: &Config, a: f64, b: f64, elements: usize) -> Result<f64, ClaimsError> {
@@ -54,19 +51,21 @@ pub fn lambda1_on(cfg: &Config, a: f64, b: f64, elements: usize) -> Result<f64, 
     Ok(tight_constants(&f).map_err(|d| ClaimsError::Numerical { what: "eigen".into(), detail: d })?.lambda1)
 }
 
-/// Tight λ1 at weights (a, b) on [`LAMBDA1_ELEMENTS`] elements.
-pub fn lambda1_at(cfg: &Config, a: f64, b: f64) -> Result<f64, ClaimsError> {
-    lambda1_on(cfg, a, b, LAMBDA1_ELEMENTS)
-}
-
 /// The ε/λ-optimal point at weights (a, b) with bounds (g_hmax, ζ3, ζ4) ([`theory::best_point`]
-/// with the tight λ1 on [`LAMBDA1_ELEMENTS`] elements).
-pub fn best_point(cfg: &Config, a: f64, b: f64, bounds: (f64, f64, f64)) -> Result<Option<BestPoint>, ClaimsError> {
+/// with the tight λ1 on `elements` Galerkin elements; the row uses
+/// [`CheckSettings::mu_lambda1_elements`]).
+pub fn best_point(
+    cfg: &Config,
+    a: f64,
+    b: f64,
+    bounds: (f64, f64, f64),
+    elements: usize,
+) -> Result<Option<BestPoint>, ClaimsError> {
     let d = MuData::new(cfg, a, b);
     if d.obstruction_exact(cfg.control.k1, cfg.control.k2).is_some() {
         return Ok(None);
     }
-    let l1 = lambda1_at(cfg, a, b)?;
+    let l1 = lambda1_on(cfg, a, b, elements)?;
     let bounds = DisturbanceBounds { g_hmax: bounds.0, zeta3: bounds.1, zeta4: bounds.2 };
     Ok(theory::best_point(&d, l1, &bounds, cfg.control.k1, cfg.control.k2))
 }

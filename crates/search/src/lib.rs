@@ -135,7 +135,9 @@ pub struct SearchOptions {
     pub best: Ranking,
     /// Points listed in `best.json`.
     pub best_count: usize,
-    /// Elements N of the Galerkin space of W and κ.
+    /// Elements N of the Galerkin space of W and κ (default: the ledger's
+    /// [`wingcheck_claims::CheckSettings::mu_lambda1_elements`], so a point's λ1 and the
+    /// mu-conditions row's agree).
     pub lyapunov_elements: usize,
 }
 
@@ -147,7 +149,7 @@ impl Default for SearchOptions {
             refine: None,
             best: Ranking::default(),
             best_count: 10,
-            lyapunov_elements: 8,
+            lyapunov_elements: wingcheck_claims::CheckSettings::default().mu_lambda1_elements,
         }
     }
 }

@@ -146,7 +146,7 @@ fn fast_theory_matches_the_claims_functions() {
     let cfg = apply_overrides(&base, &["control.a=1e-4".into()]).unwrap();
     let bounds = (0.2, 0.01, 0.02); // arbitrary positive (g_hmax, ζ3, ζ4); the same for both
     let t = cache.evaluate(&cfg, Some(bounds)).unwrap();
-    let bp = best_point(&cfg, 1e-4, 1.0, bounds).unwrap().expect("a/b = 1e-4 < r* is feasible");
+    let bp = best_point(&cfg, 1e-4, 1.0, bounds, 8).unwrap().expect("a/b = 1e-4 < r* is feasible");
     let rel = |x: f64, y: f64| (x - y).abs() / y.abs();
     assert!(rel(t.lambda.unwrap(), bp.lambda) < 1e-9, "λ {:?} vs {}", t.lambda, bp.lambda);
     assert!(rel(t.epsilon.unwrap(), bp.epsilon) < 1e-9, "ε {:?} vs {}", t.epsilon, bp.epsilon);
