@@ -7,9 +7,9 @@
 //! m(dt)|), F = [`RICHARDSON_2`], the rule the error estimate applies to every tip value. The
 //! metrics are the claim ledger's ([`wingcheck_claims::comparison::metrics`]: the one RMS, peak
 //! and settling definitions of `wingcheck_sim::metrics`), plus the energy at t_end relative to
-//! the start. A built-in row steps in the basis the configuration resolves to (its runs are
-//! those of `check`); a controller of the user's in the nodal basis (same discrete equations,
-//! agreeing to round-off).
+//! the start. Every row steps in the basis the configuration resolves to (a built-in row's runs
+//! are those of `check`; a controller of the user's is sampled from the state there, the same
+//! discrete equations).
 
 use serde::Serialize;
 use wingcheck_claims::comparison::{metrics, Metrics};
