@@ -13,7 +13,9 @@ optionally, ``continuous`` and ``reset()``:
 - ``reset()``: called before every run (an error estimate makes three runs, the initial layer
   more), so that each starts from the controller's state at t = 0.
 
-Runs under such a controller step in the nodal basis (``discretisation.basis`` auto or nodal).
+Runs under such a controller step in the basis the configuration resolves to, as the built-in
+ones do (``discretisation.basis``; ``auto`` is modal on the default grid); the step form
+(:class:`Wing`) steps in the nodal basis.
 """
 
 from __future__ import annotations
