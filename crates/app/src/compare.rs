@@ -20,6 +20,8 @@ use wingcheck_sim::{refinements, simulate, ControllerFactory, RunOptions, SimOut
 
 use crate::{AppError, SimulateRequest, WorkPolicy};
 
+pub use crate::compare_view::{check_svg_path, svg, table, write_svg};
+
 /// One contestant of a comparison.
 #[derive(Clone, Copy)]
 pub enum Entrant<'a> {
@@ -40,6 +42,10 @@ pub struct CompareRow {
     pub values: Vec<Option<Quantity>>,
     /// The base run's output samples: t (s), q(s,t) (m), θ(s,t) (rad), τ1 (N), τ2 (N m).
     pub series: [Vec<f64>; 5],
+    /// The base run's full-rate (min, max) of τ1 (N) and τ2 (N m) per output interval
+    /// ([`wingcheck_sim::Envelope`]): what the samples of a chattering input alias.
+    #[serde(skip)]
+    pub tau_range: [Vec<(f64, f64)>; 2],
 }
 
 /// The metrics of a row: (label, unit).
@@ -146,6 +152,7 @@ fn row(cfg: &Config, name: &str, entrant: Entrant<'_>, cancel: &Cancel) -> Resul
         basis: base.stats.basis.name().to_string(),
         values,
         series: [s.t.clone(), s.q_tip.clone(), s.theta_tip.clone(), s.tau1.clone(), s.tau2.clone()],
+        tau_range: [base.envelope.tau1.clone(), base.envelope.tau2.clone()],
     })
 }
 
