@@ -59,6 +59,14 @@ impl Shared {
     }
 }
 
+/// Run `f` on this thread with a Python thread state kept for it and the GIL released: each
+/// controller call on this thread then takes the GIL by restoring that state instead of
+/// creating and destroying one (`PyGILState_Ensure` on a thread without one), which was most of
+/// a trivial controller's cost per call (bench_controller.py).
+pub fn with_thread_state<T: Send>(f: impl FnOnce() -> T + Send) -> T {
+    Python::attach(|py| py.detach(f))
+}
+
 /// One run's controller: the shared object and the integrals of the current sample period.
 struct PyController {
     shared: Arc<Shared>,

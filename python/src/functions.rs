@@ -82,7 +82,8 @@ pub fn simulate<'py>(
         let mut on_progress = |f: f64| sink.set(f, "simulate");
         let make = own.map(|s| move || s.controller());
         let factory = make.as_ref().map(|f| f as ControllerFactory<'_>);
-        let r = wingcheck_app::simulate::run_with(&cfg, &req, policy(allow_large), Some(&mut on_progress), cancel, factory)?;
+        let mut run = || wingcheck_app::simulate::run_with(&cfg, &req, policy(allow_large), Some(&mut on_progress), cancel, factory);
+        let r = if factory.is_some() { crate::controller::with_thread_state(run)? } else { run()? };
         Ok((cfg, r))
     })
     // an exception inside the user's controller is raised as it is, with its traceback
@@ -337,7 +338,8 @@ pub fn compare(
                 (name.clone(), e)
             })
             .collect();
-        let c = wingcheck_app::compare::compare(&cfg, &entrants, policy(allow_large), cancel)?;
+        let compared = || wingcheck_app::compare::compare(&cfg, &entrants, policy(allow_large), cancel);
+        let c = if makers.iter().any(Option::is_some) { crate::controller::with_thread_state(compared)? } else { compared()? };
         serde_json::to_string(&c).map_err(|e| AppError::Internal(format!("compare as JSON: {e}")))
     })
     .map_err(|e| shared.iter().find_map(|s| s.take_error()).unwrap_or(e))?;
