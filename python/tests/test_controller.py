@@ -323,5 +323,5 @@ def test_search_runs_a_python_controller_at_every_point(tmp_path):
         assert a.read() == b.read()
     with open(os.path.join(mine.out_dir, "manifest.json")) as f:
         assert json.load(f)["options"]["controller"] == "PaperPD"
-    with pytest.raises(TypeError, match="control.kind"):
+    with pytest.raises(wingcheck.ConfigError, match="control.kind"):
         wingcheck.search(over=over, out=tmp_path / "x", controller="pd")

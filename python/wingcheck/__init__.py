@@ -236,14 +236,15 @@ def search(
     (``"rms_q_tip"``; ``"-lambda"`` maximises). ``controller``: your own controller (as for
     :func:`simulate`; the built-in ones are chosen with ``set={"control.kind": ...}``) run at
     every point in place of ``control.kind``, reset before each point's run. Its gains are its
-    own: axes over ``control.*`` change the configuration's law (15), not your object. Its name (``__name__`` or the class name) is recorded in
-    manifest.json; an exception inside it makes that point an error and the search goes on. The
-    theory columns stay the paper's (about its FTDO)."""
+    own: axes over ``control.*`` change the configuration's law (15), not your object. Its name
+    (``__name__`` or the class name) is recorded in manifest.json; an exception inside it makes
+    that point an error and the search goes on. The theory columns stay the paper's (about its
+    FTDO)."""
     own: Dict[str, Any] = {}
     if controller is not None:
         if isinstance(controller, str):
-            raise TypeError(
-                "search(controller=...) takes your own controller; choose a built-in one with "
+            raise ConfigError(
+                "controller: search takes your own controller; choose a built-in one with "
                 "set={'control.kind': %r}" % controller
             )
         check_callable(controller)
