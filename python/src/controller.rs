@@ -121,7 +121,8 @@ impl Controller for PyController {
         let i = self.integrals.take();
         let t = tip.t;
         Python::attach(|py| {
-            let args = (t, tip.x[0], tip.x[1], tip.v[0], tip.v[1], tip.w[0], tip.w[1], i.tau[0], i.tau[1], i.w[0], i.w[1]);
+            let args =
+                (t, tip.x[0], tip.x[1], tip.v[0], tip.v[1], tip.w[0], tip.w[1], i.tau[0], i.tau[1], i.w[0], i.w[1]);
             let record = self.shared.tip.bind(py).call1(args).map_err(|e| self.shared.failed(py, t, e))?;
             let out = self.shared.obj.bind(py).call1((t, record)).map_err(|e| self.shared.failed(py, t, e))?;
             let input = pair(t, &out)?;

@@ -82,7 +82,9 @@ pub fn simulate<'py>(
         let mut on_progress = |f: f64| sink.set(f, "simulate");
         let make = own.map(|s| move || s.controller());
         let factory = make.as_ref().map(|f| f as ControllerFactory<'_>);
-        let mut run = || wingcheck_app::simulate::run_with(&cfg, &req, policy(allow_large), Some(&mut on_progress), cancel, factory);
+        let mut run = || {
+            wingcheck_app::simulate::run_with(&cfg, &req, policy(allow_large), Some(&mut on_progress), cancel, factory)
+        };
         let r = if factory.is_some() { crate::controller::with_thread_state(run)? } else { run()? };
         Ok((cfg, r))
     })
@@ -176,7 +178,8 @@ pub fn search(
     };
     let own = controller_object.map(|obj| Shared::new(py, obj, continuous.unwrap_or([0.0; 4]))).transpose()?;
     let controller = own.as_ref().map(|_| controller_name.unwrap_or_else(|| "your own".into()));
-    let options = wingcheck_search::SearchOptions { window, chunk_size, refine, best, controller, ..Default::default() };
+    let options =
+        wingcheck_search::SearchOptions { window, chunk_size, refine, best, controller, ..Default::default() };
     let base = source(config_text, config_path, set);
     blocking::run(py, progress.as_ref(), Writes::Files, move |cancel, sink| {
         let cfg = base.load()?;
@@ -306,7 +309,9 @@ pub fn compare(
     let mut shared = Vec::new();
     for (name, kind, obj, continuous) in entrants {
         let which = match (kind, obj) {
-            (Some(k), _) => Ok(parse_name::<ControllerKind>(py, "controllers", Some(k))?.unwrap_or(ControllerKind::Ftdo)),
+            (Some(k), _) => {
+                Ok(parse_name::<ControllerKind>(py, "controllers", Some(k))?.unwrap_or(ControllerKind::Ftdo))
+            }
             (None, Some(obj)) => {
                 let s = Shared::new(py, obj, continuous.unwrap_or([0.0; 4]))?;
                 shared.push(s.clone());
@@ -321,10 +326,12 @@ pub fn compare(
         let cfg = base.load()?;
         let makers: Vec<_> = parsed
             .iter()
-            .map(|(_, w)| w.as_ref().err().map(|s| {
-                let s = s.clone();
-                move || s.controller()
-            }))
+            .map(|(_, w)| {
+                w.as_ref().err().map(|s| {
+                    let s = s.clone();
+                    move || s.controller()
+                })
+            })
             .collect();
         // a row without a maker is a built-in one (its kind parsed above)
         let entrants: Vec<(String, wingcheck_app::compare::Entrant<'_>)> = parsed
@@ -339,7 +346,11 @@ pub fn compare(
             })
             .collect();
         let compared = || wingcheck_app::compare::compare(&cfg, &entrants, policy(allow_large), cancel);
-        let c = if makers.iter().any(Option::is_some) { crate::controller::with_thread_state(compared)? } else { compared()? };
+        let c = if makers.iter().any(Option::is_some) {
+            crate::controller::with_thread_state(compared)?
+        } else {
+            compared()?
+        };
         serde_json::to_string(&c).map_err(|e| AppError::Internal(format!("compare as JSON: {e}")))
     })
     .map_err(|e| shared.iter().find_map(|s| s.take_error()).unwrap_or(e))?;

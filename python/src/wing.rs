@@ -84,9 +84,7 @@ impl WingLoop {
     fn reset(&mut self, py: Python<'_>) -> PyResult<Obs> {
         let driven = Driven { law: self.law, input: [0.0; 2], integrals: PeriodIntegrals::default() };
         let disc = Discretisation::new(&self.cfg);
-        let mut st = py
-            .detach(|| Stepper::with_controller(&self.cfg, disc, driven))
-            .map_err(|e| sim_err(py, e))?;
+        let mut st = py.detach(|| Stepper::with_controller(&self.cfg, disc, driven)).map_err(|e| sim_err(py, e))?;
         self.e0 = st.sample().energy;
         let obs = observation(&mut st);
         self.stepper = Some(st);
