@@ -1,5 +1,5 @@
 //! The closed loop driven one sample period at a time from Python (`wingcheck.Wing`): the same
-//! stepper as `simulate(config, controller=f)` (nodal basis), with the held inputs given by
+//! stepper as `simulate(config, controller=f)` in the nodal basis, with the held inputs given by
 //! each `step` instead of returned by a callback, so the two forms give the same bits.
 //!
 //! Each call is one sample period (`observer.sample_period` integrator steps' worth, ≈ µs at

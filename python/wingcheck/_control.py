@@ -210,8 +210,10 @@ class Wing:
     co-simulation codes use): ``wing = Wing(config); tip = wing.reset(); tip, info =
     wing.step((tau1, tau2))``. ``step`` holds (tau1 (N), tau2 (N m)) over [t_k, t_k + T_s) on
     top of the ``continuous`` part (k1, k2, a, b) of law (15) and returns the measurements at
-    t_{k+1} (a :class:`Tip`) and ``info`` = {``"t"`` (s), ``"energy_J"``}. The same stepper as
-    ``simulate(config, controller=f)``: the same inputs give the same bits. A diverged loop
+    t_{k+1} (a :class:`Tip`) and ``info`` = {``"t"`` (s), ``"energy_J"``}. It steps in the
+    nodal basis (a modal ``discretisation.basis`` or the exponential scheme is refused): the
+    same inputs give the bits of ``simulate(config, controller=f)`` with
+    ``discretisation.basis = "nodal"``. A diverged loop
     raises :class:`~wingcheck.errors.DivergedError`; a NaN, inf or non-pair action
     :class:`~wingcheck.errors.ControllerError`."""
 
