@@ -59,6 +59,14 @@ impl Shared {
     }
 }
 
+/// Run `f` on this thread with a Python thread state kept for it and the GIL released: each
+/// controller call on this thread then takes the GIL by restoring that state instead of
+/// creating and destroying one (`PyGILState_Ensure` on a thread without one), which was most of
+/// a trivial controller's cost per call (bench_controller.py).
+pub fn with_thread_state<T: Send>(f: impl FnOnce() -> T + Send) -> T {
+    Python::attach(|py| py.detach(f))
+}
+
 /// One run's controller: the shared object and the integrals of the current sample period.
 struct PyController {
     shared: Arc<Shared>,
@@ -113,7 +121,8 @@ impl Controller for PyController {
         let i = self.integrals.take();
         let t = tip.t;
         Python::attach(|py| {
-            let args = (t, tip.x[0], tip.x[1], tip.v[0], tip.v[1], tip.w[0], tip.w[1], i.tau[0], i.tau[1], i.w[0], i.w[1]);
+            let args =
+                (t, tip.x[0], tip.x[1], tip.v[0], tip.v[1], tip.w[0], tip.w[1], i.tau[0], i.tau[1], i.w[0], i.w[1]);
             let record = self.shared.tip.bind(py).call1(args).map_err(|e| self.shared.failed(py, t, e))?;
             let out = self.shared.obj.bind(py).call1((t, record)).map_err(|e| self.shared.failed(py, t, e))?;
             let input = pair(t, &out)?;

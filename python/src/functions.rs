@@ -82,7 +82,10 @@ pub fn simulate<'py>(
         let mut on_progress = |f: f64| sink.set(f, "simulate");
         let make = own.map(|s| move || s.controller());
         let factory = make.as_ref().map(|f| f as ControllerFactory<'_>);
-        let r = wingcheck_app::simulate::run_with(&cfg, &req, policy(allow_large), Some(&mut on_progress), cancel, factory)?;
+        let mut run = || {
+            wingcheck_app::simulate::run_with(&cfg, &req, policy(allow_large), Some(&mut on_progress), cancel, factory)
+        };
+        let r = if factory.is_some() { crate::controller::with_thread_state(run)? } else { run()? };
         Ok((cfg, r))
     })
     // an exception inside the user's controller is raised as it is, with its traceback
@@ -142,10 +145,14 @@ pub fn check(
     })
 }
 
-/// A search into `out`: its summary (JSON text); the Python layer reads the files.
+/// A search into `out`: its summary (JSON text); the Python layer reads the files. With
+/// `controller_object`, every point runs that controller of the user's (named
+/// `controller_name` in the manifest); an exception inside it is that point's error, as a
+/// diverged run is, and the search goes on.
 #[pyfunction]
 #[pyo3(signature = (over, out, config_text=None, config_path=None, set=Vec::new(), threads=None, refine=None,
-    best=None, window=None, chunk_size=32, allow_large=false, progress=None))]
+    best=None, window=None, chunk_size=32, allow_large=false, progress=None, controller_object=None, continuous=None,
+    controller_name=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn search(
     py: Python<'_>,
@@ -161,22 +168,30 @@ pub fn search(
     chunk_size: usize,
     allow_large: bool,
     progress: Option<Bound<'_, PyAny>>,
+    controller_object: Option<Py<PyAny>>,
+    continuous: Option<[f64; 4]>,
+    controller_name: Option<String>,
 ) -> PyResult<String> {
     let best: wingcheck_search::Ranking = match best {
         Some(b) => b.parse().map_err(|e| argument(py, "best", e))?,
         None => Default::default(),
     };
-    let options = wingcheck_search::SearchOptions { window, chunk_size, refine, best, ..Default::default() };
+    let own = controller_object.map(|obj| Shared::new(py, obj, continuous.unwrap_or([0.0; 4]))).transpose()?;
+    let controller = own.as_ref().map(|_| controller_name.unwrap_or_else(|| "your own".into()));
+    let options =
+        wingcheck_search::SearchOptions { window, chunk_size, refine, best, controller, ..Default::default() };
     let base = source(config_text, config_path, set);
     blocking::run(py, progress.as_ref(), Writes::Files, move |cancel, sink| {
         let cfg = base.load()?;
         let on_progress = |p: wingcheck_search::Progress| {
             sink.set(if p.total == 0 { 1.0 } else { p.done as f64 / p.total as f64 }, "search")
         };
+        let make = own.map(|s| move || s.controller());
         let ctl = wingcheck_search::RunControl {
             progress: Some(&on_progress),
             threads,
             cancel: cancel.clone(),
+            controller: make.as_ref().map(|f| f as ControllerFactory<'_>),
             ..Default::default()
         };
         let s = ops::search(cfg, &over, options, &out, policy(allow_large), ctl)?;
@@ -294,7 +309,9 @@ pub fn compare(
     let mut shared = Vec::new();
     for (name, kind, obj, continuous) in entrants {
         let which = match (kind, obj) {
-            (Some(k), _) => Ok(parse_name::<ControllerKind>(py, "controllers", Some(k))?.unwrap_or(ControllerKind::Ftdo)),
+            (Some(k), _) => {
+                Ok(parse_name::<ControllerKind>(py, "controllers", Some(k))?.unwrap_or(ControllerKind::Ftdo))
+            }
             (None, Some(obj)) => {
                 let s = Shared::new(py, obj, continuous.unwrap_or([0.0; 4]))?;
                 shared.push(s.clone());
@@ -309,10 +326,12 @@ pub fn compare(
         let cfg = base.load()?;
         let makers: Vec<_> = parsed
             .iter()
-            .map(|(_, w)| w.as_ref().err().map(|s| {
-                let s = s.clone();
-                move || s.controller()
-            }))
+            .map(|(_, w)| {
+                w.as_ref().err().map(|s| {
+                    let s = s.clone();
+                    move || s.controller()
+                })
+            })
             .collect();
         // a row without a maker is a built-in one (its kind parsed above)
         let entrants: Vec<(String, wingcheck_app::compare::Entrant<'_>)> = parsed
@@ -326,7 +345,12 @@ pub fn compare(
                 (name.clone(), e)
             })
             .collect();
-        let c = wingcheck_app::compare::compare(&cfg, &entrants, policy(allow_large), cancel)?;
+        let compared = || wingcheck_app::compare::compare(&cfg, &entrants, policy(allow_large), cancel);
+        let c = if makers.iter().any(Option::is_some) {
+            crate::controller::with_thread_state(compared)?
+        } else {
+            compared()?
+        };
         serde_json::to_string(&c).map_err(|e| AppError::Internal(format!("compare as JSON: {e}")))
     })
     .map_err(|e| shared.iter().find_map(|s| s.take_error()).unwrap_or(e))?;

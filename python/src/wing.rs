@@ -1,5 +1,5 @@
 //! The closed loop driven one sample period at a time from Python (`wingcheck.Wing`): the same
-//! stepper as `simulate(config, controller=f)` (nodal basis), with the held inputs given by
+//! stepper as `simulate(config, controller=f)` in the nodal basis, with the held inputs given by
 //! each `step` instead of returned by a callback, so the two forms give the same bits.
 //!
 //! Each call is one sample period (`observer.sample_period` integrator steps' worth, ≈ µs at
@@ -84,9 +84,7 @@ impl WingLoop {
     fn reset(&mut self, py: Python<'_>) -> PyResult<Obs> {
         let driven = Driven { law: self.law, input: [0.0; 2], integrals: PeriodIntegrals::default() };
         let disc = Discretisation::new(&self.cfg);
-        let mut st = py
-            .detach(|| Stepper::with_controller(&self.cfg, disc, driven))
-            .map_err(|e| sim_err(py, e))?;
+        let mut st = py.detach(|| Stepper::with_controller(&self.cfg, disc, driven)).map_err(|e| sim_err(py, e))?;
         self.e0 = st.sample().energy;
         let obs = observation(&mut st);
         self.stepper = Some(st);

@@ -71,7 +71,8 @@ def test_an_own_controller_row_beside_the_paper_ones():
 
     c = wingcheck.compare(None, {"mine": saturated_pd, "FTDO": "ftdo", "DOBC": "dobc"})
     assert list(c.rows) == ["mine", "FTDO", "DOBC"]
-    assert c.basis["mine"] == "nodal"
+    # your own row steps in the basis `auto` resolves to, as the built-in rows do
+    assert c.basis["mine"] == c.basis["FTDO"] == "modal"
     # the held input never exceeds the saturation (full-rate peak of τ, sample-and-hold of u)
     assert c.value("mine", "peak |τ1|")[0] <= 0.5 + 1e-12
     assert c.value("mine", "peak |τ2|")[0] <= 0.5 + 1e-12

@@ -4,6 +4,7 @@ destabilises the loop stops the run with a clear error naming the time, and noth
 
 from __future__ import annotations
 
+import json
 import math
 import os
 import threading
@@ -77,30 +78,31 @@ class ExplicitFTDO:
         return tuple(out)
 
 
-def test_python_pd_reproduces_the_builtin_pd():
-    # Reference: the built-in PD in the nodal basis (where a Python controller runs). The held
-    # input is 0 either way and the continuous part is the same law (15), so the state is the same
-    # bits (the ĝ columns may differ in the sign of zero only).
-    mine = wingcheck.simulate(controller=PaperPD(PAPER))
-    ref = wingcheck.simulate(controller="pd", set={"discretisation.basis": "nodal"})
-    for col in STATE:
+@pytest.mark.parametrize("basis", ["auto", "nodal"])
+def test_python_pd_reproduces_the_builtin_pd(basis):
+    # Reference: the built-in PD in the same basis (auto: modal on the paper's grid). The held
+    # input is 0 either way and the continuous part is the same law (15) in the same loop, so the
+    # state is the same bits (the ĝ columns may differ in the sign of zero only; σ is the
+    # built-in observer's in its run and 0 in yours).
+    mine = wingcheck.simulate(controller=PaperPD(PAPER), set={"discretisation.basis": basis})
+    ref = wingcheck.simulate(controller="pd", set={"discretisation.basis": basis})
+    assert mine.summary["stats"]["basis"] == ref.summary["stats"]["basis"]
+    assert mine.summary["stats"]["basis"] == ("nodal" if basis == "nodal" else "modal")
+    for col in STATE + ["tau1_N", "tau2_N_m", "tau1_rms_N"]:
         assert np.array_equal(mine[col], ref[col]), col
-    # against the built-in PD's default (modal) run: the same discrete equations in another
-    # basis, equal to round-off (tests/basis.rs); measured 1.4e-12 (q), 4e-13 (θ), 5e-12 (energy) relative
-    modal = wingcheck.simulate(controller="pd")
-    for col in STATE:
-        scale = np.max(np.abs(modal[col]))
-        assert np.max(np.abs(mine[col] - modal[col])) <= 1e-9 * scale, col
 
 
 @pytest.mark.parametrize("ab", [{}, {"control.a": 1, "control.b": 3000}])
 def test_python_explicit_ftdo_reproduces_the_builtin_within_1e_9(ab):
     # Reference: the built-in explicit FTDO in the nodal basis. The Python observer integrates ν
     # from the period integrals the simulator hands over (its own quadrature), so the two differ
-    # by the rounding of T·ĝ + ∫τ − sS∫w against h(ĝ + τ̄ − sS w̄) only.
-    cfg = PAPER.with_overrides(ab)
+    # by the rounding of T·ĝ + ∫τ − sS∫w against h(ĝ + τ̄ − sS w̄) only. (In the modal basis
+    # the built-in observer advances σ by h(ḡ − ĝ) instead, and the explicit rule's sign(σ)
+    # turns that round-off into switching differences: ~1e-5, the size of the built-in's own
+    # nodal–modal difference; crates/sim/tests/foreign_modal.rs.)
+    cfg = PAPER.with_overrides(dict(ab, **{"discretisation.basis": "nodal"}))
     mine = wingcheck.simulate(cfg, controller=ExplicitFTDO(cfg))
-    ref = wingcheck.simulate(cfg, controller="ftdo", observer="explicit", set={"discretisation.basis": "nodal"})
+    ref = wingcheck.simulate(cfg, controller="ftdo", observer="explicit")
     for col in ["q_tip_m", "theta_tip_rad"]:
         scale = np.max(np.abs(ref[col]))
         err = np.max(np.abs(mine[col] - ref[col])) / scale
@@ -211,15 +213,29 @@ def test_bad_continuous_part_is_a_config_error():
         wingcheck.simulate(controller=42)  # type: ignore[arg-type]
 
 
-def test_a_modal_basis_is_refused_for_a_python_controller():
+@pytest.mark.parametrize("stepper", ["trapezoid", "exponential"])
+def test_a_python_controller_runs_in_the_modal_basis_with_either_scheme(stepper):
+    # Reference: the built-in PD in the modal basis with the same scheme: the same bits of the
+    # state (see test_python_pd_reproduces_the_builtin_pd).
+    set_ = {"discretisation.basis": "modal", "discretisation.stepper": stepper, "horizon.t_end": 2.0}
+    mine = wingcheck.simulate(controller=PaperPD(PAPER), set=set_)
+    ref = wingcheck.simulate(controller="pd", set=set_)
+    assert mine.summary["stats"]["basis"] == "modal"
+    assert mine.summary["stats"]["stepper"] == stepper
+    for col in STATE:
+        assert np.array_equal(mine[col], ref[col]), col
+
+
+def test_the_step_form_refuses_the_modal_basis():
     with pytest.raises(wingcheck.ConfigError, match=r"nodal"):
-        wingcheck.simulate(controller=lambda t, tip: (0.0, 0.0), set={"discretisation.basis": "modal"})
+        wingcheck.Wing(set={"discretisation.basis": "modal"})
 
 
 def test_the_step_form_gives_the_callback_forms_bits():
-    # Reference: simulate(controller=f) with the same controller; the step form drives the same
-    # stepper with the same held inputs, so the tip values at every output sample are the same bits.
-    cfg = PAPER.with_overrides({"horizon.t_end": 2.0})
+    # Reference: simulate(controller=f) with the same controller in the nodal basis (the step
+    # form's); the step form drives the same stepper with the same held inputs, so the tip values
+    # at every output sample are the same bits.
+    cfg = PAPER.with_overrides({"horizon.t_end": 2.0, "discretisation.basis": "nodal"})
     run = wingcheck.simulate(cfg, controller=ExplicitFTDO(cfg))
     ctrl = ExplicitFTDO(cfg)
     c = cfg["control"]
@@ -278,9 +294,8 @@ def test_the_tip_record_has_eleven_fields_with_units():
 
 
 def test_the_error_estimate_runs_a_python_controller_with_reset_per_run():
-    # Reference: the built-in PD in the nodal basis through the same --error-estimate machinery:
-    # the same refinements give the same tip errors (bits); only the exponential twin (a modal
-    # run) is unavailable to a controller of your own, so the peaks' sub-step part may differ.
+    # Reference: the built-in PD through the same --error-estimate machinery, in the same (modal)
+    # basis: the same refinements and the same exponential twin give the same tip errors (bits).
     class PD(PaperPD):
         resets = 0
 
@@ -288,9 +303,25 @@ def test_the_error_estimate_runs_a_python_controller_with_reset_per_run():
             PD.resets += 1
 
     mine = wingcheck.simulate(controller=PD(PAPER), error_estimate=True)
-    ref = wingcheck.simulate(controller="pd", set={"discretisation.basis": "nodal"}, error_estimate=True)
+    ref = wingcheck.simulate(controller="pd", error_estimate=True)
     a, b = mine.summary["error_estimate"], ref.summary["error_estimate"]
     for key in ["max_q_tip_error", "max_theta_tip_error", "max_space_error", "max_time_error"]:
         assert a[key] == b[key], key
     # base run + its initial layer runs + the 2N and dt/2 runs (each with their layers) + 4N
     assert PD.resets >= 4
+
+
+def test_search_runs_a_python_controller_at_every_point(tmp_path):
+    # Reference: the same search under the built-in PD. The Python PD's continuous part is the
+    # paper's law (15) at the base point, so the axes sweep something else (ξ): the same law in
+    # the same loop at every point, the same bits (crates/search/tests/own_controller.rs).
+    over = ["wing.xi=0.01,0.02"]
+    set_ = {"horizon.t_end": 2, "control.kind": "pd"}
+    ref = wingcheck.search(over=over, out=tmp_path / "ref", set=set_, threads=1)
+    mine = wingcheck.search(over=over, out=tmp_path / "mine", set=set_, threads=1, controller=PaperPD(PAPER))
+    with open(ref.results_csv) as a, open(mine.results_csv) as b:
+        assert a.read() == b.read()
+    with open(os.path.join(mine.out_dir, "manifest.json")) as f:
+        assert json.load(f)["options"]["controller"] == "PaperPD"
+    with pytest.raises(wingcheck.ConfigError, match="control.kind"):
+        wingcheck.search(over=over, out=tmp_path / "x", controller="pd")

@@ -137,7 +137,8 @@ def simulate(
     controller of your own: a callable ``f(t, tip) -> (tau1, tau2)`` called once per
     ``observer.sample_period`` with a :class:`Tip`, or an object with ``__call__``,
     ``continuous`` (k1, k2, a, b) and ``reset()`` (see :mod:`wingcheck._control`; it runs in
-    the nodal basis, holding the GIL only for its calls). An exception inside it propagates
+    the basis the configuration resolves to, as the built-ins do, holding the GIL only for its
+    calls). An exception inside it propagates
     as raised; a NaN, inf or non-pair output raises :class:`ControllerError` naming the time;
     ``observer``: ``"implicit"`` or ``"explicit"``; ``method``: ``"fe"`` or ``"fd"`` (``fd``
     implies ``discretisation.grading=0`` unless ``set`` gives the grading); ``sample_every``:
@@ -184,7 +185,8 @@ def compare(
     ``compare(cfg, {"mine": f, "FTDO": "ftdo", "DOBC": "dobc"})``. Each row is a run plus the
     two ``error_estimate`` refinements (≈ 5 runs of work); each metric (RMS and peak of q and θ,
     settling times, RMS and peak |τ1|, |τ2| at full rate, E(t_end)/E(0)) carries its error.
-    A built-in row runs as ``simulate`` and ``check`` run it; your own in the nodal basis."""
+    Every row steps in the basis the configuration resolves to; a built-in row's runs are
+    ``check``'s."""
     if not controllers:
         controllers = {"FTDO": "ftdo", "DOBC": "dobc"}
     entrants: List[Tuple[str, Optional[str], Any, Optional[Tuple[float, float, float, float]]]] = []
@@ -224,13 +226,30 @@ def search(
     chunk_size: int = 32,
     allow_large: bool = False,
     progress: ProgressArg = None,
+    controller: Optional[ControllerLike] = None,
 ) -> SearchResult:
     """Map the gain region where the theorems' conditions hold (W ≻ 0, (32)) and how the closed
     loop performs, as ``wingcheck search`` does: ``over`` axes ``"control.a=1e-3..10:log:16"``,
     ``"key=lo..hi:lin:N"`` or ``"key=v1,v2"``; results in ``out`` (resumed if it holds this
     search; a cancelled search into a new directory leaves nothing). ``window``: metric window
     (t0, t1) in s (default: the second half of the horizon); ``best``: the ranking metric
-    (``"rms_q_tip"``; ``"-lambda"`` maximises)."""
+    (``"rms_q_tip"``; ``"-lambda"`` maximises). ``controller``: your own controller (as for
+    :func:`simulate`; the built-in ones are chosen with ``set={"control.kind": ...}``) run at
+    every point in place of ``control.kind``, reset before each point's run. Its gains are its
+    own: axes over ``control.*`` change the configuration's law (15), not your object. Its name
+    (``__name__`` or the class name) is recorded in manifest.json; an exception inside it makes
+    that point an error and the search goes on. The theory columns stay the paper's (about its
+    FTDO)."""
+    own: Dict[str, Any] = {}
+    if controller is not None:
+        if isinstance(controller, str):
+            raise ConfigError(
+                "controller: search takes your own controller; choose a built-in one with "
+                "set={'control.kind': %r}" % controller
+            )
+        check_callable(controller)
+        name = getattr(controller, "__name__", None) or type(controller).__name__
+        own = {"controller_object": controller, "continuous": continuous_of(controller), "controller_name": name}
     text = _with_progress(
         progress,
         "search",
@@ -243,6 +262,7 @@ def search(
         window=window,
         chunk_size=chunk_size,
         allow_large=allow_large,
+        **own,
         **source(config, set),
     )
     return SearchResult(text)

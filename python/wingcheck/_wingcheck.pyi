@@ -81,6 +81,9 @@ def search(
     chunk_size: int = 32,
     allow_large: bool = False,
     progress: _Progress = None,
+    controller_object: Optional[Callable[..., Any]] = None,
+    continuous: Optional[Sequence[float]] = None,
+    controller_name: Optional[str] = None,
 ) -> str: ...
 def report(
     out: _Path,

@@ -4,6 +4,7 @@ mod bench;
 mod bench_search;
 mod check;
 mod common;
+mod compare;
 mod modes;
 mod progress;
 mod proofs;
@@ -46,6 +47,9 @@ enum Command {
     Merge(search::MergeArgs),
     /// The claim ledger: one verdict per claim of the paper, with evidence and assumptions.
     Check(check::CheckArgs),
+    /// Built-in controllers side by side: RMS and peak tip response, settling, control effort
+    /// and energy, each with its error; `--svg` draws their tip responses and inputs.
+    Compare(compare::CompareArgs),
     /// Write exact certificates for the definiteness/infeasibility facts (default: proofs/).
     Certify(proofs::CertifyArgs),
     /// Re-check certificates in exact rational arithmetic, independent of the solvers.
@@ -95,6 +99,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Modes(a) => modes::run(a),
         Command::Bench(a) => bench::run(a),
         Command::Check(a) => check::run(a),
+        Command::Compare(a) => compare::run(a),
         Command::Report(a) => report::run(a),
         Command::Search(a) => search::run_search(a),
         Command::Merge(a) => search::run_merge(a),

@@ -7,9 +7,9 @@
 //! m(dt)|), F = [`RICHARDSON_2`], the rule the error estimate applies to every tip value. The
 //! metrics are the claim ledger's ([`wingcheck_claims::comparison::metrics`]: the one RMS, peak
 //! and settling definitions of `wingcheck_sim::metrics`), plus the energy at t_end relative to
-//! the start. A built-in row steps in the basis the configuration resolves to (its runs are
-//! those of `check`); a controller of the user's in the nodal basis (same discrete equations,
-//! agreeing to round-off).
+//! the start. Every row steps in the basis the configuration resolves to (a built-in row's runs
+//! are those of `check`; a controller of the user's is sampled from the state there, the same
+//! discrete equations).
 
 use serde::Serialize;
 use wingcheck_claims::comparison::{metrics, Metrics};
@@ -19,6 +19,8 @@ use wingcheck_model::{Cancel, Config, ControllerKind, Quantity, Unit};
 use wingcheck_sim::{refinements, simulate, ControllerFactory, RunOptions, SimOutput, RICHARDSON_2};
 
 use crate::{AppError, SimulateRequest, WorkPolicy};
+
+pub use crate::compare_view::{check_svg_path, svg, table, write_svg};
 
 /// One contestant of a comparison.
 #[derive(Clone, Copy)]
@@ -40,6 +42,10 @@ pub struct CompareRow {
     pub values: Vec<Option<Quantity>>,
     /// The base run's output samples: t (s), q(s,t) (m), θ(s,t) (rad), τ1 (N), τ2 (N m).
     pub series: [Vec<f64>; 5],
+    /// The base run's full-rate (min, max) of τ1 (N) and τ2 (N m) per output interval
+    /// ([`wingcheck_sim::Envelope`]): what the samples of a chattering input alias.
+    #[serde(skip)]
+    pub tau_range: [Vec<(f64, f64)>; 2],
 }
 
 /// The metrics of a row: (label, unit).
@@ -146,6 +152,7 @@ fn row(cfg: &Config, name: &str, entrant: Entrant<'_>, cancel: &Cancel) -> Resul
         basis: base.stats.basis.name().to_string(),
         values,
         series: [s.t.clone(), s.q_tip.clone(), s.theta_tip.clone(), s.tau1.clone(), s.tau2.clone()],
+        tau_range: [base.envelope.tau1.clone(), base.envelope.tau2.clone()],
     })
 }
 

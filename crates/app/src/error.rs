@@ -89,6 +89,12 @@ pub enum AppError {
         #[source]
         source: CertifyError,
     },
+    /// A chart could not be drawn (a bug: the data are checked before).
+    #[error(transparent)]
+    Chart(#[from] wingcheck_chart::ChartError),
+    /// An output file could not be written.
+    #[error(transparent)]
+    Write(#[from] wingcheck_io::IoError),
     /// The operation was stopped through its cancel token.
     #[error(transparent)]
     Cancelled(#[from] wingcheck_model::Cancelled),
@@ -138,7 +144,8 @@ impl AppError {
         match self {
             AppError::Config(ConfigError::Read { .. }) => ErrorKind::Input,
             AppError::Config(_) | AppError::ConfigFile { .. } | AppError::Argument { .. } => ErrorKind::Config,
-            AppError::OutputPath { .. } | AppError::SimOutput(_) => ErrorKind::Output,
+            AppError::OutputPath { .. } | AppError::SimOutput(_) | AppError::Write(_) => ErrorKind::Output,
+            AppError::Chart(_) => ErrorKind::Internal,
             AppError::WorkLimit(_) => ErrorKind::WorkLimit,
             AppError::Sim(e) => sim_kind(e),
             AppError::Claims(e) => claims_kind(e),

@@ -21,6 +21,7 @@
 pub mod bench;
 mod build_info;
 pub mod compare;
+mod compare_view;
 mod config;
 mod error;
 pub mod modes;

@@ -9,8 +9,8 @@ use wingcheck_sim::{BoxedController, ControllerFactory};
 
 #[test]
 fn an_own_controller_row_equals_the_built_in_it_wraps() {
-    // Reference: the built-in DOBC in the nodal basis (where a foreign controller steps): the
-    // same controller through the interface makes the same runs, so the same numbers and errors.
+    // Reference: the built-in DOBC in the nodal basis (where the interface gives a built-in's
+    // bits): the same controller through it makes the same runs, so the same numbers and errors.
     let mut cfg = Config::paper();
     cfg.horizon.t_end = 4.0;
     cfg.discretisation.basis = StepBasis::Nodal;

@@ -284,7 +284,7 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
     let mut modal = Vec::new();
     let runs_cache = RunCache::new();
     for _ in 0..5 {
-        let (out, elapsed) = measure(|| crate::point::closed_loop(&cfg, &runs_cache));
+        let (out, elapsed) = measure(|| crate::point::closed_loop(&cfg, &runs_cache, None));
         out.map_err(|e| SearchError::Options(e.to_string()))?;
         modal.push(elapsed);
     }

@@ -172,6 +172,7 @@ pub fn run(search: &Search, out: &Path, ctl: RunControl<'_>) -> Result<RunSummar
     if let Some(n) = ctl.threads {
         limits::check_threads(n)?;
     }
+    search.check_controller(ctl.controller)?;
     let flag = ctl.allow_large_flag.unwrap_or(wingcheck_model::work::ALLOW_LARGE_FLAG);
     limits::check_with_flag(&search.estimate_for(ctl.threads), ctl.allow_large, flag)?;
     if let Some(n) = ctl.threads {
@@ -200,7 +201,7 @@ fn run_in(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<RunSummar
     // read one at a time (a bit per chunk is kept).
     let (mut skipped, mut owned, mut completed, mut total, mut verified) = (0, 0usize, 0usize, 0usize, 0usize);
     let mut done = vec![false; search.chunks()];
-    let mut verifier = Verifier::new(search, ctl.verify);
+    let mut verifier = Verifier::new(search, ctl.verify, ctl.controller);
     for c in (0..search.chunks()).filter(|&c| ctl.shard.owns(c)) {
         owned += 1;
         match store::read_chunk(out, search, c)? {
@@ -253,7 +254,7 @@ fn run_in(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<RunSummar
             .into_par_iter()
             .map(|p| {
                 ctl.cancel.check()?;
-                let r = search.evaluate(p, &cache, &runs);
+                let r = search.evaluate_with(p, &cache, &runs, ctl.controller);
                 let d = points_done.fetch_add(1, Ordering::Relaxed) + 1;
                 if let Some(cb) = ctl.progress {
                     cb(Progress { done: d, total });
@@ -331,10 +332,16 @@ pub fn merge_with(
         detail: e.to_string(),
     })?;
     let search = Search::from_manifest(manifest)?;
+    if let Some(name) = &search.options.controller {
+        return Err(SearchError::Options(format!(
+            "the shards ran a controller of your own ({name}), which a merge cannot recompute to verify them: \
+             run the shards into one directory instead"
+        )));
+    }
     limits::check(&crate::verify::estimate(&search, check, None), allow_large)?;
     let mut sources = Vec::with_capacity(search.chunks());
     let mut missing = Vec::new();
-    let (mut verifier, mut verified) = (Verifier::new(&search, check), 0);
+    let (mut verifier, mut verified) = (Verifier::new(&search, check, None), 0);
     for c in 0..search.chunks() {
         let mut found = None;
         for d in dirs {

@@ -38,6 +38,7 @@ use std::path::PathBuf;
 
 use serde::{Deserialize, Serialize};
 use wingcheck_model::Config;
+use wingcheck_sim::ControllerFactory;
 
 pub use assemble::{assemble, finalize, ChunkStream};
 pub use axis::{parse_axes, validate_axes, Axis, Grid, Spacing};
@@ -139,6 +140,12 @@ pub struct SearchOptions {
     /// [`wingcheck_claims::CheckSettings::mu_lambda1_elements`], so a point's λ1 and the
     /// mu-conditions row's agree).
     pub lyapunov_elements: usize,
+    /// The name of a controller of the user's that every point runs in place of `control.kind`
+    /// (its factory is handed to [`run`] as [`RunControl::controller`]); absent: the built-in
+    /// one. Recorded so that a directory holds one controller's results (a resume or merge
+    /// under another name is another search).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub controller: Option<String>,
 }
 
 impl Default for SearchOptions {
@@ -150,6 +157,7 @@ impl Default for SearchOptions {
             best: Ranking::default(),
             best_count: 10,
             lyapunov_elements: wingcheck_claims::CheckSettings::default().mu_lambda1_elements,
+            controller: None,
         }
     }
 }
@@ -230,6 +238,9 @@ impl Search {
         if !(1..=64).contains(&o.lyapunov_elements) {
             return Err(SearchError::Options("lyapunov elements must lie in [1, 64]".into()));
         }
+        if o.controller.as_ref().is_some_and(|name| name.trim().is_empty()) {
+            return Err(SearchError::Options("controller: the name of your own controller must not be empty".into()));
+        }
         Ok(Search { base, grid: Grid::new(axes), options })
     }
 
@@ -265,9 +276,34 @@ impl Search {
         c * cs..((c + 1) * cs).min(self.points())
     }
 
-    /// Evaluate one point (simulation + theory).
+    /// Evaluate one point (simulation + theory) under the built-in controller.
     pub fn evaluate(&self, p: usize, cache: &TheoryCache, runs: &modal::RunCache) -> PointResult {
-        point::evaluate(&self.grid, &self.base, self.options.window, cache, runs, p)
+        self.evaluate_with(p, cache, runs, None)
+    }
+
+    /// [`Search::evaluate`] under a controller of the user's (`Some`: made for the point's run
+    /// as `simulate` makes it, [`wingcheck_sim::RunOptions::controller`]).
+    pub fn evaluate_with(
+        &self,
+        p: usize,
+        cache: &TheoryCache,
+        runs: &modal::RunCache,
+        controller: Option<ControllerFactory<'_>>,
+    ) -> PointResult {
+        point::evaluate(&self.grid, &self.base, self.options.window, cache, runs, controller, p)
+    }
+
+    /// Refuse a controller factory the options do not name, or a name without a factory.
+    pub fn check_controller(&self, controller: Option<ControllerFactory<'_>>) -> Result<(), SearchError> {
+        match (&self.options.controller, controller) {
+            (Some(_), Some(_)) | (None, None) => Ok(()),
+            (Some(name), None) => Err(SearchError::Options(format!(
+                "the search runs a controller of your own ({name}) and none was handed over"
+            ))),
+            (None, Some(_)) => {
+                Err(SearchError::Options("a controller was handed over but the search options name none".into()))
+            }
+        }
     }
 
     /// The manifest.
@@ -402,6 +438,10 @@ pub struct RunControl<'a> {
     /// Checked before every point: once set, the run stops with [`SearchError::Cancelled`]
     /// without writing the chunk in progress.
     pub cancel: wingcheck_model::Cancel,
+    /// The controller of the user's that [`SearchOptions::controller`] names (each point's run
+    /// makes one); `None` for the built-in one. The work estimate counts the built-in
+    /// controller's cost.
+    pub controller: Option<ControllerFactory<'a>>,
 }
 
 /// What a run or merge did.

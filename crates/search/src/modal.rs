@@ -15,8 +15,11 @@ use std::sync::{Arc, Mutex, OnceLock};
 
 use serde::Serialize;
 use wingcheck_model::Config;
-use wingcheck_sim::modal::{drive, ModalLoop, ModalState, ObserverSignal, Reads, RecordedSignal, Recorder};
-use wingcheck_sim::{Sample, SimError, SquareIntegral};
+use wingcheck_sim::modal::{
+    drive, measurement, ControlledSignal, ModalLoop, ModalState, ObserverSignal, Reads, RecordedSignal, Recorder,
+    Signal,
+};
+use wingcheck_sim::{ControllerFactory, Sample, SimError, SquareIntegral};
 
 pub use wingcheck_sim::modal::ModalBasis;
 
@@ -165,8 +168,34 @@ pub fn run(cfg: &Config, basis: &ModalBasis, signal: &RecordedSignal) -> Result<
     cfg.validate().map_err(SimError::Config)?;
     let lp = ModalLoop::with_eigenbasis(cfg, basis)?;
     let mut st = lp.initial_state(cfg, basis);
+    trace(cfg, basis, &lp, &mut st, &mut signal.replay())
+}
+
+/// [`run`] under a controller of the user's, made and reset for this run: its continuous
+/// part in the loop, its held inputs sampled from the modal state at every t_k
+/// ([`ControlledSignal`], as `simulate` does it; the exponential scheme in its dense form).
+pub fn run_controlled(cfg: &Config, basis: &ModalBasis, make: ControllerFactory<'_>) -> Result<TipTrace, SimError> {
+    cfg.validate().map_err(SimError::Config)?;
+    let mut control = make();
+    control.reset(cfg)?;
+    let law = control.continuous();
+    law.check()?;
+    let lp = ModalLoop::with_law(cfg, basis, law)?;
+    let mut st = lp.initial_state(cfg, basis);
+    let mut signal = ControlledSignal::new(cfg, control, &measurement(&st, 0.0))?;
+    trace(cfg, basis, &lp, &mut st, &mut signal)
+}
+
+/// The trace of the loop `lp` from `st` under `signal`.
+fn trace<S: Signal>(
+    cfg: &Config,
+    basis: &ModalBasis,
+    lp: &ModalLoop<'_>,
+    st: &mut ModalState,
+    signal: &mut S,
+) -> Result<TipTrace, SimError> {
     let mut rec = Trace { trace: TipTrace::with_capacity(cfg.output_samples()), ..Default::default() };
-    drive(cfg, basis, &lp, &mut st, &mut signal.replay(), &mut rec)?;
+    drive(cfg, basis, lp, st, signal, &mut rec)?;
     rec.trace.tau_peak = rec.peak;
     // one interval: the whole run (the squares' start is t = 0, their end the last step's)
     rec.trace.tau_rms = rec.squares.take_rms();

@@ -5,7 +5,7 @@ use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 use wingcheck_model::{apply_overrides, Config, ControllerKind};
-use wingcheck_sim::{metrics, simulate, RunOptions, SimError};
+use wingcheck_sim::{metrics, simulate, ControllerFactory, RunOptions, SimError};
 
 use crate::axis::Grid;
 use crate::metric::Metric;
@@ -122,12 +122,22 @@ fn sim_metrics(s: &TipTrace, win: (f64, f64)) -> [Option<f64>; 12] {
     ]
 }
 
-/// The closed loop of `cfg`: the simulator's modal driver on the shared basis and observer signal, or the
-/// simulator itself where the modal basis is not available (mass matrix not positive definite).
-pub fn closed_loop(cfg: &Config, runs: &RunCache) -> Result<TipTrace, SimError> {
-    match &*runs.basis(cfg) {
-        Ok(basis) => crate::modal::run(cfg, basis, &runs.signal(cfg)),
-        Err(_) => simulate(cfg, RunOptions::default()).map(|o| TipTrace::from_output(&o)),
+/// The closed loop of `cfg`: the simulator's modal driver on the shared basis and observer
+/// signal, or the simulator itself where the modal basis is not available (mass matrix not
+/// positive definite). Under a controller of the user's (`controller`, made for this run) the
+/// modal driver samples it from the state ([`crate::modal::run_controlled`]), and the
+/// simulator runs it where the basis is nodal.
+pub fn closed_loop(
+    cfg: &Config,
+    runs: &RunCache,
+    controller: Option<ControllerFactory<'_>>,
+) -> Result<TipTrace, SimError> {
+    match (&*runs.basis(cfg), controller) {
+        (Ok(basis), None) => crate::modal::run(cfg, basis, &runs.signal(cfg)),
+        (Ok(basis), Some(make)) => crate::modal::run_controlled(cfg, basis, make),
+        (Err(_), controller) => {
+            simulate(cfg, RunOptions { controller, ..Default::default() }).map(|o| TipTrace::from_output(&o))
+        }
     }
 }
 
@@ -145,6 +155,7 @@ pub fn evaluate(
     win: Option<(f64, f64)>,
     cache: &TheoryCache,
     runs: &RunCache,
+    controller: Option<ControllerFactory<'_>>,
     p: usize,
 ) -> PointResult {
     let mut r = PointResult {
@@ -167,12 +178,13 @@ pub fn evaluate(
         }
     };
     let start = Instant::now();
-    match closed_loop(&cfg, runs) {
+    match closed_loop(&cfg, runs, controller) {
         Ok(trace) => r.metrics[Metric::SIMULATION].copy_from_slice(&sim_metrics(&trace, window(&cfg, win))),
         Err(e) => (r.status, r.message) = sim_message(&e),
     }
     // ζ3, ζ4 are sup |g̃| of the FTDO run; g̃ does not depend on the plant, so they come from
-    // the shared FTDO observer signal, whatever the point's controller.
+    // the shared FTDO observer signal, whatever the point's controller (the theory columns are
+    // the paper's, about its FTDO, under a controller of the user's too).
     let mut ftdo = cfg.clone();
     ftdo.control.kind = ControllerKind::Ftdo;
     let zetas = Some(runs.sup_tilde(&ftdo));

@@ -64,11 +64,18 @@ pub struct Verifier<'a> {
     runs: RunCache,
     /// (chunk file, the chunk's stored point) awaiting recomputation.
     pending: Vec<(String, PointResult)>,
+    /// The search's controller of the user's, if it has one ([`crate::RunControl::controller`]).
+    controller: Option<wingcheck_sim::ControllerFactory<'a>>,
 }
 
 impl<'a> Verifier<'a> {
-    /// A verifier for `search` with its own caches.
-    pub fn new(search: &'a Search, check: ChunkCheck) -> Verifier<'a> {
+    /// A verifier for `search` (under `controller`, the search's own if it has one) with its
+    /// own caches.
+    pub fn new(
+        search: &'a Search,
+        check: ChunkCheck,
+        controller: Option<wingcheck_sim::ControllerFactory<'a>>,
+    ) -> Verifier<'a> {
         Verifier {
             search,
             check,
@@ -76,6 +83,7 @@ impl<'a> Verifier<'a> {
             theory: TheoryCache::new(search.options.lyapunov_elements),
             runs: RunCache::new(),
             pending: Vec::new(),
+            controller,
         }
     }
 
@@ -110,9 +118,9 @@ impl<'a> Verifier<'a> {
     /// Recompute every queued point; the first difference refuses its chunk.
     pub fn flush(&mut self) -> Result<(), SearchError> {
         let pending = std::mem::take(&mut self.pending);
-        let (search, theory, runs) = (self.search, &self.theory, &self.runs);
+        let (search, theory, runs, controller) = (self.search, &self.theory, &self.runs, self.controller);
         let bad = pending.par_iter().find_map_first(|(path, stored)| {
-            let fresh = search.evaluate(stored.index, theory, runs);
+            let fresh = search.evaluate_with(stored.index, theory, runs, controller);
             difference(stored, &fresh).map(|why| SearchError::Chunk {
                 path: path.clone(),
                 reason: format!(

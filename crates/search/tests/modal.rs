@@ -67,7 +67,7 @@ fn compare(sets: &[&str], tol: f64, g_tol: f64) {
     for scheme in ["trbdf2", "trapezoid"] {
         let stepper = format!("discretisation.stepper={scheme}");
         let c = cfg(&[sets, &[stepper.as_str()]].concat());
-        let fast = closed_loop(&c, &RunCache::new()).unwrap();
+        let fast = closed_loop(&c, &RunCache::new(), None).unwrap();
         let (d, g) = differences(&fast, &reference(&c));
         assert!(d <= tol, "{sets:?} ({scheme}): differs by {d:e} relative (tolerance {tol:e})");
         assert!(g <= g_tol, "{sets:?} ({scheme}): g̃ differs by {g:e} (tolerance {g_tol:e})");
@@ -98,7 +98,7 @@ fn the_search_records_the_simulators_own_run() {
     ] {
         let c = cfg(&[sets, &["horizon.t_end=0.5"]].concat());
         let cache = RunCache::new();
-        let (mut searched, mut simulated) = (closed_loop(&c, &cache).unwrap(), modal_simulation(&c));
+        let (mut searched, mut simulated) = (closed_loop(&c, &cache, None).unwrap(), modal_simulation(&c));
         // but RMS τ over the run: the search forms √(∫τ²/T) from the steps' ∫τ² in one sum,
         // the simulator √(Σ_k rms_k² Δt_k / T) from its intervals' RMS (a square root and a
         // square per interval): the same integral to round-off, ≤ (intervals + 2) ε relative
@@ -139,7 +139,7 @@ fn the_search_steps_the_exponential_scheme_in_the_eigenbasis_within_its_roundoff
         let basis = wingcheck_sim::modal::ModalBasis::new(&c).unwrap();
         let lp = wingcheck_sim::modal::ModalLoop::with_eigenbasis(&c, &basis).unwrap();
         assert!(lp.eigenbasis_roundoff().is_some(), "{sets:?}: the eigenbasis was refused");
-        let fast = closed_loop(&c, &RunCache::new()).unwrap();
+        let fast = closed_loop(&c, &RunCache::new(), None).unwrap();
         let reference = modal_simulation(&c);
         let (d, g) = differences(&fast, &reference);
         let rms = rel(&fast.tau_rms, &reference.tau_rms);
@@ -203,7 +203,7 @@ fn the_runner_follows_the_configured_scheme() {
         let trbdf2 = cfg(&[sets, &["discretisation.stepper=trbdf2"]].concat());
         let trapezoid = cfg(&[sets, &["discretisation.stepper=trapezoid"]].concat());
         let cache = RunCache::new();
-        let fast = [closed_loop(&trbdf2, &cache).unwrap(), closed_loop(&trapezoid, &cache).unwrap()];
+        let fast = [closed_loop(&trbdf2, &cache, None).unwrap(), closed_loop(&trapezoid, &cache, None).unwrap()];
         let (d, _) = differences(&fast[0], &reference(&trapezoid));
         assert!(d > 1e-5, "{sets:?}: modal TR-BDF2 vs simulator trapezoid differ by only {d:e}");
         let (d, _) = differences(&fast[1], &reference(&trbdf2));
@@ -224,7 +224,7 @@ fn one_cache_serves_wings_of_different_grids() {
             "discretisation.grading=0",
             &format!("discretisation.fd_points={points}"),
         ]);
-        let (d, _) = differences(&closed_loop(&c, &cache).unwrap(), &reference(&c));
+        let (d, _) = differences(&closed_loop(&c, &cache, None).unwrap(), &reference(&c));
         assert!(d <= 3e-10, "fd_points={points}: differs by {d:e} relative");
     }
 }
@@ -238,7 +238,7 @@ fn large_wings_run_the_simulator_itself() {
     for elements in ["discretisation.elements=1025", "discretisation.elements=370"] {
         let c = cfg(&["horizon.t_end=0.02", elements]);
         assert!(RunCache::new().basis(&c).is_err(), "{elements}");
-        let fast = closed_loop(&c, &RunCache::new()).unwrap();
+        let fast = closed_loop(&c, &RunCache::new(), None).unwrap();
         assert_eq!(fast, reference(&c), "{elements}");
     }
     // an explicit `nodal` is kept by the search too

@@ -354,11 +354,7 @@ pub fn simulate_with_error(cfg: &Config, opts: RunOptions<'_>) -> Result<Estimat
     })?;
     let time = simulate(&time_cfg, refined())?;
     let fourth = third_grid_run(&output, &space, &space_cfg, refined());
-    let twin = (scheme != wingcheck_model::TimeScheme::Exponential).then(|| match controller {
-        // the twin steps in the modal basis, which a controller of the user's does not run in
-        Some(_) => Err("a controller of your own is stepped in the nodal basis only: no exponential twin".into()),
-        None => sub_step_twin(cfg, refined()),
-    });
+    let twin = (scheme != wingcheck_model::TimeScheme::Exponential).then(|| sub_step_twin(cfg, refined()));
     // the 4N run's, the twin's and the layer check's failures are findings, not errors: a
     // cancelled one is not
     cancel.check()?;

@@ -291,9 +291,10 @@ pub struct RunOptions<'a> {
     pub eigenbasis: Option<f64>,
     /// A controller of the user's in place of `control.kind` ([`ControllerFactory`]): each run
     /// (the base run, the initial layer's, an error estimate's refinements) makes one and
-    /// resets it. Stepped in the nodal basis (`discretisation.basis` auto or nodal, a stepper
-    /// other than exponential): the modal runner precomputes the built-in observers' signal,
-    /// which needs no plant state, and a foreign controller's held inputs depend on it.
+    /// resets it. Stepped in the basis [`resolved_basis`] selects, as the built-ins are; in the
+    /// modal one its held inputs are sampled from the modal state at every t_k
+    /// ([`crate::modal::ControlledSignal`]; the built-ins keep their precomputed observer
+    /// signal, which needs no plant state), and `eigenbasis` is not used.
     pub controller: Option<ControllerFactory<'a>>,
 }
 
@@ -457,27 +458,24 @@ fn base_run(cfg: &Config, opts: RunOptions<'_>) -> Result<(SimOutput, Option<Mod
     cfg.validate().map_err(SimError::Config)?;
     let start = Instant::now();
     let disc = Discretisation::new(cfg);
-    if let Some(make) = opts.controller {
-        nodal_only(cfg)?;
-        return Ok((simulate_nodal(cfg, Stepper::with_controller(cfg, disc, make())?, start, opts)?, None));
-    }
     let (_, basis) = resolved_basis(cfg, &disc)?;
-    let out = match &basis {
-        Some(basis) => crate::modal::simulate_modal(cfg, basis, start, opts)?,
-        None => simulate_nodal(cfg, Stepper::with_discretisation(cfg, disc)?, start, opts)?,
+    let out = match (&basis, opts.controller) {
+        (Some(basis), _) => crate::modal::simulate_modal(cfg, basis, start, opts)?,
+        (None, Some(make)) => simulate_nodal(cfg, Stepper::with_controller(cfg, disc, make())?, start, opts)?,
+        (None, None) => simulate_nodal(cfg, Stepper::with_discretisation(cfg, disc)?, start, opts)?,
     };
     Ok((out, basis))
 }
 
-/// A run under a controller of the user's steps in the nodal basis ([`RunOptions::controller`]):
-/// refuse the settings that ask for the modal one.
+/// A loop driven one sample period at a time from outside (the Python step form) steps in
+/// the nodal basis ([`Stepper`]): refuse the settings that ask for the modal one.
 pub fn nodal_only(cfg: &Config) -> Result<(), SimError> {
     let modal = cfg.discretisation.basis == StepBasis::Modal
         || cfg.discretisation.stepper == wingcheck_model::TimeScheme::Exponential;
     if modal {
         return Err(SimError::Config(wingcheck_model::ConfigError::Inconsistent {
             fields: "discretisation.basis, discretisation.stepper".into(),
-            reason: "a controller of your own is stepped in the nodal basis: discretisation.basis must be auto or \
+            reason: "the step-by-step loop is stepped in the nodal basis: discretisation.basis must be auto or \
                      nodal and discretisation.stepper auto, trbdf2 or trapezoid"
                 .into(),
         }));

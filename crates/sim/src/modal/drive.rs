@@ -6,18 +6,31 @@
 
 use wingcheck_model::Config;
 
-use super::{ModalBasis, ModalLoop, ModalState, SampleInput, StepInput};
+use wingcheck_control::TipMeasurement;
+
+use super::{measurement, ModalBasis, ModalLoop, ModalState, SampleInput, StepInput, StepQuadrature};
 use crate::run::{check_sample, energy_limit};
 use crate::{Sample, SimError};
 
 /// The observer signal of a run, one sample period at a time (the observer and the
 /// disturbances only: σ_{n+1} − σ_n = h(ḡ − ĝ_k) holds whatever the plant, see [`super`]).
 pub trait Signal {
+    /// Whether the held inputs depend on the plant (a controller of any origin,
+    /// [`super::ControlledSignal`]): the driver then forms every step's quadrature and calls
+    /// [`Signal::observe`] after each sample period. False for the observer signals (their
+    /// runs skip that work).
+    const READS_PLANT: bool = false;
     /// The observer's output at the current sample t_k.
     fn current(&self) -> SampleInput;
     /// Call `step(t_j, input)` for each integrator step [t_j, t_j + h) of the current sample
     /// period with its inputs, then move to the next sample.
     fn advance(&mut self, step: impl FnMut(f64, &StepInput));
+    /// For a signal that [`Signal::READS_PLANT`]: the quadratures of the period's steps just
+    /// made, in order, and the measurements at the new sample, before [`Signal::current`] is
+    /// read there. An error (the controller's) stops the run.
+    fn observe(&mut self, _steps: &[StepQuadrature], _tip: &TipMeasurement) -> Result<(), SimError> {
+        Ok(())
+    }
 }
 
 /// What a run keeps of the loop it drives.
@@ -112,7 +125,9 @@ pub fn drive<S: Signal, R: Recorder>(
     let e0 = basis.energy(&st.eta, &st.zeta);
     let reads = rec.reads();
     let lean = !reads.state && !reads.interval_squares;
-    let tip_states = reads.tip_states;
+    // a controller that reads the plant measures w
+    let tip_states = reads.tip_states || S::READS_PLANT;
+    let mut quads = Vec::with_capacity(if S::READS_PLANT { cfg.steps_per_sample() } else { 0 });
     let output = |st: &mut ModalState, obs: &SampleInput, t: f64, k: usize, rec: &mut R| {
         if lean && k != total {
             // margin 1e-10 relative: far above the bound's and the energy's round-off
@@ -135,12 +150,22 @@ pub fn drive<S: Signal, R: Recorder>(
     output(st, &first, 0.0, 0, rec)?;
     crate::cpu::clear_upper_vector_state();
     for k in 1..=total {
-        signal.advance(|t, input| {
-            let exact = lp.step_with(st, input, tip_states);
-            rec.instant(lp, st, t + h, input.g_hat, None, exact);
-        });
-        let now = signal.current();
         let t = k as f64 * period;
+        if S::READS_PLANT {
+            quads.clear();
+            signal.advance(|t, input| {
+                let (exact, quad) = lp.step_quadrature(st, input, true);
+                quads.push(quad);
+                rec.instant(lp, st, t + h, input.g_hat, None, exact);
+            });
+            signal.observe(&quads, &measurement(st, t))?;
+        } else {
+            signal.advance(|t, input| {
+                let exact = lp.step_with(st, input, tip_states);
+                rec.instant(lp, st, t + h, input.g_hat, None, exact);
+            });
+        }
+        let now = signal.current();
         rec.instant(lp, st, t, now.g_hat, Some(now.g), None);
         rec.checkpoint()?;
         if k % every == 0 || k == total {

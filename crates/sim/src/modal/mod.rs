@@ -14,10 +14,15 @@
 //!   quadrature, see `wingcheck_control::ChannelObserver`), so ĝ_k and the tip input ḡ − ĝ of
 //!   every step follow from the disturbances and the observer alone.
 //!
+//! - **Controllers of any origin** ([`ControlledSignal`]): a user's held inputs depend on the
+//!   plant, so they are sampled from the modal state at every t_k instead (the built-ins keep
+//!   the precomputed signal and its bits).
+//!
 //! Same discrete equations, so the results agree with the nodal stepper to round-off
 //! (`tests/basis.rs`), not bit for bit.
 //! [`simulate_modal`] is `simulate` in this basis; `discretisation.basis` chooses.
 
+mod controlled;
 mod diagonal;
 mod drive;
 mod eigen_solve;
@@ -40,6 +45,7 @@ use wingcheck_model::{Config, MODAL_MAX_UNKNOWNS};
 
 use crate::{Discretisation, SimError};
 
+pub use controlled::{measurement, ControlledSignal, StepQuadrature};
 pub use drive::{drive, Reads, Recorder, Signal};
 pub use probe::{ProbedStep, SubStepPeak, FINE_PER_OCTAVE, PROBED, PROBE_MARGIN};
 pub use run::simulate_modal;

@@ -5,7 +5,9 @@ use std::time::Instant;
 
 use wingcheck_model::{Config, TipValues};
 
-use super::{dot, drive, ModalBasis, ModalLoop, ModalState, ObserverSignal, Recorder};
+use super::{
+    dot, drive, measurement, ControlledSignal, ModalBasis, ModalLoop, ModalState, ObserverSignal, Recorder, Signal,
+};
 use crate::run::{Envelope, Fields, RunOptions, RunStats, Series, SimOutput, SubStepProbe};
 use crate::stepper::FullRate;
 use crate::{Sample, SimError};
@@ -120,7 +122,10 @@ impl Simulation<'_, '_> {
 /// Run the closed loop of `cfg` over [0, T] in the modal basis of its discretisation
 /// (see [`crate::modal`]) through the one driver [`drive`]; the outputs are those of the nodal
 /// `simulate` to round-off. `start` is when the setup began (the basis's construction counts
-/// as setup).
+/// as setup). Under a controller of the user's ([`RunOptions::controller`]) the held inputs are
+/// sampled from the modal state ([`ControlledSignal`]) and the exponential scheme steps in its
+/// dense form (the eigenbasis form brings w up to date at the outputs only, and the controller
+/// measures it at every sample).
 pub fn simulate_modal(
     cfg: &Config,
     basis: &ModalBasis,
@@ -128,12 +133,34 @@ pub fn simulate_modal(
     opts: RunOptions<'_>,
 ) -> Result<SimOutput, SimError> {
     cfg.validate().map_err(SimError::Config)?;
+    if let Some(make) = opts.controller {
+        let mut control = make();
+        control.reset(cfg)?;
+        let law = control.continuous();
+        law.check()?;
+        let lp = ModalLoop::with_law(cfg, basis, law)?;
+        let mut st = lp.initial_state(cfg, basis);
+        let mut signal = ControlledSignal::new(cfg, control, &measurement(&st, 0.0))?;
+        return run(cfg, basis, &lp, &mut st, &mut signal, start, opts);
+    }
     let lp = match opts.eigenbasis {
         Some(limit) => ModalLoop::with_eigenbasis_within(cfg, basis, limit.min(crate::MAX_EIGENBASIS_ROUNDOFF))?,
         None => ModalLoop::new(cfg, basis)?,
     };
     let mut st = lp.initial_state(cfg, basis);
-    let mut signal = ObserverSignal::new(cfg);
+    run(cfg, basis, &lp, &mut st, &mut ObserverSignal::new(cfg), start, opts)
+}
+
+/// [`simulate_modal`] once its loop, state and signal are made.
+fn run<S: Signal>(
+    cfg: &Config,
+    basis: &ModalBasis,
+    lp: &ModalLoop<'_>,
+    st: &mut ModalState,
+    signal: &mut S,
+    start: Instant,
+    opts: RunOptions<'_>,
+) -> Result<SimOutput, SimError> {
     let setup_seconds = start.elapsed().as_secs_f64();
     let start = Instant::now();
     let total = cfg.total_samples();
@@ -155,7 +182,7 @@ pub fn simulate_modal(
         raised: 0,
         tip_values: cfg.disturbance.tip_values(cfg.discretisation.dt),
     };
-    drive(cfg, basis, &lp, &mut st, &mut signal, &mut rec)?;
+    drive(cfg, basis, lp, st, signal, &mut rec)?;
     Ok(SimOutput {
         series: rec.series,
         fields: rec.fields,

@@ -9,9 +9,9 @@ use crate::{Sample, SimError};
 
 use super::diagonal::{DiagonalState, DiagonalStep, Timing};
 use super::exact::{ExactStep, LoopCoefficients};
-use super::trbdf2_pass::{StateSums, Trbdf2Pass};
+use super::trbdf2_pass::{StateSums, TipStages, Trbdf2Pass};
 use super::woodbury::{padded_len, total, StepSolve, LANES};
-use super::{ModalBasis, SampleInput};
+use super::{ModalBasis, SampleInput, StepQuadrature};
 
 /// Σ x_i y_i over the common length, in [`LANES`] partial sums combined in one fixed order
 /// (independent additions, so the sum vectorises; the same bits on every machine).
@@ -139,44 +139,17 @@ pub struct ModalLoop<'a> {
     tip_stages: [TipStages; 2],
 }
 
-/// The fixed factors of the TR-BDF2 tip-state update ξ S ẇ = s(τ + g) − S w of one channel
-/// (ξ > 0): the stage-1 trapezoid w_γ = (ξSw + α(s(f_n + f_γ) − Sw))/(ξS + αS) and the BDF2
-/// stage w₁ = (A w_γ − B w + α s f₁/(ξS))/(1 + α/ξ), with their divisions taken once per run
-/// (eight divisions a step were ≈ 18 % of a search point's per-step scalar work, a chain of
-/// dependent latencies). The products by reciprocals round differently from the quotients, by
-/// ≈ 1 ulp per step.
-#[derive(Debug, Clone, Copy)]
-struct TipStages {
-    /// ξS (N m² s).
-    xi_stiff: f64,
-    /// 1/(ξS + αS).
-    trapezoid_scale: f64,
-    /// αs/(ξS).
-    bdf2_force: f64,
-    /// 1/(1 + α/ξ).
-    bdf2_scale: f64,
-}
-
-impl TipStages {
-    /// The factors for ξ > 0 (all 0 for ξ = 0, where w is algebraic and they are not used).
-    fn new(xi: f64, alpha: f64, stiff: f64, sign: f64) -> TipStages {
-        if xi.is_nan() || xi <= 0.0 {
-            return TipStages { xi_stiff: 0.0, trapezoid_scale: 0.0, bdf2_force: 0.0, bdf2_scale: 0.0 };
-        }
-        TipStages {
-            xi_stiff: xi * stiff,
-            trapezoid_scale: 1.0 / (xi * stiff + alpha * stiff),
-            bdf2_force: alpha * sign / (xi * stiff),
-            bdf2_scale: 1.0 / (1.0 + alpha / xi),
-        }
-    }
-}
-
 impl<'a> ModalLoop<'a> {
     /// The loop of `cfg` on `basis` (built from the same wing and grid), with the scheme
     /// `cfg.discretisation.stepper` selects.
     pub fn new(cfg: &Config, basis: &'a ModalBasis) -> Result<ModalLoop<'a>, SimError> {
-        Self::build(cfg, basis, None)
+        Self::build(cfg, basis, BoundaryLaw::of(cfg), None)
+    }
+
+    /// The loop of `cfg` as [`ModalLoop::new`] with the continuous part `law` in place of
+    /// `cfg`'s law (15): a controller's own ([`wingcheck_control::Controller::continuous`]).
+    pub fn with_law(cfg: &Config, basis: &'a ModalBasis, law: BoundaryLaw) -> Result<ModalLoop<'a>, SimError> {
+        Self::build(cfg, basis, law, None)
     }
 
     /// The loop of `cfg` as [`ModalLoop::new`], except that the exponential scheme steps in the
@@ -185,7 +158,7 @@ impl<'a> ModalLoop<'a> {
     /// relative of the state by construction; [`ModalLoop::eigenbasis_roundoff`]). The search
     /// steps this way; `simulate` keeps the dense form.
     pub fn with_eigenbasis(cfg: &Config, basis: &'a ModalBasis) -> Result<ModalLoop<'a>, SimError> {
-        Self::build(cfg, basis, Some(super::diagonal::MAX_ROUNDOFF))
+        Self::build(cfg, basis, BoundaryLaw::of(cfg), Some(super::diagonal::MAX_ROUNDOFF))
     }
 
     /// [`ModalLoop::with_eigenbasis`] with another limit on the eigenbasis's round-off estimate
@@ -196,7 +169,7 @@ impl<'a> ModalLoop<'a> {
         basis: &'a ModalBasis,
         max_roundoff: f64,
     ) -> Result<ModalLoop<'a>, SimError> {
-        Self::build(cfg, basis, Some(max_roundoff))
+        Self::build(cfg, basis, BoundaryLaw::of(cfg), Some(max_roundoff))
     }
 
     /// The relative round-off estimate of the state where the loop steps in the eigenbasis,
@@ -214,10 +187,15 @@ impl<'a> ModalLoop<'a> {
         self.eigenbasis_refused.as_deref()
     }
 
-    /// `eigenbasis`: the round-off limit of the eigenbasis form, `None` for the dense one.
-    fn build(cfg: &Config, basis: &'a ModalBasis, eigenbasis: Option<f64>) -> Result<ModalLoop<'a>, SimError> {
+    /// `law`: the continuous part; `eigenbasis`: the round-off limit of the eigenbasis form,
+    /// `None` for the dense one.
+    fn build(
+        cfg: &Config,
+        basis: &'a ModalBasis,
+        law: BoundaryLaw,
+        eigenbasis: Option<f64>,
+    ) -> Result<ModalLoop<'a>, SimError> {
         let h = cfg.discretisation.dt;
-        let law = BoundaryLaw::of(cfg);
         let (a, b, xi, gain) = (law.a, law.b, cfg.wing.xi, law.gains);
         let scheme = cfg.time_scheme(true);
         let alpha = match scheme {
@@ -354,18 +332,38 @@ impl<'a> ModalLoop<'a> {
     /// `tip_states`). The other schemes advance them either way.
     #[inline]
     pub fn step_with(&self, st: &mut ModalState, input: &StepInput, tip_states: bool) -> Option<[f64; 2]> {
+        self.step_quadrature(st, input, tip_states).0
+    }
+
+    /// [`ModalLoop::step_with`], with the step's quadrature of τ and of the tip states w
+    /// ([`StepQuadrature`]; with `tip_states` false, TR-BDF2's w part is not formed).
+    #[inline(always)]
+    pub fn step_quadrature(
+        &self,
+        st: &mut ModalState,
+        input: &StepInput,
+        tip_states: bool,
+    ) -> (Option<[f64; 2]>, StepQuadrature) {
         match &self.stepping {
-            Stepping::Exponential(exact) => Some(self.exponential_step(exact, st, input)),
-            Stepping::Diagonal(diagonal) => Some(self.diagonal_step(diagonal, st, input)),
-            Stepping::Trapezoid(solve) => {
-                self.trapezoid_step(solve, st, input);
-                None
+            Stepping::Exponential(exact) => {
+                let start = self.ends(st, input);
+                let square = self.exponential_step(exact, st, input);
+                (Some(square), start.mean_with(self.ends(st, input)))
             }
-            Stepping::Trbdf2(pass) => {
-                self.trbdf2_step(pass, st, input, tip_states);
-                None
+            Stepping::Diagonal(diagonal) => {
+                let start = self.ends(st, input);
+                let square = self.diagonal_step(diagonal, st, input);
+                (Some(square), start.mean_with(self.ends(st, input)))
             }
+            Stepping::Trapezoid(solve) => (None, self.trapezoid_step(solve, st, input)),
+            Stepping::Trbdf2(pass) => (None, self.trbdf2_step(pass, st, input, tip_states)),
         }
+    }
+
+    /// τ and w of `st` now, with the step's held estimate (an end of an exponential step).
+    #[inline(always)]
+    fn ends(&self, st: &ModalState, input: &StepInput) -> StepQuadrature {
+        StepQuadrature { tau: [0, 1].map(|c| self.tau(c, st.x_tip[c], st.v_tip[c], input.g_hat[c])), w: st.w }
     }
 
     /// Step with the baseline instructions even where AVX is available (the results are the
@@ -457,8 +455,9 @@ impl<'a> ModalLoop<'a> {
     /// One trapezoidal step (α = h/2): S v̄ = (2/h)ζ − Ω²η + f̄, η += h v̄, ζ = 2v̄ − ζ; the
     /// tip states as `crate::Stepper`'s trapezoidal step.
     #[inline(always)]
-    fn trapezoid_step(&self, solve: &StepSolve, st: &mut ModalState, input: &StepInput) {
+    fn trapezoid_step(&self, solve: &StepSolve, st: &mut ModalState, input: &StepInput) -> StepQuadrature {
         let h = self.h;
+        let mut quad = StepQuadrature::default();
         let f = self.tip_forces(input, st.x_tip);
         let t = solve.rhs(&st.zeta, &st.eta, input.phi, f, &mut st.y);
         let (c, vbar) = solve.correct(t);
@@ -466,16 +465,21 @@ impl<'a> ModalLoop<'a> {
         let xi = self.xi;
         for ch in 0..2 {
             let xbar = st.x_tip[ch] + 0.5 * h * vbar[ch];
-            let force = self.tau(ch, xbar, vbar[ch], input.g_hat[ch]) + input.tip_input[ch] + input.g_hat[ch];
+            let tau = self.tau(ch, xbar, vbar[ch], input.g_hat[ch]);
+            let force = tau + input.tip_input[ch] + input.g_hat[ch];
             let (s, w) = (self.stiff[ch], st.w[ch]);
             st.w[ch] = if xi > 0.0 {
                 (xi * s * w + h * self.sign[ch] * force - 0.5 * h * s * w) / (xi * s + 0.5 * h * s)
             } else {
                 self.sign[ch] * force / s
             };
+            // the nodal stepper's quadrature: τ at the midpoint state, w̄ = (w_n + w_{n+1})/2
+            quad.tau[ch] = tau;
+            quad.w[ch] = if xi > 0.0 { 0.5 * (w + st.w[ch]) } else { st.w[ch] };
             st.x_tip[ch] += h * vbar[ch];
             st.v_tip[ch] = 2.0 * vbar[ch] - st.v_tip[ch];
         }
+        quad
     }
 
     /// One TR-BDF2 step (α = γh/2), as `crate::Stepper`'s. Stage 1 (trapezoid to
@@ -485,7 +489,13 @@ impl<'a> ModalLoop<'a> {
     /// ([`Trbdf2Pass`]); the tip values by the Woodbury identity Uᵀu = t − Q c, the tip states
     /// by the same stages where `tip_states` ([`ModalLoop::step_with`]).
     #[inline(always)]
-    fn trbdf2_step(&self, pass: &Trbdf2Pass, st: &mut ModalState, input: &StepInput, tip_states: bool) {
+    fn trbdf2_step(
+        &self,
+        pass: &Trbdf2Pass,
+        st: &mut ModalState,
+        input: &StepInput,
+        tip_states: bool,
+    ) -> StepQuadrature {
         use crate::trbdf2::{A, B};
         let (alpha, sv) = (self.alpha, &pass.solve);
         let (xn, vn) = (st.x_tip, st.v_tip);
@@ -502,32 +512,49 @@ impl<'a> ModalLoop<'a> {
         let e2 = [f2[0] - c2[0], f2[1] - c2[1]];
         st.sums = pass.pass(input.phi, e, e2, &mut st.zeta, &mut st.eta);
         let x1 = [0, 1].map(|ch| x_hat[ch] + alpha * v1[ch]);
-        if tip_states {
-            self.trbdf2_tip_states(st, input, [xn, xg, x1], [vn, vg, v1]);
-        }
+        let quad = if tip_states {
+            self.trbdf2_tip_states(st, input, [xn, xg, x1], [vn, vg, v1])
+        } else {
+            StepQuadrature::default()
+        };
         st.x_tip = x1;
         st.v_tip = v1;
+        quad
     }
 
     /// The tip boundary states ξ S ẇ = s(τ + g) − S w over a TR-BDF2 step by its two stages,
-    /// from the tip values at the step's start, stage 1's end and the step's end.
+    /// from the tip values at the step's start, stage 1's end and the step's end; returns the
+    /// step's quadrature of τ and w with the scheme's weights (`crate::trbdf2::WEIGHTS`, as the
+    /// nodal stepper hands its controller).
     #[inline(always)]
-    fn trbdf2_tip_states(&self, st: &mut ModalState, input: &StepInput, x: [[f64; 2]; 3], v: [[f64; 2]; 3]) {
-        use crate::trbdf2::{A, B};
+    fn trbdf2_tip_states(
+        &self,
+        st: &mut ModalState,
+        input: &StepInput,
+        x: [[f64; 2]; 3],
+        v: [[f64; 2]; 3],
+    ) -> StepQuadrature {
+        use crate::trbdf2::{A, B, WEIGHTS};
         let alpha = self.alpha;
+        let mut quad = StepQuadrature::default();
         for ch in 0..2 {
             let g_mean = input.tip_input[ch] + input.g_hat[ch];
-            let force = |k: usize| self.tau(ch, x[k][ch], v[k][ch], input.g_hat[ch]) + g_mean;
-            let (fn_, fg, f1) = (force(0), force(1), force(2));
+            let tau = |k: usize| self.tau(ch, x[k][ch], v[k][ch], input.g_hat[ch]);
+            let (fn_, fg, f1) = (tau(0) + g_mean, tau(1) + g_mean, tau(2) + g_mean);
             let (s, sg, w) = (self.stiff[ch], self.sign[ch], st.w[ch]);
-            st.w[ch] = if self.xi > 0.0 {
+            let (w_n, wg, w1) = if self.xi > 0.0 {
                 let k = &self.tip_stages[ch];
                 let wg = (k.xi_stiff * w + alpha * (sg * (fn_ + fg) - s * w)) * k.trapezoid_scale;
-                (A * wg - B * w + k.bdf2_force * f1) * k.bdf2_scale
+                (w, wg, (A * wg - B * w + k.bdf2_force * f1) * k.bdf2_scale)
             } else {
-                sg * f1 / s
+                (sg * fn_ / s, sg * fg / s, sg * f1 / s)
             };
+            st.w[ch] = w1;
+            let [q0, q1, q2] = WEIGHTS;
+            quad.tau[ch] = q0 * tau(0) + q1 * tau(1) + q2 * tau(2);
+            quad.w[ch] = q0 * w_n + q1 * wg + q2 * w1;
         }
+        quad
     }
 }
 
