@@ -25,6 +25,7 @@ use std::path::Path;
 use std::process::{Command, Output};
 
 use serde_json::Value;
+use wingcheck_claims::{Basis, Verdict};
 use wingcheck_model::Quantity;
 
 mod common;
@@ -219,6 +220,10 @@ fn check(name: &str, sets: &[&str], tmp: &Path) {
     let (all, prose) = visible(&doc);
     let ledger: Value = serde_json::from_str(&std::fs::read_to_string(out.join("ledger.json")).unwrap()).unwrap();
     let rows = ledger["rows"].as_array().unwrap();
+    let rows_in_words: Vec<String> = rows
+        .iter()
+        .map(|r| serde_json::from_value::<Verdict>(r["verdict"].clone()).expect("a verdict").to_string())
+        .collect();
 
     // the first screen: the tally, then the seven claims within the 1280 × 800 budget
     let tally = text(by_id(&doc, "tally").expect("the verdict tally"));
@@ -357,6 +362,20 @@ fn check(name: &str, sets: &[&str], tmp: &Path) {
     for bad in UNDEFINED {
         assert!(!all.contains(bad), "{name}: «{bad}» in the visible text");
     }
+    // verdicts and bases in words, not as the tokens `check` and the JSON print
+    // (`holds-after-correction`, `float-solver`: the enums' kebab-case names)
+    let tokens = Verdict::ALL.iter().map(|v| v.name()).chain(Basis::ALL.iter().map(|b| b.name()));
+    for bad in tokens.filter(|t| t.contains('-')) {
+        assert!(!all.contains(bad), "{name}: the token «{bad}» in the visible text");
+    }
+    // the ledger table's verdict cells read as the verdicts' words, row by row
+    let cells: Vec<String> = by_id(&doc, "ledger-table")
+        .unwrap()
+        .descendants()
+        .filter(|n| n.has_tag_name("td") && has_class(n, "verdict"))
+        .map(text)
+        .collect();
+    assert_eq!(cells, rows_in_words, "{name}: the ledger table's verdicts");
     let chars: Vec<char> = prose.chars().collect();
     for (i, w) in chars.windows(2).enumerate() {
         let before = if i > 0 { chars[i - 1] } else { ' ' };
