@@ -453,12 +453,31 @@ fn check(name: &str, sets: &[&str], tmp: &Path) {
     let paper = wingcheck_model::Config::paper();
     let (cv, pv) = (serde_json::to_value(&cfg).unwrap(), serde_json::to_value(&paper).unwrap());
     let mut changed = 0;
+    let changes: Vec<roxmltree::Node> = by_id(&doc, "config-changes")
+        .map(|p| p.descendants().filter(|n| has_class(n, "change")).collect())
+        .unwrap_or_default();
     for (section, m) in cv.as_object().unwrap() {
         for (k, v) in m.as_object().unwrap() {
             if pv[section][k] != *v {
                 changed += 1;
-                let shown = format!("{section}.{k} = {}", v.as_str().map_or(v.to_string(), String::from));
-                assert!(head.contains(&shown), "{name}: «{shown}» not in the first 2 kB: {head}");
+                let key = format!("{section}.{k}");
+                assert!(head.contains(&key), "{name}: «{key}» not in the first 2 kB: {head}");
+                // `key = value (paper.json: …)`, the value in the one number format: it reads
+                // back (wingcheck_model::format::parse) as the configured number, not as JSON
+                // text (`9770000.0`); a word (`explicit`) as itself
+                let change = changes
+                    .iter()
+                    .find(|c| c.children().any(|n| n.has_tag_name("code") && text(n) == key))
+                    .unwrap_or_else(|| panic!("{name}: {key} not among the changes"));
+                let shown = text(*change);
+                let value = shown.split_once(" = ").and_then(|(_, r)| r.split(" (paper.json").next()).unwrap();
+                match v.as_f64() {
+                    Some(x) => {
+                        assert_eq!(wingcheck_model::format::parse(value), Some(x), "{name}: «{shown}»");
+                        assert!(!value.ends_with(".0") && !value.contains('e'), "{name}: «{shown}»");
+                    }
+                    None => assert_eq!(Some(value), v.as_str(), "{name}: «{shown}»"),
+                }
             }
         }
     }

@@ -11,9 +11,9 @@ use wingcheck_model::Config;
 pub struct ConfigChange {
     /// The key as `--set` takes it (`control.a`).
     pub key: String,
-    /// The value run (JSON scalar text).
+    /// The value run: a number in the one number format ([`number_text`]), else the JSON text.
     pub value: String,
-    /// The value of `configs/paper.json`.
+    /// The value of `configs/paper.json`, likewise.
     pub paper: String,
 }
 
@@ -27,7 +27,18 @@ fn leaves(prefix: &str, v: &Value, out: &mut Vec<(String, String)>) {
             }
         }
         Value::String(s) => out.push((prefix.to_string(), s.clone())),
+        Value::Number(n) => out.push((prefix.to_string(), number_text(n))),
         other => out.push((prefix.to_string(), other.to_string())),
+    }
+}
+
+/// A configured number in the one number format: its shortest decimal
+/// ([`wingcheck_model::format::exact`]: `9.77×10⁶`, `3000`, `0.3`, never the JSON float
+/// `9770000.0`); an integer beyond f64's exact range as its digits.
+fn number_text(n: &serde_json::Number) -> String {
+    match n.as_f64() {
+        Some(v) if v.is_finite() && (n.is_f64() || v.abs() <= 2f64.powi(53)) => wingcheck_model::format::exact(v),
+        _ => n.to_string(),
     }
 }
 
@@ -210,7 +221,14 @@ mod tests {
         let mut c = Config::paper();
         c.control.b = 3000.0;
         let d = config_changes(&c);
-        assert_eq!(d, vec![ConfigChange { key: "control.b".into(), value: "3000.0".into(), paper: "1.0".into() }]);
+        assert_eq!(d, vec![ConfigChange { key: "control.b".into(), value: "3000".into(), paper: "1".into() }]);
+        // the Goland wing's bending rigidity (tests/common GOLAND: 9.77e6 N m²) in the one
+        // number format, not the JSON float 9770000.0; the paper's ei in it too
+        let mut c = Config::paper();
+        c.wing.ei = 9.77e6;
+        let d = config_changes(&c);
+        assert_eq!((d[0].key.as_str(), d[0].value.as_str()), ("wing.ei", "9.77×10⁶"));
+        assert_eq!(wingcheck_model::format::parse(&d[0].paper), Some(Config::paper().wing.ei));
         let args: Vec<String> = ["/x/y/wingcheck", "report", "--set", "a b=1"].iter().map(|s| s.to_string()).collect();
         assert_eq!(command_text(&args), "wingcheck report --set 'a b=1'");
     }
