@@ -362,6 +362,11 @@ fn check(name: &str, sets: &[&str], tmp: &Path) {
     for bad in UNDEFINED {
         assert!(!all.contains(bad), "{name}: «{bad}» in the visible text");
     }
+    // powers raised (ω = z², e with −λt raised), never in caret form (`z^2`, `e^(−λt)`)
+    if let Some(i) = prose.find('^') {
+        let from = prose[..i].char_indices().rev().nth(40).map_or(0, |(j, _)| j);
+        panic!("{name}: a caret power in «{}»", prose[from..].chars().take(60).collect::<String>());
+    }
     // verdicts and bases in words, not as the tokens `check` and the JSON print
     // (`holds-after-correction`, `float-solver`: the enums' kebab-case names)
     let tokens = Verdict::ALL.iter().map(|v| v.name()).chain(Basis::ALL.iter().map(|b| b.name()));

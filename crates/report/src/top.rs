@@ -90,6 +90,8 @@ pub struct Piece {
     pub num: bool,
     /// Whether it is a configuration key (`section.key`, `section.*`).
     pub key: bool,
+    /// Whether it is an exponent, drawn raised (`e^(−λt)` → e with −λt raised; `z^k`).
+    pub sup: bool,
 }
 
 /// The configuration's section names (`wing`, `control`, …), from its typed JSON.
@@ -156,7 +158,40 @@ fn number_len(s: &str) -> usize {
     i
 }
 
-/// `s` as text and number pieces. A number starts a token: at the start, or after a character
+/// Length in bytes of the caret power at the start of `s` (0 if none), and its exponent: `^`
+/// then a bracketed group `(…)` or `{…}` (brackets balanced, dropped from the exponent) or a
+/// run of letters and digits (`^2`, `^r`, `^K`).
+fn power_len(s: &str) -> (usize, &str) {
+    let Some(rest) = s.strip_prefix('^') else { return (0, "") };
+    let open = rest.chars().next();
+    if let Some(close) = match open {
+        Some('(') => Some(')'),
+        Some('{') => Some('}'),
+        _ => None,
+    } {
+        let mut depth = 0usize;
+        for (i, c) in rest.char_indices() {
+            if Some(c) == open {
+                depth += 1;
+            } else if c == close {
+                depth -= 1;
+                if depth == 0 {
+                    return (1 + i + 1, &rest[1..i]);
+                }
+            }
+        }
+        return (0, "");
+    }
+    let n: usize = rest.chars().take_while(|c| c.is_alphanumeric()).map(char::len_utf8).sum();
+    if n == 0 {
+        (0, "")
+    } else {
+        (1 + n, &rest[..n])
+    }
+}
+
+/// `s` as text, number, key and exponent pieces (a caret power `x^(…)` is an exponent piece,
+/// drawn raised: the page shows no caret). A number starts a token: at the start, or after a character
 /// that is not a letter, digit or `_` (so `κ2`, `t_f1`, `10⁻³` are text).
 pub fn pieces(s: &str) -> Vec<Piece> {
     let sections = sections();
@@ -169,14 +204,24 @@ pub fn pieces(s: &str) -> Vec<Piece> {
         // (a combining mark, like the tilde of g̃, belongs to the letter before it)
         let starts =
             prev.is_none_or(|p| !(p.is_alphanumeric() || p == '_' || p == '.' || ('\u{300}'..='\u{36f}').contains(&p)));
+        let (p, exponent) = power_len(rest);
+        if p > 0 {
+            if !text.is_empty() {
+                out.push(Piece { text: std::mem::take(&mut text), num: false, key: false, sup: false });
+            }
+            out.push(Piece { text: exponent.to_string(), num: false, key: false, sup: true });
+            prev = rest[..p].chars().last();
+            i += p;
+            continue;
+        }
         let k = if starts { key_len(rest, &sections) } else { 0 };
         let n = if starts && k == 0 { number_len(rest) } else { 0 };
         if n > 0 || k > 0 {
             if !text.is_empty() {
-                out.push(Piece { text: std::mem::take(&mut text), num: false, key: false });
+                out.push(Piece { text: std::mem::take(&mut text), num: false, key: false, sup: false });
             }
             let n = n.max(k);
-            out.push(Piece { text: rest[..n].to_string(), num: k == 0, key: k > 0 });
+            out.push(Piece { text: rest[..n].to_string(), num: k == 0, key: k > 0, sup: false });
             prev = rest[..n].chars().last();
             i += n;
         } else {
@@ -187,7 +232,7 @@ pub fn pieces(s: &str) -> Vec<Piece> {
         }
     }
     if !text.is_empty() {
-        out.push(Piece { text, num: false, key: false });
+        out.push(Piece { text, num: false, key: false, sup: false });
     }
     out
 }
@@ -206,6 +251,19 @@ mod tests {
         assert_eq!(pieces(s).iter().map(|p| p.text.as_str()).collect::<String>(), s);
         // 0.12085992204657, 3.4e-13, the 1 of 1/s, 1e-3
         assert_eq!(pieces(s).iter().filter(|p| p.num).count(), 4);
+    }
+
+    #[test]
+    fn caret_powers_are_raised_exponents() {
+        // Reference: the caret notation of the ledger's text (e^(−λt), Q0^((a2−a1)/a2), z^k).
+        let p = pieces("W(0)e^(−λt) + ε/λ, Q0^((a2−a1)/a2), sig^r(σ), ω = z^2 and 2^p·4; a^ b");
+        let sups: Vec<&str> = p.iter().filter(|p| p.sup).map(|p| p.text.as_str()).collect();
+        assert_eq!(sups, ["−λt", "(a2−a1)/a2", "r", "2", "p"]);
+        // no caret left but the lone one, which raises nothing
+        let text: String = p.iter().filter(|p| !p.sup).map(|p| p.text.as_str()).collect();
+        assert_eq!(text.matches('^').count(), 1, "{text}");
+        // an unbalanced bracket is left as text
+        assert!(pieces("x^(1 + y").iter().all(|p| !p.sup));
     }
 
     #[test]
