@@ -531,9 +531,8 @@ fn held_as_steps(mut pd: wingcheck_claims::PlotData) -> chart::LineChart {
 fn render_html(page: &Page) -> Result<String, ReportError> {
     let mut env = minijinja::Environment::new();
     env.set_auto_escape_callback(|_| minijinja::AutoEscape::Html);
-    // plain text as pieces for the `pieces` macro (numbers unbreakable, keys as code, caret
-    // powers raised)
-    env.add_filter("prose", |s: String| minijinja::Value::from_serialize(crate::top::pieces(&s)));
+    // plain text as pieces for the `pieces` macro: text and caret powers raised
+    env.add_filter("prose", |s: String| minijinja::Value::from_serialize(crate::top::raised(&s)));
     env.add_template("index.html", TEMPLATE)?;
     Ok(env.get_template("index.html")?.render(page)?)
 }

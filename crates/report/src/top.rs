@@ -237,6 +237,20 @@ pub fn pieces(s: &str) -> Vec<Piece> {
     out
 }
 
+/// `s` as text and exponent pieces only ([`pieces`]'s caret powers raised, the rest plain
+/// text: for text that was plain before, so the page does not grow by a span per number).
+pub fn raised(s: &str) -> Vec<Piece> {
+    let mut out: Vec<Piece> = Vec::new();
+    for p in pieces(s) {
+        match out.last_mut() {
+            Some(last) if !p.sup && !last.sup => last.text.push_str(&p.text),
+            _ if p.sup => out.push(p),
+            _ => out.push(Piece { text: p.text, num: false, key: false, sup: false }),
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -264,6 +278,11 @@ mod tests {
         assert_eq!(text.matches('^').count(), 1, "{text}");
         // an unbalanced bracket is left as text
         assert!(pieces("x^(1 + y").iter().all(|p| !p.sup));
+        // raised: the same text, numbers and keys merged back into plain text
+        let r = raised("W(0)e^(−λt) + 2 control.a^2");
+        let shape: Vec<(&str, bool)> = r.iter().map(|p| (p.text.as_str(), p.sup)).collect();
+        assert_eq!(shape, [("W(0)e", false), ("−λt", true), (" + 2 control.a", false), ("2", true)]);
+        assert!(r.iter().all(|p| !p.num && !p.key));
     }
 
     #[test]
