@@ -23,6 +23,7 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use crate::field::{coolwarm_rgb, locate};
+use crate::labels::{place, Label};
 use crate::Heatmap;
 use crate::{linear_ticks, px, scaled_svg_header, tick, tick_linear, ChartError, CANVAS, SCALE};
 
@@ -319,7 +320,8 @@ pub fn surface_svg(s: &Heatmap) -> Result<String, ChartError> {
     let (t0, t1, z0, z1) = (s.t[0], s.t[nt - 1], s.z[0], s.z[nz - 1]);
     let view = VIEW;
     // the height axis labelled up to the peak (and down to the lowest value)
-    let vt = crate::with_ends(&linear_ticks(vmin, vmax, 5), vmin, vmax, 0.08);
+    let round = linear_ticks(vmin, vmax, 5);
+    let vt = crate::with_ends(&round, vmin, vmax, 0.08);
     let (bx0, by0, bx1, by1) = view.bounds();
     let r = draw_surface(s, view, (vmin, vmax), &vt);
     let png = indexed_png(&r).map_err(err)?;
@@ -335,53 +337,60 @@ pub fn surface_svg(s: &Heatmap) -> Result<String, ChartError> {
         root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
         let e = |e: DrawingAreaErrorKind<std::io::Error>| err(e.to_string());
         let c = |p: (f64, f64)| ((p.0 * SCALE as f64).round() as i32, (p.1 * SCALE as f64).round() as i32);
-        let font = |h: HPos, v: VPos| ("sans-serif", px(16)).into_font().color(&BLACK).pos(Pos::new(h, v));
+        let font = |h: HPos, v: VPos| {
+            ("sans-serif", px(crate::labels::FONT_PX as u32)).into_font().color(&BLACK).pos(Pos::new(h, v))
+        };
         let axis = BLACK.stroke_width(px(1));
-        // t along the front-left edge, z along the front-right edge, v up the left corner.
+        // Labels in priority order (axis titles, round ticks, then the added ends), each drawn
+        // unless it meets one before it (labels::place); tick marks are all drawn.
+        let (mut titles, mut ticks, mut ends) = (Vec::new(), Vec::new(), Vec::new());
+        let label = |text: String, at: (f64, f64), h: HPos, v: VPos| Label { text, at, h, v };
+        // t along the front-left edge, z along the front-right edge, v up the left corner; the
+        // t labels sit 3 px lower than the tick's direction puts them, clear of the height
+        // axis's lowest label at the shared corner.
         let tick_along = |from: (f64, f64), to: (f64, f64), out: (f64, f64), f: f64| {
             let p = (from.0 + f * (to.0 - from.0), from.1 + f * (to.1 - from.1));
             (p, (p.0 + out.0, p.1 + out.1))
         };
         let (o, tx, zx) = (view.at(0.0, 0.0, 0.0), view.at(1.0, 0.0, 0.0), view.at(1.0, 1.0, 0.0));
-        for (from, to, out, lo, hi, label, anchor) in [
-            (o, tx, (-6.0, 7.0), t0, t1, "t (s)", (HPos::Right, VPos::Top)),
-            (tx, zx, (7.0, 6.0), z0, z1, "z (m)", (HPos::Left, VPos::Top)),
+        for (from, to, out, drop, lo, hi, title, anchor) in [
+            (o, tx, (-6.0, 7.0), 3.0, t0, t1, "t (s)", (HPos::Right, VPos::Top)),
+            (tx, zx, (7.0, 6.0), 0.0, z0, z1, "z (m)", (HPos::Left, VPos::Top)),
         ] {
             root.draw(&PathElement::new(vec![c(from), c(to)], axis)).map_err(e)?;
             for v in linear_ticks(lo, hi, 5) {
                 let (p, q) = tick_along(from, to, out, frac(v, lo, hi));
                 root.draw(&PathElement::new(vec![c(p), c(q)], axis)).map_err(e)?;
-                let at = (q.0 + 0.6 * out.0, q.1 + 0.6 * out.1);
-                root.draw(&Text::new(tick(v), c(at), font(anchor.0, anchor.1))).map_err(e)?;
+                let at = (q.0 + 0.6 * out.0, q.1 + 0.6 * out.1 + drop);
+                ticks.push(label(tick(v), at, anchor.0, anchor.1));
             }
             let mid = tick_along(from, to, out, 0.5).1;
-            let at = (mid.0 + 5.5 * out.0, mid.1 + 4.0 * out.1);
-            root.draw(&Text::new(label.to_string(), c(at), font(HPos::Center, VPos::Center))).map_err(e)?;
+            let at = (mid.0 + 5.5 * out.0, mid.1 + 5.5 * out.1);
+            titles.push(label(title.to_string(), at, HPos::Center, VPos::Center));
         }
         let top = view.at(0.0, 0.0, 1.0);
         root.draw(&PathElement::new(vec![c(o), c(top)], axis)).map_err(e)?;
         for v in &vt {
             let p = view.at(0.0, 0.0, frac(*v, vmin, vmax));
             root.draw(&PathElement::new(vec![c(p), c((p.0 - 6.0, p.1))], axis)).map_err(e)?;
-            let label = tick_linear(*v, vmax - vmin);
-            root.draw(&Text::new(label, c((p.0 - 10.0, p.1)), font(HPos::Right, VPos::Center))).map_err(e)?;
+            let l = label(tick_linear(*v, vmax - vmin), (p.0 - 10.0, p.1), HPos::Right, VPos::Center);
+            if round.contains(v) { &mut ticks } else { &mut ends }.push(l);
         }
-        root.draw(&Text::new(s.value_label.clone(), c((top.0, top.1 - 14.0)), font(HPos::Center, VPos::Bottom)))
-            .map_err(e)?;
+        titles.push(label(s.value_label.clone(), (top.0, top.1 - 14.0), HPos::Center, VPos::Bottom));
         // Colour bar: the unshaded colour map as a gradient raster (embedded below), framed.
         root.draw(&Rectangle::new([c((cx, cy0)), c((cx + 18.0, cy1))], axis)).map_err(e)?;
-        for v in crate::with_ends(&linear_ticks(-cmax, cmax, 4), -cmax, cmax, 0.04) {
+        let bar_round = linear_ticks(-cmax, cmax, 4);
+        for v in crate::with_ends(&bar_round, -cmax, cmax, 0.04) {
             let y = cy1 - frac(v, -cmax, cmax) * (cy1 - cy0);
             root.draw(&PathElement::new(vec![c((cx + 18.0, y)), c((cx + 23.0, y))], axis)).map_err(e)?;
-            let label = tick_linear(v, 2.0 * cmax);
-            root.draw(&Text::new(label, c((cx + 26.0, y)), font(HPos::Left, VPos::Center))).map_err(e)?;
+            let l = label(tick_linear(v, 2.0 * cmax), (cx + 26.0, y), HPos::Left, VPos::Center);
+            if bar_round.contains(&v) { &mut ticks } else { &mut ends }.push(l);
         }
-        root.draw(&Text::new(
-            format!("colour: {}", s.value_label),
-            c((cx + 9.0, cy0 - 10.0)),
-            font(HPos::Center, VPos::Bottom),
-        ))
-        .map_err(e)?;
+        let at = (cx + 9.0, cy0 - 14.0);
+        titles.push(label(format!("colour: {}", s.value_label), at, HPos::Center, VPos::Bottom));
+        for l in place(titles.into_iter().chain(ticks).chain(ends).collect()) {
+            root.draw(&Text::new(l.text, c(l.at), font(l.h, l.v))).map_err(e)?;
+        }
         root.present().map_err(|e| err(e.to_string()))?;
     }
     let s4 = SCALE as i32;
@@ -543,6 +552,40 @@ mod tests {
         assert_eq!(palette()[r.data[2 * 10 + 2] as usize], [180, 4, 38]);
         // A pixel well outside the triangle stays untouched.
         assert_eq!(r.data[9 * 10 + 9], PAPER_IX);
+    }
+
+    #[test]
+    fn height_labels_never_overlap_and_round_ticks_win() {
+        // A field from `low` to 1 (Figure 5's range at the paper's point is −0.1136 … 1). The
+        // height axis is 205 px: its lowest value `low` sits 205·|low|/(1 − low) px below the 0
+        // tick. Labels 16 px high with 2 px clear around need 20 px: at −0.1136 that is 20.9 px,
+        // so both show; at −0.09, 16.9 px: the end gives way to the round tick 0 (it used to
+        // be drawn over it). Reference: the View constants and labels::place.
+        let texts = |low: f64| {
+            let svg = surface_svg(&ridge(21, 4, |k, j| {
+                if k == 0 && j == 3 {
+                    1.0
+                } else if k == 2 {
+                    low
+                } else {
+                    0.0
+                }
+            }))
+            .unwrap();
+            svg.split("<text")
+                .skip(1)
+                .filter_map(|t| Some(t.split_once('>')?.1.split_once('<')?.0.trim().to_string()))
+                .collect::<Vec<_>>()
+        };
+        let at = texts(-0.1136);
+        assert!(at.iter().any(|t| t == "−0.1136") && at.iter().filter(|t| *t == "0").count() >= 2, "{at:?}");
+        // every label of the colour bar (±1 at its ends) and of the t axis (0 … 20 s, as
+        // Figure 5's) shows, clear of the titles
+        for v in ["−1", "−0.5", "0.5", "1", "5", "10", "15", "20"] {
+            assert!(at.iter().any(|t| t == v), "{v}: {at:?}");
+        }
+        let at = texts(-0.09);
+        assert!(!at.iter().any(|t| t == "−0.09") && at.iter().any(|t| t == "0.2"), "{at:?}");
     }
 
     #[test]
