@@ -244,7 +244,7 @@ fn lemma_texts_follow_the_span_and_the_exponent() {
     assert!(!t6.contains("64/5") && !t6.contains("on [0, 2 m]"));
     // the evidence carries the same facts, exactly
     let Evidence::Lemmas(e) = &six.evidence else { panic!("lemmas evidence") };
-    assert_eq!(e.lemma2_counterexample.omega.value, "z^18");
+    assert_eq!(e.lemma2_counterexample.omega.value, "z¹⁸");
     assert_eq!(e.lemma2_counterexample.f.value, 6.0);
     assert!(e.lemma2_counterexample.printed_violated.value);
 }
