@@ -231,20 +231,20 @@ fn lemma_texts_follow_the_span_and_the_exponent() {
     // the degree-1 ratio is 3/f² = 0.75 (∫_0^1 x² = 1/3).
     let two = lemmas::check(&short(&[]), &settings).unwrap();
     let t2 = two.finding_text();
-    assert!(t2.contains("on [0, 2 m]") && t2.contains("ω = z^2 "), "{t2}");
+    assert!(t2.contains("on [0, 2 m]") && t2.contains("ω = z² "), "{t2}");
     assert!(t2.contains("ω(f)² = 16 > f∫ω² = 64/5"), "{t2}");
     assert!(two.details.join(" ").contains("(0.7500 at degree 1,"), "{:?}", two.details);
     assert!(two.assumptions.join(" ").contains("p = a1/a2 = 0.5385"), "{:?}", two.assumptions); // 7/13
                                                                                                 // Span f = 6 with a1/a2 = 3/5: least k with 2k + 1 > 36 is k = 18; degree-1 ratio 3/36.
     let six = lemmas::check(&short(&["wing.span=6", "observer.a1=3", "observer.a2=5"]), &settings).unwrap();
     let t6 = six.finding_text();
-    assert!(t6.contains("on [0, 6 m]") && t6.contains("ω = z^18 "), "{t6}");
+    assert!(t6.contains("on [0, 6 m]") && t6.contains("ω = z¹⁸ "), "{t6}");
     assert!(six.details.join(" ").contains("(0.08333 at degree 1,"), "{:?}", six.details);
     assert!(six.assumptions.join(" ").contains("p = a1/a2 = 0.6000"), "{:?}", six.assumptions);
     assert!(!t6.contains("64/5") && !t6.contains("on [0, 2 m]"));
     // the evidence carries the same facts, exactly
     let Evidence::Lemmas(e) = &six.evidence else { panic!("lemmas evidence") };
-    assert_eq!(e.lemma2_counterexample.omega.value, "z^18");
+    assert_eq!(e.lemma2_counterexample.omega.value, "z¹⁸");
     assert_eq!(e.lemma2_counterexample.f.value, 6.0);
     assert!(e.lemma2_counterexample.printed_violated.value);
 }

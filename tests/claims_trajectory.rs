@@ -173,7 +173,7 @@ fn lemmas_hold_after_correcting_lemma_2() {
     assert_eq!(cex.rhs_printed.value, "64/5");
     assert!(cex.printed_violated.value);
     // the finding names the configured counterexample (16 > 64/5 on [0, 2] for ω = z²)
-    assert!(row.finding[1].contains("ω = z^2") && row.finding[1].contains("16 > f∫ω² = 64/5"), "{}", row.finding[1]);
+    assert!(row.finding[1].contains("ω = z²") && row.finding[1].contains("16 > f∫ω² = 64/5"), "{}", row.finding[1]);
     // Lemma 3: (14) is the exact reaching time; independent RK4 agrees to < 1e-6 relative.
     assert!(e.lemma3_max_rel_err.value < 1e-6);
     assert_eq!(e.lemma3_violations.value, 0.0);

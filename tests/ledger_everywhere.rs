@@ -58,7 +58,7 @@ fn quantities(v: &Value, out: &mut Vec<Quantity>) {
 fn paper_only(name: &str) -> Vec<&'static str> {
     let mut v = vec!["(0.5, 1), (1, 0.5), (2, 2)", "the paper's point", "of Section 4"];
     if name == "span 3 m" || name == "SI-scale wing" {
-        v.extend(["16 > f∫ω² = 64/5", "on [0, 2 m]", "ω = z^2 "]);
+        v.extend(["16 > f∫ω² = 64/5", "on [0, 2 m]", "ω = z² "]);
     }
     if name == "a = 1, b = 3000" {
         v.extend(["a = 1, b = 1 s", "configured a/b = 1 1/s"]);

@@ -22,15 +22,17 @@ fn ledger_table_equals_check_json_and_provenance_names_the_run() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let o = wingcheck(&["check", "--json", SHORT[0], SHORT[1]]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    // Reference: the verdicts of `check --json`, an independent run of the claim checker.
+    // Reference: the verdicts of `check --json`, an independent run of the claim checker, as
+    // the page shows them: in words (the enums' display text, not the JSON's tokens).
     let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     let want: Vec<(String, String, String)> = json["rows"]
         .as_array()
         .unwrap()
         .iter()
         .map(|r| {
-            let s = |k: &str| r[k].as_str().unwrap().to_string();
-            (s("id"), s("verdict"), s("basis"))
+            let verdict: wingcheck_claims::Verdict = serde_json::from_value(r["verdict"].clone()).unwrap();
+            let basis: wingcheck_claims::Basis = serde_json::from_value(r["basis"].clone()).unwrap();
+            (r["id"].as_str().unwrap().to_string(), verdict.to_string(), basis.to_string())
         })
         .collect();
 

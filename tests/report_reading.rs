@@ -25,6 +25,7 @@ use std::path::Path;
 use std::process::{Command, Output};
 
 use serde_json::Value;
+use wingcheck_claims::{Basis, Verdict};
 use wingcheck_model::Quantity;
 
 mod common;
@@ -219,6 +220,10 @@ fn check(name: &str, sets: &[&str], tmp: &Path) {
     let (all, prose) = visible(&doc);
     let ledger: Value = serde_json::from_str(&std::fs::read_to_string(out.join("ledger.json")).unwrap()).unwrap();
     let rows = ledger["rows"].as_array().unwrap();
+    let rows_in_words: Vec<String> = rows
+        .iter()
+        .map(|r| serde_json::from_value::<Verdict>(r["verdict"].clone()).expect("a verdict").to_string())
+        .collect();
 
     // the first screen: the tally, then the seven claims within the 1280 × 800 budget
     let tally = text(by_id(&doc, "tally").expect("the verdict tally"));
@@ -357,6 +362,25 @@ fn check(name: &str, sets: &[&str], tmp: &Path) {
     for bad in UNDEFINED {
         assert!(!all.contains(bad), "{name}: «{bad}» in the visible text");
     }
+    // powers raised (ω = z², e with −λt raised), never in caret form (`z^2`, `e^(−λt)`)
+    if let Some(i) = prose.find('^') {
+        let from = prose[..i].char_indices().rev().nth(40).map_or(0, |(j, _)| j);
+        panic!("{name}: a caret power in «{}»", prose[from..].chars().take(60).collect::<String>());
+    }
+    // verdicts and bases in words, not as the tokens `check` and the JSON print
+    // (`holds-after-correction`, `float-solver`: the enums' kebab-case names)
+    let tokens = Verdict::ALL.iter().map(|v| v.name()).chain(Basis::ALL.iter().map(|b| b.name()));
+    for bad in tokens.filter(|t| t.contains('-')) {
+        assert!(!all.contains(bad), "{name}: the token «{bad}» in the visible text");
+    }
+    // the ledger table's verdict cells read as the verdicts' words, row by row
+    let cells: Vec<String> = by_id(&doc, "ledger-table")
+        .unwrap()
+        .descendants()
+        .filter(|n| n.has_tag_name("td") && has_class(n, "verdict"))
+        .map(text)
+        .collect();
+    assert_eq!(cells, rows_in_words, "{name}: the ledger table's verdicts");
     let chars: Vec<char> = prose.chars().collect();
     for (i, w) in chars.windows(2).enumerate() {
         let before = if i > 0 { chars[i - 1] } else { ' ' };
@@ -434,12 +458,31 @@ fn check(name: &str, sets: &[&str], tmp: &Path) {
     let paper = wingcheck_model::Config::paper();
     let (cv, pv) = (serde_json::to_value(&cfg).unwrap(), serde_json::to_value(&paper).unwrap());
     let mut changed = 0;
+    let changes: Vec<roxmltree::Node> = by_id(&doc, "config-changes")
+        .map(|p| p.descendants().filter(|n| has_class(n, "change")).collect())
+        .unwrap_or_default();
     for (section, m) in cv.as_object().unwrap() {
         for (k, v) in m.as_object().unwrap() {
             if pv[section][k] != *v {
                 changed += 1;
-                let shown = format!("{section}.{k} = {}", v.as_str().map_or(v.to_string(), String::from));
-                assert!(head.contains(&shown), "{name}: «{shown}» not in the first 2 kB: {head}");
+                let key = format!("{section}.{k}");
+                assert!(head.contains(&key), "{name}: «{key}» not in the first 2 kB: {head}");
+                // `key = value (paper.json: …)`, the value in the one number format: it reads
+                // back (wingcheck_model::format::parse) as the configured number, not as JSON
+                // text (`9770000.0`); a word (`explicit`) as itself
+                let change = changes
+                    .iter()
+                    .find(|c| c.children().any(|n| n.has_tag_name("code") && text(n) == key))
+                    .unwrap_or_else(|| panic!("{name}: {key} not among the changes"));
+                let shown = text(*change);
+                let value = shown.split_once(" = ").and_then(|(_, r)| r.split(" (paper.json").next()).unwrap();
+                match v.as_f64() {
+                    Some(x) => {
+                        assert_eq!(wingcheck_model::format::parse(value), Some(x), "{name}: «{shown}»");
+                        assert!(!value.ends_with(".0") && !value.contains('e'), "{name}: «{shown}»");
+                    }
+                    None => assert_eq!(Some(value), v.as_str(), "{name}: «{shown}»"),
+                }
             }
         }
     }

@@ -188,12 +188,14 @@ fn lemma_2_at_huge_spans_is_decided_exactly_without_forming_f_to_the_2k() {
     // exceeds u32::MAX, where the exponent used to wrap and print "holds" on ω = z^0);
     // f = 1e5 → k = 5 000 000 000. ω(f)² > f∫ω² ⟺ 2k + 1 > f², true for both; the corrected
     // form holds (k² ≥ 2k − 1).
-    for (span, k, lhs) in [("66000", "2178000000", "66000^4356000000"), ("1e5", "5000000000", "100000^10000000000")] {
+    // (written with superscript digits, the prose's one way to write a power)
+    for (span, omega, lhs) in [("66000", "z²¹⁷⁸⁰⁰⁰⁰⁰⁰", "66000⁴³⁵⁶⁰⁰⁰⁰⁰⁰"), ("1e5", "z⁵⁰⁰⁰⁰⁰⁰⁰⁰⁰", "100000¹⁰⁰⁰⁰⁰⁰⁰⁰⁰⁰")]
+    {
         let cfg = paper_with(&[&format!("wing.span={span}")]);
         let row = lemmas::check(&cfg, &wingcheck_claims::CheckSettings::default()).unwrap();
         let wingcheck_claims::Evidence::Lemmas(e) = &row.evidence else { panic!("lemmas evidence") };
         let cex = &e.lemma2_counterexample;
-        assert_eq!(cex.omega.value, format!("z^{k}"));
+        assert_eq!(cex.omega.value, omega);
         assert_eq!(cex.lhs_omega_f_sq.value, lhs);
         assert!(cex.printed_violated.value);
         assert!(cex.corrected_holds.value);

@@ -108,6 +108,13 @@ impl Heatmap {
 
 /// Diverging colour map ("coolwarm"): u ∈ [0,1], 0.5 ↦ near white.
 pub(crate) fn coolwarm(u: f64) -> RGBColor {
+    let c = coolwarm_rgb(u).map(|v| v.round() as u8);
+    RGBColor(c[0], c[1], c[2])
+}
+
+/// [`coolwarm`] before rounding: RGB in [0, 255], continuous in u (so a shaded surface can
+/// round once, after shading).
+pub(crate) fn coolwarm_rgb(u: f64) -> [f64; 3] {
     const STOPS: [(f64, [f64; 3]); 5] = [
         (0.0, [59.0, 76.0, 192.0]),
         (0.25, [141.0, 176.0, 254.0]),
@@ -120,8 +127,7 @@ pub(crate) fn coolwarm(u: f64) -> RGBColor {
     let (s0, c0) = STOPS[i];
     let (s1, c1) = STOPS[i + 1];
     let w = (u - s0) / (s1 - s0);
-    let c = |k: usize| (c0[k] + w * (c1[k] - c0[k])).round() as u8;
-    RGBColor(c(0), c(1), c(2))
+    [0, 1, 2].map(|k| c0[k] + w * (c1[k] - c0[k]))
 }
 
 /// Index k and weight w with x = (1−w)·c[k] + w·c[k+1] (clamped to the ends).
@@ -166,7 +172,7 @@ fn raster_png(h: &Heatmap, w: usize, hgt: usize, vmax: f64) -> Result<Vec<u8>, S
         enc.set_color(png::ColorType::Indexed);
         enc.set_depth(png::BitDepth::Eight);
         enc.set_palette(palette);
-        enc.set_compression(png::Compression::Default);
+        enc.set_compression(png::Compression::Best);
         let mut wr = enc.write_header().map_err(|e| e.to_string())?;
         wr.write_image_data(&data).map_err(|e| e.to_string())?;
     }

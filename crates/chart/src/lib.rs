@@ -17,6 +17,7 @@ mod clip;
 mod data;
 mod field;
 mod grid;
+mod labels;
 mod line;
 mod line_legend;
 mod surface;

@@ -44,7 +44,8 @@ impl Verdict {
         Verdict::Inconclusive,
     ];
 
-    /// Kebab-case name as printed.
+    /// Kebab-case name as `check` and the JSON print it (a token, not prose: a page for people
+    /// shows the verdict's [`Display`](std::fmt::Display) text).
     pub fn name(self) -> &'static str {
         match self {
             Verdict::Holds => "holds",
@@ -84,6 +85,22 @@ impl Verdict {
     }
 }
 
+/// The verdict in words, as a page for people shows it (`holds after correction`, `holds but
+/// vacuous`); the one text of each verdict for prose (the report, its links and tallies).
+impl std::fmt::Display for Verdict {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Verdict::Holds => "holds",
+            Verdict::Fails => "fails",
+            Verdict::HoldsAfterCorrection => "holds after correction",
+            Verdict::Vacuous => "holds but vacuous",
+            Verdict::TriviallyTrue => "trivially true",
+            Verdict::PartlyReproduced => "partly reproduced",
+            Verdict::Inconclusive => "inconclusive",
+        })
+    }
+}
+
 /// What a verdict rests on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "kebab-case")]
@@ -107,7 +124,8 @@ impl Basis {
     pub const ALL: [Basis; 5] =
         [Basis::ExactCertificate, Basis::Analytic, Basis::FloatSolver, Basis::Computation, Basis::Simulation];
 
-    /// Kebab-case name as printed.
+    /// Kebab-case name as `check` and the JSON print it (a page for people shows the basis's
+    /// [`Display`](std::fmt::Display) text).
     pub fn name(self) -> &'static str {
         match self {
             Basis::ExactCertificate => "exact-certificate",
@@ -127,6 +145,19 @@ impl Basis {
             Basis::Computation => "floating-point searches and integrations: evidence for the cases computed",
             Basis::Simulation => "closed-loop simulation: evidence for the simulated cases",
         }
+    }
+}
+
+/// The basis in words, as a page for people shows it (`exact certificate`, `float solver`).
+impl std::fmt::Display for Basis {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Basis::ExactCertificate => "exact certificate",
+            Basis::Analytic => "analytic",
+            Basis::FloatSolver => "float solver",
+            Basis::Computation => "computation",
+            Basis::Simulation => "simulation",
+        })
     }
 }
 

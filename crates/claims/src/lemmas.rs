@@ -150,10 +150,10 @@ pub const EXACT_TEXT_BITS: u64 = 4096;
 /// The exact counterexample ω = z^k to the printed Lemma 2 on [0, f] (2k + 1 > f²): ω(f)² =
 /// f^{2k} > f∫_0^f z^{2k} dz = f^{2k+2}/(2k+1), while the corrected right-hand side
 /// f∫ω'² = k² f^{2k}/(2k−1) ≥ f^{2k} (k² ≥ 2k − 1), all exact (exact rationals as `p` or `p/q`
-/// text, or in closed form `f^(2k)…` beyond [`EXACT_TEXT_BITS`]).
+/// text, or in closed form `f²ᵏ…` (superscript digits) beyond [`EXACT_TEXT_BITS`]).
 #[derive(Debug, Clone)]
 pub struct Counterexample {
-    /// The function, `z^k`.
+    /// The function, `zᵏ` with the exponent in superscript digits (`z²`).
     pub omega: String,
     /// ω(f)², exact.
     pub lhs: String,
@@ -190,6 +190,7 @@ pub fn counterexample(span: f64) -> Result<Counterexample, ClaimsError> {
     let printed_violated = q(&two_k_plus_1) > f2;
     let corrected_holds = two_k_minus_1 <= &k * &k;
     let two_k: BigInt = BigInt::from(2) * &k;
+    let sup = |n: &BigInt| wingcheck_model::format::superscript(n);
     let bits = (f.numer().bits() + f.denom().bits()).saturating_mul(u64::try_from(&two_k).unwrap_or(u64::MAX));
     let (lhs, rhs, rhs_corr) = if bits <= EXACT_TEXT_BITS {
         let f2k = num_traits::Pow::pow(&f, u64::try_from(&two_k).expect("bounded by EXACT_TEXT_BITS"));
@@ -199,13 +200,13 @@ pub fn counterexample(span: f64) -> Result<Counterexample, ClaimsError> {
     } else {
         let ft = if f.is_integer() { exact_text(&f) } else { format!("({})", exact_text(&f)) };
         (
-            format!("{ft}^{two_k}"),
-            format!("{ft}^{}/{two_k_plus_1}", &two_k + 2),
-            format!("{ft}^{two_k}·{}/{two_k_minus_1}", &k * &k),
+            format!("{ft}{}", sup(&two_k)),
+            format!("{ft}{}/{two_k_plus_1}", sup(&(&two_k + 2))),
+            format!("{ft}{}·{}/{two_k_minus_1}", sup(&two_k), &k * &k),
         )
     };
     Ok(Counterexample {
-        omega: format!("z^{k}"),
+        omega: format!("z{}", sup(&k)),
         lhs,
         rhs_printed: rhs,
         rhs_corrected: rhs_corr,

@@ -107,17 +107,17 @@ fn fixed(mantissa: &str, exp: i32) -> String {
     }
 }
 
-/// `n` in superscript digits (`⁻¹²`).
-pub fn superscript(n: i32) -> String {
+/// The integer `n` (any integer type, big integers included) in superscript digits (`⁻¹²`):
+/// the one way a power is written in prose (`10⁻³`, `z²`), never with a caret.
+pub fn superscript(n: impl std::fmt::Display) -> String {
     const SUP: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
-    let mut s = String::new();
-    if n < 0 {
-        s.push('⁻');
-    }
-    for c in n.unsigned_abs().to_string().chars() {
-        s.push(SUP[c.to_digit(10).expect("a digit") as usize]);
-    }
-    s
+    n.to_string()
+        .chars()
+        .map(|c| match c {
+            '-' => '⁻',
+            c => c.to_digit(10).map_or(c, |d| SUP[d as usize]),
+        })
+        .collect()
 }
 
 /// A number with an estimated absolute error: digits from the error ([`Digits::Error`]), or

@@ -48,11 +48,11 @@ pub struct Page {
     /// Wall time per stage (the only non-reproducible content of the page).
     pub timings: Vec<Timing>,
     /// Each verdict with its meaning (from the claims crate's vocabulary).
-    pub verdict_legend: Vec<(&'static str, &'static str)>,
-    /// Each verdict with its meaning in a few words (the one-line legend at the top).
-    pub verdict_short: Vec<(&'static str, &'static str)>,
-    /// Each basis with its meaning.
-    pub basis_legend: Vec<(&'static str, &'static str)>,
+    pub verdict_legend: Vec<(String, &'static str)>,
+    /// Each verdict in words with its meaning in a few words (the one-line legend at the top).
+    pub verdict_short: Vec<(String, &'static str)>,
+    /// Each basis in words with its meaning.
+    pub basis_legend: Vec<(String, &'static str)>,
     /// The keys that differ from the embedded default `configs/paper.json`.
     pub changes: Vec<crate::top::ConfigChange>,
     /// The notation of the text (symbols and their meaning, with this run's values).
@@ -112,14 +112,24 @@ pub fn tally(ledger: &Ledger) -> Vec<Tally> {
         .collect()
 }
 
-/// A verdict in words, agreeing with a count (`1 holds`, `2 hold`; `2 fail`).
+/// A verdict in words ([`Verdict`]'s display text), its leading verb agreeing with a count
+/// (`1 holds`, `2 hold`; `2 fail`; `2 hold after correction`).
 pub fn verdict_words(v: Verdict, count: usize) -> String {
-    let one = count == 1;
-    match v {
-        Verdict::Holds => if one { "holds" } else { "hold" }.into(),
-        Verdict::Fails => if one { "fails" } else { "fail" }.into(),
-        Verdict::HoldsAfterCorrection => format!("{} after correction", if one { "holds" } else { "hold" }),
-        other => other.name().replace('-', " "),
+    let words = v.to_string();
+    if count == 1 {
+        return words;
+    }
+    let (first, rest) = words.split_once(' ').unwrap_or((words.as_str(), ""));
+    match first {
+        "holds" | "fails" => {
+            let verb = first.trim_end_matches('s');
+            if rest.is_empty() {
+                verb.to_string()
+            } else {
+                format!("{verb} {rest}")
+            }
+        }
+        _ => words,
     }
 }
 
@@ -398,8 +408,7 @@ pub fn row_ctx(r: &ClaimRow, figures: &[Figure], links: &RowLinks) -> Result<Row
         text: crate::links::figure_link_text(&f.label, &f.title),
         id: None,
     };
-    let back =
-        Link { href: format!("#{}", claim_anchor(&id)), text: format!("{} ({})", id, r.verdict.name()), id: None };
+    let back = Link { href: format!("#{}", claim_anchor(&id)), text: format!("{} ({})", id, r.verdict), id: None };
     let own: Vec<FigCtx> = figures.iter().map(|f| FigCtx { claims: vec![back.clone()], ..FigCtx::from(f) }).collect();
     let mut figure_links: Vec<Link> = own.iter().map(own_link).collect();
     figure_links.extend(
@@ -421,7 +430,7 @@ pub fn row_ctx(r: &ClaimRow, figures: &[Figure], links: &RowLinks) -> Result<Row
         verdict: r.verdict.name().into(),
         verdict_text: verdict_words(r.verdict, 1),
         basis: r.basis.name().into(),
-        basis_text: r.basis.name().replace('-', " "),
+        basis_text: r.basis.to_string(),
         theorem: r.id.spec().theorem.to_string(),
         deciding: pieces(&r.deciding),
         finding: r.finding.iter().map(|s| pieces(s)).collect(),
@@ -524,4 +533,22 @@ pub fn row_assumptions(ledger: &Ledger) -> Vec<RowAssumption> {
             })
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_verdict_in_words_agrees_with_its_count() {
+        // Reference: the verdicts' display text (Verdict's Display) with English agreement.
+        assert_eq!(verdict_words(Verdict::HoldsAfterCorrection, 1), "holds after correction");
+        assert_eq!(verdict_words(Verdict::HoldsAfterCorrection, 2), "hold after correction");
+        assert_eq!(verdict_words(Verdict::Fails, 3), "fail");
+        assert_eq!(verdict_words(Verdict::Vacuous, 2), "hold but vacuous");
+        assert_eq!(verdict_words(Verdict::PartlyReproduced, 2), "partly reproduced");
+        for v in Verdict::ALL {
+            assert!(!verdict_words(v, 2).contains('-'), "{v}");
+        }
+    }
 }

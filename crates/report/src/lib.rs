@@ -450,9 +450,9 @@ fn page(cfg: &Config, opts: &ReportOptions, ledger: &Ledger, figs: PageFigures) 
         assumptions: assumptions(cfg),
         row_assumptions: row_assumptions(ledger),
         timings: Vec::new(),
-        verdict_legend: wingcheck_claims::Verdict::ALL.iter().map(|v| (v.name(), v.meaning())).collect(),
-        verdict_short: wingcheck_claims::Verdict::ALL.iter().map(|v| (v.name(), v.short())).collect(),
-        basis_legend: wingcheck_claims::Basis::ALL.iter().map(|b| (b.name(), b.meaning())).collect(),
+        verdict_legend: wingcheck_claims::Verdict::ALL.iter().map(|v| (v.to_string(), v.meaning())).collect(),
+        verdict_short: wingcheck_claims::Verdict::ALL.iter().map(|v| (v.to_string(), v.short())).collect(),
+        basis_legend: wingcheck_claims::Basis::ALL.iter().map(|b| (b.to_string(), b.meaning())).collect(),
         changes: top::config_changes(cfg),
         notation: wingcheck_claims::display::notation(cfg),
         certificates: crate::links::certificates(ledger, &proof_files),
@@ -531,6 +531,8 @@ fn held_as_steps(mut pd: wingcheck_claims::PlotData) -> chart::LineChart {
 fn render_html(page: &Page) -> Result<String, ReportError> {
     let mut env = minijinja::Environment::new();
     env.set_auto_escape_callback(|_| minijinja::AutoEscape::Html);
+    // plain text as pieces for the `pieces` macro: text and caret powers raised
+    env.add_filter("prose", |s: String| minijinja::Value::from_serialize(crate::top::raised(&s)));
     env.add_template("index.html", TEMPLATE)?;
     Ok(env.get_template("index.html")?.render(page)?)
 }

@@ -82,7 +82,7 @@ pub struct Certificate {
 
 /// The link to a ledger row, with its verdict.
 pub fn row_link(ledger: &Ledger, id: ClaimId) -> Link {
-    let verdict = ledger.row(id).map_or("", |r| r.verdict.name());
+    let verdict = ledger.row(id).map_or(String::new(), |r| r.verdict.to_string());
     Link { href: format!("#{}", claim_anchor(id.name())), text: format!("{} ({verdict})", id.name()), id: None }
 }
 

@@ -25,8 +25,8 @@ pub struct Statement {
     pub verdict: &'static str,
     /// The verdict in words.
     pub verdict_text: String,
-    /// What the verdict on the statement rests on (kebab-case name, as the ledger's bases).
-    pub basis: &'static str,
+    /// What the verdict on the statement rests on, in words.
+    pub basis: String,
     /// The ledger row that tests it.
     pub claim: String,
     /// Its anchor.
@@ -48,8 +48,8 @@ fn statement(row: &ClaimRow, paper: &str, measured: String, (verdict, basis): (V
         paper: paper.into(),
         measured,
         verdict: verdict.name(),
-        verdict_text: verdict.name().replace('-', " "),
-        basis: basis.name(),
+        verdict_text: verdict.to_string(),
+        basis: basis.to_string(),
         claim: row.id.to_string(),
         anchor: claim_anchor(row.id.name()),
     }

@@ -11,9 +11,9 @@ use wingcheck_model::Config;
 pub struct ConfigChange {
     /// The key as `--set` takes it (`control.a`).
     pub key: String,
-    /// The value run (JSON scalar text).
+    /// The value run: a number in the one number format ([`number_text`]), else the JSON text.
     pub value: String,
-    /// The value of `configs/paper.json`.
+    /// The value of `configs/paper.json`, likewise.
     pub paper: String,
 }
 
@@ -27,7 +27,18 @@ fn leaves(prefix: &str, v: &Value, out: &mut Vec<(String, String)>) {
             }
         }
         Value::String(s) => out.push((prefix.to_string(), s.clone())),
+        Value::Number(n) => out.push((prefix.to_string(), number_text(n))),
         other => out.push((prefix.to_string(), other.to_string())),
+    }
+}
+
+/// A configured number in the one number format: its shortest decimal
+/// ([`wingcheck_model::format::exact`]: `9.77×10⁶`, `3000`, `0.3`, never the JSON float
+/// `9770000.0`); an integer beyond f64's exact range as its digits.
+fn number_text(n: &serde_json::Number) -> String {
+    match n.as_f64() {
+        Some(v) if v.is_finite() && (n.is_f64() || v.abs() <= 2f64.powi(53)) => wingcheck_model::format::exact(v),
+        _ => n.to_string(),
     }
 }
 
@@ -79,6 +90,8 @@ pub struct Piece {
     pub num: bool,
     /// Whether it is a configuration key (`section.key`, `section.*`).
     pub key: bool,
+    /// Whether it is an exponent, drawn raised (`e^(−λt)` → e with −λt raised; `z^k`).
+    pub sup: bool,
 }
 
 /// The configuration's section names (`wing`, `control`, …), from its typed JSON.
@@ -145,7 +158,40 @@ fn number_len(s: &str) -> usize {
     i
 }
 
-/// `s` as text and number pieces. A number starts a token: at the start, or after a character
+/// Length in bytes of the caret power at the start of `s` (0 if none), and its exponent: `^`
+/// then a bracketed group `(…)` or `{…}` (brackets balanced, dropped from the exponent) or a
+/// run of letters and digits (`^2`, `^r`, `^K`).
+fn power_len(s: &str) -> (usize, &str) {
+    let Some(rest) = s.strip_prefix('^') else { return (0, "") };
+    let open = rest.chars().next();
+    if let Some(close) = match open {
+        Some('(') => Some(')'),
+        Some('{') => Some('}'),
+        _ => None,
+    } {
+        let mut depth = 0usize;
+        for (i, c) in rest.char_indices() {
+            if Some(c) == open {
+                depth += 1;
+            } else if c == close {
+                depth -= 1;
+                if depth == 0 {
+                    return (1 + i + 1, &rest[1..i]);
+                }
+            }
+        }
+        return (0, "");
+    }
+    let n: usize = rest.chars().take_while(|c| c.is_alphanumeric()).map(char::len_utf8).sum();
+    if n == 0 {
+        (0, "")
+    } else {
+        (1 + n, &rest[..n])
+    }
+}
+
+/// `s` as text, number, key and exponent pieces (a caret power `x^(…)` is an exponent piece,
+/// drawn raised: the page shows no caret). A number starts a token: at the start, or after a character
 /// that is not a letter, digit or `_` (so `κ2`, `t_f1`, `10⁻³` are text).
 pub fn pieces(s: &str) -> Vec<Piece> {
     let sections = sections();
@@ -158,14 +204,24 @@ pub fn pieces(s: &str) -> Vec<Piece> {
         // (a combining mark, like the tilde of g̃, belongs to the letter before it)
         let starts =
             prev.is_none_or(|p| !(p.is_alphanumeric() || p == '_' || p == '.' || ('\u{300}'..='\u{36f}').contains(&p)));
+        let (p, exponent) = power_len(rest);
+        if p > 0 {
+            if !text.is_empty() {
+                out.push(Piece { text: std::mem::take(&mut text), num: false, key: false, sup: false });
+            }
+            out.push(Piece { text: exponent.to_string(), num: false, key: false, sup: true });
+            prev = rest[..p].chars().last();
+            i += p;
+            continue;
+        }
         let k = if starts { key_len(rest, &sections) } else { 0 };
         let n = if starts && k == 0 { number_len(rest) } else { 0 };
         if n > 0 || k > 0 {
             if !text.is_empty() {
-                out.push(Piece { text: std::mem::take(&mut text), num: false, key: false });
+                out.push(Piece { text: std::mem::take(&mut text), num: false, key: false, sup: false });
             }
             let n = n.max(k);
-            out.push(Piece { text: rest[..n].to_string(), num: k == 0, key: k > 0 });
+            out.push(Piece { text: rest[..n].to_string(), num: k == 0, key: k > 0, sup: false });
             prev = rest[..n].chars().last();
             i += n;
         } else {
@@ -176,7 +232,21 @@ pub fn pieces(s: &str) -> Vec<Piece> {
         }
     }
     if !text.is_empty() {
-        out.push(Piece { text, num: false, key: false });
+        out.push(Piece { text, num: false, key: false, sup: false });
+    }
+    out
+}
+
+/// `s` as text and exponent pieces only ([`pieces`]'s caret powers raised, the rest plain
+/// text: for text that was plain before, so the page does not grow by a span per number).
+pub fn raised(s: &str) -> Vec<Piece> {
+    let mut out: Vec<Piece> = Vec::new();
+    for p in pieces(s) {
+        match out.last_mut() {
+            Some(last) if !p.sup && !last.sup => last.text.push_str(&p.text),
+            _ if p.sup => out.push(p),
+            _ => out.push(Piece { text: p.text, num: false, key: false, sup: false }),
+        }
     }
     out
 }
@@ -198,6 +268,24 @@ mod tests {
     }
 
     #[test]
+    fn caret_powers_are_raised_exponents() {
+        // Reference: the caret notation of the ledger's text (e^(−λt), Q0^((a2−a1)/a2), z^k).
+        let p = pieces("W(0)e^(−λt) + ε/λ, Q0^((a2−a1)/a2), sig^r(σ), ω = z^2 and 2^p·4; a^ b");
+        let sups: Vec<&str> = p.iter().filter(|p| p.sup).map(|p| p.text.as_str()).collect();
+        assert_eq!(sups, ["−λt", "(a2−a1)/a2", "r", "2", "p"]);
+        // no caret left but the lone one, which raises nothing
+        let text: String = p.iter().filter(|p| !p.sup).map(|p| p.text.as_str()).collect();
+        assert_eq!(text.matches('^').count(), 1, "{text}");
+        // an unbalanced bracket is left as text
+        assert!(pieces("x^(1 + y").iter().all(|p| !p.sup));
+        // raised: the same text, numbers and keys merged back into plain text
+        let r = raised("W(0)e^(−λt) + 2 control.a^2");
+        let shape: Vec<(&str, bool)> = r.iter().map(|p| (p.text.as_str(), p.sup)).collect();
+        assert_eq!(shape, [("W(0)e", false), ("−λt", true), (" + 2 control.a", false), ("2", true)]);
+        assert!(r.iter().all(|p| !p.num && !p.key));
+    }
+
+    #[test]
     fn configuration_keys_are_code() {
         let p = pieces("grid in z (horizon.field_points); names discretisation.* and control.a, control.b.");
         let keys: Vec<&str> = p.iter().filter(|p| p.key).map(|p| p.text.as_str()).collect();
@@ -210,7 +298,14 @@ mod tests {
         let mut c = Config::paper();
         c.control.b = 3000.0;
         let d = config_changes(&c);
-        assert_eq!(d, vec![ConfigChange { key: "control.b".into(), value: "3000.0".into(), paper: "1.0".into() }]);
+        assert_eq!(d, vec![ConfigChange { key: "control.b".into(), value: "3000".into(), paper: "1".into() }]);
+        // the Goland wing's bending rigidity (tests/common GOLAND: 9.77e6 N m²) in the one
+        // number format, not the JSON float 9770000.0; the paper's ei in it too
+        let mut c = Config::paper();
+        c.wing.ei = 9.77e6;
+        let d = config_changes(&c);
+        assert_eq!((d[0].key.as_str(), d[0].value.as_str()), ("wing.ei", "9.77×10⁶"));
+        assert_eq!(wingcheck_model::format::parse(&d[0].paper), Some(Config::paper().wing.ei));
         let args: Vec<String> = ["/x/y/wingcheck", "report", "--set", "a b=1"].iter().map(|s| s.to_string()).collect();
         assert_eq!(command_text(&args), "wingcheck report --set 'a b=1'");
     }
