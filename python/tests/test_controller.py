@@ -226,35 +226,52 @@ def test_a_python_controller_runs_in_the_modal_basis_with_either_scheme(stepper)
         assert np.array_equal(mine[col], ref[col]), col
 
 
-def test_the_step_form_refuses_the_modal_basis():
-    with pytest.raises(wingcheck.ConfigError, match=r"nodal"):
-        wingcheck.Wing(set={"discretisation.basis": "modal"})
+class RecordingFTDO(ExplicitFTDO):
+    """The explicit FTDO recording every measurement it is given, one list per run."""
+
+    def __init__(self, cfg: wingcheck.Config) -> None:
+        self.runs: list = []
+        super().__init__(cfg)
+
+    def reset(self) -> None:
+        super().reset()
+        self.runs.append([])
+
+    def __call__(self, t: float, tip: wingcheck.Tip):
+        self.runs[-1].append(tuple(tip))
+        return super().__call__(t, tip)
 
 
-def test_the_step_form_gives_the_callback_forms_bits():
-    # Reference: simulate(controller=f) with the same controller in the nodal basis (the step
-    # form's); the step form drives the same stepper with the same held inputs, so the tip values
-    # at every output sample are the same bits.
-    cfg = PAPER.with_overrides({"horizon.t_end": 2.0, "discretisation.basis": "nodal"})
-    run = wingcheck.simulate(cfg, controller=ExplicitFTDO(cfg))
+@pytest.mark.parametrize("basis", ["auto", "nodal"])
+def test_the_step_form_gives_the_callback_forms_bits(basis):
+    # Reference: simulate(controller=f) with the same controller and configuration, whose
+    # controller records what it was given at every sample of its base run (the first after
+    # construction; the initial layer's runs follow). The step form is that run with the held
+    # inputs handed in from outside (modal under auto, as the callback form), so it gives the
+    # same measurements at every sample, and the run's energies at its output samples.
+    cfg = PAPER.with_overrides({"horizon.t_end": 2.0, "discretisation.basis": basis})
+    recorded = RecordingFTDO(cfg)
+    run = wingcheck.simulate(cfg, controller=recorded)
+    assert run.summary["stats"]["basis"] == ("nodal" if basis == "nodal" else "modal")
+    base = next(r for r in recorded.runs if r)
     ctrl = ExplicitFTDO(cfg)
     c = cfg["control"]
     wing = wingcheck.Wing(cfg, continuous=(c["k1"], c["k2"], c["a"], c["b"]))
     tip = wing.reset()
     every = round(cfg["horizon"]["sample_every"] / cfg["observer"]["sample_period"])
-    q, theta, t = [tip.q], [tip.theta], [tip.t]
-    k = 0
+    seen, energy = [tuple(tip)], []
     while tip.t < 2.0 - 1e-12:
         tip, info = wing.step(ctrl(tip.t, tip))
-        k += 1
         assert info["t"] == tip.t
-        if k % every == 0:
-            q.append(tip.q)
-            theta.append(tip.theta)
-            t.append(tip.t)
-    assert np.array_equal(np.array(t), run["t_s"])
-    assert np.array_equal(np.array(q), run["q_tip_m"])
-    assert np.array_equal(np.array(theta), run["theta_tip_rad"])
+        seen.append(tuple(tip))
+        if len(seen) % every == 1:
+            energy.append(info["energy_J"])
+    assert len(seen) == len(base)
+    assert seen == base
+    assert np.array_equal(np.array(energy), run["energy_J"][1:])
+    # the run ends at its horizon
+    with pytest.raises(wingcheck.ConfigError, match="horizon"):
+        wing.step((0.0, 0.0))
 
 
 def test_the_step_form_refuses_bad_actions_and_reports_divergence():

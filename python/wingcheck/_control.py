@@ -14,8 +14,8 @@ optionally, ``continuous`` and ``reset()``:
   more), so that each starts from the controller's state at t = 0.
 
 Runs under such a controller step in the basis the configuration resolves to, as the built-in
-ones do (``discretisation.basis``; ``auto`` is modal on the default grid); the step form
-(:class:`Wing`) steps in the nodal basis.
+ones do (``discretisation.basis``; ``auto`` is modal on the default grid), and so does the
+step form (:class:`Wing`), which is the same run driven from outside.
 """
 
 from __future__ import annotations
@@ -210,10 +210,10 @@ class Wing:
     co-simulation codes use): ``wing = Wing(config); tip = wing.reset(); tip, info =
     wing.step((tau1, tau2))``. ``step`` holds (tau1 (N), tau2 (N m)) over [t_k, t_k + T_s) on
     top of the ``continuous`` part (k1, k2, a, b) of law (15) and returns the measurements at
-    t_{k+1} (a :class:`Tip`) and ``info`` = {``"t"`` (s), ``"energy_J"``}. It steps in the
-    nodal basis (a modal ``discretisation.basis`` or the exponential scheme is refused): the
-    same inputs give the bits of ``simulate(config, controller=f)`` with
-    ``discretisation.basis = "nodal"``. A diverged loop
+    t_{k+1} (a :class:`Tip`) and ``info`` = {``"t"`` (s), ``"energy_J"``}. It is the run of
+    ``simulate(config, controller=f)`` with the held inputs handed in from outside (the basis
+    and scheme the configuration resolves to, modal by default), so the same inputs give the
+    same bits; a step past t_end raises :class:`~wingcheck.errors.ConfigError`. A diverged loop
     raises :class:`~wingcheck.errors.DivergedError`; a NaN, inf or non-pair action
     :class:`~wingcheck.errors.ControllerError`."""
 

@@ -162,7 +162,7 @@ impl AppError {
 fn sim_kind(e: &SimError) -> ErrorKind {
     match e {
         SimError::Config(ConfigError::Read { .. }) => ErrorKind::Input,
-        SimError::Config(_) => ErrorKind::Config,
+        SimError::Config(_) | SimError::HorizonEnded { .. } => ErrorKind::Config,
         SimError::Numerical(_) | SimError::NoModalBasis { .. } => ErrorKind::Numerical,
         SimError::Diverged { t, .. } => ErrorKind::Diverged { t: *t },
         SimError::Cancelled(_) => ErrorKind::Cancelled,
@@ -174,7 +174,7 @@ fn sim_kind(e: &SimError) -> ErrorKind {
 fn control_time(e: &wingcheck_control::ControlError) -> Option<f64> {
     use wingcheck_control::ControlError as E;
     match e {
-        E::NonFinite { t, .. } | E::Shape { t, .. } | E::Failed { t, .. } => Some(*t),
+        E::NonFinite { t, .. } | E::Shape { t, .. } | E::Failed { t, .. } | E::Detached { t } => Some(*t),
         E::Continuous { .. } => None,
     }
 }

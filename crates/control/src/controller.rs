@@ -84,6 +84,12 @@ pub enum ControlError {
         /// What is wrong, naming the field and its range.
         reason: String,
     },
+    /// A controller driven from outside lost its driver (the step form was reset or dropped).
+    #[error("the step-by-step driver went away at t = {t} s")]
+    Detached {
+        /// t_k (s).
+        t: f64,
+    },
 }
 
 /// A boundary controller of the wing (see the module documentation for the semantics).
@@ -106,6 +112,17 @@ pub trait Controller {
 
     /// The held inputs over [t_k, t_k + T_s) from the measurements at t_k.
     fn sample(&mut self, tip: &TipMeasurement) -> Result<Held, Self::Error>;
+
+    /// Whether the run should tell this controller the loop's energy before each sample
+    /// ([`Controller::energy`]); false by default, so other runs skip computing it.
+    fn wants_energy(&self) -> bool {
+        false
+    }
+
+    /// The loop's mechanical energy E(t_k) (J) just before [`Controller::sample`] at t_k, for a
+    /// controller that [`Controller::wants_energy`]. Not a tip measurement (a real loop has no
+    /// such sensor): the step form reports it beside the measurements. The default ignores it.
+    fn energy(&mut self, _t: f64, _energy: f64) {}
 }
 
 impl<C: Controller + ?Sized> Controller for Box<C> {
@@ -121,6 +138,12 @@ impl<C: Controller + ?Sized> Controller for Box<C> {
     }
     fn sample(&mut self, tip: &TipMeasurement) -> Result<Held, Self::Error> {
         (**self).sample(tip)
+    }
+    fn wants_energy(&self) -> bool {
+        (**self).wants_energy()
+    }
+    fn energy(&mut self, t: f64, energy: f64) {
+        (**self).energy(t, energy)
     }
 }
 
@@ -204,6 +227,12 @@ where
     }
     fn sample(&mut self, tip: &TipMeasurement) -> Result<Held, ControlError> {
         self.0.sample(tip).map_err(Into::into)
+    }
+    fn wants_energy(&self) -> bool {
+        self.0.wants_energy()
+    }
+    fn energy(&mut self, t: f64, energy: f64) {
+        self.0.energy(t, energy)
     }
 }
 

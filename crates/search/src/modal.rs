@@ -182,7 +182,8 @@ pub fn run_controlled(cfg: &Config, basis: &ModalBasis, make: ControllerFactory<
     law.check()?;
     let lp = ModalLoop::with_law(cfg, basis, law)?;
     let mut st = lp.initial_state(cfg, basis);
-    let mut signal = ControlledSignal::new(cfg, control, &measurement(&st, 0.0))?;
+    let energy = basis.energy(&st.eta, &st.zeta);
+    let mut signal = ControlledSignal::new(cfg, control, &measurement(&st, 0.0), energy)?;
     trace(cfg, basis, &lp, &mut st, &mut signal)
 }
 

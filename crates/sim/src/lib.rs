@@ -27,6 +27,7 @@ pub mod modes;
 pub mod output;
 pub mod run;
 pub mod sparse;
+pub mod stepped;
 mod stepper;
 pub mod strain;
 
@@ -37,10 +38,10 @@ pub use error_estimate::{
 };
 pub use estimate::Estimate;
 pub use run::{
-    check_sample, nodal_only, resolved_basis, simulate, simulate_base, windowed_rms, BoxedController,
-    ControllerFactory, Envelope, Fields, RunOptions, RunStats, Series, SimOutput, SubStepProbe,
-    MAX_EIGENBASIS_ROUNDOFF,
+    check_sample, resolved_basis, simulate, simulate_base, windowed_rms, BoxedController, ControllerFactory, Envelope,
+    Fields, RunOptions, RunStats, Series, SimOutput, SubStepProbe, MAX_EIGENBASIS_ROUNDOFF,
 };
+pub use stepped::{SteppedRun, SteppedSample};
 pub use stepper::{initial_tip_states, trbdf2, Channel, EnergyLedger, Peak, Peaks, Sample, SquareIntegral, Stepper};
 
 use thiserror::Error;
@@ -68,6 +69,15 @@ pub enum SimError {
     /// A controller of the user's ([`RunOptions::controller`]) failed or returned bad inputs.
     #[error(transparent)]
     Control(#[from] wingcheck_control::ControlError),
+    /// A loop stepped from outside ([`SteppedRun`]) was asked for a sample period past its
+    /// horizon.
+    #[error(
+        "the run reached its horizon t_end = {t_end} s: no sample period is left (reset, or set a longer horizon.t_end)"
+    )]
+    HorizonEnded {
+        /// The horizon (s).
+        t_end: f64,
+    },
     /// The simulation diverged.
     #[error("simulation diverged at t = {t:.4} s: {reason}")]
     Diverged {

@@ -467,22 +467,6 @@ fn base_run(cfg: &Config, opts: RunOptions<'_>) -> Result<(SimOutput, Option<Mod
     Ok((out, basis))
 }
 
-/// A loop driven one sample period at a time from outside (the Python step form) steps in
-/// the nodal basis ([`Stepper`]): refuse the settings that ask for the modal one.
-pub fn nodal_only(cfg: &Config) -> Result<(), SimError> {
-    let modal = cfg.discretisation.basis == StepBasis::Modal
-        || cfg.discretisation.stepper == wingcheck_model::TimeScheme::Exponential;
-    if modal {
-        return Err(SimError::Config(wingcheck_model::ConfigError::Inconsistent {
-            fields: "discretisation.basis, discretisation.stepper".into(),
-            reason: "the step-by-step loop is stepped in the nodal basis: discretisation.basis must be auto or \
-                     nodal and discretisation.stepper auto, trbdf2 or trapezoid"
-                .into(),
-        }));
-    }
-    Ok(())
-}
-
 /// [`simulate`] in the nodal basis (banded Cholesky of the step matrix).
 fn simulate_nodal<C: Controller>(
     cfg: &Config,

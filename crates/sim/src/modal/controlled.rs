@@ -60,8 +60,13 @@ pub struct ControlledSignal {
 
 impl ControlledSignal {
     /// The signal of `control` (already reset, its continuous part read) on `cfg`, sampled at
-    /// t = 0 from `tip`.
-    pub fn new(cfg: &Config, control: BoxedController, tip: &TipMeasurement) -> Result<ControlledSignal, SimError> {
+    /// t = 0 from `tip` with the loop's energy `energy` (J) there ([`Controller::energy`]).
+    pub fn new(
+        cfg: &Config,
+        control: BoxedController,
+        tip: &TipMeasurement,
+        energy: f64,
+    ) -> Result<ControlledSignal, SimError> {
         let mut tip_values = cfg.disturbance.tip_values(cfg.observer.sample_period);
         let g = tip_values.at(0.0);
         let mut signal = ControlledSignal {
@@ -74,13 +79,16 @@ impl ControlledSignal {
             k: 0,
             now: SampleInput { g_hat: [0.0; 2], sigma: [0.0; 2], g },
         };
-        signal.sample(tip)?;
+        signal.sample(tip, energy)?;
         Ok(signal)
     }
 
     /// Ask the controller for the held inputs at the current sample (ĝ = −u, as the nodal
-    /// stepper holds them).
-    fn sample(&mut self, tip: &TipMeasurement) -> Result<(), SimError> {
+    /// stepper holds them), telling it the energy first where it wants it.
+    fn sample(&mut self, tip: &TipMeasurement, energy: f64) -> Result<(), SimError> {
+        if self.control.wants_energy() {
+            self.control.energy(tip.t, energy);
+        }
         let held = self.control.sample(tip)?;
         self.now.g_hat = [-held.input[0], -held.input[1]];
         self.now.sigma = held.sigma;
@@ -108,10 +116,10 @@ impl Signal for ControlledSignal {
         self.now.g = self.tip_values.at(self.k as f64 * self.period);
     }
 
-    fn observe(&mut self, steps: &[StepQuadrature], tip: &TipMeasurement) -> Result<(), SimError> {
+    fn observe(&mut self, steps: &[StepQuadrature], tip: &TipMeasurement, energy: f64) -> Result<(), SimError> {
         for q in steps {
             self.control.integrate(self.h, q.tau, q.w);
         }
-        self.sample(tip)
+        self.sample(tip, energy)
     }
 }

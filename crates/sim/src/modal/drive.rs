@@ -26,9 +26,9 @@ pub trait Signal {
     /// period with its inputs, then move to the next sample.
     fn advance(&mut self, step: impl FnMut(f64, &StepInput));
     /// For a signal that [`Signal::READS_PLANT`]: the quadratures of the period's steps just
-    /// made, in order, and the measurements at the new sample, before [`Signal::current`] is
-    /// read there. An error (the controller's) stops the run.
-    fn observe(&mut self, _steps: &[StepQuadrature], _tip: &TipMeasurement) -> Result<(), SimError> {
+    /// made, in order, and the measurements and the loop's energy (J) at the new sample, before
+    /// [`Signal::current`] is read there. An error (the controller's) stops the run.
+    fn observe(&mut self, _steps: &[StepQuadrature], _tip: &TipMeasurement, _energy: f64) -> Result<(), SimError> {
         Ok(())
     }
 }
@@ -158,7 +158,7 @@ pub fn drive<S: Signal, R: Recorder>(
                 quads.push(quad);
                 rec.instant(lp, st, t + h, input.g_hat, None, exact);
             });
-            signal.observe(&quads, &measurement(st, t))?;
+            signal.observe(&quads, &measurement(st, t), basis.energy(&st.eta, &st.zeta))?;
         } else {
             signal.advance(|t, input| {
                 let exact = lp.step_with(st, input, tip_states);

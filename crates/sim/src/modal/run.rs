@@ -140,7 +140,8 @@ pub fn simulate_modal(
         law.check()?;
         let lp = ModalLoop::with_law(cfg, basis, law)?;
         let mut st = lp.initial_state(cfg, basis);
-        let mut signal = ControlledSignal::new(cfg, control, &measurement(&st, 0.0))?;
+        let energy = basis.energy(&st.eta, &st.zeta);
+        let mut signal = ControlledSignal::new(cfg, control, &measurement(&st, 0.0), energy)?;
         return run(cfg, basis, &lp, &mut st, &mut signal, start, opts);
     }
     let lp = match opts.eigenbasis {

@@ -303,18 +303,6 @@ where
         &self.control
     }
 
-    /// The controller, to change (e.g. the held inputs of a controller driven from outside,
-    /// then [`Stepper::resample`]).
-    pub fn controller_mut(&mut self) -> &mut C {
-        &mut self.control
-    }
-
-    /// Sample the controller again at the current instant (its held inputs replace the ones
-    /// taken at this instant): for a controller driven step by step from outside.
-    pub fn resample(&mut self) -> Result<(), C::Error> {
-        self.update_estimates()
-    }
-
     /// What the tip sensors read now ([`TipMeasurement`]).
     pub fn measurement(&self) -> TipMeasurement {
         let [b, tr] = &self.channels;
@@ -328,6 +316,10 @@ where
 
     /// Sample the controller at the current instant: σ and the held ĝ = −u of both channels.
     fn update_estimates(&mut self) -> Result<(), C::Error> {
+        if self.control.wants_energy() {
+            let (t, energy) = (self.time(), self.sample().energy);
+            self.control.energy(t, energy);
+        }
         let held = self.control.sample(&self.measurement())?;
         for (c, ch) in self.channels.iter_mut().enumerate() {
             ch.sigma = held.sigma[c];
