@@ -148,7 +148,8 @@ fn report_is_well_formed_complete_and_matches_the_ledger() {
         }
     }
 
-    // The ledger table equals check_all's rows (computed independently here), in order.
+    // The ledger table equals check_all's rows (computed independently here), in order, the
+    // verdict and basis in their words (their Display texts; check prints the kebab tokens).
     let expected = wingcheck_claims::check_all(&cfg).unwrap();
     let table = doc.descendants().find(|n| n.attribute("id") == Some("ledger-table")).unwrap();
     let tbody = table.children().find(|n| n.has_tag_name("tbody")).unwrap();
@@ -162,11 +163,8 @@ fn report_is_well_formed_complete_and_matches_the_ledger() {
             (id, cell("verdict"), cell("basis"))
         })
         .collect();
-    let want: Vec<(String, String, String)> = expected
-        .rows
-        .iter()
-        .map(|r| (r.id.to_string(), r.verdict.name().to_string(), r.basis.name().to_string()))
-        .collect();
+    let want: Vec<(String, String, String)> =
+        expected.rows.iter().map(|r| (r.id.to_string(), r.verdict.to_string(), r.basis.to_string())).collect();
     assert_eq!(rows, want);
 
     // List-of-record evidence (the SDP cross-check per N, the (a, b) sweep) is a table with one
