@@ -177,6 +177,23 @@ pub fn search(
         None => Default::default(),
     };
     let own = controller_object.map(|obj| Shared::new(py, obj, continuous.unwrap_or([0.0; 4]))).transpose()?;
+    // one Python object serves every point: run in parallel, the points would share (and mix)
+    // the state it carries from call to call, so they run one at a time
+    let threads = match (&own, threads) {
+        (Some(_), Some(n)) if n > 1 => {
+            return Err(argument(
+                py,
+                "threads",
+                format!(
+                    "threads = {n}: a search with your own controller runs one point at a time (the one \
+                     object carries its state from call to call, which points run in parallel would share); \
+                     pass threads=1 or leave it out"
+                ),
+            ))
+        }
+        (Some(_), _) => Some(1),
+        (None, t) => t,
+    };
     let controller = own.as_ref().map(|_| controller_name.unwrap_or_else(|| "your own".into()));
     let options =
         wingcheck_search::SearchOptions { window, chunk_size, refine, best, controller, ..Default::default() };

@@ -342,3 +342,19 @@ def test_search_runs_a_python_controller_at_every_point(tmp_path):
         assert json.load(f)["options"]["controller"] == "PaperPD"
     with pytest.raises(wingcheck.ConfigError, match="control.kind"):
         wingcheck.search(over=over, out=tmp_path / "x", controller="pd")
+
+
+def test_a_search_with_a_stateful_python_controller_runs_its_points_one_at_a_time(tmp_path):
+    # The explicit FTDO carries ν from call to call. Reference: the same search with threads=1
+    # given explicitly; left to its default (all cores) it must give the same file, which
+    # points run in parallel on the one object would not (their calls would interleave).
+    over = ["wing.xi=0.01,0.02,0.03,0.04"]
+    set_ = {"horizon.t_end": 0.5}
+    one = wingcheck.search(over=over, out=tmp_path / "one", set=set_, threads=1, controller=ExplicitFTDO(PAPER))
+    default = wingcheck.search(over=over, out=tmp_path / "default", set=set_, controller=ExplicitFTDO(PAPER))
+    with open(one.results_csv) as a, open(default.results_csv) as b:
+        assert a.read() == b.read()
+    with pytest.raises(wingcheck.ConfigError, match="threads"):
+        wingcheck.search(over=over, out=tmp_path / "t", set=set_, threads=2, controller=ExplicitFTDO(PAPER))
+    with pytest.raises(wingcheck.ConfigError, match=r"control\.a"):
+        wingcheck.search(over=["control.a=0.5,1"], out=tmp_path / "a", controller=ExplicitFTDO(PAPER))

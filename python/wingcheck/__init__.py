@@ -235,8 +235,10 @@ def search(
     (t0, t1) in s (default: the second half of the horizon); ``best``: the ranking metric
     (``"rms_q_tip"``; ``"-lambda"`` maximises). ``controller``: your own controller (as for
     :func:`simulate`; the built-in ones are chosen with ``set={"control.kind": ...}``) run at
-    every point in place of ``control.kind``, reset before each point's run. Its gains are its
-    own: axes over ``control.*`` change the configuration's law (15), not your object. Its name
+    every point in place of ``control.kind``, reset before each point's run, the points one at a
+    time (the one object carries its state from call to call; ``threads`` > 1 is refused). Its
+    gains are its own, so axes over ``control.*`` are refused (they would change the paper's law
+    (15), not your object: sweep your controller's parameters in Python). Its name
     (``__name__`` or the class name) is recorded in manifest.json; an exception inside it makes
     that point an error and the search goes on. The theory columns stay the paper's (about its
     FTDO)."""
@@ -248,6 +250,13 @@ def search(
                 "set={'control.kind': %r}" % controller
             )
         check_callable(controller)
+        swept = [axis for axis in over if axis.strip().startswith("control.")]
+        if swept:
+            raise ConfigError(
+                "over: %s: axes over control.* do not reach your controller (its gains are its own: "
+                "continuous and __call__); sweep its parameters in Python, or leave out controller= "
+                "to sweep the paper's law (15)" % ", ".join(swept)
+            )
         name = getattr(controller, "__name__", None) or type(controller).__name__
         own = {"controller_object": controller, "continuous": continuous_of(controller), "controller_name": name}
     text = _with_progress(

@@ -32,8 +32,10 @@ pub fn run(a: CompareArgs) -> anyhow::Result<()> {
     let cfg = a.config.load()?;
     let mut entrants = Vec::with_capacity(a.controllers.len());
     for name in &a.controllers {
-        let kind: ControllerKind =
-            name.parse().map_err(|e| anyhow::anyhow!("--controllers {name}: {e} (none, pd, ftdo or dobc)"))?;
+        let kind: ControllerKind = name.parse().map_err(|e| anyhow::anyhow!("--controllers {name}: {e}"))?;
+        if entrants.iter().any(|(seen, _)| seen == name) {
+            anyhow::bail!("--controllers: {name} is named twice (each controller once)");
+        }
         entrants.push((name.clone(), Entrant::BuiltIn(kind)));
     }
     if let Some(path) = &a.svg {

@@ -45,7 +45,7 @@ fn an_own_pd_gives_the_builtin_pd_points_bit_for_bit() {
     // held input −0 sampled from the state for the own one and 0 from the observer signal for
     // the built-in: the same bits (crates/sim/tests/foreign_modal.rs), so every metric is equal.
     let s = search("pd", None);
-    let (cache, runs) = (TheoryCache::new(8), RunCache::new());
+    let (cache, runs) = (TheoryCache::new(s.options.lyapunov_elements), RunCache::new());
     for p in 0..s.points() {
         let reference = s.evaluate(p, &cache, &runs);
         let own = s.evaluate_with(p, &cache, &runs, Some(&own_pd));
@@ -61,7 +61,7 @@ fn a_builtin_observer_handed_over_reproduces_its_points() {
     // over, the same observer integrates ν from the quadratures the driver hands it: equal to
     // round-off (7e-15 relative in simulate, crates/sim/tests/foreign_modal.rs); bound 1e-9.
     let s = search("ftdo", None);
-    let (cache, runs) = (TheoryCache::new(8), RunCache::new());
+    let (cache, runs) = (TheoryCache::new(s.options.lyapunov_elements), RunCache::new());
     for p in 0..s.points() {
         let cfg = apply_overrides(&s.base, &s.grid.overrides(p)).unwrap();
         let make = move || -> BoxedController { Box::new(Erased(BuiltIn::of(&cfg))) };

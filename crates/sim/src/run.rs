@@ -308,7 +308,8 @@ pub type ControllerFactory<'a> = &'a (dyn Fn() -> BoxedController + Sync);
 /// estimate is checked against the dense scheme over whole 20-s horizons by the eigenbasis unit
 /// test in `modal::scheme`, with the search's limit lifted, up to 3.1e-3 (the paper's wing on
 /// 192 elements: measured 1.8e-3 of the modal state, 0.58 × the estimate, and 7.4e-5 of the
-/// whole run's ∫τ²; 96 elements 1.5e-4, 0.61 ×; a stiff SI-scale wing 7.9e-4, 0.70 ×), and by
+/// whole run's ∫τ²; 96 elements: estimate 1.5e-4, measured 0.61 × it; a stiff SI-scale wing:
+/// estimate 7.9e-4, measured 5.5e-4 of the modal state, 0.70 ×), and by
 /// `tests/statistics_runs.rs` through `check`'s own statistics runs. Their users add the
 /// estimate to the quantity's error (the explicit FTDO's RMS τ: ×4.8 of the value), so a run
 /// near the limit widens its ± instead of hiding a difference. Up to it the doubled grid of a
@@ -552,17 +553,23 @@ pub fn check_sample(s: &Sample, e0: f64) -> Result<(), SimError> {
         ("τ2", s.tau2),
         ("ĝ1", s.g1_hat),
         ("ĝ2", s.g2_hat),
-        ("energy", s.energy),
     ];
-    if let Some((name, v)) = values.iter().find(|(_, v)| !v.is_finite()) {
-        return Err(SimError::Diverged { t: s.t, reason: format!("{name} became {v}") });
+    check_values(s.t, &values, s.energy, e0)
+}
+
+/// [`check_sample`]'s rule on named values at time `t` (s) and the energy (J): for a runner
+/// that has no [`Sample`] at hand (the step form, [`crate::SteppedRun`]).
+pub(crate) fn check_values(t: f64, values: &[(&str, f64)], energy: f64, e0: f64) -> Result<(), SimError> {
+    let energy_value = [("energy", energy)];
+    if let Some((name, v)) = values.iter().chain(&energy_value).find(|(_, v)| !v.is_finite()) {
+        return Err(SimError::Diverged { t, reason: format!("{name} became {v}") });
     }
-    if s.energy > energy_limit(e0) {
+    if energy > energy_limit(e0) {
         return Err(SimError::Diverged {
-            t: s.t,
+            t,
             reason: format!(
                 "energy {:.3e} J exceeds {:.0e} × (1 + E(0) = {:.3e} J)",
-                s.energy,
+                energy,
                 DIVERGENCE_FACTOR,
                 1.0 + e0
             ),

@@ -8,11 +8,13 @@
 //! measurements out and waits for the held inputs that come back. So the same inputs give the
 //! same bits as `simulate(config, controller=f)`, whatever the basis, with no second stepping
 //! loop to keep in step with the first. Each sample period costs the run's own steps plus one
-//! hand-over between two threads (a few µs; measured in `python/bench/bench_controller.py`).
+//! hand-over between two threads (≈ 30 µs per period measured from Python, docs/python.md; the
+//! same-thread nodal stepper it replaced took a few µs, but stepped the nodal basis only and so
+//! did not give the default run's bits).
 //!
 //! The run ends at the configuration's horizon: a step past t_end is
-//! [`SimError::HorizonEnded`]. Dropping the [`SteppedRun`] (or starting another) ends its
-//! worker at its next sample.
+//! [`SimError::HorizonEnded`]; once a run has ended (horizon, divergence, an error) every later
+//! step repeats why. Dropping the [`SteppedRun`] ends its worker at its next sample.
 
 use std::sync::mpsc::{sync_channel, Receiver, SyncSender};
 use std::sync::Mutex;
@@ -21,7 +23,7 @@ use std::thread::JoinHandle;
 use wingcheck_control::{BoundaryLaw, ControlError, Controller, Held, PeriodIntegrals, TipMeasurement};
 use wingcheck_model::Config;
 
-use crate::run::energy_limit;
+use crate::run::check_values;
 use crate::{simulate_base, BoxedController, RunOptions, SimError};
 
 /// What the loop gives out at a sample t_k.
@@ -81,6 +83,26 @@ pub struct SteppedRun {
     e0: f64,
     /// t_k of the latest sample given out (s).
     t: f64,
+    /// Why the run ended, once it has (repeated by every later step).
+    ended: Option<Ended>,
+}
+
+/// How a [`SteppedRun`] ended, kept to say so again.
+#[derive(Debug, Clone)]
+enum Ended {
+    Horizon,
+    Diverged { t: f64, reason: String },
+    Failed(String),
+}
+
+impl Ended {
+    fn error(&self, t_end: f64) -> SimError {
+        match self {
+            Ended::Horizon => SimError::HorizonEnded { t_end },
+            Ended::Diverged { t, reason } => SimError::Diverged { t: *t, reason: reason.clone() },
+            Ended::Failed(why) => SimError::Numerical(format!("the run ended earlier: {why}; call reset()")),
+        }
+    }
 }
 
 impl SteppedRun {
@@ -109,8 +131,15 @@ impl SteppedRun {
                 simulate_base(&cfg, RunOptions { controller: Some(&make), ..Default::default() }).map(drop)
             })
             .map_err(|e| SimError::Numerical(format!("cannot start the stepping thread: {e}")))?;
-        let mut run =
-            SteppedRun { inputs: Some(input_tx), samples: sample_rx, worker: Some(worker), t_end, e0: 0.0, t: 0.0 };
+        let mut run = SteppedRun {
+            inputs: Some(input_tx),
+            samples: sample_rx,
+            worker: Some(worker),
+            t_end,
+            e0: 0.0,
+            t: 0.0,
+            ended: None,
+        };
         let first = match run.samples.recv() {
             Ok(first) => first,
             Err(_) => return Err(run.finish()),
@@ -123,43 +152,66 @@ impl SteppedRun {
     /// measurements at its end. Errors: a non-finite input, a diverged loop (non-finite
     /// measurements or the energy above the divergence limit), the horizon's end.
     pub fn step(&mut self, input: [f64; 2]) -> Result<SteppedSample, SimError> {
-        let Some(inputs) = &self.inputs else {
-            return Err(SimError::HorizonEnded { t_end: self.t_end });
-        };
+        if let Some(ended) = &self.ended {
+            return Err(ended.error(self.t_end));
+        }
         for (name, value) in [("tau1", input[0]), ("tau2", input[1])] {
             if !value.is_finite() {
                 return Err(ControlError::NonFinite { t: self.t, name, value }.into());
             }
         }
-        if inputs.send(input).is_err() {
+        let sent = self.inputs.as_ref().is_some_and(|inputs| inputs.send(input).is_ok());
+        let received = if sent { self.samples.recv().ok() } else { None };
+        let Some(sample) = received else {
             return Err(self.finish());
-        }
-        let sample = match self.samples.recv() {
-            Ok(sample) => sample,
-            Err(_) => return Err(self.finish()),
         };
         let tip = &sample.tip;
         self.t = tip.t;
-        let finite = tip.x.iter().chain(&tip.v).chain(&tip.w).all(|v| v.is_finite());
-        if !finite || !sample.energy.is_finite() || sample.energy > energy_limit(self.e0) {
-            let reason = if finite {
-                format!("the energy {:e} J exceeds the divergence limit {:e} J", sample.energy, energy_limit(self.e0))
-            } else {
-                "a tip measurement is not finite".to_string()
-            };
-            self.inputs = None;
-            return Err(SimError::Diverged { t: tip.t, reason });
+        let values = [
+            ("q(s,t)", tip.x[0]),
+            ("θ(s,t)", tip.x[1]),
+            ("q̇(s,t)", tip.v[0]),
+            ("θ̇(s,t)", tip.v[1]),
+            ("q'''(s,t)", tip.w[0]),
+            ("θ'(s,t)", tip.w[1]),
+        ];
+        if let Err(e) = check_values(tip.t, &values, sample.energy, self.e0) {
+            if let SimError::Diverged { t, reason } = &e {
+                self.ended = Some(Ended::Diverged { t: *t, reason: reason.clone() });
+            }
+            self.stop();
+            return Err(e);
         }
         Ok(sample)
     }
 
-    /// End the worker and say why no sample came: its error, or the horizon's end.
+    /// End the worker and say why no sample came: its error, or the horizon's end (kept for
+    /// later steps).
     fn finish(&mut self) -> SimError {
         self.inputs = None;
-        match self.worker.take().map(JoinHandle::join) {
-            Some(Ok(Err(e))) => e,
-            Some(Err(_)) => SimError::Numerical("the stepping thread panicked".into()),
-            _ => SimError::HorizonEnded { t_end: self.t_end },
+        let ended = match self.worker.take().map(JoinHandle::join) {
+            Some(Ok(Err(e))) => {
+                self.ended = Some(match &e {
+                    SimError::Diverged { t, reason } => Ended::Diverged { t: *t, reason: reason.clone() },
+                    other => Ended::Failed(other.to_string()),
+                });
+                return e;
+            }
+            Some(Err(_)) => Ended::Failed("the stepping thread panicked".into()),
+            _ => Ended::Horizon,
+        };
+        let error = ended.error(self.t_end);
+        self.ended = Some(ended);
+        error
+    }
+
+    /// End the worker now (its controller fails at its next hand-over) and wait for it.
+    fn stop(&mut self) {
+        self.inputs = None;
+        let (_, closed) = sync_channel::<SteppedSample>(0);
+        drop(std::mem::replace(&mut self.samples, closed));
+        if let Some(worker) = self.worker.take() {
+            let _ = worker.join();
         }
     }
 }
@@ -168,12 +220,7 @@ impl Drop for SteppedRun {
     fn drop(&mut self) {
         // the worker waits for an input or for room to hand out a sample: closing both ends
         // makes its controller fail at once, and the run returns
-        self.inputs = None;
-        let (_, closed) = sync_channel::<SteppedSample>(0);
-        drop(std::mem::replace(&mut self.samples, closed));
-        if let Some(worker) = self.worker.take() {
-            let _ = worker.join();
-        }
+        self.stop();
     }
 }
 

@@ -107,7 +107,9 @@ fn bad_inputs_divergence_and_early_drop_end_the_run_cleanly() {
     // a huge held force drives the energy past the divergence limit
     let (mut wild, _) = SteppedRun::start(&cfg, law_of(&cfg)).unwrap();
     let err = (0..40).find_map(|_| wild.step([1e150, -1e150]).err()).expect("diverges");
-    assert!(matches!(err, SimError::Diverged { .. }), "{err}");
+    let SimError::Diverged { t, .. } = err else { panic!("{err}") };
+    // and says so again, not that the horizon was reached
+    assert!(matches!(wild.step([0.0, 0.0]), Err(SimError::Diverged { t: again, .. }) if again == t));
     // dropped mid-run: the worker ends (the test would hang otherwise)
     let (early, _) = SteppedRun::start(&cfg, law_of(&cfg)).unwrap();
     drop(early);

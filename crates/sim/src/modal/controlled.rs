@@ -109,8 +109,7 @@ impl Signal for ControlledSignal {
         for j in 0..self.steps_per_sample {
             // the times and inputs as `ObserverSignal::advance` forms them
             let t = t0 + j as f64 * h;
-            let (phi, g_mean) = self.means.over_step(t);
-            step(t, &StepInput { phi, tip_input: [g_mean[0] - g_hat[0], g_mean[1] - g_hat[1]], g_hat });
+            step(t, &super::signal::step_input(&mut self.means, t, g_hat));
         }
         self.k += 1;
         self.now.g = self.tip_values.at(self.k as f64 * self.period);

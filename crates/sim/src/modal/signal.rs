@@ -107,9 +107,7 @@ impl ObserverSignal {
         let h = self.h;
         for j in 0..self.steps_per_sample {
             let t = t0 + j as f64 * h;
-            let (phi, g_mean) = self.means.over_step(t);
-            let input =
-                StepInput { phi, tip_input: [g_mean[0] - self.g_hat[0], g_mean[1] - self.g_hat[1]], g_hat: self.g_hat };
+            let input = step_input(&mut self.means, t, self.g_hat);
             step(t, &input);
             for c in 0..2 {
                 self.sigma[c] += h * input.tip_input[c];
@@ -119,6 +117,15 @@ impl ObserverSignal {
         self.g = self.tip_values.at(self.k as f64 * self.period);
         self.update_estimates();
     }
+}
+
+/// The inputs of the integrator step [t, t + h) under the held estimate ĝ: the disturbances'
+/// exact means over the step and ḡ − ĝ at the tip. The one definition for every signal (the
+/// observers' and a controller's, [`super::ControlledSignal`]), whose bit-for-bit agreement
+/// rests on it.
+pub(crate) fn step_input(means: &mut MeanSteps, t: f64, g_hat: [f64; 2]) -> StepInput {
+    let (phi, g_mean) = means.over_step(t);
+    StepInput { phi, tip_input: [g_mean[0] - g_hat[0], g_mean[1] - g_hat[1]], g_hat }
 }
 
 impl Signal for ObserverSignal {
