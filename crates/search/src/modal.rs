@@ -16,8 +16,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 use serde::Serialize;
 use wingcheck_model::Config;
 use wingcheck_sim::modal::{
-    drive, measurement, ControlledSignal, ModalLoop, ModalState, ObserverSignal, Reads, RecordedSignal, Recorder,
-    Signal,
+    controlled_loop, drive, ModalLoop, ModalState, ObserverSignal, Reads, RecordedSignal, Recorder, Signal,
 };
 use wingcheck_sim::{ControllerFactory, Sample, SimError, SquareIntegral};
 
@@ -176,14 +175,7 @@ pub fn run(cfg: &Config, basis: &ModalBasis, signal: &RecordedSignal) -> Result<
 /// ([`ControlledSignal`], as `simulate` does it; the exponential scheme in its dense form).
 pub fn run_controlled(cfg: &Config, basis: &ModalBasis, make: ControllerFactory<'_>) -> Result<TipTrace, SimError> {
     cfg.validate().map_err(SimError::Config)?;
-    let mut control = make();
-    control.reset(cfg)?;
-    let law = control.continuous();
-    law.check()?;
-    let lp = ModalLoop::with_law(cfg, basis, law)?;
-    let mut st = lp.initial_state(cfg, basis);
-    let energy = basis.energy(&st.eta, &st.zeta);
-    let mut signal = ControlledSignal::new(cfg, control, &measurement(&st, 0.0), energy)?;
+    let (lp, mut st, mut signal) = controlled_loop(cfg, basis, make)?;
     trace(cfg, basis, &lp, &mut st, &mut signal)
 }
 

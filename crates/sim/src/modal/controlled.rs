@@ -12,8 +12,8 @@
 use wingcheck_control::{Controller, TipMeasurement};
 use wingcheck_model::{Config, MeanSteps, TipValues};
 
-use super::{ModalState, SampleInput, Signal, StepInput};
-use crate::{BoxedController, SimError};
+use super::{ModalBasis, ModalLoop, ModalState, SampleInput, Signal, StepInput};
+use crate::{BoxedController, ControllerFactory, SimError};
 
 /// A step's quadrature of τ and of the tip boundary states w: their means over the step
 /// (N, N m; 1/m², 1/m), what [`wingcheck_control::Controller::integrate`] receives. TR-BDF2 and
@@ -41,6 +41,26 @@ impl StepQuadrature {
 /// steps carry, the ones τ is formed from; w as the scheme advances it).
 pub fn measurement(st: &ModalState, t: f64) -> TipMeasurement {
     TipMeasurement { t, x: st.x_tip, v: st.v_tip, w: st.w }
+}
+
+/// The loop of a controller of any origin on `basis` (built from `cfg`'s wing and grid): the
+/// controller `make` makes, reset for `cfg`, its continuous part checked and put in the loop,
+/// the initial state, and the signal sampled there at t = 0 — the one set-up of `simulate`
+/// and the search.
+pub fn controlled_loop<'b>(
+    cfg: &Config,
+    basis: &'b ModalBasis,
+    make: ControllerFactory<'_>,
+) -> Result<(ModalLoop<'b>, ModalState, ControlledSignal), SimError> {
+    let mut control = make();
+    control.reset(cfg)?;
+    let law = control.continuous();
+    law.check()?;
+    let lp = ModalLoop::with_law(cfg, basis, law)?;
+    let st = lp.initial_state(cfg, basis);
+    let energy = basis.energy(&st.eta, &st.zeta);
+    let signal = ControlledSignal::new(cfg, control, &measurement(&st, 0.0), energy)?;
+    Ok((lp, st, signal))
 }
 
 /// The held inputs of a controller of any origin, one sample period at a time ([`Signal`]).

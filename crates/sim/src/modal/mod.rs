@@ -45,7 +45,7 @@ use wingcheck_model::{Config, MODAL_MAX_UNKNOWNS};
 
 use crate::{Discretisation, SimError};
 
-pub use controlled::{measurement, ControlledSignal, StepQuadrature};
+pub use controlled::{controlled_loop, measurement, ControlledSignal, StepQuadrature};
 pub use drive::{drive, Reads, Recorder, Signal};
 pub use probe::{ProbedStep, SubStepPeak, FINE_PER_OCTAVE, PROBED, PROBE_MARGIN};
 pub use run::simulate_modal;

@@ -5,9 +5,7 @@ use std::time::Instant;
 
 use wingcheck_model::{Config, TipValues};
 
-use super::{
-    dot, drive, measurement, ControlledSignal, ModalBasis, ModalLoop, ModalState, ObserverSignal, Recorder, Signal,
-};
+use super::{controlled_loop, dot, drive, ModalBasis, ModalLoop, ModalState, ObserverSignal, Recorder, Signal};
 use crate::run::{Envelope, Fields, RunOptions, RunStats, Series, SimOutput, SubStepProbe};
 use crate::stepper::FullRate;
 use crate::{Sample, SimError};
@@ -134,14 +132,7 @@ pub fn simulate_modal(
 ) -> Result<SimOutput, SimError> {
     cfg.validate().map_err(SimError::Config)?;
     if let Some(make) = opts.controller {
-        let mut control = make();
-        control.reset(cfg)?;
-        let law = control.continuous();
-        law.check()?;
-        let lp = ModalLoop::with_law(cfg, basis, law)?;
-        let mut st = lp.initial_state(cfg, basis);
-        let energy = basis.energy(&st.eta, &st.zeta);
-        let mut signal = ControlledSignal::new(cfg, control, &measurement(&st, 0.0), energy)?;
+        let (lp, mut st, mut signal) = controlled_loop(cfg, basis, make)?;
         return run(cfg, basis, &lp, &mut st, &mut signal, start, opts);
     }
     let lp = match opts.eigenbasis {
