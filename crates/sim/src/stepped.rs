@@ -96,6 +96,14 @@ enum Ended {
 }
 
 impl Ended {
+    /// The end a run's error makes (a divergence is said again as one; anything else as a failure).
+    fn of(e: &SimError) -> Ended {
+        match e {
+            SimError::Diverged { t, reason } => Ended::Diverged { t: *t, reason: reason.clone() },
+            other => Ended::Failed(other.to_string()),
+        }
+    }
+
     fn error(&self, t_end: f64) -> SimError {
         match self {
             Ended::Horizon => SimError::HorizonEnded { t_end },
@@ -176,9 +184,7 @@ impl SteppedRun {
             ("θ'(s,t)", tip.w[1]),
         ];
         if let Err(e) = check_values(tip.t, &values, sample.energy, self.e0) {
-            if let SimError::Diverged { t, reason } = &e {
-                self.ended = Some(Ended::Diverged { t: *t, reason: reason.clone() });
-            }
+            self.ended = Some(Ended::of(&e));
             self.stop();
             return Err(e);
         }
@@ -191,10 +197,7 @@ impl SteppedRun {
         self.inputs = None;
         let ended = match self.worker.take().map(JoinHandle::join) {
             Some(Ok(Err(e))) => {
-                self.ended = Some(match &e {
-                    SimError::Diverged { t, reason } => Ended::Diverged { t: *t, reason: reason.clone() },
-                    other => Ended::Failed(other.to_string()),
-                });
+                self.ended = Some(Ended::of(&e));
                 return e;
             }
             Some(Err(_)) => Ended::Failed("the stepping thread panicked".into()),
