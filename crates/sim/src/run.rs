@@ -397,11 +397,12 @@ const DIVERGENCE_FACTOR: f64 = 1e12;
 /// ([`crate::modal::MASS_TOLERANCE`], [`crate::modal::FREQUENCY_TOLERANCE`]), `nodal`
 /// otherwise. An explicit `modal` (or `auto` with `discretisation.stepper = exponential`, which
 /// runs in the modal basis only) whose basis cannot be built or fails the check is an error
-/// naming the reason.
+/// naming the reason. `disc` is `cfg`'s discretisation (`Discretisation::new(cfg)`); the basis
+/// is built once per [`ModalBasis::key`] while it is kept ([`ModalBasis::of_config`]).
 pub fn resolved_basis(cfg: &Config, disc: &Discretisation) -> Result<(StepBasis, Option<ModalBasis>), SimError> {
     let needs_modal = cfg.discretisation.stepper == wingcheck_model::TimeScheme::Exponential;
     let modal = || {
-        ModalBasis::of(disc).map_err(|e| match e {
+        ModalBasis::of_config(cfg, disc).map_err(|e| match e {
             SimError::NoModalBasis { reason } if needs_modal => SimError::Numerical(format!(
                 "discretisation.stepper = exponential needs the modal basis: {reason}; \
                  use discretisation.stepper=trbdf2 (or auto) or a coarser grid"
@@ -414,7 +415,7 @@ pub fn resolved_basis(cfg: &Config, disc: &Discretisation) -> Result<(StepBasis,
         StepBasis::Modal => Ok((StepBasis::Modal, Some(modal()?))),
         StepBasis::Auto if needs_modal => Ok((StepBasis::Modal, Some(modal()?))),
         StepBasis::Auto if !cfg.expected_modal() => Ok((StepBasis::Nodal, None)),
-        StepBasis::Auto => match ModalBasis::of(disc) {
+        StepBasis::Auto => match ModalBasis::of_config(cfg, disc) {
             Ok(basis) => Ok((StepBasis::Modal, Some(basis))),
             Err(SimError::NoModalBasis { .. }) => Ok((StepBasis::Nodal, None)),
             Err(e) => Err(e),

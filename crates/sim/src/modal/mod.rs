@@ -32,6 +32,7 @@ mod exact;
 mod gemv;
 mod layout;
 mod lyapunov;
+pub(crate) mod memo;
 mod probe;
 mod refine;
 mod run;
@@ -54,8 +55,11 @@ pub use signal::{ObserverSignal, RecordedSignal, Replay, SampleInput};
 use wing_modes::wing_modes;
 pub use wing_modes::BasisQuality;
 
+/// The modal bases kept for the next run of the same wing and grid ([`ModalBasis::of_config`]).
+static BASES: memo::Memo<ModalBasis, String> = memo::Memo::new();
+
 /// The wing in its modal basis (units: ω² in 1/s², modal coordinates in √kg·m).
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub struct ModalBasis {
     /// ω_i² (1/s²), ascending.
     pub omega2: Vec<f64>,
@@ -101,6 +105,16 @@ impl ModalBasis {
     /// [`MODAL_MAX_UNKNOWNS`] unknowns (one dense O(n³) SVD, [`wing_modes`]).
     pub fn new(cfg: &Config) -> Result<ModalBasis, SimError> {
         Self::of(&Discretisation::new(cfg))
+    }
+
+    /// [`ModalBasis::of`] `disc`, which must be `cfg`'s discretisation
+    /// (`Discretisation::new(cfg)`), or a copy of the basis kept from an earlier run under the
+    /// same [`ModalBasis::key`]: the same bits, the basis being a deterministic function of the
+    /// key's inputs (a ledger makes 17 runs at 96 elements of one wing; [`memo`] keeps two
+    /// bases). Failures are not kept.
+    pub fn of_config(cfg: &Config, disc: &Discretisation) -> Result<ModalBasis, SimError> {
+        debug_assert_eq!(disc.dim(), Discretisation::new(cfg).dim(), "the discretisation of another config");
+        BASES.get_or_try(ModalBasis::key(cfg), || ModalBasis::of(disc)).map(|kept| (*kept).clone())
     }
 
     /// Modal basis of a given discretisation.

@@ -2,6 +2,8 @@
 //! trapezoidal rule or of TR-BDF2, each solve with the step matrix as diagonal plus rank 2
 //! (Woodbury), O(n) per step.
 
+use std::sync::Arc;
+
 use wingcheck_control::{BoundaryLaw, TipChannel};
 use wingcheck_model::{Config, TimeScheme};
 
@@ -112,7 +114,9 @@ pub struct StepInput {
 enum Stepping {
     Trapezoid(StepSolve),
     Trbdf2(Trbdf2Pass),
-    Exponential(ExactStep),
+    /// The dense exact transition, shared with the other runs of the same loop and step
+    /// ([`super::memo`]).
+    Exponential(Arc<ExactStep>),
     /// The exponential scheme in the closed loop's eigenbasis ([`DiagonalStep`]): the same
     /// exact transition, O(N) per step; used where the loop is built by
     /// [`ModalLoop::with_eigenbasis`] (the search) and its checks pass.
@@ -215,7 +219,7 @@ impl<'a> ModalLoop<'a> {
                     Some(Ok(diagonal)) => Stepping::Diagonal(Box::new(diagonal)),
                     other => {
                         eigenbasis_refused = other.and_then(Result::err).map(|why| why.0);
-                        Stepping::Exponential(ExactStep::new(basis, &co, h)?)
+                        Stepping::Exponential(ExactStep::shared(basis, &co, h)?)
                     }
                 }
             }
