@@ -38,7 +38,7 @@ pub mod verify;
 use std::path::PathBuf;
 
 use serde::{Deserialize, Serialize};
-use wingcheck_model::Config;
+use wingcheck_model::{Config, TimeScheme};
 use wingcheck_sim::ControllerFactory;
 
 pub use assemble::{assemble, finalize, ChunkStream};
@@ -116,9 +116,9 @@ pub struct Manifest {
     /// Number of chunks.
     pub chunks: usize,
     /// Point numbering.
-    pub point_order: String,
+    pub point_order: PointOrder,
     /// Shard rule.
-    pub sharding: String,
+    pub sharding: Sharding,
     /// Options.
     pub options: SearchOptions,
     /// Metric columns.
@@ -128,7 +128,26 @@ pub struct Manifest {
     /// modal basis, `trbdf2` otherwise); points whose axes change the rule, the controller or the
     /// grid follow the same rule.
     #[serde(default)]
-    pub time_scheme: String,
+    pub time_scheme: TimeScheme,
+}
+
+/// How points are numbered (the manifest's `point_order`, written as the rule in words).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema)]
+pub enum PointOrder {
+    /// Row-major over the axes: the first axis varies slowest ([`Grid`]).
+    #[default]
+    #[serde(rename = "row-major: the first axis varies slowest")]
+    RowMajor,
+}
+
+/// Which shard evaluates which chunk (the manifest's `sharding`, written as the rule in words;
+/// [`Shard::owns`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema)]
+pub enum Sharding {
+    /// Chunk c belongs to shard K/N iff c mod N = K − 1.
+    #[default]
+    #[serde(rename = "chunk c = points [c·chunk_size, (c+1)·chunk_size) belongs to shard K/N iff c mod N = K − 1")]
+    ChunkModulo,
 }
 
 /// A validated search.
@@ -246,12 +265,11 @@ impl Search {
             axis_specs: self.grid.axes.iter().map(Axis::spec).collect(),
             points: self.points(),
             chunks: self.chunks(),
-            point_order: "row-major: the first axis varies slowest".into(),
-            sharding: "chunk c = points [c·chunk_size, (c+1)·chunk_size) belongs to shard K/N iff c mod N = K − 1"
-                .into(),
+            point_order: PointOrder::RowMajor,
+            sharding: Sharding::ChunkModulo,
             options: self.options.clone(),
             metrics: METRICS.iter().map(|m| m.to_string()).collect(),
-            time_scheme: self.base.expected_time_scheme().name().into(),
+            time_scheme: self.base.expected_time_scheme(),
         }
     }
 
