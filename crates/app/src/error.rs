@@ -190,12 +190,36 @@ fn claims_kind(e: &ClaimsError) -> ErrorKind {
 
 fn search_kind(e: &SearchError) -> ErrorKind {
     match e {
-        SearchError::TooLarge(_) => ErrorKind::WorkLimit,
-        SearchError::Io { .. } | SearchError::Output(_) => ErrorKind::Output,
+        SearchError::TooLarge { .. } => ErrorKind::WorkLimit,
+        SearchError::Read { .. }
+        | SearchError::NotText { .. }
+        | SearchError::FileSystem { .. }
+        | SearchError::Manifest { .. }
+        | SearchError::Serialise { .. }
+        | SearchError::OutOfOrder { .. }
+        | SearchError::PointCount { .. }
+        | SearchError::HeatmapCells { .. }
+        | SearchError::Heatmap { .. }
+        | SearchError::Output(_) => ErrorKind::Output,
         SearchError::Theory { .. } => ErrorKind::Numerical,
         SearchError::Cancelled(_) => ErrorKind::Cancelled,
+        SearchError::Config(ConfigError::Read { .. }) => ErrorKind::Input,
+        SearchError::Config(_) => ErrorKind::Config,
+        SearchError::Simulation(e) => sim_kind(e),
+        SearchError::ThreadPool { .. } => ErrorKind::Internal,
         SearchError::Axis { .. }
-        | SearchError::Options(_)
+        | SearchError::ChunkSize
+        | SearchError::RefineTolerance { .. }
+        | SearchError::WindowOrder { .. }
+        | SearchError::WindowOutsideHorizon { .. }
+        | SearchError::LyapunovElements { .. }
+        | SearchError::ControllerName
+        | SearchError::ControllerMissing { .. }
+        | SearchError::ControllerUnexpected
+        | SearchError::MergeOwnController { .. }
+        | SearchError::Shard { .. }
+        | SearchError::Threads { .. }
+        | SearchError::MergeNothing
         | SearchError::Chunk { .. }
         | SearchError::Mismatch { .. }
         | SearchError::MissingChunks { .. } => ErrorKind::Search,

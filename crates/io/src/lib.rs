@@ -2,7 +2,9 @@
 //! directory replacement of wingcheck, used by `report` and `certify`.
 //!
 //! * [`write_file_atomic`]: temp file in the destination's directory, `fsync`, rename over the
-//!   destination, `fsync` of the directory; mode 0644 (subject to the umask).
+//!   destination, `fsync` of the directory; mode 0644. [`create_file_atomic`] creates a file
+//!   that must not exist yet, [`FileSet`] commits several files; the same discipline
+//!   (module `atomic`), used by `report`, `certify`, `simulate` and `search`.
 //! * [`StagingDir`]: a directory is built beside its target (same parent, so no rename crosses
 //!   file systems) and [`StagingDir::commit`] swaps it in. On Linux the swap is one
 //!   `renameat2(RENAME_EXCHANGE)` (via rustix): at every instant the target holds either the
@@ -19,6 +21,7 @@
 #![warn(missing_docs)]
 
 mod allocator;
+mod atomic;
 pub mod clock;
 mod lock;
 pub mod marked;
@@ -30,6 +33,8 @@ mod provenance;
 mod table;
 
 pub use allocator::{tune_allocator, HEAP_LIMITS};
+use atomic::set_mode_0644;
+pub use atomic::{create_file_atomic, is_temp, remove_stale_temps, write_file_atomic, FileSet, StagedFile};
 pub use lock::{is_lock_file, lock_name, lock_owner, owner_alive, remove_stale_locks, DirLock};
 pub use marked::{check_marked_replaceable, write_marked_dir};
 pub use number::{number, push_number};
@@ -75,6 +80,12 @@ pub enum IoError {
         /// Why.
         reason: String,
     },
+    /// [`create_file_atomic`] found its destination already there (left untouched).
+    #[error("{path} already exists")]
+    Exists {
+        /// The destination.
+        path: PathBuf,
+    },
     /// An output path that cannot be written the way wingcheck writes (see [`paths`]).
     #[error("{path} cannot be used as an output: {reason}")]
     BadOutput {
@@ -94,41 +105,6 @@ fn parent_of(p: &Path) -> PathBuf {
         Some(q) if !q.as_os_str().is_empty() => q.to_path_buf(),
         _ => PathBuf::from("."),
     }
-}
-
-/// Writes `bytes` to `path` atomically (temp file + fsync + rename), file mode 0644. An
-/// existing `path` that is not a regular file (a symlink, FIFO, device, directory) is refused,
-/// never replaced ([`paths::check_replaceable_file`]).
-pub fn write_file_atomic(path: &Path, bytes: &[u8]) -> Result<(), IoError> {
-    paths::check_replaceable_file(path)?;
-    let dir = parent_of(path);
-    let mut tmp = tempfile::Builder::new()
-        .prefix(".wingcheck-tmp-")
-        .tempfile_in(&dir)
-        .map_err(io("create a temporary file in", &dir))?;
-    tmp.write_all(bytes).map_err(io("write", path))?;
-    set_mode_0644(tmp.as_file(), path)?;
-    tmp.as_file().sync_all().map_err(io("sync", path))?;
-    tmp.persist(path).map_err(|e| IoError::Io {
-        action: "rename into place",
-        path: path.to_path_buf(),
-        source: e.error,
-    })?;
-    if let Ok(d) = std::fs::File::open(&dir) {
-        let _ = d.sync_all(); // best effort: not every platform syncs directories
-    }
-    Ok(())
-}
-
-#[cfg(unix)]
-fn set_mode_0644(f: &std::fs::File, path: &Path) -> Result<(), IoError> {
-    use std::os::unix::fs::PermissionsExt;
-    f.set_permissions(std::fs::Permissions::from_mode(0o644)).map_err(io("set permissions of", path))
-}
-
-#[cfg(not(unix))]
-fn set_mode_0644(_f: &std::fs::File, _path: &Path) -> Result<(), IoError> {
-    Ok(())
 }
 
 /// The file-system steps of a directory swap, replaceable for fault-injection tests.

@@ -13,10 +13,11 @@ use wingcheck_model::Config;
 /// counted by the rest of the report). 0 when the map's axes cannot be posed (it is then
 /// skipped).
 fn region_memory(cfg: &Config) -> f64 {
-    let a: Vec<String> = (1..=14).map(|k| format!("{k}")).collect();
-    let b: Vec<String> = (1..=7).map(|k| format!("{k}")).collect();
-    let specs = [format!("control.a={}", a.join(",")), format!("control.b={}", b.join(","))];
-    match wingcheck_search::Search::new(cfg.clone(), &specs, Default::default()) {
+    use wingcheck_search::{Axis, Search};
+    let a: Vec<f64> = (1..=14).map(f64::from).collect();
+    let b: Vec<f64> = (1..=7).map(f64::from).collect();
+    let axes = Axis::of_numbers("control.a", &a).and_then(|a| Ok(vec![a, Axis::of_numbers("control.b", &b)?]));
+    match axes.and_then(|axes| Search::from_axes(cfg.clone(), axes, Default::default())) {
         Ok(s) => {
             let m = s.estimate_for(None).memory;
             m.total() - m.process

@@ -22,7 +22,7 @@ use rayon::prelude::*;
 use wingcheck_claims::certify::omega1::EnclosureSummary;
 use wingcheck_model::Config;
 use wingcheck_search::heatmap::{MU_COLOUR, W_COLOUR};
-use wingcheck_search::{modal::RunCache, PointResult, Search, SearchOptions, Status, TheoryCache};
+use wingcheck_search::{modal::RunCache, Axis, PointResult, Search, SearchOptions, Status, TheoryCache};
 
 use crate::chart::{tick, GridAxis, GridHeatmap, Mark, MarkShape, RGBColor};
 use crate::figure::{Caption, Chart, Figure};
@@ -116,10 +116,10 @@ pub fn region_map(
     cancel: &wingcheck_model::Cancel,
 ) -> Result<RegionMap, ReportError> {
     let (a, b) = axes(cfg, omega1, r_star);
-    let list = |v: &[f64]| v.iter().map(|x| format!("{x:e}")).collect::<Vec<_>>().join(",");
-    let specs = [format!("control.a={}", list(&a)), format!("control.b={}", list(&b))];
-    let search = Search::new(cfg.clone(), &specs, SearchOptions::default())
-        .map_err(|e| ReportError::Region { detail: e.to_string() })?;
+    let region = |e: wingcheck_search::SearchError| ReportError::Region { detail: e.to_string() };
+    let axes =
+        vec![Axis::of_numbers("control.a", &a).map_err(region)?, Axis::of_numbers("control.b", &b).map_err(region)?];
+    let search = Search::from_axes(cfg.clone(), axes, SearchOptions::default()).map_err(region)?;
     let (theory, runs) = (TheoryCache::new(SearchOptions::default().lyapunov_elements), RunCache::new());
     let total = search.points();
     if total > wingcheck_model::work::REGION_MAP_MAX_POINTS {

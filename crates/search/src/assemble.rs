@@ -18,8 +18,9 @@ use std::path::Path;
 use crate::metric::Metric;
 use crate::point::{PointResult, PointVerdicts, Status};
 use crate::refine::{boundaries, boundary_csv};
-use crate::store::{self, BestPoints, FileSet};
+use crate::store::{self, BestPoints};
 use crate::{heatmap_svg, Manifest, Search, SearchError, TheoryCache};
+use wingcheck_io::{FileSet, StagedFile};
 
 /// Metrics drawn as heatmaps on 2-D searches, with whether their colour scale is logarithmic.
 pub const HEATMAPS: [(Metric, bool); 3] =
@@ -84,25 +85,26 @@ pub struct Assembly {
     pub best: BestPoints,
     /// Points diverged, points with an error.
     pub failed: (usize, usize),
-    csv: store::Staged,
-    failures: store::Staged,
-    timings: store::Staged,
+    csv: StagedFile,
+    failures: StagedFile,
+    timings: StagedFile,
 }
 
 impl Assembly {
     /// Take in the next point (index order): write its rows and keep its bounded summary.
     pub fn add(&mut self, p: &PointResult) -> Result<(), SearchError> {
         if p.index != self.verdicts.len() {
-            return Err(SearchError::Io {
-                path: self.csv.path().to_string(),
-                detail: format!("point {} arrived where point {} was expected", p.index, self.verdicts.len()),
+            return Err(SearchError::OutOfOrder {
+                path: self.csv.path().to_path_buf(),
+                got: p.index,
+                expected: self.verdicts.len(),
             });
         }
-        self.csv.write(&store::results_csv_row(p))?;
+        self.csv.write(store::results_csv_row(p).as_bytes())?;
         if let Some(row) = store::failures_row(p) {
-            self.failures.write(&row)?;
+            self.failures.write(row.as_bytes())?;
         }
-        self.timings.write(&store::timings_row(p))?;
+        self.timings.write(store::timings_row(p).as_bytes())?;
         self.verdicts.push(p.verdicts());
         if let Some(heat) = &mut self.heat {
             for (values, (metric, _)) in heat.iter_mut().zip(HEATMAPS) {
@@ -131,11 +133,11 @@ fn has_heatmaps(search: &Search) -> bool {
 /// points (diverged, error).
 pub fn finalize(dir: &Path) -> Result<(Vec<String>, (usize, usize)), SearchError> {
     // temp files of a run killed during an earlier assembly (or a chunk write)
-    store::remove_stale_temps(dir);
-    store::remove_stale_temps(&dir.join(store::CHUNK_DIR));
+    wingcheck_io::remove_stale_temps(dir);
+    wingcheck_io::remove_stale_temps(&dir.join(store::CHUNK_DIR));
     let path = dir.join("manifest.json");
     let manifest: Manifest = serde_json::from_str(&store::read(&path)?)
-        .map_err(|e| SearchError::Io { path: path.display().to_string(), detail: e.to_string() })?;
+        .map_err(|source| SearchError::Manifest { path: path.clone(), source })?;
     let search = Search::from_manifest(manifest)?;
     // every chunk present and complete before anything is written (each read, checked, dropped)
     let mut missing = Vec::new();
@@ -164,14 +166,14 @@ pub fn assemble(
 ) -> Result<(Vec<String>, (usize, usize)), SearchError> {
     let keys: Vec<String> = search.grid.axes.iter().map(|a| a.key.clone()).collect();
     let o = &search.options;
-    let mut set = FileSet::new(dir)?;
-    let mut csv = set.open("results.csv")?;
-    csv.write(&store::results_csv_header(&keys))?;
-    let mut json = set.open("results.json")?;
-    let mut failures = set.open("failures.csv")?;
-    failures.write(&store::failures_header(&keys))?;
-    let mut timings = set.open("timings.csv")?;
-    timings.write(&store::timings_header())?;
+    let mut set = FileSet::new();
+    let mut csv = set.open(&dir.join("results.csv"))?;
+    csv.write(store::results_csv_header(&keys).as_bytes())?;
+    let mut json = set.open(&dir.join("results.json"))?;
+    let mut failures = set.open(&dir.join("failures.csv"))?;
+    failures.write(store::failures_header(&keys).as_bytes())?;
+    let mut timings = set.open(&dir.join("timings.csv"))?;
+    timings.write(store::timings_header().as_bytes())?;
     let n = search.points();
     let mut acc = Assembly {
         verdicts: Vec::with_capacity(n),
@@ -183,26 +185,27 @@ pub fn assemble(
         timings,
     };
     let stream = points.map(|p| p.and_then(|p| acc.add(&p).map(|()| p)));
-    let json_path = json.path().to_string();
+    let json_path = json.path().to_path_buf();
     let provenance = crate::records::provenance(search);
     store::write_results_json(json.writer(), &json_path, &keys, &provenance, stream)?;
     json.finish()?;
     if acc.verdicts.len() != n {
-        return Err(SearchError::Io {
-            path: dir.join(store::CHUNK_DIR).display().to_string(),
-            detail: format!("{} points assembled, the search has {n}", acc.verdicts.len()),
+        return Err(SearchError::PointCount {
+            dir: dir.join(store::CHUNK_DIR),
+            assembled: acc.verdicts.len(),
+            expected: n,
         });
     }
     let Assembly { verdicts, heat, best, failed, csv, failures, timings } = acc;
     for f in [csv, failures, timings] {
         f.finish()?;
     }
-    set.stage("best.json", &best.json(&keys))?;
-    set.stage("provenance.json", &provenance.to_json())?;
+    set.add(&dir.join("best.json"), best.json(&keys).as_bytes())?;
+    set.add(&dir.join("provenance.json"), provenance.to_json().as_bytes())?;
     drop(best);
     let cache = TheoryCache::new(o.lyapunov_elements);
     let rows = boundaries(search, &verdicts, &cache, o.refine);
-    set.stage("boundary.csv", &boundary_csv(&search.grid, &rows))?;
+    set.add(&dir.join("boundary.csv"), boundary_csv(&search.grid, &rows).as_bytes())?;
     let mut names = vec!["results.csv", "results.json", "best.json", "provenance.json", "failures.csv", "boundary.csv"]
         .into_iter()
         .map(String::from)
@@ -210,7 +213,7 @@ pub fn assemble(
     if let Some(heat) = heat {
         for (values, (metric, log)) in heat.into_iter().zip(HEATMAPS) {
             let name = format!("heatmap-{metric}.svg");
-            set.stage(&name, &heatmap_svg(search, values, &verdicts, metric, log, &rows)?)?;
+            set.add(&dir.join(&name), heatmap_svg(search, values, &verdicts, metric, log, &rows)?.as_bytes())?;
             names.push(name);
         }
     }

@@ -122,6 +122,26 @@ impl Axis {
         Ok(axis)
     }
 
+    /// A list axis over the numbers `values` of `key` (a front end's grid, without going
+    /// through text): each value is applied as `key=x` in scientific notation (`{x:e}`, which
+    /// reads back as the same f64), checked as [`Axis::parse`] checks a typed list.
+    pub fn of_numbers(key: &str, values: &[f64]) -> Result<Axis, SearchError> {
+        let texts: Vec<String> = values.iter().map(|x| format!("{x:e}")).collect();
+        let spec = format!("{key}={}", texts.join(","));
+        if key.trim().is_empty() {
+            return Err(axis_err(&spec, "empty key"));
+        }
+        for (v, &x) in texts.iter().zip(values) {
+            if !x.is_finite() {
+                return Err(axis_err(&spec, format!("value `{v}` is not finite")));
+            }
+            check_representable(&spec, "value", v, x)?;
+        }
+        let axis = Axis { key: key.to_string(), spacing: Spacing::List { values: texts }, integer: false };
+        axis.check_shape()?;
+        Ok(axis)
+    }
+
     /// The axis as typed on the command line (canonical form).
     pub fn spec(&self) -> String {
         match &self.spacing {

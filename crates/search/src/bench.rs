@@ -141,7 +141,7 @@ fn simulate_seconds(cfg: &Config, repeats: usize) -> Result<Vec<Elapsed>, Search
     (0..repeats)
         .map(|_| {
             let (out, elapsed) = measure(|| simulate(cfg, RunOptions::default()));
-            out.map_err(|e| SearchError::Options(e.to_string()))?;
+            out?;
             Ok(elapsed)
         })
         .collect()
@@ -169,8 +169,7 @@ pub fn bench_estimate(
     searches.extend(thread_counts.iter().map(|&t| grid.estimate_with_threads(t)));
     searches.extend((0..SEARCH_REPEATS).map(|_| grid.estimate_with_threads(most)));
     for rule in RULES {
-        let cfg = apply_overrides(base, &[format!("observer.rule={rule}")])
-            .map_err(|e| SearchError::Options(e.to_string()))?;
+        let cfg = apply_overrides(base, &[format!("observer.rule={rule}")])?;
         let s = Search::new(cfg, &small, SearchOptions::default())?.estimate_with_threads(most);
         searches.extend(std::iter::repeat_n(s, RULE_ROUNDS));
     }
@@ -194,8 +193,8 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
     let mut machine = MachineLoad::at_start();
     let axes = vec![format!("control.a=1e-4..10:log:{n}"), format!("control.b=1e-2..1e4:log:{n}")];
     let search = Search::new(base.clone(), &axes, SearchOptions::default())?;
-    let tmp = tempfile::tempdir().map_err(|e| SearchError::Io { path: "temp dir".into(), detail: e.to_string() })?;
-    let cfg = apply_overrides(base, &[]).map_err(|e| SearchError::Options(e.to_string()))?;
+    let tmp = tempfile::tempdir().map_err(|source| SearchError::FileSystem { path: std::env::temp_dir(), source })?;
+    let cfg = apply_overrides(base, &[])?;
     let mut simulator = simulate_seconds(&cfg, 5)?;
     let mut runs = Vec::new();
     let mut finalize_seconds = 0.0;
@@ -242,9 +241,7 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
         .collect();
     let simulator_point_seconds = median_elapsed(&simulator).seconds();
     let small = vec!["control.a=1e-4..10:log:8".to_string(), "control.b=1e-2..1e4:log:8".to_string()];
-    let rule_cfg = |rule: &str| {
-        apply_overrides(base, &[format!("observer.rule={rule}")]).map_err(|e| SearchError::Options(e.to_string()))
-    };
+    let rule_cfg = |rule: &str| apply_overrides(base, &[format!("observer.rule={rule}")]).map_err(SearchError::from);
     let rule_cfgs = [rule_cfg(RULES[0])?, rule_cfg(RULES[1])?];
     // per rule: (wall, CPU) per point of each round, and the points
     let mut per_point: [Vec<PerPoint>; 2] = [Vec::new(), Vec::new()];
@@ -277,7 +274,7 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
     let explicit_over_implicit_wall = paired(&|p| Some(p.0)).unwrap_or(0.0);
     let explicit_over_implicit_cpu = paired(&|p| p.1);
     let (basis, elapsed) = measure(|| ModalBasis::new(&cfg));
-    let basis = basis.map_err(|e| SearchError::Options(e.to_string()))?;
+    let basis = basis?;
     let modal_basis_seconds = elapsed.seconds();
     let (signal, elapsed) = measure(|| RecordedSignal::new(&cfg));
     let input_signal_seconds = elapsed.seconds();
@@ -285,7 +282,7 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
     let runs_cache = RunCache::new();
     for _ in 0..5 {
         let (out, elapsed) = measure(|| crate::point::closed_loop(&cfg, &runs_cache, None));
-        out.map_err(|e| SearchError::Options(e.to_string()))?;
+        out?;
         modal.push(elapsed);
     }
     drop((basis, signal));

@@ -108,7 +108,7 @@ pub fn read_chunk(dir: &Path, search: &Search, c: usize) -> Result<Option<Vec<Po
     let path = chunk_path(dir, c);
     match std::fs::symlink_metadata(&path) {
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
-        Err(e) => return Err(SearchError::Io { path: path.display().to_string(), detail: e.to_string() }),
+        Err(source) => return Err(SearchError::FileSystem { path, source }),
         Ok(m) if !m.is_file() => return Err(foreign(&path, "not a regular file".into())),
         Ok(_) => {}
     }

@@ -4,7 +4,7 @@
 //! `search` and `merge` write only into such a directory (of the same search), an empty one,
 //! or a new one, and refuse anything else. On failure they leave nothing behind: a directory
 //! they created (or found empty) is removed again unless it holds completed chunks, which a
-//! rerun resumes from. The final files are written all or nothing ([`store::FileSet`]).
+//! rerun resumes from. The final files are written all or nothing ([`wingcheck_io::FileSet`]).
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -28,6 +28,16 @@ fn check_out(out: &Path) -> Result<(), SearchError> {
     Ok(wingcheck_io::check_output_dir(out, false)?)
 }
 
+/// Creates `path` holding `text` unless it exists ([`wingcheck_io::create_file_atomic`]);
+/// whether this call created it.
+fn create_new(path: &Path, text: &str) -> Result<bool, SearchError> {
+    match wingcheck_io::create_file_atomic(path, text.as_bytes()) {
+        Ok(()) => Ok(true),
+        Err(wingcheck_io::IoError::Exists { .. }) => Ok(false),
+        Err(e) => Err(e.into()),
+    }
+}
+
 /// How `prepare_out` found the output directory.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Found {
@@ -41,7 +51,7 @@ enum Found {
 
 /// Make `out` ready for the search with manifest `text`, refusing directories that are not a
 /// search's own. Two identical searches started together on one `out` both go on: the manifest
-/// is created without overwriting ([`store::write_new`]), and the one that finds it already
+/// is created without overwriting ([`wingcheck_io::create_file_atomic`]), and the one that finds it already
 /// there (or sees it appear while looking) takes the directory as its own.
 fn prepare_out(out: &Path, text: &str) -> Result<Found, SearchError> {
     // a manifest that appears while the directory is being looked at: look again (bounded, as
@@ -63,8 +73,8 @@ fn prepare_out(out: &Path, text: &str) -> Result<Found, SearchError> {
     // (no manifest: nothing but our temp files; a manifest: this search, resumed)
     let mut setup = || -> Result<(), SearchError> {
         store::mkdir(out)?;
-        store::remove_stale_temps(out);
-        if found != Found::Ours && !store::write_new(&out.join("manifest.json"), text.as_bytes())? {
+        wingcheck_io::remove_stale_temps(out);
+        if found != Found::Ours && !create_new(&out.join("manifest.json"), text)? {
             // another run created it since we looked: ours only if it is this search
             // (either way the directory is that run's now: nothing here is ours to clean up)
             found = Found::Ours;
@@ -73,7 +83,7 @@ fn prepare_out(out: &Path, text: &str) -> Result<Found, SearchError> {
             }
         }
         store::mkdir(&out.join(store::CHUNK_DIR))?;
-        store::remove_stale_temps(&out.join(store::CHUNK_DIR));
+        wingcheck_io::remove_stale_temps(&out.join(store::CHUNK_DIR));
         Ok(())
     };
     if let Err(e) = setup() {
@@ -108,7 +118,7 @@ fn classify(out: &Path, text: &str) -> Result<Option<Found>, SearchError> {
     }
     // empty, or holding only what a search killed while setting up leaves: temp files of the
     // manifest's write and an empty chunks/ (the manifest is written first)
-    let io = |e: std::io::Error| SearchError::Io { path: out.display().to_string(), detail: e.to_string() };
+    let io = |source| SearchError::FileSystem { path: out.to_path_buf(), source };
     for e in std::fs::read_dir(out).map_err(io)? {
         let e = e.map_err(io)?;
         let name = e.file_name().to_string_lossy().to_string();
@@ -117,8 +127,8 @@ fn classify(out: &Path, text: &str) -> Result<Option<Found>, SearchError> {
         }
         let empty_chunks = name == store::CHUNK_DIR
             && std::fs::read_dir(e.path())
-                .is_ok_and(|mut d| d.all(|x| x.is_ok_and(|x| store::is_temp(&x.file_name().to_string_lossy()))));
-        if !(store::is_temp(&name) || empty_chunks) {
+                .is_ok_and(|mut d| d.all(|x| x.is_ok_and(|x| wingcheck_io::is_temp(&x.file_name().to_string_lossy()))));
+        if !(wingcheck_io::is_temp(&name) || empty_chunks) {
             // a concurrent run's manifest and chunks may have arrived after the first look
             if manifest.exists() {
                 return Ok(None);
@@ -179,7 +189,7 @@ pub fn run(search: &Search, out: &Path, ctl: RunControl<'_>) -> Result<RunSummar
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(n)
             .build()
-            .map_err(|e| SearchError::Options(format!("cannot start {n} threads: {e}")))?;
+            .map_err(|source| SearchError::ThreadPool { threads: n, source })?;
         return pool.install(|| run(search, out, RunControl { threads: None, ..ctl }));
     }
     let found = prepare_out(out, &search.manifest_text())?;
@@ -219,7 +229,7 @@ fn run_in(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<RunSummar
     drop(verifier);
     let progress_name = format!("progress-{}-of-{}.json", ctl.shard.k, ctl.shard.n);
     // what is on disk now (a run killed between a chunk and its progress file left it behind)
-    store::write_atomic(&out.join(&progress_name), progress_text(ctl, owned, completed).as_bytes())?;
+    wingcheck_io::write_file_atomic(&out.join(&progress_name), progress_text(ctl, owned, completed).as_bytes())?;
     let points_done = AtomicUsize::new(0);
     if let Some(p) = ctl.progress {
         p(Progress { done: 0, total });
@@ -264,12 +274,12 @@ fn run_in(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<RunSummar
             .collect::<Result<_, wingcheck_model::Cancelled>>()?;
         // the chunk and the progress file that counts it, written together
         completed += 1;
-        store::write_with_progress(
-            &store::chunk_path(out, c),
-            store::chunk_text(search, c, &points).as_bytes(),
-            &out.join(&progress_name),
-            progress_text(ctl, owned, completed).as_bytes(),
-        )?;
+        // (staged together, the chunk renamed first: a kill between the two renames leaves the
+        // progress file one chunk behind, which the next run rewrites before any work)
+        let mut set = wingcheck_io::FileSet::new();
+        set.add(&store::chunk_path(out, c), store::chunk_text(search, c, &points).as_bytes())?;
+        set.add(&out.join(&progress_name), progress_text(ctl, owned, completed).as_bytes())?;
+        set.commit()?;
         summary.evaluated += points.len();
         summary.failed += points.iter().filter(|p| p.status != Status::Ok).count();
         summary.sim_seconds += points.iter().map(|p| p.sim_seconds).sum::<f64>();
@@ -317,7 +327,7 @@ pub fn merge_with(
 ) -> Result<RunSummary, SearchError> {
     check_out(out)?;
     let start = Instant::now();
-    let first = dirs.first().ok_or_else(|| SearchError::Options("merge needs at least one directory".into()))?;
+    let first = dirs.first().ok_or(SearchError::MergeNothing)?;
     let text = store::read(&first.join("manifest.json"))?;
     for d in &dirs[1..] {
         if store::read(&d.join("manifest.json"))? != text {
@@ -327,16 +337,11 @@ pub fn merge_with(
             ));
         }
     }
-    let manifest: Manifest = serde_json::from_str(&text).map_err(|e| SearchError::Io {
-        path: first.join("manifest.json").display().to_string(),
-        detail: e.to_string(),
-    })?;
+    let manifest: Manifest = serde_json::from_str(&text)
+        .map_err(|source| SearchError::Manifest { path: first.join("manifest.json"), source })?;
     let search = Search::from_manifest(manifest)?;
     if let Some(name) = &search.options.controller {
-        return Err(SearchError::Options(format!(
-            "the shards ran a controller of your own ({name}), which a merge cannot recompute to verify them: \
-             run the shards into one directory instead"
-        )));
+        return Err(SearchError::MergeOwnController { name: name.clone() });
     }
     limits::check(&crate::verify::estimate(&search, check, None), allow_large)?;
     let mut sources = Vec::with_capacity(search.chunks());
@@ -371,7 +376,7 @@ pub fn merge_with(
         for (c, d) in sources.iter().enumerate() {
             let target = store::chunk_path(out, c);
             if store::chunk_path(d, c) != target {
-                store::write_atomic(&target, store::read(&store::chunk_path(d, c))?.as_bytes())?;
+                wingcheck_io::write_file_atomic(&target, store::read(&store::chunk_path(d, c))?.as_bytes())?;
             }
         }
         finalize(out)

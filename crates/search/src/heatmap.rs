@@ -268,12 +268,11 @@ pub fn heatmap_svg(
     boundary: &[BoundaryRow],
 ) -> Result<String, SearchError> {
     let name = format!("heatmap-{metric}");
-    let err = |e: String| SearchError::Io { path: format!("{name}.svg"), detail: e };
     let grid = &search.grid;
     let (ax, ay) = (grid_axis(&grid.axes[0]), grid_axis(&grid.axes[1]));
     let (nx, ny) = (grid.dims()[0], grid.dims()[1]);
     if values.len() != nx * ny || verdicts.len() != nx * ny {
-        return Err(err(format!("{} values and {} verdicts for {nx} × {ny} cells", values.len(), verdicts.len())));
+        return Err(SearchError::HeatmapCells { name, values: values.len(), verdicts: verdicts.len(), nx, ny });
     }
     let mut marks = verdict_marks(search, &ax, &ay, verdicts);
     for (kind, colour) in [(KINDS[0], W_COLOUR), (KINDS[1], MU_COLOUR)] {
@@ -306,5 +305,5 @@ pub fn heatmap_svg(
         missing_label,
         marks,
     };
-    grid_heatmap_svg(&h).map_err(|e| err(e.detail))
+    grid_heatmap_svg(&h).map_err(|source| SearchError::Heatmap { source })
 }

@@ -21,6 +21,7 @@ mod assemble;
 pub mod axis;
 pub mod bench;
 pub mod chunk;
+mod error;
 mod exec;
 pub mod heatmap;
 mod heatmap_blocks;
@@ -37,11 +38,12 @@ pub mod verify;
 use std::path::PathBuf;
 
 use serde::{Deserialize, Serialize};
-use wingcheck_model::Config;
+use wingcheck_model::{Config, TimeScheme};
 use wingcheck_sim::ControllerFactory;
 
 pub use assemble::{assemble, finalize, ChunkStream};
 pub use axis::{parse_axes, validate_axes, Axis, Grid, Spacing};
+pub use error::{SearchError, WorkLimit};
 pub use exec::{merge, merge_with, run};
 pub use heatmap::heatmap_svg;
 pub use limits::{WorkEstimate, MAX_CORE_SECONDS, MAX_POINTS, MAX_POINTS_OVERRIDE};
@@ -50,75 +52,6 @@ pub use point::{PointResult, PointVerdicts, Status};
 pub use refine::{boundaries, boundary_csv, BoundaryRow};
 pub use theory::{Theory, TheoryCache, Verdicts};
 pub use verify::ChunkCheck;
-
-/// Errors of a search (a failing point is a status in the results, not an error).
-#[derive(Debug, thiserror::Error)]
-pub enum SearchError {
-    /// An `--over` axis is malformed or makes the configuration invalid.
-    #[error("axis `{axis}`: {reason}")]
-    Axis {
-        /// The axis as given.
-        axis: String,
-        /// What is wrong.
-        reason: String,
-    },
-    /// Bad search options (shard, metric, window, tolerance, chunk size).
-    #[error("{0}")]
-    Options(String),
-    /// A file could not be read or written.
-    #[error("{path}: {detail}")]
-    Io {
-        /// The file.
-        path: String,
-        /// What happened.
-        detail: String,
-    },
-    /// A chunk file is not this search's (another search's, another tool version's, edited, or
-    /// holding points that are not this grid's): refused, never merged or recomputed over.
-    #[error("{path}: {reason}; it is not a chunk of this search (move it away to recompute it)")]
-    Chunk {
-        /// The chunk file.
-        path: String,
-        /// What does not match.
-        reason: String,
-    },
-    /// A directory holds a different search, or shards disagree.
-    #[error("{dir}: {reason}")]
-    Mismatch {
-        /// The directory.
-        dir: String,
-        /// What differs.
-        reason: String,
-    },
-    /// Merging found chunks that no shard has produced.
-    #[error("{missing} of {total} chunks are missing (first: {first:?}); run the missing shards first")]
-    MissingChunks {
-        /// Number missing.
-        missing: usize,
-        /// Number of chunks of the search.
-        total: usize,
-        /// The first few missing chunk numbers.
-        first: Vec<usize>,
-    },
-    /// The search is above a work limit (see [`limits`]).
-    #[error("search too large: {0}")]
-    TooLarge(String),
-    /// An output path cannot be used (its name, its type; [`wingcheck_io::paths`]).
-    #[error(transparent)]
-    Output(#[from] wingcheck_io::IoError),
-    /// The run was stopped through [`RunControl::cancel`] (nothing of this invocation is
-    /// kept in a directory it created).
-    #[error(transparent)]
-    Cancelled(#[from] wingcheck_model::Cancelled),
-    /// A theory computation failed (eigenproblem, SOCP).
-    #[error("theory ({what}): {detail}")]
-    Theory {
-        /// Which computation.
-        what: String,
-        /// What happened.
-        detail: String,
-    },
-}
 
 /// Options that change results (all recorded in the manifest).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
@@ -183,9 +116,9 @@ pub struct Manifest {
     /// Number of chunks.
     pub chunks: usize,
     /// Point numbering.
-    pub point_order: String,
+    pub point_order: PointOrder,
     /// Shard rule.
-    pub sharding: String,
+    pub sharding: Sharding,
     /// Options.
     pub options: SearchOptions,
     /// Metric columns.
@@ -195,7 +128,26 @@ pub struct Manifest {
     /// modal basis, `trbdf2` otherwise); points whose axes change the rule, the controller or the
     /// grid follow the same rule.
     #[serde(default)]
-    pub time_scheme: String,
+    pub time_scheme: TimeScheme,
+}
+
+/// How points are numbered (the manifest's `point_order`, written as the rule in words).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema)]
+pub enum PointOrder {
+    /// Row-major over the axes: the first axis varies slowest ([`Grid`]).
+    #[default]
+    #[serde(rename = "row-major: the first axis varies slowest")]
+    RowMajor,
+}
+
+/// Which shard evaluates which chunk (the manifest's `sharding`, written as the rule in words;
+/// [`Shard::owns`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema)]
+pub enum Sharding {
+    /// Chunk c belongs to shard K/N iff c mod N = K − 1.
+    #[default]
+    #[serde(rename = "chunk c = points [c·chunk_size, (c+1)·chunk_size) belongs to shard K/N iff c mod N = K − 1")]
+    ChunkModulo,
 }
 
 /// A validated search.
@@ -225,21 +177,21 @@ impl Search {
         validate_axes(&base, &axes)?;
         let o = &options;
         if o.chunk_size == 0 {
-            return Err(SearchError::Options("chunk size must be ≥ 1".into()));
+            return Err(SearchError::ChunkSize);
         }
         if let Some(t) = o.refine {
             if !(t > 0.0 && t < 1.0) {
-                return Err(SearchError::Options(format!("--refine {t}: the tolerance must lie in (0, 1)")));
+                return Err(SearchError::RefineTolerance { value: t });
             }
         }
         if let Some(w) = o.window {
             check_window(&base, &axes, w)?;
         }
         if !(1..=64).contains(&o.lyapunov_elements) {
-            return Err(SearchError::Options("lyapunov elements must lie in [1, 64]".into()));
+            return Err(SearchError::LyapunovElements { value: o.lyapunov_elements });
         }
         if o.controller.as_ref().is_some_and(|name| name.trim().is_empty()) {
-            return Err(SearchError::Options("controller: the name of your own controller must not be empty".into()));
+            return Err(SearchError::ControllerName);
         }
         Ok(Search { base, grid: Grid::new(axes), options })
     }
@@ -297,12 +249,8 @@ impl Search {
     pub fn check_controller(&self, controller: Option<ControllerFactory<'_>>) -> Result<(), SearchError> {
         match (&self.options.controller, controller) {
             (Some(_), Some(_)) | (None, None) => Ok(()),
-            (Some(name), None) => Err(SearchError::Options(format!(
-                "the search runs a controller of your own ({name}) and none was handed over"
-            ))),
-            (None, Some(_)) => {
-                Err(SearchError::Options("a controller was handed over but the search options name none".into()))
-            }
+            (Some(name), None) => Err(SearchError::ControllerMissing { name: name.clone() }),
+            (None, Some(_)) => Err(SearchError::ControllerUnexpected),
         }
     }
 
@@ -317,12 +265,11 @@ impl Search {
             axis_specs: self.grid.axes.iter().map(Axis::spec).collect(),
             points: self.points(),
             chunks: self.chunks(),
-            point_order: "row-major: the first axis varies slowest".into(),
-            sharding: "chunk c = points [c·chunk_size, (c+1)·chunk_size) belongs to shard K/N iff c mod N = K − 1"
-                .into(),
+            point_order: PointOrder::RowMajor,
+            sharding: Sharding::ChunkModulo,
             options: self.options.clone(),
             metrics: METRICS.iter().map(|m| m.to_string()).collect(),
-            time_scheme: self.base.expected_time_scheme().name().into(),
+            time_scheme: self.base.expected_time_scheme(),
         }
     }
 
@@ -347,7 +294,7 @@ impl Search {
 /// the horizon would give empty metrics.
 fn check_window(base: &Config, axes: &[Axis], (t0, t1): (f64, f64)) -> Result<(), SearchError> {
     if !(t0.is_finite() && t1.is_finite() && 0.0 <= t0 && t0 < t1) {
-        return Err(SearchError::Options(format!("--window {t0},{t1}: needs finite 0 ≤ t0 < t1 (s)")));
+        return Err(SearchError::WindowOrder { t0, t1 });
     }
     let mut cfgs = vec![base.clone()];
     for a in axes {
@@ -361,10 +308,7 @@ fn check_window(base: &Config, axes: &[Axis], (t0, t1): (f64, f64)) -> Result<()
         let tol = 1e-9 * (1.0 + t1.abs());
         let has_sample = (t1 / dt_out + 1e-9).floor() * dt_out >= t0 - tol || t1 >= t_end - tol;
         if t1 > t_end + tol || !has_sample {
-            return Err(SearchError::Options(format!(
-                "--window {t0},{t1}: must lie inside the horizon [0, {t_end}] s and hold an output sample \
-                 (every {dt_out} s)"
-            )));
+            return Err(SearchError::WindowOutsideHorizon { t0, t1, t_end, dt_out });
         }
     }
     Ok(())
@@ -388,7 +332,7 @@ impl Default for Shard {
 impl std::str::FromStr for Shard {
     type Err = SearchError;
     fn from_str(s: &str) -> Result<Shard, SearchError> {
-        let bad = || SearchError::Options(format!("--shard `{s}`: expected K/N with 1 ≤ K ≤ N"));
+        let bad = || SearchError::Shard { text: s.to_string() };
         let (k, n) = s.split_once('/').ok_or_else(bad)?;
         let (k, n): (usize, usize) = (k.trim().parse().map_err(|_| bad())?, n.trim().parse().map_err(|_| bad())?);
         if k == 0 || k > n {

@@ -4,7 +4,7 @@
 use wingcheck_model::{apply_overrides, Config, TimeScheme};
 
 use crate::axis::{Axis, Spacing};
-use crate::SearchError;
+use crate::{SearchError, WorkLimit};
 
 /// Points a search may have without `--allow-large`. Finalising streams the chunks and keeps
 /// 2 bytes per point (the theory verdicts), on 2-D searches ≈ 140 bytes per point (three plotted
@@ -330,24 +330,14 @@ pub fn check(w: &WorkEstimate, allow_large: bool) -> Result<(), SearchError> {
 
 /// [`check`] naming `flag` as the override (a front end's spelling of `--allow-large`).
 pub fn check_with_flag(w: &WorkEstimate, allow_large: bool, flag: &str) -> Result<(), SearchError> {
-    let what = w.text();
+    let refuse = |limit| Err(SearchError::TooLarge { estimate: Box::new(*w), limit });
     if w.points > MAX_POINTS_OVERRIDE as u128 {
-        return Err(SearchError::TooLarge(format!(
-            "{what}: more than {MAX_POINTS_OVERRIDE} points cannot be searched in one directory \
-             (the heatmaps of a 2-D search are drawn in memory, ≈ 140 bytes per point); \
-             split the axes into several searches"
-        )));
+        return refuse(WorkLimit::Override);
     }
     if !allow_large
         && (w.points > MAX_POINTS as u128 || w.core_seconds > MAX_CORE_SECONDS || w.memory_bytes > MAX_MEMORY_BYTES)
     {
-        return Err(SearchError::TooLarge(format!(
-            "{what}: above the limits of {MAX_POINTS} points, {} core-hours and {} of memory; \
-             pass {flag} to run it anyway (or --shard it over several machines, or use fewer --threads; a \
-             long horizon or a small dt costs memory: an observer signal holds 24 bytes per integrator step)",
-            MAX_CORE_SECONDS / 3600.0,
-            wingcheck_model::work::human_bytes(MAX_MEMORY_BYTES)
-        )));
+        return refuse(WorkLimit::Limits { flag: flag.to_string() });
     }
     Ok(())
 }
@@ -361,7 +351,7 @@ pub fn max_threads() -> usize {
 pub fn check_threads(n: usize) -> Result<(), SearchError> {
     let max = max_threads();
     if n == 0 || n > max {
-        return Err(SearchError::Options(format!("--threads {n}: must lie in [1, {max}] (4 × the cores available)")));
+        return Err(SearchError::Threads { requested: n, max });
     }
     Ok(())
 }

@@ -169,17 +169,24 @@ impl Default for Ranking {
     }
 }
 
+/// A ranking names no metric ([`Ranking`]'s `FromStr`); the message lists the known ones.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("unknown metric `{name}`: use one of {}", METRICS.join(", "))]
+pub struct UnknownMetric {
+    /// The name given (without its `-`).
+    pub name: String,
+}
+
 impl std::str::FromStr for Ranking {
-    type Err = String;
+    type Err = UnknownMetric;
 
     /// `name` (minimised) or `-name` (maximised); an unknown name is an error listing the known.
-    fn from_str(text: &str) -> Result<Self, String> {
+    fn from_str(text: &str) -> Result<Self, UnknownMetric> {
         let (name, maximise) = match text.strip_prefix('-') {
             Some(name) => (name, true),
             None => (text, false),
         };
-        let metric = Metric::from_name(name)
-            .ok_or_else(|| format!("unknown metric `{name}`: use one of {}", METRICS.join(", ")))?;
+        let metric = Metric::from_name(name).ok_or_else(|| UnknownMetric { name: name.to_string() })?;
         Ok(Ranking { metric, maximise })
     }
 }
@@ -263,6 +270,6 @@ mod tests {
         assert_eq!("rms_q_tip_m".parse::<Ranking>(), Ok(Ranking::default()));
         assert_eq!(Ranking::default().to_string(), "rms_q_tip_m");
         assert_eq!(Ranking::default().to_string().parse::<Ranking>(), Ok(Ranking::default()));
-        assert!("-rms_q".parse::<Ranking>().unwrap_err().contains("unknown metric `rms_q`"));
+        assert!("-rms_q".parse::<Ranking>().unwrap_err().to_string().contains("unknown metric `rms_q`"));
     }
 }

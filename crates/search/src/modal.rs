@@ -215,7 +215,7 @@ fn cache_get<T>(map: &Cells<T>, key: String, make: impl FnOnce() -> T) -> Arc<T>
 /// of their keys, so caching never changes a result).
 #[derive(Default)]
 pub struct RunCache {
-    bases: Cells<Result<ModalBasis, String>>,
+    bases: Cells<Option<ModalBasis>>,
     signals: Cells<RecordedSignal>,
     /// [`sup_tilde`] of each signal (it reads the signal and the output sampling and horizon,
     /// which its key contains).
@@ -228,16 +228,17 @@ impl RunCache {
         Self::default()
     }
 
-    /// Modal basis of the wing, under the simulator's key for it ([`ModalBasis::key`]).
-    pub fn basis(&self, cfg: &Config) -> Arc<Result<ModalBasis, String>> {
+    /// Modal basis of the wing, under the simulator's key for it ([`ModalBasis::key`]); `None`
+    /// where the simulator runs `cfg` in another basis, or cannot make this one (the simulator,
+    /// run instead, then says why).
+    pub fn basis(&self, cfg: &Config) -> Arc<Option<ModalBasis>> {
         cache_get(&self.bases, ModalBasis::key(cfg), || {
             // the simulator's own choice of basis (`discretisation.basis`), so a point is run
             // in the modal basis exactly when `simulate` would be
             let disc = wingcheck_sim::Discretisation::new(cfg);
             match wingcheck_sim::resolved_basis(cfg, &disc) {
-                Ok((_, Some(basis))) => Ok(basis),
-                Ok((basis, None)) => Err(format!("the {} basis is selected", basis.name())),
-                Err(e) => Err(e.to_string()),
+                Ok((_, basis)) => basis,
+                Err(_) => None,
             }
         })
     }

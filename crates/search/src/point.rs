@@ -133,9 +133,9 @@ pub fn closed_loop(
     controller: Option<ControllerFactory<'_>>,
 ) -> Result<TipTrace, SimError> {
     match (&*runs.basis(cfg), controller) {
-        (Ok(basis), None) => crate::modal::run(cfg, basis, &runs.signal(cfg)),
-        (Ok(basis), Some(make)) => crate::modal::run_controlled(cfg, basis, make),
-        (Err(_), controller) => {
+        (Some(basis), None) => crate::modal::run(cfg, basis, &runs.signal(cfg)),
+        (Some(basis), Some(make)) => crate::modal::run_controlled(cfg, basis, make),
+        (None, controller) => {
             simulate(cfg, RunOptions { controller, ..Default::default() }).map(|o| TipTrace::from_output(&o))
         }
     }

@@ -68,10 +68,11 @@ fn synthetic_dir(dir: &Path, specs: &[&str]) -> Search {
     let opts = SearchOptions { chunk_size: 64, best_count: 4, ..Default::default() };
     let s = Search::new(Config::paper(), &specs, opts).unwrap();
     store::mkdir(&dir.join(store::CHUNK_DIR)).unwrap();
-    store::write_atomic(&dir.join("manifest.json"), s.manifest_text().as_bytes()).unwrap();
+    wingcheck_io::write_file_atomic(&dir.join("manifest.json"), s.manifest_text().as_bytes()).unwrap();
     for c in 0..s.chunks() {
         let points: Vec<PointResult> = s.chunk_range(c).map(|p| synthetic(&s, p)).collect();
-        store::write_atomic(&store::chunk_path(dir, c), store::chunk_text(&s, c, &points).as_bytes()).unwrap();
+        wingcheck_io::write_file_atomic(&store::chunk_path(dir, c), store::chunk_text(&s, c, &points).as_bytes())
+            .unwrap();
     }
     s
 }
