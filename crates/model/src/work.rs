@@ -89,9 +89,21 @@ pub fn layer_runs(cfg: &Config) -> Vec<LayerRun> {
     while next.dt >= finest * (1.0 - 1e-9) && spent + next.steps <= budget {
         spent += next.steps;
         runs.push(next);
-        next = LayerRun { dt: next.dt / LAYER_REFINEMENT, steps: next.steps * LAYER_REFINEMENT };
+        next = LayerRun { dt: decimal_tenth(next.dt), steps: next.steps * LAYER_REFINEMENT };
     }
     runs
+}
+
+/// `x`/[`LAYER_REFINEMENT`] in decimal: the double nearest `x`'s shortest decimal form with its
+/// exponent lowered by one, so a step typed as 1e-6 s refines to 1e-7 s and prints so (binary
+/// division gives 1.0000000000000002e-7 s, repeated divisions drift further); within two ulps
+/// of the binary quotient x/10.
+pub fn decimal_tenth(x: f64) -> f64 {
+    const _: () = assert!(LAYER_REFINEMENT == 10.0, "decimal_tenth divides by ten");
+    let shifted = format!("{x:e}")
+        .split_once('e')
+        .and_then(|(mantissa, exponent)| Some(format!("{mantissa}e{}", exponent.parse::<i32>().ok()? - 1)));
+    shifted.and_then(|s| s.parse().ok()).unwrap_or(x / LAYER_REFINEMENT)
 }
 
 /// The most steps the initial-layer runs of one `simulate` of `cfg` can take: all of
@@ -497,6 +509,38 @@ impl WorkEstimate {
 
 #[cfg(test)]
 mod tests {
+    use super::*;
+
+    /// The layer's steps are the typed step's decimal tenths (the strings below are the values
+    /// a user reads), each within two ulps of the binary quotient.
+    #[test]
+    fn layer_steps_are_decimal_tenths_of_the_typed_step() {
+        let cases: [(f64, [&str; 4]); 5] = [
+            (1e-3, ["1e-4", "1e-5", "1e-6", "1e-7"]),
+            (1e-4, ["1e-5", "1e-6", "1e-7", "1e-8"]),
+            (5e-4, ["5e-5", "5e-6", "5e-7", "5e-8"]),
+            (2.5e-5, ["2.5e-6", "2.5e-7", "2.5e-8", "2.5e-9"]),
+            (3e-4, ["3e-5", "3e-6", "3e-7", "3e-8"]),
+        ];
+        for (typed, expected) in cases {
+            let mut dt = typed;
+            for want in expected {
+                let next = decimal_tenth(dt);
+                assert_eq!(format!("{next:e}"), want, "from {typed:e}");
+                let quotient = dt / 10.0;
+                assert!((next - quotient).abs() <= 2.0 * (quotient.next_up() - quotient), "{next:e} vs {quotient:e}");
+                dt = next;
+            }
+        }
+        let mut cfg = Config::paper();
+        cfg.discretisation.dt = 1e-3;
+        let steps: Vec<String> = layer_runs(&cfg).iter().map(|r| format!("{:e}", r.dt)).collect();
+        assert!(
+            steps.len() >= 2 && steps.iter().zip(["1e-3", "1e-4", "1e-5", "1e-6", "1e-7"]).all(|(s, w)| s == w),
+            "{steps:?}"
+        );
+    }
+
     use super::WorkEstimate;
     use crate::{apply_overrides, Config};
 
