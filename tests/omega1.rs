@@ -108,3 +108,36 @@ fn the_ledgers_coarse_enclosure_agrees_with_the_certificate_it_cites() {
         }
     }
 }
+
+/// Just outside the certified enclosure the certificate decides the sign of λ2* (> 0 below,
+/// < 0 above), while the float extrapolation of λ2* (→ 0 at ω₁) straddles 0 within its error:
+/// the row then prints the proved sign and calls the float value unresolved, in the finding and
+/// in the quantity's label. Well away from ω₁ the float value shows the sign and prints as is.
+#[test]
+fn near_omega1_the_row_prints_the_proved_sign_of_lambda2_not_an_unresolved_float() {
+    let cfg = paper_with(&[]);
+    let (lo, hi) = {
+        let c = omega1::compute(&cfg).unwrap();
+        (c.1.lower_f64(), c.1.upper_f64())
+    };
+    let tight = |a: f64| {
+        let a_set = format!("control.a={a}");
+        let w = wbounds::check(&paper_with(&["control.b=1", a_set.as_str()]), &CheckSettings::default()).unwrap();
+        (w.evidence.lambda2_tight.clone(), w.row.finding_text(), w.evidence.omega1_enclosure.position())
+    };
+    // a/b 1e-6 below the lower bound and above the upper one (relative): outside the enclosure
+    for (a, position, sign) in
+        [(lo * (1.0 - 1e-6), Position::Below, "> 0"), (hi * (1.0 + 1e-6), Position::Above, "< 0")]
+    {
+        let (l2, finding, at) = tight(a);
+        assert_eq!(at, Some(position));
+        let error = l2.error().unwrap();
+        assert!(l2.value - error <= 0.0 && 0.0 <= l2.value + error, "the float λ2* decides here: {l2:?}");
+        assert!(l2.label.contains(&format!("λ2* {sign} is proved")), "{}", l2.label);
+        assert!(finding.contains(&format!("λ2* {sign} (proved by the certified enclosure")), "{finding}");
+    }
+    // a/b = 0.5 ω₁: the float value is positive beyond its error and prints as it is
+    let (l2, finding, _) = tight(0.25 * (lo + hi));
+    assert!(l2.value - l2.error().unwrap() > 0.0 && !l2.label.contains("unresolved"), "{l2:?}");
+    assert!(finding.contains(&format!("λ2* = {}", l2.pm_text())), "{finding}");
+}

@@ -302,7 +302,7 @@ fn evidence_of(cfg: &Config, c: &Computed) -> WBoundsEvidence {
         lambda1: Quantity::based("λ1(N) = max W/κ (≤ λ1*)", *l1, Unit::JouleSecond, ValueBasis::LowerBound),
     };
     let upper = |label: &str, v: f64| Quantity::based(label, v, Unit::PerSecond, ValueBasis::UpperBound);
-    WBoundsEvidence {
+    let mut ev = WBoundsEvidence {
         a: Quantity::configured("weight a of (15)", a, Unit::Dimensionless),
         b: Quantity::configured("weight b of (15)", b, Unit::Second),
         a_over_b: Quantity::configured("a/b", if b > 0.0 { a / b } else { 0.0 }, Unit::PerSecond),
@@ -357,6 +357,27 @@ fn evidence_of(cfg: &Config, c: &Computed) -> WBoundsEvidence {
         witness_kappa: c
             .witness
             .map(|(_, kx)| Quantity::exact("κ(x) of the witness state (SI values as numbers)", kx, Unit::MixedSi)),
+    };
+    if let Some(sign) = certified_sign_unshown(&ev.lambda2_tight, ev.omega1_enclosure.position()) {
+        let label = format!(
+            "{} (float value unresolved this close to a/b = ω₁: λ2* {sign} is proved by the certified enclosure of ω₁)",
+            ev.lambda2_tight.label
+        );
+        ev.lambda2_tight = ev.lambda2_tight.relabel(label);
+    }
+    ev
+}
+
+/// The sign of λ2* the certificate proves where the float extrapolation, with its error, does
+/// not show it: a/b below the certified enclosure of ω₁ proves W ≻ 0, so λ2* > 0; above it,
+/// λ2* < 0. λ2* → 0 as a/b → ω₁, so close to ω₁ the float value may straddle 0 or even show
+/// the other sign; `None` where the float value agrees or nothing is certified.
+fn certified_sign_unshown(lambda2: &Quantity, position: Option<Position>) -> Option<&'static str> {
+    let error = lambda2.error().unwrap_or(0.0);
+    match position {
+        Some(Position::Below) if lambda2.value - error <= 0.0 => Some("> 0"),
+        Some(Position::Above) if lambda2.value + error >= 0.0 => Some("< 0"),
+        _ => None,
     }
 }
 
@@ -446,11 +467,18 @@ impl Explain for WBoundsEvidence {
                 self.a_over_b_max.pm_text(),
                 fmt(&self.a_over_b)
             ),
-            format!(
-                "The tightest constants are λ2* = {} and λ1* = {}.",
-                self.lambda2_tight.pm_text(),
-                self.lambda1_tight.pm_text()
-            ),
+            match certified_sign_unshown(&self.lambda2_tight, certified) {
+                Some(sign) => format!(
+                    "The tightest constants are λ2* {sign} (proved by the certified enclosure; the float extrapolation, {}, does not resolve it this close to a/b = ω₁) and λ1* = {}.",
+                    self.lambda2_tight.pm_text(),
+                    self.lambda1_tight.pm_text()
+                ),
+                None => format!(
+                    "The tightest constants are λ2* = {} and λ1* = {}.",
+                    self.lambda2_tight.pm_text(),
+                    self.lambda1_tight.pm_text()
+                ),
+            },
         ]
     }
 
