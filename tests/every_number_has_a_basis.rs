@@ -3,7 +3,9 @@
 //! unit and an `error` (with the sources it `covers`) or a named `basis`, or the `error` of such
 //! a quantity, or plot data (the samples behind a figure), or one of the checker's settings
 //! (exact by definition: chosen values), or the layout version `schema_version` of the document
-//! and of its provenance record. A schema-level walk of the JSON, not a spot check.
+//! and of its provenance record. A schema-level walk of the JSON, not a spot check. In the
+//! ftdo-vs-dobc row every simulated value has a ± (from the doubled grid and dt/2), not only
+//! the basis "simulation".
 
 use proptest::prelude::*;
 use serde_json::Value;
@@ -53,6 +55,35 @@ fn bare_numbers(v: &Value, path: &str, out: &mut Vec<String>) {
     }
 }
 
+/// Paths of the simulated values without an error (basis "simulation" only) in the rows whose
+/// every simulated value carries a ± from its refinements (the ftdo-vs-dobc comparison).
+fn simulated_without_error(ledger: &Value) -> Vec<String> {
+    fn walk(v: &Value, path: &str, out: &mut Vec<String>) {
+        match v {
+            Value::Array(a) => a.iter().enumerate().for_each(|(i, x)| walk(x, &format!("{path}[{i}]"), out)),
+            Value::Object(m) => {
+                let quantity = m.contains_key("label") && m.get("value").is_some_and(Value::is_number);
+                if quantity && m.get("basis").and_then(Value::as_str) == Some("simulation") {
+                    out.push(format!("{path} ({})", m.get("label").and_then(Value::as_str).unwrap_or("?")));
+                }
+                for (k, x) in m {
+                    if k != "plots" {
+                        walk(x, &format!("{path}.{k}"), out);
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut out = Vec::new();
+    for (i, row) in ledger["rows"].as_array().expect("rows").iter().enumerate() {
+        if row["id"] == "ftdo-vs-dobc" {
+            walk(row, &format!("$.rows[{i}]"), &mut out);
+        }
+    }
+    out
+}
+
 fn ledger_json(sets: &[String]) -> Value {
     let cfg: Config = apply_overrides(&Config::paper(), sets).expect("valid overrides");
     serde_json::to_value(wingcheck_claims::check_all(&cfg).unwrap()).unwrap()
@@ -64,6 +95,8 @@ fn the_paper_ledger_has_no_bare_number() {
     let mut bare = Vec::new();
     bare_numbers(&v, "$", &mut bare);
     assert!(bare.is_empty(), "{bare:?}");
+    let unbarred = simulated_without_error(&v);
+    assert!(unbarred.is_empty(), "{unbarred:?}");
 }
 
 proptest! {
@@ -88,5 +121,7 @@ proptest! {
         let mut bare = Vec::new();
         bare_numbers(&v, "$", &mut bare);
         prop_assert!(bare.is_empty(), "{:?}", bare);
+        let unbarred = simulated_without_error(&v);
+        prop_assert!(unbarred.is_empty(), "{:?}", unbarred);
     }
 }

@@ -9,6 +9,7 @@
 //! the row.
 
 mod explain;
+mod refine;
 
 use rayon::prelude::*;
 use wingcheck_model::{Config, ControllerKind, ObserverRule};
@@ -21,6 +22,7 @@ use crate::study::Study;
 use crate::ClaimsError;
 
 pub use explain::{check, ComparisonEvidence, RunRecord, SweepRecord, TipDifferences};
+pub use refine::{metric_errors, quotient_error, refinement_error, refinements};
 
 /// Metrics of one run (units: m, rad, N, N m, s).
 #[derive(Debug, Clone, PartialEq)]
@@ -173,6 +175,10 @@ pub struct SweepPoint {
     pub rel: [f64; 4],
     /// Late RMS g̃ DOBC / FTDO (None when FTDO's vanishes).
     pub gtilde_ratio: Option<f64>,
+    /// The errors of `rel` ([`quotient_error`] from the runs' [`metric_errors`]).
+    pub rel_error: [f64; 4],
+    /// The error of `gtilde_ratio`.
+    pub gtilde_ratio_error: Option<f64>,
 }
 
 /// Everything the comparison computes, before it is put into words.
@@ -186,6 +192,13 @@ pub struct Computed {
     pub ftdo_other: Metrics,
     /// DOBC.
     pub dobc: Metrics,
+    /// The errors of `ftdo`'s metrics ([`metric_errors`]; for the explicit rule's RMS τ, its
+    /// `explicit_rms_tau` error, which adds the spread over starts).
+    pub ftdo_error: Metrics,
+    /// The errors of `ftdo_other`'s metrics (likewise).
+    pub ftdo_other_error: Metrics,
+    /// The errors of `dobc`'s metrics.
+    pub dobc_error: Metrics,
     /// Full-rate RMS τ1, τ2 of the explicit-rule FTDO run, and their errors
     /// ([`explicit_rms_error`]: grid + time step + start spread + round-off).
     pub explicit_rms_tau: [(f64, f64); 2],
@@ -221,6 +234,38 @@ impl Computed {
         v.extend(self.sweep.iter().map(|p| p.rel));
         v
     }
+
+    /// The errors of [`Computed::pairs`], in its order.
+    pub fn pair_errors(&self) -> Vec<[f64; 4]> {
+        let mut v = vec![
+            rel_error(&self.ftdo, &self.ftdo_error, &self.dobc, &self.dobc_error),
+            rel_error(&self.ftdo_other, &self.ftdo_other_error, &self.dobc, &self.dobc_error),
+        ];
+        v.extend(self.sweep.iter().map(|p| p.rel_error));
+        v
+    }
+
+    /// [`gtilde_ratio`] at the configured gains with the FTDO of `rule` (the configured one or
+    /// the other), and its error.
+    pub fn gtilde_ratio(&self, configured_rule: bool) -> Option<(f64, f64)> {
+        let (f, fe) =
+            if configured_rule { (&self.ftdo, &self.ftdo_error) } else { (&self.ftdo_other, &self.ftdo_other_error) };
+        gtilde_ratio(f, &self.dobc).zip(gtilde_ratio_error(f, fe, &self.dobc, &self.dobc_error))
+    }
+}
+
+/// The errors of [`rel`]'s four differences from the runs' metric errors.
+fn rel_error(f: &Metrics, f_error: &Metrics, d: &Metrics, d_error: &Metrics) -> [f64; 4] {
+    let (x, dx, y, dy) = (f.tip(), f_error.tip(), d.tip(), d_error.tip());
+    [0, 1, 2, 3].map(|j| quotient_error(x[j], dx[j], y[j], dy[j]))
+}
+
+/// The error of [`gtilde_ratio`].
+fn gtilde_ratio_error(f: &Metrics, f_error: &Metrics, d: &Metrics, d_error: &Metrics) -> Option<f64> {
+    (f.gtilde_late() > 0.0).then(|| {
+        let (dx, dy) = (refine::gtilde_late_error(f_error), refine::gtilde_late_error(d_error));
+        quotient_error(f.gtilde_late(), dx, d.gtilde_late(), dy)
+    })
 }
 
 /// Late RMS g̃ of DOBC over FTDO's (None when FTDO's vanishes).
@@ -301,6 +346,11 @@ impl Runs {
         v
     }
 
+    /// The refinements of every full run ([`refinements`]), for the ± of their metrics.
+    pub fn refined(&self) -> Vec<Config> {
+        self.full().into_iter().flat_map(refinements).collect()
+    }
+
     /// The explicit FTDO's error runs, simulated as statistics runs ([`Study::statistics`]),
     /// the doubled grid's first.
     pub fn error_runs(&self) -> [&Config; 4] {
@@ -360,9 +410,15 @@ pub fn compute(
     let plan = Runs::of(cfg, settings);
     // Every run of the row at once on the pool, the longest first (the study keeps each result,
     // failures included; the reads below find them done).
+    let refined = plan.refined();
     rayon::join(
         || plan.full().par_iter().for_each(|c| drop(study.simulate(c))),
-        || plan.error_runs().par_iter().for_each(|c| drop(study.statistics(c))),
+        || {
+            rayon::join(
+                || plan.error_runs().par_iter().for_each(|c| drop(study.statistics(c))),
+                || refined.par_iter().for_each(|c| drop(study.refinement(c))),
+            )
+        },
     );
     let ftdo = study.simulate(&plan.ftdo)?;
     let other = study.simulate(&plan.other)?;
@@ -386,16 +442,38 @@ pub fn compute(
     });
     let mut sweep = Vec::new();
     for (a, b, f_cfg, d_cfg) in &plan.sweep {
-        let fm = metrics(&*study.simulate(f_cfg)?, settings);
-        let dm = metrics(&*study.simulate(d_cfg)?, settings);
-        sweep.push(SweepPoint { a: *a, b: *b, rel: rel(&fm, &dm), gtilde_ratio: gtilde_ratio(&fm, &dm) });
+        let (fm, fe) = measured(study, f_cfg, settings)?;
+        let (dm, de) = measured(study, d_cfg, settings)?;
+        sweep.push(SweepPoint {
+            a: *a,
+            b: *b,
+            rel: rel(&fm, &dm),
+            gtilde_ratio: gtilde_ratio(&fm, &dm),
+            rel_error: rel_error(&fm, &fe, &dm, &de),
+            gtilde_ratio_error: gtilde_ratio_error(&fm, &fe, &dm, &de),
+        });
     }
+    // the explicit rule's RMS τ: its own error (grid, step, spread over starts, round-off)
+    let with_explicit_tau = |(m, mut e): (Metrics, Metrics), explicit_rule: bool| {
+        if explicit_rule {
+            (e.rms_tau1, e.rms_tau2) = (explicit_rms_tau[0].1, explicit_rms_tau[1].1);
+        }
+        (m, e)
+    };
+    let (ftdo_m, ftdo_error) =
+        with_explicit_tau(measured(study, &plan.ftdo, settings)?, rule == ObserverRule::Explicit);
+    let (other_m, ftdo_other_error) =
+        with_explicit_tau(measured(study, &plan.other, settings)?, rule != ObserverRule::Explicit);
+    let (dobc_m, dobc_error) = measured(study, &plan.dobc, settings)?;
     let d = &cfg.disturbance;
     let computed = Computed {
         rule,
-        ftdo: metrics(&ftdo, settings),
-        ftdo_other: metrics(&other, settings),
-        dobc: metrics(&dobc, settings),
+        ftdo: ftdo_m,
+        ftdo_other: other_m,
+        dobc: dobc_m,
+        ftdo_error,
+        ftdo_other_error,
+        dobc_error,
         explicit_rms_tau,
         explicit_rms_starts,
         explicit_stepper: explicit.stats.stepper,
@@ -404,6 +482,21 @@ pub fn compute(
         zetas: (zeta(&d.tip_bending), zeta(&d.tip_torsion)),
     };
     Ok((computed, ftdo, dobc))
+}
+
+/// The metrics of the run of `cfg` and their errors from its refinements ([`metric_errors`]).
+pub fn measured(study: &Study, cfg: &Config, settings: &CheckSettings) -> Result<(Metrics, Metrics), ClaimsError> {
+    let base = metrics(&*study.simulate(cfg)?, settings);
+    let [fine, half_dt] = refinements(cfg);
+    let (fine, half_dt) = (study.refinement(&fine)?, study.refinement(&half_dt)?);
+    let roundoff = [&fine, &half_dt].iter().filter_map(|o| o.stats.eigenbasis_roundoff).fold(0.0, f64::max);
+    // settling read off the output samples; g̃'s band entry at full rate (the steps) where the
+    // simulator tracks it at the ledger's threshold, else off the output samples too
+    let output = cfg.horizon.sample_every;
+    let band = if settings.gtilde_threshold == metrics::GTILDE_THRESHOLD { cfg.discretisation.dt } else { output };
+    let errors =
+        metric_errors(&base, &metrics(&fine, settings), &metrics(&half_dt, settings), roundoff, [output, band]);
+    Ok((base, errors))
 }
 
 #[cfg(test)]

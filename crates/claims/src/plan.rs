@@ -25,6 +25,8 @@ pub fn check_runs(cfg: &Config, settings: &CheckSettings) -> Vec<Config> {
     let comparison = crate::comparison::Runs::of(cfg, settings);
     runs.extend(comparison.full().into_iter().cloned());
     runs.extend(comparison.error_runs().map(wingcheck_model::work::one_output_interval));
+    // the refinements behind the comparison's ± (Study::refinement)
+    runs.extend(comparison.refined());
     distinct(runs)
 }
 

@@ -22,6 +22,8 @@ pub struct Study {
     runs: Mutex<HashMap<String, Shared>>,
     /// The statistics-only runs ([`Study::statistics`]), apart from the full ones.
     statistics: Mutex<HashMap<String, Shared>>,
+    /// The refinement runs ([`Study::refinement`]).
+    refinements: Mutex<HashMap<String, Shared>>,
     performed: Mutex<usize>,
     /// Handed to every run: once set, the runs stop with `SimError::Cancelled`.
     cancel: wingcheck_model::Cancel,
@@ -77,6 +79,25 @@ impl Study {
         })
     }
 
+    /// A run of `cfg` for its series only, as a refinement of another run's metrics (the
+    /// comparison's ± from the doubled grid and dt/2): every output sample, no fields, no
+    /// initial-layer re-run, no sub-step probe, and the exponential scheme in the closed loop's
+    /// eigenbasis where its round-off estimate is at most
+    /// [`wingcheck_sim::MAX_EIGENBASIS_ROUNDOFF`] (`stats.eigenbasis_roundoff` states it; the
+    /// user adds it to the error). Its series are those of [`Study::simulate`] within that
+    /// estimate; its peaks lack what the layer and the probe add.
+    pub fn refinement(&self, cfg: &Config) -> Result<Arc<SimOutput>, ClaimsError> {
+        self.cached(&self.refinements, cfg, || {
+            let opts = RunOptions {
+                sub_step_probe: wingcheck_sim::SubStepProbe::Off,
+                eigenbasis: Some(wingcheck_sim::MAX_EIGENBASIS_ROUNDOFF),
+                cancel: self.cancel.clone(),
+                ..Default::default()
+            };
+            wingcheck_sim::simulate_base(cfg, opts)
+        })
+    }
+
     fn cached(
         &self,
         map: &Mutex<HashMap<String, Shared>>,
@@ -103,6 +124,7 @@ impl Study {
     pub fn keys(&self) -> Vec<String> {
         let mut keys: Vec<String> = self.runs.lock().expect("study lock").keys().cloned().collect();
         keys.extend(self.statistics.lock().expect("study lock").keys().cloned());
+        keys.extend(self.refinements.lock().expect("study lock").keys().cloned());
         keys.sort();
         keys.dedup();
         keys

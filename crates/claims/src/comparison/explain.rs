@@ -49,32 +49,65 @@ pub struct RunRecord {
     pub gtilde2_settle: Maybe,
 }
 
+/// What a simulated metric's ± covers ([`super::refinement_error`]).
+const REFINED: [ErrorSource; 3] = [ErrorSource::Grid, ErrorSource::TimeStep, ErrorSource::RoundOff];
+
 impl RunRecord {
-    fn of(run: &str, m: &Metrics, settings: &CheckSettings) -> RunRecord {
-        let sim = |label: &str, v: f64, u: Unit| Quantity::based(label, v, u, ValueBasis::Simulation);
-        let settle = |label: String, t: Option<f64>| {
-            Maybe::of(t.map(|t| sim(&label, t, Unit::Second)), || Text::text(label.clone(), NEVER_SETTLED))
+    /// The record of a run with metrics `m` and their errors `e` ([`super::metric_errors`]);
+    /// `spread`: the RMS τ errors include the spread over nudged starts (the explicit rule).
+    fn of(run: &str, m: &Metrics, e: &Metrics, spread: bool, settings: &CheckSettings) -> RunRecord {
+        let sim = |label: &str, v: f64, error: f64, u: Unit| Quantity::with_error(label, v, error, u, &REFINED);
+        let tau_covers: &[ErrorSource] = if spread {
+            &[ErrorSource::Grid, ErrorSource::TimeStep, ErrorSource::Spread, ErrorSource::RoundOff]
+        } else {
+            &REFINED
+        };
+        let tau = |label: &str, v: f64, error: f64, u: Unit| Quantity::with_error(label, v, error, u, tau_covers);
+        let settle = |label: String, t: Option<f64>, error: Option<f64>| {
+            let read = |t: f64| {
+                let covers = [ErrorSource::Grid, ErrorSource::TimeStep, ErrorSource::Sampling, ErrorSource::RoundOff];
+                Quantity::with_error(&label, t, error.unwrap_or(t.abs()), Unit::Second, &covers)
+            };
+            Maybe::of(t.map(read), || Text::text(label.clone(), NEVER_SETTLED))
         };
         let pct = wingcheck_model::quantity::format_value(100.0 * settings.settle_fraction, None);
         let thr = wingcheck_model::quantity::format_value(settings.gtilde_threshold, None);
         RunRecord {
             run: Text::text("run", run),
-            rms_q_full: sim("RMS q(s,t) over [0, t_end]", m.rms_q_full, Unit::Metre),
-            rms_q_late: sim("RMS q(s,t) over [t_end/2, t_end]", m.rms_q_late, Unit::Metre),
-            peak_q: sim("peak |q(s,t)| over [0, t_end]", m.peak_q, Unit::Metre),
-            rms_theta_full: sim("RMS θ(s,t) over [0, t_end]", m.rms_theta_full, Unit::Radian),
-            rms_theta_late: sim("RMS θ(s,t) over [t_end/2, t_end]", m.rms_theta_late, Unit::Radian),
-            peak_theta: sim("peak |θ(s,t)| over [0, t_end]", m.peak_theta, Unit::Radian),
-            settle_q: settle(format!("q(s,t) settles to {pct} % of q(s,0)"), m.settle_q),
-            settle_theta: settle(format!("θ(s,t) settles to {pct} % of θ(s,0)"), m.settle_theta),
-            rms_tau1: sim("RMS τ1 over [0, t_end] (full rate)", m.rms_tau1, Unit::Newton),
-            peak_tau1: sim("peak |τ1| over [0, t_end] (full rate)", m.peak_tau1, Unit::Newton),
-            rms_tau2: sim("RMS τ2 over [0, t_end] (full rate)", m.rms_tau2, Unit::NewtonMetre),
-            peak_tau2: sim("peak |τ2| over [0, t_end] (full rate)", m.peak_tau2, Unit::NewtonMetre),
-            rms_gtilde1_late: sim("RMS g̃1 over [t_end/2, t_end]", m.rms_gtilde_late[0], Unit::Newton),
-            rms_gtilde2_late: sim("RMS g̃2 over [t_end/2, t_end]", m.rms_gtilde_late[1], Unit::NewtonMetre),
-            gtilde1_settle: settle(format!("t_band: |g̃1| stays ≤ {thr} N from (full rate)"), m.gtilde_settle[0]),
-            gtilde2_settle: settle(format!("t_band: |g̃2| stays ≤ {thr} N m from (full rate)"), m.gtilde_settle[1]),
+            rms_q_full: sim("RMS q(s,t) over [0, t_end]", m.rms_q_full, e.rms_q_full, Unit::Metre),
+            rms_q_late: sim("RMS q(s,t) over [t_end/2, t_end]", m.rms_q_late, e.rms_q_late, Unit::Metre),
+            peak_q: sim("peak |q(s,t)| over [0, t_end]", m.peak_q, e.peak_q, Unit::Metre),
+            rms_theta_full: sim("RMS θ(s,t) over [0, t_end]", m.rms_theta_full, e.rms_theta_full, Unit::Radian),
+            rms_theta_late: sim("RMS θ(s,t) over [t_end/2, t_end]", m.rms_theta_late, e.rms_theta_late, Unit::Radian),
+            peak_theta: sim("peak |θ(s,t)| over [0, t_end]", m.peak_theta, e.peak_theta, Unit::Radian),
+            settle_q: settle(format!("q(s,t) settles to {pct} % of q(s,0)"), m.settle_q, e.settle_q),
+            settle_theta: settle(format!("θ(s,t) settles to {pct} % of θ(s,0)"), m.settle_theta, e.settle_theta),
+            rms_tau1: tau("RMS τ1 over [0, t_end] (full rate)", m.rms_tau1, e.rms_tau1, Unit::Newton),
+            peak_tau1: sim("peak |τ1| over [0, t_end] (full rate)", m.peak_tau1, e.peak_tau1, Unit::Newton),
+            rms_tau2: tau("RMS τ2 over [0, t_end] (full rate)", m.rms_tau2, e.rms_tau2, Unit::NewtonMetre),
+            peak_tau2: sim("peak |τ2| over [0, t_end] (full rate)", m.peak_tau2, e.peak_tau2, Unit::NewtonMetre),
+            rms_gtilde1_late: sim(
+                "RMS g̃1 over [t_end/2, t_end]",
+                m.rms_gtilde_late[0],
+                e.rms_gtilde_late[0],
+                Unit::Newton,
+            ),
+            rms_gtilde2_late: sim(
+                "RMS g̃2 over [t_end/2, t_end]",
+                m.rms_gtilde_late[1],
+                e.rms_gtilde_late[1],
+                Unit::NewtonMetre,
+            ),
+            gtilde1_settle: settle(
+                format!("t_band: |g̃1| stays ≤ {thr} N from (full rate)"),
+                m.gtilde_settle[0],
+                e.gtilde_settle[0],
+            ),
+            gtilde2_settle: settle(
+                format!("t_band: |g̃2| stays ≤ {thr} N m from (full rate)"),
+                m.gtilde_settle[1],
+                e.gtilde_settle[1],
+            ),
         }
     }
 }
@@ -94,8 +127,9 @@ pub struct SweepRecord {
     pub gtilde_ratio_late: Option<Quantity>,
 }
 
-fn pct(label: &str, v: f64) -> Quantity {
-    Quantity::based(label, 100.0 * v, Unit::Percent, ValueBasis::Simulation)
+/// A relative difference `v` (a fraction) with its error `e`, in percent.
+fn pct(label: &str, v: f64, e: f64) -> Quantity {
+    Quantity::with_error(label, 100.0 * v, 100.0 * e, Unit::Percent, &REFINED)
 }
 
 /// (DOBC − FTDO)/FTDO of the four tip RMS metrics of one pair of runs.
@@ -112,19 +146,20 @@ pub struct TipDifferences {
 }
 
 impl TipDifferences {
-    fn of(r: &[f64; 4]) -> TipDifferences {
+    fn of(r: &[f64; 4], e: &[f64; 4]) -> TipDifferences {
         TipDifferences {
-            rel_diff_rms_q_full: pct("(DOBC − FTDO)/FTDO of RMS q over [0, t_end]", r[0]),
-            rel_diff_rms_theta_full: pct("(DOBC − FTDO)/FTDO of RMS θ over [0, t_end]", r[1]),
-            rel_diff_rms_q_late: pct("(DOBC − FTDO)/FTDO of RMS q over [t_end/2, t_end]", r[2]),
-            rel_diff_rms_theta_late: pct("(DOBC − FTDO)/FTDO of RMS θ over [t_end/2, t_end]", r[3]),
+            rel_diff_rms_q_full: pct("(DOBC − FTDO)/FTDO of RMS q over [0, t_end]", r[0], e[0]),
+            rel_diff_rms_theta_full: pct("(DOBC − FTDO)/FTDO of RMS θ over [0, t_end]", r[1], e[1]),
+            rel_diff_rms_q_late: pct("(DOBC − FTDO)/FTDO of RMS q over [t_end/2, t_end]", r[2], e[2]),
+            rel_diff_rms_theta_late: pct("(DOBC − FTDO)/FTDO of RMS θ over [t_end/2, t_end]", r[3], e[3]),
         }
     }
 }
 
-fn gratio(v: Option<f64>) -> Option<Quantity> {
-    v.map(|r| {
-        Quantity::based("RMS g̃ over [t_end/2, t_end], DOBC / FTDO", r, Unit::Dimensionless, ValueBasis::Simulation)
+/// The late RMS g̃ ratio DOBC / FTDO with its error.
+fn gratio(v: Option<(f64, f64)>) -> Option<Quantity> {
+    v.map(|(r, e)| {
+        Quantity::with_error("RMS g̃ over [t_end/2, t_end], DOBC / FTDO", r, e, Unit::Dimensionless, &REFINED)
     })
 }
 
@@ -230,14 +265,24 @@ fn error_runs_text(c: &Computed) -> String {
 fn evidence_of(c: &Computed, settings: &CheckSettings) -> ComparisonEvidence {
     let rule = c.rule.name();
     let other = other_rule(c.rule).name();
+    let explicit_here = c.rule == wingcheck_model::ObserverRule::Explicit;
     let pairs = c.pairs();
-    let worst = pairs.iter().flatten().fold(0.0_f64, |m, x| m.max(x.abs()));
+    let pair_errors = c.pair_errors();
+    let with_errors = || pairs.iter().flatten().zip(pair_errors.iter().flatten());
+    // the largest |difference| and the most negative late one, each with its own error
+    let (worst, worst_error) =
+        with_errors().fold((0.0_f64, 0.0), |m, (x, e)| if x.abs() > m.0 { (x.abs(), *e) } else { m });
+    let late_min = pairs
+        .iter()
+        .zip(&pair_errors)
+        .flat_map(|(d, e)| [(d[2], e[2]), (d[3], e[3])])
+        .fold((f64::MAX, 0.0), |m, (x, e)| if x < m.0 { (x, e) } else { m });
     let range = |j: usize| {
         let v = pairs.iter().map(|d| d[j]);
         (v.clone().fold(f64::MAX, f64::min), v.fold(f64::MIN, f64::max))
     };
     let ranges = [range(0), range(1), range(2), range(3)];
-    let ratio = super::gtilde_ratio(&c.ftdo, &c.dobc);
+    let ratio = c.gtilde_ratio(true);
     let margin = settings.indistinguishable;
     let tau = |ch: usize| {
         let (v, e) = c.explicit_rms_tau[ch];
@@ -255,14 +300,20 @@ fn evidence_of(c: &Computed, settings: &CheckSettings) -> ComparisonEvidence {
         runs: Table::new(
             "the runs at the configured gains",
             vec![
-                RunRecord::of(&format!("FTDO, {rule} rule"), &c.ftdo, settings),
-                RunRecord::of("DOBC", &c.dobc, settings),
-                RunRecord::of(&format!("FTDO, {other} rule"), &c.ftdo_other, settings),
+                RunRecord::of(&format!("FTDO, {rule} rule"), &c.ftdo, &c.ftdo_error, explicit_here, settings),
+                RunRecord::of("DOBC", &c.dobc, &c.dobc_error, false, settings),
+                RunRecord::of(
+                    &format!("FTDO, {other} rule"),
+                    &c.ftdo_other,
+                    &c.ftdo_other_error,
+                    !explicit_here,
+                    settings,
+                ),
             ],
         ),
-        rel: TipDifferences::of(&c.here()),
+        rel: TipDifferences::of(&c.here(), &pair_errors[0]),
         gtilde_ratio_late: gratio(ratio),
-        gtilde_ratio_late_other_rule: gratio(super::gtilde_ratio(&c.ftdo_other, &c.dobc))
+        gtilde_ratio_late_other_rule: gratio(c.gtilde_ratio(false))
             .map(|q| q.relabel(format!("RMS g̃ over [t_end/2, t_end], DOBC / FTDO with the {other} rule"))),
         explicit_rms_tau1: tau(0),
         explicit_rms_tau2: tau(1),
@@ -282,23 +333,20 @@ fn evidence_of(c: &Computed, settings: &CheckSettings) -> ComparisonEvidence {
                 .map(|p| SweepRecord {
                     a: Quantity::configured("a", p.a, Unit::Dimensionless),
                     b: Quantity::configured("b", p.b, Unit::Second),
-                    rel: TipDifferences::of(&p.rel),
-                    gtilde_ratio_late: gratio(p.gtilde_ratio),
+                    rel: TipDifferences::of(&p.rel, &p.rel_error),
+                    gtilde_ratio_late: gratio(p.gtilde_ratio.zip(p.gtilde_ratio_error)),
                 })
                 .collect(),
         ),
-        max_abs_rel_diff_tip: pct("largest |tip RMS difference| over the sweep and both rules", worst),
-        late_min_rel_diff: pct(
-            "most negative late-window difference (< 0: DOBC smaller)",
-            ranges[2].0.min(ranges[3].0),
-        ),
+        max_abs_rel_diff_tip: pct("largest |tip RMS difference| over the sweep and both rules", worst, worst_error),
+        late_min_rel_diff: pct("most negative late-window difference (< 0: DOBC smaller)", late_min.0, late_min.1),
         tip_response_clearly_better: Flag::new(
-            "DOBC worse by more than the margin in every tip metric of every pair",
-            pairs.iter().flatten().all(|&x| x > margin),
+            "DOBC worse by more than the margin, beyond the error, in every tip metric of every pair",
+            with_errors().all(|(x, e)| x - e > margin),
         ),
         gtilde_clearly_smaller: Flag::new(
-            "FTDO's late g̃ smaller than DOBC's by more than the margin",
-            ratio.is_some_and(|r| r > 1.0 + margin),
+            "FTDO's late g̃ smaller than DOBC's by more than the margin, beyond the error",
+            ratio.is_some_and(|(r, e)| r - e > 1.0 + margin),
         ),
         indistinguishable: Quantity::exact("indistinguishability margin", 100.0 * margin, Unit::Percent),
         zeta1: Quantity::based("ζ1 = sup |g1|", c.zetas.0, Unit::Newton, ValueBasis::ClosedForm),
@@ -378,7 +426,11 @@ impl Explain for ComparisonEvidence {
         let [fq, ft, lq, lt] = self.ranges;
         let (lo, hi) = (fq.0.min(ft.0).min(lq.0).min(lt.0), fq.1.max(ft.1).max(lq.1).max(lt.1));
         let g = match &self.gtilde_ratio_late {
-            Some(r) => format!("RMS g̃ on [t_end/2, t_end]: DOBC/FTDO = {}", r.value_text()),
+            // four significant digits on the one line (the ± and the full value are in the row)
+            Some(r) => format!(
+                "RMS g̃ on [t_end/2, t_end]: DOBC/FTDO ≈ {}",
+                wingcheck_model::quantity::with_significant(r.value, 4)
+            ),
             None => "FTDO's g̃ on [t_end/2, t_end] vanishes".into(),
         };
         format!("{g}; tip RMS DOBC − FTDO: {}", fmt_pct_range((lo, hi)))

@@ -56,12 +56,19 @@ type Slot<T> = Arc<Mutex<Option<Arc<T>>>>;
 #[derive(Debug)]
 pub(crate) struct Memo<T, K = Key> {
     slots: Mutex<Vec<(K, Slot<T>)>>,
+    /// Set-ups kept ([`CAPACITY`] unless [`Memo::keeping`] says otherwise).
+    capacity: usize,
 }
 
 impl<T, K: PartialEq + Clone> Memo<T, K> {
     /// An empty memo.
     pub(crate) const fn new() -> Memo<T, K> {
-        Memo { slots: Mutex::new(Vec::new()) }
+        Memo::keeping(CAPACITY)
+    }
+
+    /// An empty memo that keeps `capacity` set-ups.
+    pub(crate) const fn keeping(capacity: usize) -> Memo<T, K> {
+        Memo { slots: Mutex::new(Vec::new()), capacity }
     }
 
     /// The set-up for `key`: the kept one, or `make()`'s (kept unless it failed). A run that
@@ -78,7 +85,7 @@ impl<T, K: PartialEq + Clone> Memo<T, K> {
         Ok(made)
     }
 
-    /// The slot of `key`, a new empty one (the oldest leaving beyond [`CAPACITY`]) where none is kept.
+    /// The slot of `key`, a new empty one (the oldest leaving beyond the capacity) where none is kept.
     fn slot(&self, key: &K) -> Slot<T> {
         let mut slots = self.slots.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
         if let Some((_, slot)) = slots.iter().find(|(k, _)| k == key) {
@@ -86,7 +93,7 @@ impl<T, K: PartialEq + Clone> Memo<T, K> {
         }
         let slot: Slot<T> = Arc::new(Mutex::new(None));
         slots.push((key.clone(), Arc::clone(&slot)));
-        if slots.len() > CAPACITY {
+        if slots.len() > self.capacity {
             slots.remove(0);
         }
         slot

@@ -55,8 +55,10 @@ pub use signal::{ObserverSignal, RecordedSignal, Replay, SampleInput};
 use wing_modes::wing_modes;
 pub use wing_modes::BasisQuality;
 
-/// The modal bases kept for the next run of the same wing and grid ([`ModalBasis::of_config`]).
-static BASES: memo::Memo<ModalBasis, String> = memo::Memo::new();
+/// The modal bases kept for the next run of the same wing and grid ([`ModalBasis::of_config`]):
+/// four, a ledger's grid and its doubled grid with and without the exponential scheme (which
+/// [`ModalBasis::key`] tells apart); a few MB each at the basis's 3 072-unknown limit.
+static BASES: memo::Memo<ModalBasis, String> = memo::Memo::keeping(4);
 
 /// The wing in its modal basis (units: ω² in 1/s², modal coordinates in √kg·m).
 #[derive(Debug, Clone)]
@@ -110,8 +112,7 @@ impl ModalBasis {
     /// [`ModalBasis::of`] `disc`, which must be `cfg`'s discretisation
     /// (`Discretisation::new(cfg)`), or a copy of the basis kept from an earlier run under the
     /// same [`ModalBasis::key`]: the same bits, the basis being a deterministic function of the
-    /// key's inputs (a ledger makes 17 runs at 96 elements of one wing; [`memo`] keeps two
-    /// bases). Failures are not kept.
+    /// key's inputs (a ledger makes 17 runs at 96 elements of one wing; four bases are kept). Failures are not kept.
     pub fn of_config(cfg: &Config, disc: &Discretisation) -> Result<ModalBasis, SimError> {
         debug_assert_eq!(disc.dim(), Discretisation::new(cfg).dim(), "the discretisation of another config");
         BASES.get_or_try(ModalBasis::key(cfg), || ModalBasis::of(disc)).map(|kept| (*kept).clone())

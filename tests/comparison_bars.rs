@@ -1,0 +1,84 @@
+//! The ± of the ftdo-vs-dobc row's simulated values (from the doubled grid and dt/2) against a
+//! much finer run of the same loop: four times the elements and a quarter of the step. Every
+//! metric of the configured run lies within its ± of the fine run's value.
+
+use wingcheck_claims::comparison::{measured, metrics, Metrics};
+use wingcheck_claims::{CheckSettings, Study};
+use wingcheck_model::{apply_overrides, Config};
+
+/// (name, value, error) of every metric (settling times where the run settles).
+fn fields(m: &Metrics, e: &Metrics) -> Vec<(&'static str, Option<f64>, Option<f64>)> {
+    let v = |x: f64, dx: f64| (Some(x), Some(dx));
+    let list = [
+        ("rms_q_full", v(m.rms_q_full, e.rms_q_full)),
+        ("rms_q_late", v(m.rms_q_late, e.rms_q_late)),
+        ("peak_q", v(m.peak_q, e.peak_q)),
+        ("rms_theta_full", v(m.rms_theta_full, e.rms_theta_full)),
+        ("rms_theta_late", v(m.rms_theta_late, e.rms_theta_late)),
+        ("peak_theta", v(m.peak_theta, e.peak_theta)),
+        ("settle_q", (m.settle_q, e.settle_q)),
+        ("settle_theta", (m.settle_theta, e.settle_theta)),
+        ("rms_tau1", v(m.rms_tau1, e.rms_tau1)),
+        ("peak_tau1", v(m.peak_tau1, e.peak_tau1)),
+        ("rms_tau2", v(m.rms_tau2, e.rms_tau2)),
+        ("peak_tau2", v(m.peak_tau2, e.peak_tau2)),
+        ("rms_gtilde1_late", v(m.rms_gtilde_late[0], e.rms_gtilde_late[0])),
+        ("rms_gtilde2_late", v(m.rms_gtilde_late[1], e.rms_gtilde_late[1])),
+    ];
+    list.into_iter().map(|(n, (x, dx))| (n, x, dx)).collect()
+}
+
+#[test]
+fn every_bar_covers_a_run_on_four_times_the_elements_at_a_quarter_step() {
+    let settings = CheckSettings::default();
+    let cases: [&[&str]; 5] = [
+        &["control.kind=ftdo", "observer.rule=explicit"],
+        &["control.kind=ftdo"],
+        &["control.kind=dobc"],
+        &["control.kind=ftdo", "control.a=0.5", "control.b=20", "wing.xi=0.3"],
+        &["control.kind=dobc", "discretisation.method=fd", "discretisation.grading=0", "control.k1=3"],
+    ];
+    for sets in cases {
+        let mut over: Vec<String> = vec!["horizon.t_end=4".into()];
+        over.extend(sets.iter().map(|s| s.to_string()));
+        let cfg: Config = apply_overrides(&Config::paper(), &over).unwrap();
+        let study = Study::new();
+        let (m, e) = measured(&study, &cfg, &settings).unwrap();
+        let mut fine = cfg.clone();
+        fine.discretisation.elements *= 4;
+        fine.discretisation.fd_points = 4 * (fine.discretisation.fd_points - 1) + 1;
+        fine.discretisation.dt /= 4.0;
+        let reference = metrics(&study.simulate(&fine).unwrap(), &settings);
+        let zero = metric_zero();
+        for ((name, x, dx), (_, r, _)) in fields(&m, &e).into_iter().zip(fields(&reference, &zero)) {
+            match (x, dx, r) {
+                (Some(x), Some(dx), Some(r)) => {
+                    println!("{sets:?} {name}: {x:.6e} ± {dx:.1e}, fine {r:.6e} (off by {:.1e})", (x - r).abs());
+                    assert!((x - r).abs() <= dx, "{sets:?} {name}: {x:e} ± {dx:e} misses the fine run's {r:e}");
+                }
+                (None, _, None) => {}
+                other => panic!("{sets:?} {name}: settles in one run only: {other:?}"),
+            }
+        }
+    }
+}
+
+fn metric_zero() -> Metrics {
+    Metrics {
+        rms_q_full: 0.0,
+        rms_q_late: 0.0,
+        peak_q: 0.0,
+        rms_theta_full: 0.0,
+        rms_theta_late: 0.0,
+        peak_theta: 0.0,
+        settle_q: Some(0.0),
+        settle_theta: Some(0.0),
+        rms_tau1: 0.0,
+        peak_tau1: 0.0,
+        rms_tau2: 0.0,
+        peak_tau2: 0.0,
+        rms_gtilde_full: [0.0; 2],
+        rms_gtilde_late: [0.0; 2],
+        gtilde_settle: [Some(0.0); 2],
+    }
+}
