@@ -163,7 +163,12 @@ fn sim_kind(e: &SimError) -> ErrorKind {
     match e {
         SimError::Config(ConfigError::Read { .. }) => ErrorKind::Input,
         SimError::Config(_) | SimError::HorizonEnded { .. } => ErrorKind::Config,
-        SimError::Numerical(_) | SimError::NoModalBasis { .. } => ErrorKind::Numerical,
+        SimError::Numerical(_)
+        | SimError::NoModalBasis { .. }
+        | SimError::ExponentialNeedsModal(_)
+        | SimError::RefinementScheme { .. }
+        | SimError::EndedEarlier { .. }
+        | SimError::Thread(_) => ErrorKind::Numerical,
         SimError::Diverged { t, .. } => ErrorKind::Diverged { t: *t },
         SimError::Cancelled(_) => ErrorKind::Cancelled,
         SimError::Control(c) => ErrorKind::Controller { t: control_time(c) },

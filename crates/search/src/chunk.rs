@@ -109,66 +109,65 @@ pub fn read_chunk(dir: &Path, search: &Search, c: usize) -> Result<Option<Vec<Po
     match std::fs::symlink_metadata(&path) {
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
         Err(source) => return Err(SearchError::FileSystem { path, source }),
-        Ok(m) if !m.is_file() => return Err(foreign(&path, "not a regular file".into())),
+        Ok(m) if !m.is_file() => return Err(foreign(&path, ChunkProblem::NotAFile)),
         Ok(_) => {}
     }
     let text = read(&path)?;
     parse_chunk(&text, search, c).map(Some).map_err(|reason| foreign(&path, reason))
 }
 
-fn foreign(path: &Path, reason: String) -> SearchError {
+fn foreign(path: &Path, reason: ChunkProblem) -> SearchError {
     SearchError::Chunk { path: path.display().to_string(), reason }
 }
 
 /// The points of chunk text, checked against the search (the reason when it is not its chunk).
-fn parse_chunk(text: &str, search: &Search, c: usize) -> Result<Vec<PointResult>, String> {
-    let (head, body) = text.split_once('\n').ok_or("no header line")?;
-    let h: Header = serde_json::from_str(head).map_err(|e| format!("no valid chunk header ({e})"))?;
+fn parse_chunk(text: &str, search: &Search, c: usize) -> Result<Vec<PointResult>, ChunkProblem> {
+    let (head, body) = text.split_once('\n').ok_or(ChunkProblem::NoHeader)?;
+    let h: Header = serde_json::from_str(head).map_err(ChunkProblem::Header)?;
     if h.format != CHUNK_FORMAT {
-        return Err(format!("format {:?}, expected {CHUNK_FORMAT:?}", h.format));
+        return Err(ChunkProblem::Format { found: h.format });
     }
     if h.tool != TOOL {
-        return Err(format!("written by {}, this is {TOOL}", h.tool));
+        return Err(ChunkProblem::Tool { found: h.tool });
     }
     if h.search != search.identity() {
-        return Err("written for another search (its manifest — base config, axes or options — differs)".into());
+        return Err(ChunkProblem::OtherSearch);
     }
     let range = search.chunk_range(c);
     if h.chunk != c || h.first != range.start || h.points != range.len() {
-        return Err(format!(
-            "header says chunk {} with points {}..{}, expected chunk {c} with points {}..{}",
-            h.chunk,
-            h.first,
-            h.first + h.points,
-            range.start,
-            range.end
-        ));
+        return Err(ChunkProblem::Range {
+            chunk: h.chunk,
+            points: h.first..h.first + h.points,
+            expected_chunk: c,
+            expected: range,
+        });
     }
     if sha256_hex(body.as_bytes()) != h.sha256 {
-        return Err("its points do not hash to the header's sha256 (edited or truncated)".into());
+        return Err(ChunkProblem::Hash);
     }
     let mut out = Vec::with_capacity(range.len());
     for (line, index) in body.lines().zip(range.clone()) {
-        let l: ChunkLine = serde_json::from_str(line).map_err(|e| format!("point {index}: {e}"))?;
-        out.push(point(l, search, index).map_err(|e| format!("point {index}: {e}"))?);
+        let at = |problem| ChunkProblem::Point { index, problem };
+        let l: ChunkLine = serde_json::from_str(line).map_err(|e| at(PointProblem::Json(e)))?;
+        out.push(point(l, search, index).map_err(at)?);
     }
     if out.len() != range.len() || body.lines().count() != range.len() {
-        return Err(format!("{} point lines, expected {}", body.lines().count(), range.len()));
+        return Err(ChunkProblem::LineCount { found: body.lines().count(), expected: range.len() });
     }
     Ok(out)
 }
 
 /// A point line checked against the grid.
-fn point(l: ChunkLine, search: &Search, index: usize) -> Result<PointResult, String> {
+fn point(l: ChunkLine, search: &Search, index: usize) -> Result<PointResult, PointProblem> {
     if l.index != index {
-        return Err(format!("index {} where {index} belongs", l.index));
+        return Err(PointProblem::Index { found: l.index, expected: index });
     }
     let want = search.grid.texts(index);
     if l.values != want {
-        return Err(format!("values {:?}, the grid has {want:?} there", l.values));
+        return Err(PointProblem::Values { found: l.values, grid: want });
     }
     if l.metrics.len() != METRICS.len() {
-        return Err(format!("{} metrics, expected {}", l.metrics.len(), METRICS.len()));
+        return Err(PointProblem::MetricCount { found: l.metrics.len(), expected: METRICS.len() });
     }
     let mut metrics = Vec::with_capacity(METRICS.len());
     for (name, m) in METRICS.iter().zip(&l.metrics) {
@@ -176,16 +175,16 @@ fn point(l: ChunkLine, search: &Search, index: usize) -> Result<PointResult, Str
             None => None,
             Some(s) => match s.parse::<f64>() {
                 Ok(x) if x.is_finite() => Some(x),
-                _ => return Err(format!("metric {name} = {s:?} is not a finite number")),
+                _ => return Err(PointProblem::Metric { name: name.clone(), text: s.clone() }),
             },
         });
     }
     if (l.status == Status::Ok) != l.message.is_empty() {
-        return Err(format!("status {} with message {:?}", l.status.name(), l.message));
+        return Err(PointProblem::Status { status: l.status.name(), message: l.message });
     }
     for (name, x) in [("sim_seconds", l.sim_seconds), ("theory_seconds", l.theory_seconds)] {
         if !(x.is_finite() && x >= 0.0) {
-            return Err(format!("{name} = {x} is not a finite time"));
+            return Err(PointProblem::Time { name, seconds: x });
         }
     }
     Ok(PointResult {
@@ -199,4 +198,134 @@ fn point(l: ChunkLine, search: &Search, index: usize) -> Result<PointResult, Str
         sim_seconds: l.sim_seconds,
         theory_seconds: l.theory_seconds,
     })
+}
+
+/// Why a chunk file is not a complete chunk of this search ([`SearchError::Chunk`]).
+#[derive(Debug, thiserror::Error)]
+pub enum ChunkProblem {
+    /// The path is not a regular file.
+    #[error("not a regular file")]
+    NotAFile,
+    /// No newline ends a header line.
+    #[error("no header line")]
+    NoHeader,
+    /// The header line is not a chunk header.
+    #[error("no valid chunk header ({0})")]
+    Header(#[source] serde_json::Error),
+    /// The header names another format.
+    #[error("format {found:?}, expected {CHUNK_FORMAT:?}")]
+    Format {
+        /// The header's format.
+        found: String,
+    },
+    /// Another version of the tool wrote it.
+    #[error("written by {found}, this is {TOOL}")]
+    Tool {
+        /// The header's tool.
+        found: String,
+    },
+    /// Another search's chunk.
+    #[error("written for another search (its manifest — base config, axes or options — differs)")]
+    OtherSearch,
+    /// The header's chunk or point range is not this file's.
+    #[error(
+        "header says chunk {chunk} with points {}..{}, expected chunk {expected_chunk} with points {}..{}",
+        points.start,
+        points.end,
+        expected.start,
+        expected.end
+    )]
+    Range {
+        /// The header's chunk.
+        chunk: usize,
+        /// The header's points.
+        points: std::ops::Range<usize>,
+        /// The chunk the file is named for.
+        expected_chunk: usize,
+        /// Its points.
+        expected: std::ops::Range<usize>,
+    },
+    /// The point lines do not hash to the header's sha256.
+    #[error("its points do not hash to the header's sha256 (edited or truncated)")]
+    Hash,
+    /// A point line is wrong.
+    #[error("point {index}: {problem}")]
+    Point {
+        /// The point's index in the grid.
+        index: usize,
+        /// What is wrong.
+        problem: PointProblem,
+    },
+    /// Not one line per point.
+    #[error("{found} point lines, expected {expected}")]
+    LineCount {
+        /// Lines found.
+        found: usize,
+        /// Points of the chunk.
+        expected: usize,
+    },
+    /// A stored point recomputes differently ([`crate::verify::difference`]).
+    #[error("point {index} recomputes differently ({why}): edited, or written by another build")]
+    Recomputed {
+        /// The point's index in the grid.
+        index: usize,
+        /// The first difference.
+        why: String,
+    },
+}
+
+/// What is wrong with a point line of a chunk ([`ChunkProblem::Point`]).
+#[derive(Debug, thiserror::Error)]
+pub enum PointProblem {
+    /// The line is not a point's JSON.
+    #[error(transparent)]
+    Json(serde_json::Error),
+    /// The line's index is another point's.
+    #[error("index {found} where {expected} belongs")]
+    Index {
+        /// The line's index.
+        found: usize,
+        /// The index of its place.
+        expected: usize,
+    },
+    /// The axis values are not the grid's at this index.
+    #[error("values {found:?}, the grid has {grid:?} there")]
+    Values {
+        /// The line's values.
+        found: Vec<String>,
+        /// The grid's.
+        grid: Vec<String>,
+    },
+    /// Not one metric per [`METRICS`] entry.
+    #[error("{found} metrics, expected {expected}")]
+    MetricCount {
+        /// Metrics found.
+        found: usize,
+        /// [`METRICS`]' length.
+        expected: usize,
+    },
+    /// A metric that is not a finite number.
+    #[error("metric {name} = {text:?} is not a finite number")]
+    Metric {
+        /// The metric's name.
+        name: String,
+        /// Its text.
+        text: String,
+    },
+    /// `ok` with a message, or another status without one.
+    #[error("status {status} with message {message:?}")]
+    Status {
+        /// The status's name.
+        status: &'static str,
+        /// The message.
+        message: String,
+    },
+    /// A CPU time (s) that is not finite and non-negative.
+    #[error("{name} = {seconds} is not a finite time")]
+    Time {
+        /// `sim_seconds` or `theory_seconds`.
+        name: &'static str,
+        /// The time (s).
+        seconds: f64,
+    },
 }

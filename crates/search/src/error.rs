@@ -197,7 +197,7 @@ pub enum SearchError {
         /// The chunk file.
         path: String,
         /// What does not match.
-        reason: String,
+        reason: crate::chunk::ChunkProblem,
     },
     /// A directory holds a different search, or shards disagree.
     #[error("{dir}: {reason}")]

@@ -123,10 +123,7 @@ impl<'a> Verifier<'a> {
             let fresh = search.evaluate_with(stored.index, theory, runs, controller);
             difference(stored, &fresh).map(|why| SearchError::Chunk {
                 path: path.clone(),
-                reason: format!(
-                    "point {} recomputes differently ({why}): edited, or written by another build",
-                    stored.index
-                ),
+                reason: crate::chunk::ChunkProblem::Recomputed { index: stored.index, why },
             })
         });
         bad.map_or(Ok(()), Err)

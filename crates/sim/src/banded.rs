@@ -6,7 +6,7 @@
 //! Written by hand because no maintained crate offers a banded SPD factorisation in pure Rust.
 
 use crate::sparse::SymMatrix;
-use crate::SimError;
+use crate::NumericalError;
 
 /// Half-bandwidth max |i − j| over the stored entries of `a`.
 pub fn half_bandwidth(a: &SymMatrix) -> usize {
@@ -48,7 +48,7 @@ pub struct BandedCholesky {
 
 impl BandedCholesky {
     /// Factorise `a` (bandwidth from its pattern). Errors if `a` is not positive definite.
-    pub fn new(a: &SymMatrix) -> Result<BandedCholesky, SimError> {
+    pub fn new(a: &SymMatrix) -> Result<BandedCholesky, NumericalError> {
         let n = a.dim();
         let bw = half_bandwidth(a).max(1);
         // Dense band l[i][k] = L[i][i − bw + k], k = 0..=bw (k = bw is the diagonal).
@@ -68,9 +68,7 @@ impl BandedCholesky {
                 d -= v * v;
             }
             if !(d > 0.0 && d.is_finite()) {
-                return Err(SimError::Numerical(format!(
-                    "step matrix is not positive definite (pivot {d:e} at row {j})"
-                )));
+                return Err(NumericalError::Pivot { what: "step matrix", pivot: d, row: j });
             }
             let ljj = d.sqrt();
             l[row_j + bw] = ljj;
@@ -237,6 +235,6 @@ mod tests {
         let mut b = SymBuilder::new(2);
         b.add(0, 0, 1.0);
         b.add(1, 1, -1.0);
-        assert!(matches!(BandedCholesky::new(&b.build()), Err(SimError::Numerical(_))));
+        assert!(matches!(BandedCholesky::new(&b.build()), Err(NumericalError::Pivot { .. })));
     }
 }

@@ -10,7 +10,7 @@ use serde::Serialize;
 use wingcheck_model::{Config, Method};
 
 use crate::estimate::Estimate;
-use crate::{simulate, Peaks, RunOptions, SimError, SimOutput};
+use crate::{simulate, Peaks, RunOptions, SchemeObstacle, SimError, SimOutput};
 
 /// Tolerance the default grids are chosen to meet: absolute error on q(s,t) (m) and θ(s,t)
 /// (rad) over the whole horizon, switch-on included.
@@ -342,14 +342,16 @@ pub fn simulate_with_error(cfg: &Config, opts: RunOptions<'_>) -> Result<Estimat
     let scheme = output.stats.stepper;
     space_cfg.discretisation.stepper = scheme;
     time_cfg.discretisation.stepper = scheme;
+    let obstacle = |reason: SchemeObstacle| SimError::RefinementScheme {
+        grid: space_cfg.discretisation.grid_size(),
+        unit: if space_cfg.discretisation.method == Method::Fe { "elements" } else { "intervals" },
+        scheme,
+        reason,
+    };
     let space = simulate(&space_cfg, refined()).map_err(|e| match e {
-        SimError::Numerical(reason) | SimError::NoModalBasis { reason } => SimError::Numerical(format!(
-            "the spatial refinement ({} {}) cannot run the base run's {} scheme: {reason}; \
-             set discretisation.stepper=trbdf2 to estimate with TR-BDF2, or use a coarser grid",
-            space_cfg.discretisation.grid_size(),
-            if space_cfg.discretisation.method == Method::Fe { "elements" } else { "intervals" },
-            scheme.name()
-        )),
+        SimError::Numerical(reason) => obstacle(reason.into()),
+        SimError::NoModalBasis { reason } => obstacle(reason.into()),
+        SimError::ExponentialNeedsModal(reason) => obstacle(reason.into()),
         other => other,
     })?;
     let time = simulate(&time_cfg, refined())?;

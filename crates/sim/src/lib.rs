@@ -24,6 +24,7 @@ pub mod layer;
 pub mod metrics;
 pub mod modal;
 pub mod modes;
+pub mod numerical;
 pub mod output;
 pub mod run;
 pub mod sparse;
@@ -37,6 +38,7 @@ pub use error_estimate::{
     PeakEstimate, PeakEstimates, SubStepCheck, ThirdGrid, RICHARDSON_2, TIP_TOLERANCE,
 };
 pub use estimate::Estimate;
+pub use numerical::{ExponentialNeedsModal, ModalBasisError, NumericalError, SchemeObstacle};
 pub use run::{
     check_sample, resolved_basis, simulate, simulate_base, windowed_rms, BoxedController, ControllerFactory, Envelope,
     Fields, RunOptions, RunStats, Series, SimOutput, SubStepProbe, MAX_EIGENBASIS_ROUNDOFF,
@@ -54,15 +56,45 @@ pub enum SimError {
     Config(#[from] wingcheck_model::ConfigError),
     /// A linear-algebra step failed (e.g. a matrix that should be positive definite is not).
     #[error("numerical failure: {0}")]
-    Numerical(String),
+    Numerical(#[from] NumericalError),
     /// The modal basis of the discretisation cannot be built, or fails its orthonormality
     /// check (too many unknowns, a failed eigen-solve): the `auto` basis then steps in the nodal
-    /// basis instead; an explicit `modal` or the exponential scheme reports it.
+    /// basis instead; an explicit `modal` reports it.
     #[error("no modal basis: {reason}")]
     NoModalBasis {
         /// Why not.
-        reason: String,
+        reason: ModalBasisError,
     },
+    /// `discretisation.stepper = exponential` on a discretisation without a modal basis.
+    #[error("numerical failure: {0}")]
+    ExponentialNeedsModal(#[from] ExponentialNeedsModal),
+    /// A refinement of [`simulate_with_error`] (the doubled grid) cannot run the base run's
+    /// time scheme.
+    #[error(
+        "numerical failure: the spatial refinement ({grid} {unit}) cannot run the base run's {} scheme: {reason}; \
+         set discretisation.stepper=trbdf2 to estimate with TR-BDF2, or use a coarser grid",
+        scheme.name()
+    )]
+    RefinementScheme {
+        /// The refined grid (elements or intervals).
+        grid: usize,
+        /// "elements" or "intervals".
+        unit: &'static str,
+        /// The base run's time scheme.
+        scheme: wingcheck_model::TimeScheme,
+        /// Why the refined run cannot use it.
+        reason: SchemeObstacle,
+    },
+    /// A loop stepped from outside ([`SteppedRun`]) was asked for a sample after its run ended
+    /// with an error (`why`, that error's message, already reported once).
+    #[error("the run ended earlier: {why}; call reset()")]
+    EndedEarlier {
+        /// The message of the error that ended the run.
+        why: String,
+    },
+    /// The thread of a [`SteppedRun`] could not be started.
+    #[error("cannot start the stepping thread: {0}")]
+    Thread(#[source] std::io::Error),
     /// The run was stopped through [`RunOptions::cancel`].
     #[error(transparent)]
     Cancelled(#[from] wingcheck_model::Cancelled),

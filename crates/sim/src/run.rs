@@ -10,7 +10,7 @@ use wingcheck_model::{Config, StepBasis, TimeScheme, Unit};
 
 use crate::modal::ModalBasis;
 use crate::stepper::{Peaks, Sample, Stepper};
-use crate::{Discretisation, Interpolation, SimError};
+use crate::{Discretisation, ExponentialNeedsModal, Interpolation, SimError};
 
 /// Sampled time series of the closed loop (column-oriented; all columns have equal length).
 #[derive(Debug, Clone, Default, Serialize, PartialEq, schemars::JsonSchema)]
@@ -403,10 +403,7 @@ pub fn resolved_basis(cfg: &Config, disc: &Discretisation) -> Result<(StepBasis,
     let needs_modal = cfg.discretisation.stepper == wingcheck_model::TimeScheme::Exponential;
     let modal = || {
         ModalBasis::of_config(cfg, disc).map_err(|e| match e {
-            SimError::NoModalBasis { reason } if needs_modal => SimError::Numerical(format!(
-                "discretisation.stepper = exponential needs the modal basis: {reason}; \
-                 use discretisation.stepper=trbdf2 (or auto) or a coarser grid"
-            )),
+            SimError::NoModalBasis { reason } if needs_modal => ExponentialNeedsModal { reason }.into(),
             other => other,
         })
     };

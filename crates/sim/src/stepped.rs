@@ -108,7 +108,7 @@ impl Ended {
         match self {
             Ended::Horizon => SimError::HorizonEnded { t_end },
             Ended::Diverged { t, reason } => SimError::Diverged { t: *t, reason: reason.clone() },
-            Ended::Failed(why) => SimError::Numerical(format!("the run ended earlier: {why}; call reset()")),
+            Ended::Failed(why) => SimError::EndedEarlier { why: why.clone() },
         }
     }
 }
@@ -138,7 +138,7 @@ impl SteppedRun {
                 };
                 simulate_base(&cfg, RunOptions { controller: Some(&make), ..Default::default() }).map(drop)
             })
-            .map_err(|e| SimError::Numerical(format!("cannot start the stepping thread: {e}")))?;
+            .map_err(SimError::Thread)?;
         let mut run = SteppedRun {
             inputs: Some(input_tx),
             samples: sample_rx,

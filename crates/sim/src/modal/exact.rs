@@ -29,7 +29,7 @@ use std::sync::Arc;
 use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, Par, Side};
 
-use crate::SimError;
+use crate::{NumericalError, SimError};
 
 use super::gemv::RowMajor;
 use super::memo::{Key, Memo};
@@ -93,7 +93,7 @@ fn compress(l: &Mat<f64>) -> Result<Mat<f64>, SimError> {
     let gram = Mat::from_fn(k, k, |i, j| 0.5 * (gram[(i, j)] + gram[(j, i)]));
     let evd = gram
         .self_adjoint_eigen(Side::Lower)
-        .map_err(|e| SimError::Numerical(format!("exponential scheme: Gramian eigenproblem: {e:?}")))?;
+        .map_err(|_| NumericalError::Decomposition { what: "exponential scheme: the Gramian eigenproblem" })?;
     let top = (0..k).map(|i| evd.S()[i]).fold(0.0, f64::max);
     let keep: Vec<usize> = (0..k).filter(|&i| evd.S()[i] > GRAMIAN_CUTOFF * top).collect();
     let v = Mat::from_fn(k, keep.len(), |r, c| evd.U()[(r, keep[c])]);
@@ -224,7 +224,7 @@ impl ExactStep {
     pub(crate) fn new(basis: &ModalBasis, co: &LoopCoefficients, h: f64) -> Result<ExactStep, SimError> {
         let n = basis.len();
         if basis.omega2.iter().any(|w| !(w.is_finite() && *w > 0.0)) {
-            return Err(SimError::Numerical("exponential scheme: a mode with ω² ≤ 0".into()));
+            return Err(NumericalError::NonPositiveMode.into());
         }
         let omega: Vec<f64> = basis.omega2.iter().map(|w| w.sqrt()).collect();
         let tip_states = if co.xi > 0.0 { 2 } else { 0 };
@@ -232,11 +232,11 @@ impl ExactStep {
         let (a, outputs) = closed_loop(basis, co, &omega, tip_states);
         let norm = (0..len).map(|j| (0..len).map(|i| a[(i, j)].abs()).sum::<f64>()).fold(0.0, f64::max);
         if !(norm.is_finite() && h.is_finite() && h > 0.0) {
-            return Err(SimError::Numerical(format!("exponential scheme: ‖A‖₁ = {norm:e}, h = {h:e}")));
+            return Err(NumericalError::StepNorm { norm, h }.into());
         }
         let doublings = ((norm * h / START_NORM).log2().ceil().max(0.0)) as u32;
         if doublings > 200 {
-            return Err(SimError::Numerical(format!("exponential scheme: ‖A‖₁h = {:e} is out of range", norm * h)));
+            return Err(NumericalError::StepNormRange { norm_h: norm * h }.into());
         }
         let s0 = h / 2f64.powi(doublings as i32);
         let a_s0 = Mat::from_fn(len, len, |i, j| a[(i, j)] * s0);
@@ -252,9 +252,9 @@ impl ExactStep {
         let terms = TAYLOR_DEGREE + 1;
         let hilbert = Mat::from_fn(terms, terms, |j, k| s0 / (j + k + 1) as f64);
         let hilbert_root = {
-            let evd = hilbert
-                .self_adjoint_eigen(Side::Lower)
-                .map_err(|e| SimError::Numerical(format!("exponential scheme: Taylor Gramian: {e:?}")))?;
+            let evd = hilbert.self_adjoint_eigen(Side::Lower).map_err(|_| NumericalError::Decomposition {
+                what: "exponential scheme: the Taylor Gramian's eigenproblem",
+            })?;
             let top = (0..terms).map(|i| evd.S()[i]).fold(0.0, f64::max);
             let keep: Vec<usize> = (0..terms).filter(|&i| evd.S()[i] > GRAMIAN_CUTOFF * top).collect();
             Mat::from_fn(terms, keep.len(), |r, c| evd.U()[(r, keep[c])] * evd.S()[keep[c]].sqrt())
@@ -345,7 +345,7 @@ impl ExactStep {
             );
         let operator = RowMajor::new(&operator);
         if !operator.is_finite() {
-            return Err(SimError::Numerical("exponential scheme: e^{Ah} or a τ Gramian is not finite".into()));
+            return Err(NumericalError::NotFinite { what: "exponential scheme: e^{Ah} or a τ Gramian" }.into());
         }
         let probe = probe.finish(h, &e);
         Ok(ExactStep { n, tip_states, omega, operator, ranks, probe })

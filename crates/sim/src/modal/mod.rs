@@ -44,7 +44,7 @@ mod woodbury;
 
 use wingcheck_model::{Config, MODAL_MAX_UNKNOWNS};
 
-use crate::{Discretisation, SimError};
+use crate::{Discretisation, ModalBasisError, SimError};
 
 pub use controlled::{controlled_loop, measurement, ControlledSignal, StepQuadrature};
 pub use drive::{drive, Reads, Recorder, Signal};
@@ -121,24 +121,20 @@ impl ModalBasis {
     /// Modal basis of a given discretisation.
     /// Every failure is a [`SimError::NoModalBasis`] naming its reason.
     pub fn of(disc: &Discretisation) -> Result<ModalBasis, SimError> {
-        let no_basis = |reason: String| SimError::NoModalBasis { reason };
+        let no_basis = |reason: ModalBasisError| SimError::NoModalBasis { reason };
         let n = disc.dim();
         if n > MODAL_MAX_UNKNOWNS {
-            return Err(no_basis(format!(
-                "{n} unknowns: above the modal basis's {MODAL_MAX_UNKNOWNS} (one dense O(n³) SVD)"
-            )));
+            return Err(no_basis(ModalBasisError::TooManyUnknowns { n, max: MODAL_MAX_UNKNOWNS }));
         }
-        let (omega2, phi, quality) = wing_modes(disc).map_err(|e| match e {
-            SimError::Numerical(reason) => no_basis(reason),
-            other => other,
-        })?;
+        let (omega2, phi, quality) = wing_modes(disc).map_err(|e| no_basis(e.into()))?;
         if !(quality.mass_defect <= MASS_TOLERANCE && quality.frequency_error <= FREQUENCY_TOLERANCE) {
-            return Err(no_basis(format!(
-                "modal basis of {n} unknowns is orthonormal only to {:.1e} in M (tolerance \
-                 {MASS_TOLERANCE:.0e}), its frequencies bounded only to {:.1e} relative (tolerance \
-                 {FREQUENCY_TOLERANCE:.0e})",
-                quality.mass_defect, quality.frequency_error
-            )));
+            return Err(no_basis(ModalBasisError::Unchecked {
+                n,
+                mass_defect: quality.mass_defect,
+                mass_tolerance: MASS_TOLERANCE,
+                frequency_error: quality.frequency_error,
+                frequency_tolerance: FREQUENCY_TOLERANCE,
+            }));
         }
         let tip = [disc.tip_q, disc.tip_theta].map(|d| (0..n).map(|i| phi[(d, i)]).collect::<Vec<f64>>());
         let load = (0..n).map(|i| (0..n).map(|r| phi[(r, i)] * disc.load[r]).sum()).collect();

@@ -28,7 +28,7 @@ use faer::{Mat, Par};
 use serde::Serialize;
 
 use crate::banded::BandedCholesky;
-use crate::{Discretisation, SimError};
+use crate::{Discretisation, NumericalError};
 
 /// How well a modal basis Φ (columns M-normalised, ω_i² ascending) diagonalises the pencil
 /// (K, M), measured after the solve from the Gram matrices ΦᵀMΦ = I + G and
@@ -50,22 +50,23 @@ pub struct BasisQuality {
 }
 
 /// The modes of `disc`: ω_i² ascending and Φ (n × n, column i the mode of ω_i²), with the
-/// measured quality of the basis. Fails with [`SimError::Numerical`] if a factor is not
+/// measured quality of the basis. Fails with a [`NumericalError`] if a factor is not
 /// positive definite, the strain factorisation is not square, or the SVD fails.
-pub(crate) fn wing_modes(disc: &Discretisation) -> Result<(Vec<f64>, Mat<f64>, BasisQuality), SimError> {
+pub(crate) fn wing_modes(disc: &Discretisation) -> Result<(Vec<f64>, Mat<f64>, BasisQuality), NumericalError> {
     let n = disc.dim();
     if disc.strain.rows.len() != n {
-        return Err(SimError::Numerical(format!(
-            "the strain factorisation has {} rows for {n} unknowns (must be square)",
-            disc.strain.rows.len()
-        )));
+        return Err(NumericalError::NotSquare {
+            what: "the strain factorisation",
+            rows: disc.strain.rows.len(),
+            unknowns: n,
+        });
     }
-    let chol = BandedCholesky::new(&disc.mass)
-        .map_err(|_| SimError::Numerical("mass matrix is not positive definite".into()))?;
+    let chol =
+        BandedCholesky::new(&disc.mass).map_err(|_| NumericalError::NotPositiveDefinite { what: "mass matrix" })?;
     let f = compliance_factor(disc, &chol);
     let (sigma, u) = left_singular(&f)?;
     if sigma.iter().any(|s| !(s.is_finite() && *s > 0.0)) {
-        return Err(SimError::Numerical("stiffness matrix is not positive definite (a zero singular value)".into()));
+        return Err(NumericalError::ZeroSingularValue { what: "stiffness matrix" });
     }
     // σ descending = ω² ascending
     let omega2: Vec<f64> = sigma.iter().map(|s| 1.0 / (s * s)).collect();
@@ -93,16 +94,15 @@ fn compliance_factor(disc: &Discretisation, chol: &BandedCholesky) -> Mat<f64> {
 }
 
 /// The singular values (descending) and left singular vectors of the square `f`.
-fn left_singular(f: &Mat<f64>) -> Result<(Vec<f64>, Mat<f64>), SimError> {
+fn left_singular(f: &Mat<f64>) -> Result<(Vec<f64>, Mat<f64>), NumericalError> {
     let n = f.nrows();
     let params = Default::default();
     let need = svd::svd_scratch::<f64>(n, n, ComputeSvdVectors::Full, ComputeSvdVectors::No, Par::Seq, params);
-    let mut buf = MemBuffer::try_new(need)
-        .map_err(|_| SimError::Numerical(format!("no memory for the SVD of a {n} x {n} matrix")))?;
+    let mut buf = MemBuffer::try_new(need).map_err(|_| NumericalError::NoMemory { what: "the SVD", n })?;
     let mut s = faer::diag::Diag::<f64>::zeros(n);
     let mut u = Mat::<f64>::zeros(n, n);
     svd::svd(f.as_ref(), s.as_mut(), Some(u.as_mut()), None, Par::Seq, MemStack::new(&mut buf), params)
-        .map_err(|e| SimError::Numerical(format!("the modal SVD failed: {e:?}")))?;
+        .map_err(|_| NumericalError::Decomposition { what: "the modal SVD" })?;
     Ok(((0..n).map(|i| s[i]).collect(), u))
 }
 

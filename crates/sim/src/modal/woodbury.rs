@@ -15,7 +15,7 @@
 //! [`ModalLoop`]: super::ModalLoop
 
 use super::ModalBasis;
-use crate::SimError;
+use crate::{NumericalError, SimError};
 
 /// Modes per pack: the width of the partial sums.
 pub(crate) const LANES: usize = 8;
@@ -99,7 +99,7 @@ impl StepSolve {
         let g = [[1.0 + wk[0] * q[0][0], wk[0] * q[0][1]], [wk[1] * q[1][0], 1.0 + wk[1] * q[1][1]]];
         let det = g[0][0] * g[1][1] - g[0][1] * g[1][0];
         if !(det.is_finite() && det > 0.0) {
-            return Err(SimError::Numerical(format!("step matrix capacitance is singular (det {det:e})")));
+            return Err(NumericalError::Singular { what: "step matrix capacitance", det }.into());
         }
         let gi = [[g[1][1] / det, -g[0][1] / det], [-g[1][0] / det, g[0][0] / det]];
         let hm = [[gi[0][0] * wk[0], gi[0][1] * wk[1]], [gi[1][0] * wk[0], gi[1][1] * wk[1]]];

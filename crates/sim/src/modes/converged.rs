@@ -10,7 +10,7 @@ use wingcheck_model::{Config, Method};
 
 use super::eigen::lowest_eigenvalues;
 use crate::estimate::{observed_order, romberg_table, Estimate};
-use crate::{Discretisation, SimError};
+use crate::{Discretisation, NumericalError, SimError};
 
 /// Default relative tolerance on every frequency's error estimate.
 pub const DEFAULT_MODE_TOLERANCE: f64 = 1e-9;
@@ -61,6 +61,12 @@ pub struct ConvergedModes {
     pub raw: Vec<Vec<f64>>,
 }
 
+/// Smallest relative tolerance of [`converged_frequencies`] (double precision resolves no
+/// finer extrapolation).
+pub const MIN_TOLERANCE: f64 = 1e-13;
+/// Most frequencies [`converged_frequencies`] converges at once.
+pub const MAX_COUNT: usize = 50;
+
 fn uniform(cfg: &Config) -> Config {
     let mut c = cfg.clone();
     c.discretisation.grading = 0.0;
@@ -68,14 +74,14 @@ fn uniform(cfg: &Config) -> Config {
 }
 
 /// The `count` lowest frequencies of the configured wing, converged to relative tolerance
-/// `tol` (≥ 1e-13) by extrapolation over uniform meshes of `method`. Cost at the paper's
+/// `tol` (≥ [`MIN_TOLERANCE`]; 1 ≤ `count` ≤ [`MAX_COUNT`]) by extrapolation over uniform meshes of `method`. Cost at the paper's
 /// point and count = 5: meshes 16…256 for the default tolerance, a few ms to tens of ms.
 pub fn converged_frequencies(cfg: &Config, method: Method, count: usize, tol: f64) -> Result<ConvergedModes, SimError> {
-    if !(tol.is_finite() && tol >= 1e-13) {
-        return Err(SimError::Numerical(format!("mode tolerance {tol:e} out of range: use a value >= 1e-13")));
+    if !(tol.is_finite() && tol >= MIN_TOLERANCE) {
+        return Err(NumericalError::ModeTolerance { tol, min: MIN_TOLERANCE }.into());
     }
-    if count == 0 || count > 50 {
-        return Err(SimError::Numerical(format!("mode count {count} out of range: use 1..=50")));
+    if count == 0 || count > MAX_COUNT {
+        return Err(NumericalError::ModeCount { count, max: MAX_COUNT }.into());
     }
     let cfg = uniform(cfg);
     let mut n = COARSEST.max((2 * count).next_power_of_two());

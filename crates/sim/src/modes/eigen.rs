@@ -10,7 +10,7 @@
 use faer::{Mat, Side};
 
 use crate::sparse::SymMatrix;
-use crate::{Discretisation, SimError};
+use crate::{Discretisation, NumericalError, SimError};
 
 /// One computed eigenvalue λ = ω² with the bound on its eigen-solver error.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -71,15 +71,12 @@ pub fn lowest_eigenvalues(disc: &Discretisation, count: usize) -> Result<Vec<Rit
     let mass = &disc.mass;
     let n = mass.dim();
     if disc.strain.rows.len() != n {
-        return Err(SimError::Numerical(format!(
-            "strain form has {} rows for {n} unknowns (must be square)",
-            disc.strain.rows.len()
-        )));
+        return Err(NumericalError::NotSquare { what: "strain form", rows: disc.strain.rows.len(), unknowns: n }.into());
     }
     let mut work = Vec::new();
     let mut solve = |b: &mut [f64]| disc.strain.solve_in_place(b, &mut work);
     if count == 0 || count > n {
-        return Err(SimError::Numerical(format!("asked for {count} eigenvalues of a pencil of dimension {n}")));
+        return Err(NumericalError::EigenCount { count, dim: n }.into());
     }
     let p = wingcheck_model::work::modes_block(count, n);
     let mut q = start_vectors(n, p);
@@ -93,7 +90,7 @@ pub fn lowest_eigenvalues(disc: &Discretisation, count: usize) -> Result<Vec<Rit
     let mut w = vec![vec![0.0; n]; p];
     for _iter in 0..wingcheck_model::work::MODES_ITERATIONS_MAX {
         if !m_orthonormalise(mass, &mut q, &mut mq) {
-            return Err(SimError::Numerical("subspace iteration lost rank (degenerate start block)".into()));
+            return Err(NumericalError::LostRank.into());
         }
         // W = K⁻¹ M Q; A = (MQ)ᵀ W is the M-symmetric Ritz matrix of μ.
         for j in 0..p {
@@ -107,7 +104,7 @@ pub fn lowest_eigenvalues(disc: &Discretisation, count: usize) -> Result<Vec<Rit
         });
         let eig = a
             .self_adjoint_eigen(Side::Lower)
-            .map_err(|e| SimError::Numerical(format!("Ritz eigenproblem failed: {e:?}")))?;
+            .map_err(|_| NumericalError::Decomposition { what: "the Ritz eigenproblem" })?;
         let s = eig.S();
         let u = eig.U();
         let mut order: Vec<usize> = (0..p).collect();
@@ -134,10 +131,7 @@ pub fn lowest_eigenvalues(disc: &Discretisation, count: usize) -> Result<Vec<Rit
             mass.mul_into(&r, &mut tmp);
             let rnorm = r.iter().zip(&tmp).map(|(a, b)| a * b).sum::<f64>().max(0.0).sqrt();
             if mu[c].is_nan() || mu[c] <= 0.0 {
-                return Err(SimError::Numerical(format!(
-                    "non-positive Ritz value {:e} (K not positive definite?)",
-                    mu[c]
-                )));
+                return Err(NumericalError::NonPositiveRitz { value: mu[c] }.into());
             }
             if rnorm > 1e-10 * mu[c] {
                 converged = false;
@@ -158,8 +152,9 @@ pub fn lowest_eigenvalues(disc: &Discretisation, count: usize) -> Result<Vec<Rit
         }
         q = y;
     }
-    Err(SimError::Numerical(format!(
-        "subspace iteration did not converge in {} iterations",
-        wingcheck_model::work::MODES_ITERATIONS_MAX
-    )))
+    Err(NumericalError::NoConvergence {
+        what: "subspace iteration",
+        iterations: wingcheck_model::work::MODES_ITERATIONS_MAX,
+    }
+    .into())
 }
