@@ -1,6 +1,6 @@
 //! The ± of the ftdo-vs-dobc row's simulated values (from the doubled grid and dt/2) against a
 //! much finer run of the same loop: four times the elements and a quarter of the step. Every
-//! metric of the configured run lies within its ± of the fine run's value.
+//! metric of the configured run lies within its ± of the fine run's value; so do ζ3, ζ4.
 
 use wingcheck_claims::comparison::{measured, metrics, Metrics};
 use wingcheck_claims::{CheckSettings, Study};
@@ -59,6 +59,28 @@ fn every_bar_covers_a_run_on_four_times_the_elements_at_a_quarter_step() {
                 (None, _, None) => {}
                 other => panic!("{sets:?} {name}: settles in one run only: {other:?}"),
             }
+        }
+    }
+}
+
+/// ζ3, ζ4 (sup |g̃| of the FTDO run, mu-conditions) within their ± of the fine run's.
+#[test]
+fn the_zeta_bars_cover_the_fine_run() {
+    for sets in [&["horizon.t_end=4"][..], &["horizon.t_end=4", "observer.rule=explicit", "wing.xi=0.3"]] {
+        let over: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        let cfg: Config = apply_overrides(&Config::paper(), &over).unwrap();
+        let study = Study::new();
+        let bounds = study.disturbance_bounds(&cfg).unwrap();
+        let errors = study.zeta_errors(&cfg).unwrap();
+        let mut fine = cfg.clone();
+        fine.control.kind = wingcheck_model::ControllerKind::Ftdo;
+        fine.discretisation.elements *= 4;
+        fine.discretisation.dt /= 4.0;
+        let out = study.simulate(&fine).unwrap();
+        for (ch, zeta) in [bounds.zeta3, bounds.zeta4].into_iter().enumerate() {
+            let r = wingcheck_sim::metrics::observer_error_sup(&out, ch);
+            println!("{sets:?} ζ{}: {zeta:e} ± {:e}, fine {r:e}", ch + 3, errors[ch]);
+            assert!((zeta - r).abs() <= errors[ch], "{sets:?} ζ{}: {zeta:e} ± {:e} misses {r:e}", ch + 3, errors[ch]);
         }
     }
 }

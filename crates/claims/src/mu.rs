@@ -86,6 +86,8 @@ pub struct Computed {
     pub grid: (usize, usize, usize),
     /// g_hmax, ζ3, ζ4.
     pub bounds: DisturbanceBounds,
+    /// The errors of ζ3, ζ4 ([`Study::zeta_errors`]).
+    pub zeta_errors: [f64; 2],
     /// The ε/λ-optimal point (configured gains if satisfiable, else a/b = r*/2, same b).
     pub best: Option<BestPoint>,
     /// clarabel's min ε at the best point's λ3, re-verified.
@@ -115,6 +117,7 @@ pub fn compute(cfg: &Config, study: &Study, settings: &CheckSettings) -> Result<
     let weights_positive = a > 0.0 && b > 0.0;
     let r_star = ratio_boundary(cfg);
     let bounds = study.disturbance_bounds(cfg)?;
+    let zeta_errors = study.zeta_errors(cfg)?;
     let (mut agree, mut accepted, mut tried) = (0, 0, 0);
     if r_star > 0.0 && b > 0.0 {
         for i in 0..24 {
@@ -142,6 +145,7 @@ pub fn compute(cfg: &Config, study: &Study, settings: &CheckSettings) -> Result<
         r_star,
         grid: (agree, accepted, tried),
         bounds,
+        zeta_errors,
         best,
         epsilon_socp,
     })

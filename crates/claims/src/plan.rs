@@ -15,7 +15,10 @@ pub fn check_runs(cfg: &Config, settings: &CheckSettings) -> Vec<Config> {
     // mu-conditions: ζ3, ζ4 from the FTDO run at the configured gains
     let mut ftdo = cfg.clone();
     ftdo.control.kind = ControllerKind::Ftdo;
+    // and their errors from its refinements (Study::zeta_errors)
+    let refined = crate::comparison::refinements(&ftdo);
     runs.push(ftdo);
+    runs.extend(refined);
     // UUB: the configured run, and the FTDO at the operating point (when (32) can hold)
     runs.push(cfg.clone());
     if let Some((a, b)) = crate::mu::operating_point(cfg) {

@@ -145,4 +145,19 @@ impl Study {
             zeta4: wingcheck_sim::metrics::observer_error_sup(&out, 1),
         })
     }
+
+    /// The errors of ζ3, ζ4 ([`Study::disturbance_bounds`]) from the FTDO run's refinements on
+    /// the doubled grid and at dt/2 ([`crate::comparison::refinement_error`]; the same runs as
+    /// the comparison's FTDO refinements at the configured rule, so no extra simulation there).
+    pub fn zeta_errors(&self, cfg: &Config) -> Result<[f64; 2], ClaimsError> {
+        let mut c = cfg.clone();
+        c.control.kind = ControllerKind::Ftdo;
+        let base = self.simulate(&c)?;
+        let [fine, half_dt] = crate::comparison::refinements(&c);
+        let (fine, half_dt) = (self.refinement(&fine)?, self.refinement(&half_dt)?);
+        let roundoff = [&fine, &half_dt].iter().filter_map(|o| o.stats.eigenbasis_roundoff).fold(0.0, f64::max);
+        let sup = wingcheck_sim::metrics::observer_error_sup;
+        Ok([0, 1]
+            .map(|ch| crate::comparison::refinement_error(sup(&base, ch), sup(&fine, ch), sup(&half_dt, ch), roundoff)))
+    }
 }

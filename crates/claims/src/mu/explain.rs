@@ -1,6 +1,6 @@
 //! The mu-conditions row's evidence (labelled quantities), its verdict and its words.
 
-use wingcheck_model::{Config, Quantity, Unit, ValueBasis};
+use wingcheck_model::{Config, ErrorSource, Quantity, Unit, ValueBasis};
 
 use super::{compute, ratio_boundary, Computed, MuData};
 use crate::convex::{check_lambda3, CrossCheck};
@@ -195,17 +195,19 @@ fn evidence_of(cfg: &Config, c: &Computed, settings: &CheckSettings) -> MuEviden
             Unit::NewtonPerMetre,
             ValueBasis::SearchMaximum,
         ),
-        zeta3: Quantity::based(
+        zeta3: Quantity::with_error(
             "ζ3 = sup |g̃1| over [0, t_end] of the FTDO run",
             c.bounds.zeta3,
+            c.zeta_errors[0],
             Unit::Newton,
-            ValueBasis::Simulation,
+            &[ErrorSource::Grid, ErrorSource::TimeStep, ErrorSource::RoundOff],
         ),
-        zeta4: Quantity::based(
+        zeta4: Quantity::with_error(
             "ζ4 = sup |g̃2| over [0, t_end] of the FTDO run",
             c.bounds.zeta4,
+            c.zeta_errors[1],
             Unit::NewtonMetre,
-            ValueBasis::Simulation,
+            &[ErrorSource::Grid, ErrorSource::TimeStep, ErrorSource::RoundOff],
         ),
         best_at_configured: Flag::new("the best point is at the configured gains", c.obstruction.is_none()),
         best: c.best.as_ref().map(|p| BestPointEvidence::of(p, settings.mu_lambda1_elements)),
