@@ -249,6 +249,13 @@ fn lemma_texts_follow_the_span_and_the_exponent() {
     assert!(e.lemma2_counterexample.printed_violated.value);
 }
 
+/// `cfg` with the FTDO controller (the study's [`Study::ftdo`] run).
+fn study_ftdo(cfg: &wingcheck_model::Config) -> wingcheck_model::Config {
+    let mut c = cfg.clone();
+    c.control.kind = wingcheck_model::ControllerKind::Ftdo;
+    c
+}
+
 #[test]
 fn each_distinct_simulation_runs_once() {
     let study = Study::new();
@@ -257,9 +264,13 @@ fn each_distinct_simulation_runs_once() {
     let b = study.ftdo(&cfg).unwrap();
     assert!(std::sync::Arc::ptr_eq(&a, &b));
     assert_eq!(study.simulations_run(), 1);
-    // the mu row's FTDO run at the paper's gains is the configured run (kind = ftdo)
+    // the mu row's FTDO run at the paper's gains is the configured run (kind = ftdo); the row
+    // adds only its two refinements (ζ3, ζ4's ±), which the comparison's FTDO shares
     mu::check(&cfg, &study, &CheckSettings::default()).unwrap();
-    assert_eq!(study.simulations_run(), 1);
+    assert_eq!(study.simulations_run(), 3);
+    let plan = wingcheck_claims::comparison::Runs::of(&cfg, &CheckSettings::default());
+    let shared = wingcheck_claims::comparison::refinements(&study_ftdo(&cfg));
+    assert!(shared.iter().all(|c| plan.refined().contains(c)), "the comparison refines the same FTDO run");
     // two threads asking for the same run at once: it runs once, both get it
     let other = short(&["control.a=0.7"]);
     let (x, y) = std::thread::scope(|s| {
@@ -268,7 +279,7 @@ fn each_distinct_simulation_runs_once() {
         (x.join().unwrap(), y.join().unwrap())
     });
     assert!(std::sync::Arc::ptr_eq(&x, &y));
-    assert_eq!(study.simulations_run(), 2);
+    assert_eq!(study.simulations_run(), 4);
 }
 
 /// docs/ledger.md documents the JSON shape with an example: its top-level keys, row keys and
