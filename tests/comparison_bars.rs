@@ -104,3 +104,35 @@ fn metric_zero() -> Metrics {
         gtilde_settle: [Some(0.0); 2],
     }
 }
+
+/// The finite-time rows' digital-run values (band entry, σ after it, g̃, ĝ and τ jumps per
+/// sample) within their ± of the same runs on four times the elements at a quarter of the step.
+#[test]
+fn the_digital_run_bars_cover_the_fine_runs() {
+    let settings = CheckSettings::default();
+    let cfg: Config = apply_overrides(&Config::paper(), &["horizon.t_end=2".to_string()]).unwrap();
+    let base = wingcheck_claims::finite_time::digital_runs(&cfg, &settings).unwrap();
+    let mut fine_cfg = cfg.clone();
+    fine_cfg.discretisation.elements *= 4;
+    fine_cfg.discretisation.dt /= 4.0;
+    let fine = wingcheck_claims::finite_time::digital_runs(&fine_cfg, &settings).unwrap();
+    assert_eq!(base.t_end, fine.t_end, "the horizon follows from the disturbances and gains only");
+    for ((b, f), errors) in base.runs.iter().zip(fine.runs.iter()).zip(base.errors.iter()) {
+        for ch in 0..2 {
+            let (x, r, e) = (&b.channels[ch], &f.channels[ch], &errors[ch]);
+            let values = [
+                ("sigma_after_max", x.sigma_after_max, r.sigma_after_max, e.sigma_after_max),
+                ("gtilde_max", x.gtilde_max, r.gtilde_max, e.gtilde_max),
+                ("ghat_jump_max", x.ghat_jump_max, r.ghat_jump_max, e.ghat_jump_max),
+                ("tau_jump_max", x.tau_jump_max, r.tau_jump_max, e.tau_jump_max),
+            ];
+            for (name, v, reference, error) in values {
+                println!("{} T = {} ch {ch} {name}: {v:e} ± {error:e}, fine {reference:e}", b.rule.name(), b.period);
+                assert!((v - reference).abs() <= error, "{} T = {} ch {ch} {name}", b.rule.name(), b.period);
+            }
+            if let (Some(t), Some(tr)) = (x.reach_s, r.reach_s) {
+                assert!((t - tr).abs() <= e.reach_s.unwrap(), "{} T = {} ch {ch} reach", b.rule.name(), b.period);
+            }
+        }
+    }
+}

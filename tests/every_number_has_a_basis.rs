@@ -4,8 +4,8 @@
 //! a quantity, or plot data (the samples behind a figure), or one of the checker's settings
 //! (exact by definition: chosen values), or the layout version `schema_version` of the document
 //! and of its provenance record. A schema-level walk of the JSON, not a spot check. In the
-//! ftdo-vs-dobc and mu-conditions rows every simulated value has a ± (from the doubled grid and
-//! dt/2), not only the basis "simulation".
+//! ftdo-vs-dobc, mu-conditions and finite-time rows every simulated value has a ± (from the
+//! doubled grid and dt/2), not only the basis "simulation".
 
 use proptest::prelude::*;
 use serde_json::Value;
@@ -56,8 +56,8 @@ fn bare_numbers(v: &Value, path: &str, out: &mut Vec<String>) {
 }
 
 /// Paths of the simulated values without an error (basis "simulation" only) in the rows whose
-/// every simulated value carries a ± from its refinements (the ftdo-vs-dobc comparison, and ζ3,
-/// ζ4 in mu-conditions).
+/// every simulated value carries a ± from its refinements (the ftdo-vs-dobc comparison, ζ3, ζ4
+/// in mu-conditions, the finite-time rows' digital runs).
 fn simulated_without_error(ledger: &Value) -> Vec<String> {
     fn walk(v: &Value, path: &str, out: &mut Vec<String>) {
         match v {
@@ -78,7 +78,7 @@ fn simulated_without_error(ledger: &Value) -> Vec<String> {
     }
     let mut out = Vec::new();
     for (i, row) in ledger["rows"].as_array().expect("rows").iter().enumerate() {
-        if row["id"] == "ftdo-vs-dobc" || row["id"] == "mu-conditions" {
+        if ["ftdo-vs-dobc", "mu-conditions", "finite-time-1", "finite-time-2"].iter().any(|id| row["id"] == *id) {
             walk(row, &format!("$.rows[{i}]"), &mut out);
         }
     }

@@ -79,10 +79,65 @@ pub struct Computed {
     pub sweep: Vec<(f64, Option<f64>)>,
     /// The digital runs (rule × hold period), shared by both rows.
     pub runs: std::sync::Arc<[DigitalRun]>,
+    /// The errors of each run's channel values, in the order of `runs`.
+    pub run_errors: std::sync::Arc<[[DigitalErrors; 2]]>,
     /// Horizon of the digital runs (s).
     pub run_t_end: f64,
     /// The tip disturbance of the channel.
     pub g: TipDisturbance,
+}
+
+/// Widening of the explicit rule's max |Δτ| per sample bar: a maximum over a chattering sequence
+/// is not in the asymptotic range of two refinements (measured at the paper point, T_s = 0.1
+/// ms: a run on 4× the elements at dt/4 differs by 1.25× the plain bar), so its bar is doubled.
+pub const CHATTER_JUMP_FACTOR: f64 = 2.0;
+
+/// The errors of one digital run's per-channel values ([`reach::DigitalChannel`]) from the same
+/// run on the doubled grid and at dt/2 ([`crate::comparison::refinement_error`]). The
+/// observer's values (σ_k, ĝ_k, g̃_k) do not depend on the plant, so their refinements change
+/// them by round-off only; τ's jumps do.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct DigitalErrors {
+    /// Of the band entry (s), where the run reaches it.
+    pub reach_s: Option<f64>,
+    /// Of max |σ_k| after reaching.
+    pub sigma_after_max: f64,
+    /// Of max |g̃_k| over the chatter window.
+    pub gtilde_max: f64,
+    /// Of max |Δĝ_k|.
+    pub ghat_jump_max: f64,
+    /// Of max |Δτ_k|.
+    pub tau_jump_max: f64,
+}
+
+impl DigitalErrors {
+    /// The errors of `base`'s values from `fine` (doubled grid) and `half_dt` (dt/2). `scale`:
+    /// ζ = sup |g| of the channel, the size of the terms whose differences σ, g̃ and ĝ's jumps
+    /// are: their round-off floor is [`wingcheck_sim::layer::PEAK_ROUND_OFF`] of it (g̃ = g − ĝ
+    /// of 1e-5 N cancels operands of 0.08 N: measured 2.8e-17 N between steps dt and dt/4).
+    fn of(
+        base: &reach::DigitalChannel,
+        fine: &reach::DigitalChannel,
+        half_dt: &reach::DigitalChannel,
+        scale: f64,
+        chattering: bool,
+    ) -> Self {
+        let floor = wingcheck_sim::layer::PEAK_ROUND_OFF * scale;
+        let e = |v: fn(&reach::DigitalChannel) -> f64| {
+            crate::comparison::refinement_error(v(base), v(fine), v(half_dt), 0.0) + floor
+        };
+        DigitalErrors {
+            reach_s: match (base.reach_s, fine.reach_s, half_dt.reach_s) {
+                (Some(b), Some(f), Some(h)) => Some(crate::comparison::refinement_error(b, f, h, 0.0)),
+                (Some(b), _, _) => Some(b.abs()),
+                (None, _, _) => None,
+            },
+            sigma_after_max: e(|c| c.sigma_after_max),
+            gtilde_max: e(|c| c.gtilde_max),
+            ghat_jump_max: e(|c| c.ghat_jump_max),
+            tau_jump_max: e(|c| c.tau_jump_max) * if chattering { CHATTER_JUMP_FACTOR } else { 1.0 },
+        }
+    }
 }
 
 /// The hold period whose runs the row describes in words and plots: the middle one of
@@ -100,6 +155,8 @@ pub struct DigitalRuns {
     pub t_end: f64,
     /// The runs, implicit rule first, each rule in the order of the hold periods.
     pub runs: std::sync::Arc<[DigitalRun]>,
+    /// The errors of each run's channel values ([`DigitalErrors`]), in the order of `runs`.
+    pub errors: std::sync::Arc<[[DigitalErrors; 2]]>,
     /// σ(0) of each channel from the configured initial state (units of g), which the horizon
     /// and each row's facts start from.
     pub sigma0: [f64; 2],
@@ -131,14 +188,35 @@ pub fn digital_runs(cfg: &Config, settings: &CheckSettings) -> Result<DigitalRun
         .into_iter()
         .flat_map(|rule| settings.hold_periods.iter().map(move |&t| (rule, t)))
         .collect();
-    // the simulator's choice of basis; the runs differ from `cfg` in the step, horizon and
-    // sampling only, which the basis does not depend on, so one basis serves all six
-    let (_, basis) = wingcheck_sim::resolved_basis(cfg, &wingcheck_sim::Discretisation::new(cfg))?;
-    let runs = plan
-        .into_par_iter()
-        .map(|(rule, t)| digital_run(cfg, basis.as_ref(), rule, t, t_end, window, (t == reference).then_some(0.0)))
-        .collect::<Result<Vec<_>, _>>()?;
-    Ok(DigitalRuns { t_end, runs: runs.into(), sigma0, filippov })
+    // the configuration, then its refinements (the doubled grid, dt/2) for the values' errors;
+    // the simulator's choice of basis for each: the runs differ from their configuration in the
+    // step, horizon and sampling only, which the basis does not depend on
+    let [fine, half_dt] = crate::comparison::refinements(cfg);
+    let mut sets = Vec::with_capacity(3);
+    for (c, trace) in [(cfg, true), (&fine, false), (&half_dt, false)] {
+        let (_, basis) = wingcheck_sim::resolved_basis(c, &wingcheck_sim::Discretisation::new(c))?;
+        let runs = plan
+            .par_iter()
+            .map(|&(rule, t)| {
+                let trace_from = (trace && t == reference).then_some(0.0);
+                digital_run(c, basis.as_ref(), rule, t, t_end, window, trace_from)
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        sets.push(runs);
+    }
+    let errors: Vec<[DigitalErrors; 2]> = (0..plan.len())
+        .map(|i| {
+            [Channel::Bending, Channel::Torsion].map(|channel| {
+                let ch = channel_index(channel);
+                let scale = zeta(&channel_data(cfg, channel).3);
+                let chattering = plan[i].0 == ObserverRule::Explicit;
+                let [b, f, h] = [0, 1, 2].map(|k| &sets[k][i].channels[ch]);
+                DigitalErrors::of(b, f, h, scale, chattering)
+            })
+        })
+        .collect();
+    let runs = sets.swap_remove(0);
+    Ok(DigitalRuns { t_end, runs: runs.into(), errors: errors.into(), sigma0, filippov })
 }
 
 /// Compute the facts of one channel's finite-time claim, reading the shared digital `runs`
@@ -188,6 +266,7 @@ pub fn compute(
         sharp_ratio,
         sweep,
         runs: runs.runs.clone(),
+        run_errors: runs.errors.clone(),
         run_t_end: runs.t_end,
         g,
     })

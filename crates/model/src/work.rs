@@ -434,10 +434,15 @@ impl WorkEstimate {
     pub fn finite_time(cfg: &Config) -> WorkEstimate {
         let horizon = finite_time_horizon_max(cfg);
         let (mut steps, mut seconds, mut memory) = (0.0, 0.0, 0.0_f64);
-        // One set of runs serves both rows; the runs may all be in flight at once.
-        for rule in [crate::ObserverRule::Implicit, crate::ObserverRule::Explicit] {
+        // One set of runs serves both rows, and again on the doubled grid and at dt/2 for the
+        // values' errors; the runs may all be in flight at once.
+        let refined = [cfg.clone(), refined_in_space(cfg), refined_in_time(cfg)];
+        for (c, rule) in refined
+            .iter()
+            .flat_map(|c| [crate::ObserverRule::Implicit, crate::ObserverRule::Explicit].map(move |rule| (c, rule)))
+        {
             for &period in &FINITE_TIME_PERIODS {
-                let run = Self::simulation(&finite_time_config(cfg, rule, period, horizon), false, None);
+                let run = Self::simulation(&finite_time_config(c, rule, period, horizon), false, None);
                 steps += run.steps;
                 seconds += run.seconds;
                 // per run: σ_k of both channels at every sample (16 bytes), and the traces

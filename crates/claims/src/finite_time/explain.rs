@@ -85,36 +85,43 @@ pub struct FiniteTimeEvidence {
 
 /// The digital runs of the channel as records, whether the implicit rule stays in its band at
 /// every hold period, and the largest delay of its reaching time behind the Filippov time.
-fn digital_records(c: &Computed, window_s: f64) -> (Vec<DigitalRecord>, bool, f64) {
+fn digital_records(c: &Computed, window_s: f64) -> (Vec<DigitalRecord>, bool, (f64, f64)) {
     let ix = channel_index(c.channel);
     let n = ix + 1;
     let u = channel_unit(c.channel);
     let window = chatter_window(c.run_t_end, window_s);
     let not_reached = |label: &str| Text::text(label, crate::NOT_REACHED);
-    let sim = |label: String, v: f64| Quantity::based(label, v, u, ValueBasis::Simulation);
+    let covers = [ErrorSource::Grid, ErrorSource::TimeStep, ErrorSource::RoundOff];
+    let sim = |label: String, v: f64, e: f64| Quantity::with_error(label, v, e, u, &covers);
     let mut stays_band = true;
-    let mut excess: f64 = 0.0;
+    let mut excess: (f64, f64) = (0.0, 0.0);
     let mut digital = Vec::new();
-    for r in c.runs.iter() {
+    for (r, errors) in c.runs.iter().zip(c.run_errors.iter()) {
         let ch = &r.channels[ix];
+        let e = &errors[ix];
         digital.push(DigitalRecord {
             rule: Text::text("sampling rule", r.rule.name()),
             period: Quantity::exact("hold period T_s", r.period, Unit::Second),
             reach: Maybe::of(
-                ch.reach_s.map(|t| Quantity::based(DIGITAL_REACH, t, Unit::Second, ValueBasis::Simulation)),
+                ch.reach_s
+                    .map(|t| Quantity::with_error(DIGITAL_REACH, t, e.reach_s.unwrap_or(t), Unit::Second, &covers)),
                 || not_reached(DIGITAL_REACH),
             ),
             sigma_after_max: Maybe::of(
-                ch.reach_s.map(|_| sim("max |σ_k| after reaching".into(), ch.sigma_after_max)),
+                ch.reach_s.map(|_| sim("max |σ_k| after reaching".into(), ch.sigma_after_max, e.sigma_after_max)),
                 || not_reached("max |σ_k| after reaching"),
             ),
-            gtilde_max: sim(format!("max |g̃{n}| over {window}"), ch.gtilde_max),
-            ghat_jump_max: sim(format!("max |Δĝ{n}| per sample over {window}"), ch.ghat_jump_max),
-            tau_jump_max: sim(format!("max |Δτ{n}| per sample over {window}"), ch.tau_jump_max),
+            gtilde_max: sim(format!("max |g̃{n}| over {window}"), ch.gtilde_max, e.gtilde_max),
+            ghat_jump_max: sim(format!("max |Δĝ{n}| per sample over {window}"), ch.ghat_jump_max, e.ghat_jump_max),
+            tau_jump_max: sim(format!("max |Δτ{n}| per sample over {window}"), ch.tau_jump_max, e.tau_jump_max),
         });
         if r.rule == ObserverRule::Implicit {
             stays_band &= ch.reach_s.is_some() && ch.sigma_after_max <= r.period * c.zeta * (1.0 + 1e-9) + 1e-15;
-            excess = excess.max(ch.reach_s.unwrap_or(c.run_t_end) - c.fil.reach_s.unwrap_or(0.0));
+            // the delay and its error: the band entry's and the Filippov time's
+            let delay = ch.reach_s.unwrap_or(c.run_t_end) - c.fil.reach_s.unwrap_or(0.0);
+            if delay >= excess.0 {
+                excess = (delay, e.reach_s.unwrap_or(0.0) + c.fil.error_s);
+            }
         }
     }
     (digital, stays_band, excess)
@@ -181,11 +188,12 @@ fn evidence_of(c: &Computed, settings: &CheckSettings) -> FiniteTimeEvidence {
             "the implicit rule stays in |σ_k| ≤ T_s ζ after reaching, every T_s",
             stays_band,
         ),
-        implicit_reach_excess_max_s: Quantity::based(
+        implicit_reach_excess_max_s: Quantity::with_error(
             "max over T_s of (implicit band entry − t_reach)",
-            excess,
+            excess.0,
+            excess.1,
             Unit::Second,
-            ValueBasis::Simulation,
+            &[ErrorSource::Grid, ErrorSource::TimeStep, ErrorSource::RoundOff],
         ),
         channel: c.channel,
         reference_period: reference_period(settings),
