@@ -178,3 +178,30 @@ fn w_bounds_threshold_is_the_converged_fundamental_frequency() {
     assert_eq!(on.verdict, Verdict::Inconclusive);
     assert!(on.finding_text().contains("within the error of the threshold"), "{}", on.finding_text());
 }
+
+/// λ2*, λ1* from the ledger's meshes (2, 4, 8, 16 elements) within their ± of the same study on
+/// meshes four times finer (8 … 64), on the paper's wing and two SI-scale ones, where the
+/// float eigenvalues' round-off alone exceeds a fixed multiple of max |W/κ| (the ± now takes
+/// each mesh's value as the exact Rayleigh quotient of the solver's vector and its round-off
+/// from the float eigenvalue's distance to it). Measured: the SI wing's λ1* = 5.000000052482e6
+/// ± 1.2e-5 is off the finer study by 5.1e-6 (0.44 of the bar).
+#[test]
+fn tight_constant_bars_cover_a_four_times_finer_study() {
+    use common::SI_WING;
+    use wingcheck_claims::wbounds::tight_study;
+    let si_ab = [SI_WING.to_vec(), vec!["control.a=0.02", "control.b=80"]].concat();
+    for sets in [vec![], SI_WING.to_vec(), si_ab] {
+        let cfg = paper_with(&sets);
+        let coarse = tight_study(&cfg, Coupling::Corrected, &[2, 4, 8, 16]).unwrap();
+        let fine = tight_study(&cfg, Coupling::Corrected, &[8, 16, 32, 64]).unwrap();
+        for (which, c, f) in [("λ2*", coarse.lambda2, fine.lambda2), ("λ1*", coarse.lambda1, fine.lambda1)] {
+            assert!(
+                (c.value - f.value).abs() <= c.error,
+                "{sets:?} {which}: {} ± {:e} vs {}",
+                c.value,
+                c.error,
+                f.value
+            );
+        }
+    }
+}

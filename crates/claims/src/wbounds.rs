@@ -125,14 +125,52 @@ pub fn printed_constants(cfg: &Config, a: f64, b: f64) -> PrintedConstants {
 }
 
 /// Tight constants on V_N for both cross-term variants.
-fn study(cfg: &Config, coupling: Coupling, grids: &[usize]) -> Result<Vec<lyapunov::TightConstants>, ClaimsError> {
+fn study(cfg: &Config, coupling: Coupling, grids: &[usize]) -> Result<Vec<Extremes>, ClaimsError> {
     grids
         .iter()
         .map(|&n| {
             let f = lyapunov::assemble(&LyapunovParams::from_config(cfg, coupling, n)).map_err(num("assembly"))?;
-            lyapunov::tight_constants(&f).map_err(num("generalised eigenproblem"))
+            let t = lyapunov::tight_constants(&f).map_err(num("generalised eigenproblem"))?;
+            Ok(Extremes::of(&f, &t))
         })
         .collect()
+}
+
+/// λ2(N) = min W/κ and λ1(N) = max W/κ on one Galerkin space as the exact Rayleigh quotients
+/// ρ(x) = xᵀWx/xᵀκx of the float solver's extremal vectors x (W, κ exact rationals, x converted
+/// exactly), so λ2(N) ≤ ρ(x_min) and ρ(x_max) ≤ λ1(N) hold exactly and their distance is second
+/// order in the vectors' errors; with the round-off of each: the float eigenvalue's distance
+/// from it (first order in the same errors, so an overestimate) plus 4 ulp. The float
+/// eigenvalues alone are off by far more than a fixed multiple of max |W/κ| on stiff wings
+/// (measured: 8.4e-6 at 5e6 on an SI-scale wing at N = 16, 7.4× 1024 ulp of the scale; 1.4e-3 at
+/// 4e8 with a = 0.02, b = 80, 15×; 4.1e-12 at 9.9 on the paper's wing, 1.8×): κ's condition
+/// grows like h⁻⁴.
+#[derive(Debug, Clone, Copy)]
+struct Extremes {
+    lambda2: f64,
+    lambda1: f64,
+    roundoff2: f64,
+    roundoff1: f64,
+}
+
+impl Extremes {
+    fn of(f: &lyapunov::ExactForms, t: &lyapunov::TightConstants) -> Extremes {
+        let quotient = |x: &[f64], float: f64| {
+            let exact: Option<Vec<BigRational>> = x.iter().map(|v| BigRational::from_float(*v)).collect();
+            let rho = exact.and_then(|x| {
+                let k = lyapunov::quadratic_form(&f.kappa, &x);
+                (!k.is_zero()).then(|| to_f64(&(lyapunov::quadratic_form(&f.w, &x) / k)))
+            });
+            match rho {
+                Some(r) if r.is_finite() => (r, (float - r).abs() + 4.0 * f64::EPSILON * r.abs()),
+                // no usable vector (a non-finite entry, κ(x) = 0): the float value, unresolved
+                _ => (float, float.abs()),
+            }
+        };
+        let (lambda2, roundoff2) = quotient(&t.argmin, t.lambda2);
+        let (lambda1, roundoff1) = quotient(&t.argmax, t.lambda1);
+        Extremes { lambda2, lambda1, roundoff2, roundoff1 }
+    }
 }
 
 /// Map a numerical failure's detail text to [`ClaimsError::Numerical`] for `what`.
@@ -241,30 +279,24 @@ pub struct TightStudy {
     pub order: Option<f64>,
 }
 
-/// Relative round-off of an extreme of the pencil W/κ on a Galerkin space, as a multiple of
-/// max |W/κ|: 1024 ulp. Measured against a 40-digit solve of the same 16-element pencil at
-/// a = 0.02, b = 80: off by 5e-11 at max |W/κ| = 450, ≈ 500 ulp; doubled.
-pub const PENCIL_ROUND_OFF: f64 = 1024.0 * f64::EPSILON;
-
-/// The refinement study of W/κ on `grids` (coarse → fine, at least three meshes).
+/// The refinement study of W/κ on `grids` (coarse → fine, at least three meshes), each mesh's
+/// extremes as exact Rayleigh quotients of the solver's vectors ([`Extremes`]).
 /// The extrapolated λ's errors: the last refinement's change (grid, extrapolation) plus the
-/// round-off of both eigenvalues through the extrapolation ([`PENCIL_ROUND_OFF`]).
+/// round-off of both meshes' values through the extrapolation.
 pub fn tight_study(cfg: &Config, coupling: Coupling, grids: &[usize]) -> Result<TightStudy, ClaimsError> {
     let t = study(cfg, coupling, grids)?;
     let k = t.len();
-    // round-off of each eigenvalue: PENCIL_ROUND_OFF × max |W/κ| on the finest space, amplified
-    // by the extrapolation (4f − c)/3 to 5/3 of it
-    let scale = t[k - 1].lambda1.abs().max(t[k - 1].lambda2.abs());
-    let round_off = 5.0 / 3.0 * PENCIL_ROUND_OFF * scale;
-    let ex = |c: f64, f: f64| {
+    // the extrapolation (4f − c)/3 carries the round-off of both meshes' values: (4r_f + r_c)/3
+    let ex = |c: f64, f: f64, rc: f64, rf: f64| {
         let v = richardson(c, f);
-        Estimate { value: v, error: (v - f).abs() + round_off }
+        Estimate { value: v, error: (v - f).abs() + (4.0 * rf + rc) / 3.0 }
     };
+    let (c, f) = (t[k - 2], t[k - 1]);
     Ok(TightStudy {
         by_elements: grids.iter().zip(&t).map(|(n, x)| (*n, x.lambda2, x.lambda1)).collect(),
-        lambda2: ex(t[k - 2].lambda2, t[k - 1].lambda2),
-        lambda1: ex(t[k - 2].lambda1, t[k - 1].lambda1),
-        order: wingcheck_sim::estimate::observed_order(t[k - 3].lambda2, t[k - 2].lambda2, t[k - 1].lambda2),
+        lambda2: ex(c.lambda2, f.lambda2, c.roundoff2, f.roundoff2),
+        lambda1: ex(c.lambda1, f.lambda1, c.roundoff1, f.roundoff1),
+        order: wingcheck_sim::estimate::observed_order(t[k - 3].lambda2, c.lambda2, f.lambda2),
     })
 }
 
