@@ -22,7 +22,7 @@ use crate::study::Study;
 use crate::ClaimsError;
 
 pub use explain::{check, ComparisonEvidence, RunRecord, SweepRecord, TipDifferences};
-pub use refine::{metric_errors, quotient_error, refinement_error, refinements};
+pub use refine::{metric_errors, quotient_error, reached_error, refinement_error, refinements};
 
 /// Metrics of one run (units: m, rad, N, N m, s).
 #[derive(Debug, Clone, PartialEq)]

@@ -127,11 +127,8 @@ impl DigitalErrors {
             crate::comparison::refinement_error(v(base), v(fine), v(half_dt), 0.0) + floor
         };
         DigitalErrors {
-            reach_s: match (base.reach_s, fine.reach_s, half_dt.reach_s) {
-                (Some(b), Some(f), Some(h)) => Some(crate::comparison::refinement_error(b, f, h, 0.0)),
-                (Some(b), _, _) => Some(b.abs()),
-                (None, _, _) => None,
-            },
+            // a sample time of the digital model itself: no spacing added
+            reach_s: crate::comparison::reached_error(base.reach_s, fine.reach_s, half_dt.reach_s, 0.0, 0.0),
             sigma_after_max: e(|c| c.sigma_after_max),
             gtilde_max: e(|c| c.gtilde_max),
             ghat_jump_max: e(|c| c.ghat_jump_max),

@@ -39,7 +39,7 @@ pub fn refinement_error(value: f64, fine: f64, half_dt: f64, roundoff: f64) -> f
 /// s apart: the crossing lies within one spacing before it): [`refinement_error`] plus the
 /// spacing where the run and both refinements reach it; where only some do, the value itself
 /// (its ± as large as it: unresolved); `None` where the run does not.
-fn reached_error(
+pub fn reached_error(
     value: Option<f64>,
     fine: Option<f64>,
     half_dt: Option<f64>,
