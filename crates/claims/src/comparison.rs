@@ -408,18 +408,7 @@ pub fn compute(
 ) -> Result<(Computed, std::sync::Arc<SimOutput>, std::sync::Arc<SimOutput>), ClaimsError> {
     let rule = cfg.observer.rule;
     let plan = Runs::of(cfg, settings);
-    // Every run of the row at once on the pool, the longest first (the study keeps each result,
-    // failures included; the reads below find them done).
-    let refined = plan.refined();
-    rayon::join(
-        || plan.full().par_iter().for_each(|c| drop(study.simulate(c))),
-        || {
-            rayon::join(
-                || plan.error_runs().par_iter().for_each(|c| drop(study.statistics(c))),
-                || refined.par_iter().for_each(|c| drop(study.refinement(c))),
-            )
-        },
-    );
+    prefetch(&plan, study);
     let ftdo = study.simulate(&plan.ftdo)?;
     let other = study.simulate(&plan.other)?;
     let dobc = study.simulate(&plan.dobc)?;
@@ -440,19 +429,7 @@ pub fn compute(
         let starts = explicit_rms_starts[c];
         (v, explicit_rms_error(v, rms_tau(&explicit_fine, c), rms_tau(&explicit_half, c), starts, roundoff))
     });
-    let mut sweep = Vec::new();
-    for (a, b, f_cfg, d_cfg) in &plan.sweep {
-        let (fm, fe) = measured(study, f_cfg, settings)?;
-        let (dm, de) = measured(study, d_cfg, settings)?;
-        sweep.push(SweepPoint {
-            a: *a,
-            b: *b,
-            rel: rel(&fm, &dm),
-            gtilde_ratio: gtilde_ratio(&fm, &dm),
-            rel_error: rel_error(&fm, &fe, &dm, &de),
-            gtilde_ratio_error: gtilde_ratio_error(&fm, &fe, &dm, &de),
-        });
-    }
+    let sweep = sweep_points(&plan, study, settings)?;
     // the explicit rule's RMS τ: its own error (grid, step, spread over starts, round-off)
     let with_explicit_tau = |(m, mut e): (Metrics, Metrics), explicit_rule: bool| {
         if explicit_rule {
@@ -482,6 +459,39 @@ pub fn compute(
         zetas: (zeta(&d.tip_bending), zeta(&d.tip_torsion)),
     };
     Ok((computed, ftdo, dobc))
+}
+
+/// Every run of the row at once on the pool, the longest first (the study keeps each result,
+/// failures included; the reads after it find them done).
+fn prefetch(plan: &Runs, study: &Study) {
+    let refined = plan.refined();
+    rayon::join(
+        || plan.full().par_iter().for_each(|c| drop(study.simulate(c))),
+        || {
+            rayon::join(
+                || plan.error_runs().par_iter().for_each(|c| drop(study.statistics(c))),
+                || refined.par_iter().for_each(|c| drop(study.refinement(c))),
+            )
+        },
+    );
+}
+
+/// The sweep's points: each pair's relative differences and g̃ ratio with their errors.
+fn sweep_points(plan: &Runs, study: &Study, settings: &CheckSettings) -> Result<Vec<SweepPoint>, ClaimsError> {
+    let mut sweep = Vec::new();
+    for (a, b, f_cfg, d_cfg) in &plan.sweep {
+        let (fm, fe) = measured(study, f_cfg, settings)?;
+        let (dm, de) = measured(study, d_cfg, settings)?;
+        sweep.push(SweepPoint {
+            a: *a,
+            b: *b,
+            rel: rel(&fm, &dm),
+            gtilde_ratio: gtilde_ratio(&fm, &dm),
+            rel_error: rel_error(&fm, &fe, &dm, &de),
+            gtilde_ratio_error: gtilde_ratio_error(&fm, &fe, &dm, &de),
+        });
+    }
+    Ok(sweep)
 }
 
 /// The metrics of the run of `cfg` and their errors from its refinements ([`metric_errors`]).

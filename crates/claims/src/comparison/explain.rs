@@ -262,10 +262,40 @@ fn error_runs_text(c: &Computed) -> String {
     format!("runs that record the RMS only (the start not re-run at a finer step, no search for peaks inside a step), {form}")
 }
 
+/// The three runs at the configured gains with their errors (the explicit rule's RMS τ with the
+/// spread over starts).
+fn run_table(c: &Computed, settings: &CheckSettings) -> Table<RunRecord> {
+    let (rule, other) = (c.rule.name(), other_rule(c.rule).name());
+    let explicit_here = c.rule == wingcheck_model::ObserverRule::Explicit;
+    Table::new(
+        "the runs at the configured gains",
+        vec![
+            RunRecord::of(&format!("FTDO, {rule} rule"), &c.ftdo, &c.ftdo_error, explicit_here, settings),
+            RunRecord::of("DOBC", &c.dobc, &c.dobc_error, false, settings),
+            RunRecord::of(&format!("FTDO, {other} rule"), &c.ftdo_other, &c.ftdo_other_error, !explicit_here, settings),
+        ],
+    )
+}
+
+/// The (a, b) sweep's points with their errors.
+fn sweep_table(c: &Computed, settings: &CheckSettings) -> Table<SweepRecord> {
+    Table::new(
+        format!("sweep: each weight × and ÷ {}", wingcheck_model::quantity::format_value(settings.sweep_factor, None)),
+        c.sweep
+            .iter()
+            .map(|p| SweepRecord {
+                a: Quantity::configured("a", p.a, Unit::Dimensionless),
+                b: Quantity::configured("b", p.b, Unit::Second),
+                rel: TipDifferences::of(&p.rel, &p.rel_error),
+                gtilde_ratio_late: gratio(p.gtilde_ratio.zip(p.gtilde_ratio_error)),
+            })
+            .collect(),
+    )
+}
+
 fn evidence_of(c: &Computed, settings: &CheckSettings) -> ComparisonEvidence {
     let rule = c.rule.name();
     let other = other_rule(c.rule).name();
-    let explicit_here = c.rule == wingcheck_model::ObserverRule::Explicit;
     let pairs = c.pairs();
     let pair_errors = c.pair_errors();
     let with_errors = || pairs.iter().flatten().zip(pair_errors.iter().flatten());
@@ -297,20 +327,7 @@ fn evidence_of(c: &Computed, settings: &CheckSettings) -> ComparisonEvidence {
     };
     ComparisonEvidence {
         rule: Text::text("FTDO sampling rule compared (the configured one)", rule),
-        runs: Table::new(
-            "the runs at the configured gains",
-            vec![
-                RunRecord::of(&format!("FTDO, {rule} rule"), &c.ftdo, &c.ftdo_error, explicit_here, settings),
-                RunRecord::of("DOBC", &c.dobc, &c.dobc_error, false, settings),
-                RunRecord::of(
-                    &format!("FTDO, {other} rule"),
-                    &c.ftdo_other,
-                    &c.ftdo_other_error,
-                    !explicit_here,
-                    settings,
-                ),
-            ],
-        ),
+        runs: run_table(c, settings),
         rel: TipDifferences::of(&c.here(), &pair_errors[0]),
         gtilde_ratio_late: gratio(ratio),
         gtilde_ratio_late_other_rule: gratio(c.gtilde_ratio(false))
@@ -323,21 +340,7 @@ fn evidence_of(c: &Computed, settings: &CheckSettings) -> ComparisonEvidence {
         ),
         explicit_stepper: Text::text("time scheme of the explicit-rule runs", c.explicit_stepper.name()),
         explicit_error_runs: Text::text("how the explicit-rule error runs were stepped", error_runs_text(c)),
-        ab_sweep: Table::new(
-            format!(
-                "sweep: each weight × and ÷ {}",
-                wingcheck_model::quantity::format_value(settings.sweep_factor, None)
-            ),
-            c.sweep
-                .iter()
-                .map(|p| SweepRecord {
-                    a: Quantity::configured("a", p.a, Unit::Dimensionless),
-                    b: Quantity::configured("b", p.b, Unit::Second),
-                    rel: TipDifferences::of(&p.rel, &p.rel_error),
-                    gtilde_ratio_late: gratio(p.gtilde_ratio.zip(p.gtilde_ratio_error)),
-                })
-                .collect(),
-        ),
+        ab_sweep: sweep_table(c, settings),
         max_abs_rel_diff_tip: pct("largest |tip RMS difference| over the sweep and both rules", worst, worst_error),
         late_min_rel_diff: pct("most negative late-window difference (< 0: DOBC smaller)", late_min.0, late_min.1),
         tip_response_clearly_better: Flag::new(
