@@ -18,6 +18,7 @@ mod ledger;
 pub mod lemmas;
 pub mod lyapunov;
 pub mod mu;
+pub mod numerics;
 pub mod ode;
 pub mod plan;
 pub mod sdp;
@@ -55,12 +56,13 @@ pub enum ClaimsError {
     #[error(transparent)]
     Cancelled(#[from] wingcheck_model::Cancelled),
     /// A numerical step failed.
-    #[error("numerical failure in {what}: {detail}")]
+    #[error("numerical failure in {what}: {cause}")]
     Numerical {
         /// Which computation.
-        what: String,
-        /// What happened.
-        detail: String,
+        what: &'static str,
+        /// What failed.
+        #[source]
+        cause: numerics::PencilError,
     },
 }
 
