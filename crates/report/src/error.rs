@@ -65,12 +65,13 @@ pub enum ReportError {
     #[error("claim checker failed: {0}")]
     Claims(#[from] wingcheck_claims::ClaimsError),
     /// A chart could not be drawn.
-    #[error("cannot draw chart {name}: {detail}")]
+    #[error("cannot draw chart {name}: {cause}")]
     Chart {
         /// File stem of the chart.
         name: String,
         /// What went wrong.
-        detail: String,
+        #[source]
+        cause: wingcheck_chart::DrawError,
     },
     /// The (a, b) region map could not be set up (its search was refused).
     #[error("region map: {detail}")]
@@ -97,6 +98,6 @@ impl ReportError {
 
 impl From<wingcheck_chart::ChartError> for ReportError {
     fn from(e: wingcheck_chart::ChartError) -> Self {
-        ReportError::Chart { name: e.name, detail: e.detail }
+        ReportError::Chart { name: e.name, cause: e.cause }
     }
 }
