@@ -54,12 +54,13 @@ pub enum ReportError {
         source: wingcheck_claims::ClaimsError,
     },
     /// A row's evidence is not made of labelled values (a bug of the claim checker).
-    #[error("the evidence of {claim} cannot be shown: {detail}")]
+    #[error("the evidence of {claim} cannot be shown: {cause}")]
     Evidence {
         /// The claim.
         claim: String,
-        /// Where.
-        detail: String,
+        /// Which value, and why.
+        #[source]
+        cause: wingcheck_claims::display::ShapeError,
     },
     /// The claim checker failed.
     #[error("claim checker failed: {0}")]
