@@ -11,8 +11,8 @@ use plotters::prelude::*;
 
 use plotters::coord::types::RangedCoordf64;
 
-use crate::ChartError;
 use crate::{linear_ticks, px, scaled_svg_header, tick, tick_linear, Ticked, CANVAS, SCALE};
+use crate::{ChartError, DrawError};
 
 /// A field sampled on a (t, z) grid, drawn as a map ([`heatmap_svg`]) or a 3-D surface
 /// ([`crate::surface_svg`]).
@@ -143,7 +143,7 @@ const LEVELS: usize = 128;
 
 /// PNG (indexed colour, [`LEVELS`] levels of [`coolwarm`]) of the field on a `w × h` pixel
 /// raster covering [t0, t1] × [z0, z1], top row = z1.
-fn raster_png(h: &Heatmap, w: usize, hgt: usize, vmax: f64) -> Result<Vec<u8>, String> {
+fn raster_png(h: &Heatmap, w: usize, hgt: usize, vmax: f64) -> Result<Vec<u8>, DrawError> {
     let (t0, t1) = (h.t[0], h.t[h.t.len() - 1]);
     let (z0, z1) = (h.z[0], h.z[h.z.len() - 1]);
     let cols: Vec<(usize, f64)> = (0..w).map(|i| locate(&h.t, t0 + (t1 - t0) * (i as f64 + 0.5) / w as f64)).collect();
@@ -173,17 +173,17 @@ fn raster_png(h: &Heatmap, w: usize, hgt: usize, vmax: f64) -> Result<Vec<u8>, S
         enc.set_depth(png::BitDepth::Eight);
         enc.set_palette(palette);
         enc.set_compression(png::Compression::Best);
-        let mut wr = enc.write_header().map_err(|e| e.to_string())?;
-        wr.write_image_data(&data).map_err(|e| e.to_string())?;
+        let mut wr = enc.write_header()?;
+        wr.write_image_data(&data)?;
     }
     Ok(out)
 }
 
 /// Render the heatmap as an SVG document (raster field, vector axes).
 pub fn heatmap_svg(h: &Heatmap) -> Result<String, ChartError> {
-    let err = |e: String| ChartError { name: h.name.clone(), detail: e };
+    let err = |cause: DrawError| ChartError { name: h.name.clone(), cause };
     if h.t.len() < 2 || h.z.len() < 2 || h.values.len() != h.t.len() || h.values.iter().any(|r| r.len() != h.z.len()) {
-        return Err(err("need at least 2 times and 2 grid points, and one value per (t, z)".into()));
+        return Err(err(DrawError::FieldShape));
     }
     let vmax = h.scale();
     let (t0, t1) = (h.t[0], h.t[h.t.len() - 1]);
@@ -192,7 +192,7 @@ pub fn heatmap_svg(h: &Heatmap) -> Result<String, ChartError> {
     let plot_px;
     {
         let root = SVGBackend::with_string(&mut svg, CANVAS).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
+        root.fill(&WHITE).map_err(|e| err(e.into()))?;
         let (main, bar) = root.split_horizontally(CANVAS.0 - px(130));
         let mut chart = ChartBuilder::on(&main)
             .margin(px(12))
@@ -202,7 +202,7 @@ pub fn heatmap_svg(h: &Heatmap) -> Result<String, ChartError> {
                 Ticked::<RangedCoordf64>::new(t0..t1, linear_ticks(t0, t1, 10)),
                 Ticked::<RangedCoordf64>::new(z0..z1, linear_ticks(z0, z1, 5)),
             )
-            .map_err(|e| err(e.to_string()))?;
+            .map_err(|e| err(e.into()))?;
         chart
             .configure_mesh()
             .disable_mesh()
@@ -215,7 +215,7 @@ pub fn heatmap_svg(h: &Heatmap) -> Result<String, ChartError> {
             .axis_style(BLACK.stroke_width(px(1)))
             .set_all_tick_mark_size(px(5))
             .draw()
-            .map_err(|e| err(e.to_string()))?;
+            .map_err(|e| err(e.into()))?;
         plot_px = chart.plotting_area().get_pixel_range();
         if h.scale_from > t0 && h.scale_from < t1 {
             chart
@@ -225,7 +225,7 @@ pub fn heatmap_svg(h: &Heatmap) -> Result<String, ChartError> {
                     px(4),
                     BLACK.mix(0.7).stroke_width(px(2)),
                 ))
-                .map_err(|e| err(e.to_string()))?;
+                .map_err(|e| err(e.into()))?;
         }
 
         let mut cb = ChartBuilder::on(&bar)
@@ -242,14 +242,14 @@ pub fn heatmap_svg(h: &Heatmap) -> Result<String, ChartError> {
                     crate::with_ends(&linear_ticks(-vmax, vmax, 6), -vmax, vmax, 0.06),
                 ),
             )
-            .map_err(|e| err(e.to_string()))?;
+            .map_err(|e| err(e.into()))?;
         let steps = 64;
         cb.draw_series((0..steps).map(|i| {
             let a = -vmax + 2.0 * vmax * i as f64 / steps as f64;
             let b = -vmax + 2.0 * vmax * (i + 1) as f64 / steps as f64;
             Rectangle::new([(0.0, a), (1.0, b)], coolwarm((i as f64 + 0.5) / steps as f64).filled())
         }))
-        .map_err(|e| err(e.to_string()))?;
+        .map_err(|e| err(e.into()))?;
         cb.configure_mesh()
             .disable_mesh()
             .disable_x_axis()
@@ -258,14 +258,14 @@ pub fn heatmap_svg(h: &Heatmap) -> Result<String, ChartError> {
             .axis_style(BLACK.stroke_width(px(1)))
             .set_all_tick_mark_size(px(4))
             .draw()
-            .map_err(|e| err(e.to_string()))?;
+            .map_err(|e| err(e.into()))?;
         bar.draw(&Text::new(
             h.value_label.clone(),
             (px(8) as i32, px(6) as i32),
             ("sans-serif", px(18)).into_font().color(&BLACK),
         ))
-        .map_err(|e| err(e.to_string()))?;
-        root.present().map_err(|e| err(e.to_string()))?;
+        .map_err(|e| err(e.into()))?;
+        root.present().map_err(|e| err(e.into()))?;
     }
     // The raster, one pixel per displayed pixel, placed under the axes (right after the
     // background rectangle, so the axis lines are drawn over its border).

@@ -12,7 +12,9 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::clip::{clip_segment, hatch, HATCH_STEP};
-use crate::{decade_label, linear_ticks, log_labels, log_ticks, px, tick, ChartError, Ticked, CANVAS, SCALE, SIZE};
+use crate::{
+    decade_label, linear_ticks, log_labels, log_ticks, px, tick, ChartError, DrawError, Ticked, CANVAS, SCALE, SIZE,
+};
 
 /// Colour of cells without a value.
 pub const MISSING: RGBColor = RGBColor(190, 190, 190);
@@ -169,7 +171,7 @@ fn halo(c: RGBColor) -> RGBAColor {
 }
 
 /// An RGB PNG of `w × h` pixels, colour of pixel (column, row) from `colour`.
-fn rgb_png(w: usize, h: usize, colour: impl Fn(usize, usize) -> RGBColor) -> Result<Vec<u8>, String> {
+fn rgb_png(w: usize, h: usize, colour: impl Fn(usize, usize) -> RGBColor) -> Result<Vec<u8>, DrawError> {
     let mut data = Vec::with_capacity(w * h * 3);
     for r in 0..h {
         for c in 0..w {
@@ -182,8 +184,8 @@ fn rgb_png(w: usize, h: usize, colour: impl Fn(usize, usize) -> RGBColor) -> Res
         let mut enc = png::Encoder::new(&mut png, w as u32, h as u32);
         enc.set_color(png::ColorType::Rgb);
         enc.set_depth(png::BitDepth::Eight);
-        let mut wr = enc.write_header().map_err(|e| e.to_string())?;
-        wr.write_image_data(&data).map_err(|e| e.to_string())?;
+        let mut wr = enc.write_header()?;
+        wr.write_image_data(&data)?;
     }
     Ok(png)
 }
@@ -195,10 +197,10 @@ fn size(rows: usize) -> (u32, u32) {
 
 /// Render a grid heatmap as an SVG document.
 pub fn grid_heatmap_svg(h: &GridHeatmap) -> Result<String, ChartError> {
-    let err = |e: String| ChartError { name: h.name.clone(), detail: e };
+    let err = |cause: DrawError| ChartError { name: h.name.clone(), cause };
     let (nx, ny) = (h.x.centres.len(), h.y.centres.len());
     if nx == 0 || ny == 0 || h.values.len() != nx * ny {
-        return Err(err(format!("{} values for a {nx} × {ny} grid", h.values.len())));
+        return Err(err(DrawError::GridShape { values: h.values.len(), nx, ny }));
     }
     let scaled = |v: f64| if h.log_values { (v > 0.0).then(|| v.log10()) } else { Some(v) };
     let vals: Vec<Option<f64>> = h.values.iter().map(|v| v.and_then(scaled).filter(|v| v.is_finite())).collect();
@@ -226,13 +228,13 @@ pub fn grid_heatmap_svg(h: &GridHeatmap) -> Result<String, ChartError> {
     let (plot_px, bar_px);
     {
         let root = SVGBackend::with_string(&mut svg, canvas).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
+        root.fill(&WHITE).map_err(|e| err(e.into()))?;
         let (top, legend_area) = root.split_vertically(px(PLOT_H));
         let (main, bar) = top.split_horizontally(CANVAS.0 - px(BAR_W));
         plot_px = draw_cells_frame(&main, h, &xe, &ye).map_err(err)?;
         bar_px = draw_colour_bar(&bar, h, vmin, vmax).map_err(err)?;
         draw_legend(&legend_area, &entries).map_err(err)?;
-        root.present().map_err(|e| err(e.to_string()))?;
+        root.present().map_err(|e| err(e.into()))?;
     }
     // The cells, nearest cell per displayed pixel; the colour bar, one row per pixel.
     let (cx, cy) = (&xe, &ye);
@@ -264,8 +266,7 @@ type Area<'a> = DrawingArea<SVGBackend<'a>, Shift>;
 type PixelRange = (std::ops::Range<i32>, std::ops::Range<i32>);
 
 /// Axes, ticks and marks of the cell plot; returns the plotting area (canvas pixels).
-fn draw_cells_frame(main: &Area, h: &GridHeatmap, xe: &[f64], ye: &[f64]) -> Result<PixelRange, String> {
-    let e = |e: DrawingAreaErrorKind<std::io::Error>| e.to_string();
+fn draw_cells_frame(main: &Area, h: &GridHeatmap, xe: &[f64], ye: &[f64]) -> Result<PixelRange, DrawError> {
     let (xt, xl) = h.x.ticks();
     let (yt, yl) = h.y.ticks();
     let label_of = |ticks: &[f64], labels: &[String], v: f64| {
@@ -276,12 +277,10 @@ fn draw_cells_frame(main: &Area, h: &GridHeatmap, xe: &[f64], ye: &[f64]) -> Res
     if !h.title.is_empty() {
         builder.caption(h.title.as_str(), ("sans-serif", px(17)));
     }
-    let mut chart = builder
-        .build_cartesian_2d(
-            Ticked::<RangedCoordf64>::new(xe[0]..xe[xe.len() - 1], xt.clone()),
-            Ticked::<RangedCoordf64>::new(ye[0]..ye[ye.len() - 1], yt.clone()),
-        )
-        .map_err(|e| e.to_string())?;
+    let mut chart = builder.build_cartesian_2d(
+        Ticked::<RangedCoordf64>::new(xe[0]..xe[xe.len() - 1], xt.clone()),
+        Ticked::<RangedCoordf64>::new(ye[0]..ye[ye.len() - 1], yt.clone()),
+    )?;
     chart
         .configure_mesh()
         .disable_mesh()
@@ -293,8 +292,7 @@ fn draw_cells_frame(main: &Area, h: &GridHeatmap, xe: &[f64], ye: &[f64]) -> Res
         .axis_desc_style(("sans-serif", px(17)))
         .axis_style(BLACK.stroke_width(px(1)))
         .set_all_tick_mark_size(px(5))
-        .draw()
-        .map_err(|e| e.to_string())?;
+        .draw()?;
     let at = |(x, y): (f64, f64)| (h.x.coord(x), h.y.coord(y));
     // Hatched regions first, so the other marks lie over them.
     let mut marks: Vec<&Mark> = h.marks.iter().collect();
@@ -342,28 +340,28 @@ fn draw_cells_frame(main: &Area, h: &GridHeatmap, xe: &[f64], ye: &[f64]) -> Res
                     pts.iter().map(|p| chart.backend_coord(p)).map(|(x, y)| (f64::from(x), f64::from(y))).collect();
                 let (area, frame) = (chart.plotting_area().get_pixel_range(), f64::from(px(HATCH_STEP)));
                 for s in hatch(&corners, frame, (area.0.start, area.0.end)) {
-                    main.draw(&PathElement::new(s.to_vec(), c.mix(0.55).stroke_width(px(1)))).map_err(e)?;
+                    main.draw(&PathElement::new(s.to_vec(), c.mix(0.55).stroke_width(px(1))))?;
                 }
             }
             MarkShape::Segments => {
                 for (style, w) in [(o.stroke_width(px(5)), px(5)), (c.stroke_width(px(3)), px(3))] {
-                    chart
-                        .draw_series(pts.chunks_exact(2).map(|p| PathElement::new(p.to_vec(), style.stroke_width(w))))
-                        .map_err(e)?;
+                    chart.draw_series(
+                        pts.chunks_exact(2).map(|p| PathElement::new(p.to_vec(), style.stroke_width(w))),
+                    )?;
                 }
             }
             MarkShape::Line | MarkShape::DashedLine => {
                 let dashed = m.shape == MarkShape::DashedLine;
-                series(&mut chart, px(5), o.stroke_width(px(5)), dashed).map_err(e)?;
-                series(&mut chart, px(3), c.stroke_width(px(3)), dashed).map_err(e)?;
+                series(&mut chart, px(5), o.stroke_width(px(5)), dashed)?;
+                series(&mut chart, px(3), c.stroke_width(px(3)), dashed)?;
             }
             MarkShape::Dots => {
-                chart.draw_series(pts.iter().map(|&p| Circle::new(p, px(4), o.filled()))).map_err(e)?;
-                chart.draw_series(pts.iter().map(|&p| Circle::new(p, px(3), c.filled()))).map_err(e)?;
+                chart.draw_series(pts.iter().map(|&p| Circle::new(p, px(4), o.filled())))?;
+                chart.draw_series(pts.iter().map(|&p| Circle::new(p, px(3), c.filled())))?;
             }
             MarkShape::Circles => {
-                chart.draw_series(pts.iter().map(|&p| Circle::new(p, px(7), o.stroke_width(px(4))))).map_err(e)?;
-                chart.draw_series(pts.iter().map(|&p| Circle::new(p, px(7), c.stroke_width(px(2))))).map_err(e)?;
+                chart.draw_series(pts.iter().map(|&p| Circle::new(p, px(7), o.stroke_width(px(4)))))?;
+                chart.draw_series(pts.iter().map(|&p| Circle::new(p, px(7), c.stroke_width(px(2)))))?;
             }
             MarkShape::Cross => {
                 for &p in &pts {
@@ -371,7 +369,7 @@ fn draw_cells_frame(main: &Area, h: &GridHeatmap, xe: &[f64], ye: &[f64]) -> Res
                     let d = px(13) as i32;
                     let square = vec![(x - d, y - d), (x + d, y - d), (x + d, y + d), (x - d, y + d), (x - d, y - d)];
                     for (style, w) in [(o, px(6)), (c.to_rgba(), px(3))] {
-                        main.draw(&PathElement::new(square.clone(), style.stroke_width(w))).map_err(e)?;
+                        main.draw(&PathElement::new(square.clone(), style.stroke_width(w)))?;
                     }
                 }
             }
@@ -382,8 +380,7 @@ fn draw_cells_frame(main: &Area, h: &GridHeatmap, xe: &[f64], ye: &[f64]) -> Res
 
 /// The colour bar's frame and value ticks (the gradient is a raster placed in the returned
 /// area), labelled with values (not their logarithms) and the quantity.
-fn draw_colour_bar(bar: &Area, h: &GridHeatmap, vmin: f64, vmax: f64) -> Result<PixelRange, String> {
-    let e = |e: DrawingAreaErrorKind<std::io::Error>| e.to_string();
+fn draw_colour_bar(bar: &Area, h: &GridHeatmap, vmin: f64, vmax: f64) -> Result<PixelRange, DrawError> {
     // The scale's ends are labelled too (the top of the region map's is the unsuppressed
     // deflection), unless a tick is within 6 % of the bar's height of them.
     let (ticks, labels): (Vec<f64>, Vec<String>) = if h.log_values {
@@ -415,8 +412,7 @@ fn draw_colour_bar(bar: &Area, h: &GridHeatmap, vmin: f64, vmax: f64) -> Result<
         .margin_left(px(10))
         .margin_right(px(4))
         .right_y_label_area_size(px(label_w))
-        .build_cartesian_2d(0.0..1.0, Ticked::<RangedCoordf64>::new(vmin..vmax, ticks.clone()))
-        .map_err(|e| e.to_string())?;
+        .build_cartesian_2d(0.0..1.0, Ticked::<RangedCoordf64>::new(vmin..vmax, ticks.clone()))?;
     cb.configure_mesh()
         .disable_mesh()
         .disable_x_axis()
@@ -426,14 +422,12 @@ fn draw_colour_bar(bar: &Area, h: &GridHeatmap, vmin: f64, vmax: f64) -> Result<
         .label_style(("sans-serif", px(16)))
         .axis_style(BLACK.stroke_width(px(1)))
         .set_all_tick_mark_size(px(4))
-        .draw()
-        .map_err(|e| e.to_string())?;
+        .draw()?;
     let title = match (h.log_values, common_exponent(&ticks)) {
         (false, Some(k)) => scaled_label(&h.value_label, k),
         _ => h.value_label.clone(),
     };
-    bar.draw(&Text::new(title, (px(4) as i32, px(14) as i32), ("sans-serif", px(16)).into_font().color(&BLACK)))
-        .map_err(e)?;
+    bar.draw(&Text::new(title, (px(4) as i32, px(14) as i32), ("sans-serif", px(16)).into_font().color(&BLACK)))?;
     Ok(cb.plotting_area().get_pixel_range())
 }
 
@@ -456,8 +450,7 @@ fn scaled_label(label: &str, k: i32) -> String {
 }
 
 /// The legend below the plot, two entries per row: each mark as drawn, then the grey cells.
-fn draw_legend(area: &Area, entries: &[(String, RGBColor, Option<MarkShape>)]) -> Result<(), String> {
-    let e = |e: DrawingAreaErrorKind<std::io::Error>| e.to_string();
+fn draw_legend(area: &Area, entries: &[(String, RGBColor, Option<MarkShape>)]) -> Result<(), DrawError> {
     let font = ("sans-serif", px(16)).into_font().color(&BLACK);
     for (k, (label, c, shape)) in entries.iter().enumerate() {
         let (col, row) = ((k % 2) as i32, (k / 2) as i32);
@@ -466,45 +459,42 @@ fn draw_legend(area: &Area, entries: &[(String, RGBColor, Option<MarkShape>)]) -
         let (xa, xb, xm) = (x0, x0 + px(26) as i32, x0 + px(13) as i32);
         let seg = |style: ShapeStyle| PathElement::new(vec![(xa, y), (xb, y)], style);
         match shape {
-            None => {
-                area.draw(&Rectangle::new([(xa, y - px(8) as i32), (xb, y + px(8) as i32)], c.filled())).map_err(e)?
-            }
+            None => area.draw(&Rectangle::new([(xa, y - px(8) as i32), (xb, y + px(8) as i32)], c.filled()))?,
             Some(MarkShape::Hatch) => {
                 let (ya, yb) = (f64::from(y - px(9) as i32), f64::from(y + px(9) as i32));
                 let corners = [(f64::from(xa), ya), (f64::from(xb), ya), (f64::from(xb), yb), (f64::from(xa), yb)];
                 for s in hatch(&corners, f64::from(px(HATCH_STEP) / 2), (xa, xb)) {
-                    area.draw(&PathElement::new(s.to_vec(), c.mix(0.8).stroke_width(px(1)))).map_err(e)?;
+                    area.draw(&PathElement::new(s.to_vec(), c.mix(0.8).stroke_width(px(1))))?;
                 }
-                area.draw(&Rectangle::new([(xa, ya as i32), (xb, yb as i32)], c.mix(0.8).stroke_width(px(1))))
-                    .map_err(e)?;
+                area.draw(&Rectangle::new([(xa, ya as i32), (xb, yb as i32)], c.mix(0.8).stroke_width(px(1))))?;
             }
             Some(MarkShape::Segments | MarkShape::Line) => {
-                area.draw(&seg(o.stroke_width(px(5)))).map_err(e)?;
-                area.draw(&seg(c.stroke_width(px(3)))).map_err(e)?;
+                area.draw(&seg(o.stroke_width(px(5))))?;
+                area.draw(&seg(c.stroke_width(px(3))))?;
             }
             Some(MarkShape::DashedLine) => {
                 for (a, b) in [(xa, xa + px(10) as i32), (xa + px(16) as i32, xb)] {
-                    area.draw(&PathElement::new(vec![(a, y), (b, y)], o.stroke_width(px(5)))).map_err(e)?;
-                    area.draw(&PathElement::new(vec![(a, y), (b, y)], c.stroke_width(px(3)))).map_err(e)?;
+                    area.draw(&PathElement::new(vec![(a, y), (b, y)], o.stroke_width(px(5))))?;
+                    area.draw(&PathElement::new(vec![(a, y), (b, y)], c.stroke_width(px(3))))?;
                 }
             }
             Some(MarkShape::Dots) => {
-                area.draw(&Circle::new((xm, y), px(4), o.filled())).map_err(e)?;
-                area.draw(&Circle::new((xm, y), px(3), c.filled())).map_err(e)?;
+                area.draw(&Circle::new((xm, y), px(4), o.filled()))?;
+                area.draw(&Circle::new((xm, y), px(3), c.filled()))?;
             }
             Some(MarkShape::Circles) => {
-                area.draw(&Circle::new((xm, y), px(7), o.stroke_width(px(4)))).map_err(e)?;
-                area.draw(&Circle::new((xm, y), px(7), c.stroke_width(px(2)))).map_err(e)?;
+                area.draw(&Circle::new((xm, y), px(7), o.stroke_width(px(4))))?;
+                area.draw(&Circle::new((xm, y), px(7), c.stroke_width(px(2))))?;
             }
             Some(MarkShape::Cross) => {
                 let d = px(9) as i32;
                 let square = vec![(xm - d, y - d), (xm + d, y - d), (xm + d, y + d), (xm - d, y + d), (xm - d, y - d)];
                 for (style, w) in [(o, px(6)), (c.to_rgba(), px(3))] {
-                    area.draw(&PathElement::new(square.clone(), style.stroke_width(w))).map_err(e)?;
+                    area.draw(&PathElement::new(square.clone(), style.stroke_width(w)))?;
                 }
             }
         }
-        area.draw(&Text::new(label.clone(), (x0 + px(36) as i32, y - px(9) as i32), font.clone())).map_err(e)?;
+        area.draw(&Text::new(label.clone(), (x0 + px(36) as i32, y - px(9) as i32), font.clone()))?;
     }
     Ok(())
 }

@@ -35,12 +35,47 @@ pub use ticks::{linear_ticks, log_ticks, with_ends, Ticked};
 
 /// A chart could not be drawn.
 #[derive(Debug, thiserror::Error)]
-#[error("chart {name}: {detail}")]
+#[error("chart {name}: {cause}")]
 pub struct ChartError {
     /// The chart's file stem.
     pub name: String,
     /// What failed.
-    pub detail: String,
+    #[source]
+    pub cause: DrawError,
+}
+
+/// What failed while drawing a chart.
+#[derive(Debug, thiserror::Error)]
+pub enum DrawError {
+    /// plotters' SVG backend failed (its error, generic over the backend, kept as its text).
+    #[error("{0}")]
+    Plot(String),
+    /// Encoding a raster as PNG failed.
+    #[error(transparent)]
+    Png(#[from] png::EncodingError),
+    /// The SVG has no background rectangle to insert a raster after.
+    #[error("unexpected SVG layout")]
+    SvgLayout,
+    /// A field (heatmap or surface) has fewer than 2 times or grid points, or its values do
+    /// not match them.
+    #[error("need at least 2 times and 2 grid points, and one value per (t, z)")]
+    FieldShape,
+    /// A grid heatmap's values do not match its grid.
+    #[error("{values} values for a {nx} × {ny} grid")]
+    GridShape {
+        /// Values given.
+        values: usize,
+        /// Cells along x.
+        nx: usize,
+        /// Cells along y.
+        ny: usize,
+    },
+}
+
+impl From<plotters::drawing::DrawingAreaErrorKind<std::io::Error>> for DrawError {
+    fn from(e: plotters::drawing::DrawingAreaErrorKind<std::io::Error>) -> Self {
+        DrawError::Plot(e.to_string())
+    }
 }
 
 /// Displayed width and height (px) of every chart.
@@ -71,7 +106,7 @@ pub fn embed_raster(
     svg: &mut String,
     plot_px: &(std::ops::Range<i32>, std::ops::Range<i32>),
     png: &[u8],
-) -> Result<(), String> {
+) -> Result<(), DrawError> {
     use base64::Engine;
     let (xr, yr) = plot_px;
     let image = format!(
@@ -82,7 +117,7 @@ pub fn embed_raster(
         yr.end - yr.start,
         base64::engine::general_purpose::STANDARD.encode(png)
     );
-    let at = svg.find("/>\n").map(|i| i + 3).ok_or_else(|| "unexpected SVG layout".to_string())?;
+    let at = svg.find("/>\n").map(|i| i + 3).ok_or(DrawError::SvgLayout)?;
     svg.insert_str(at, &image);
     Ok(())
 }

@@ -11,11 +11,11 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::symlog::{SymLog, SymLogCoord};
-use crate::ChartError;
 use crate::{
     decade_label, linear_ticks, log_labels, log_ticks, padded_range, px, scaled_svg_header, tick, tick_linear, Ticked,
     CANVAS, PALETTE,
 };
+use crate::{ChartError, DrawError};
 
 /// How a line is drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -222,11 +222,11 @@ pub(crate) const LEGEND_W: u32 = 230;
 /// Render the chart as an SVG document.
 pub fn line_svg(c: &LineChart) -> Result<String, ChartError> {
     let pd = &c.data;
-    let err = |e: String| ChartError { name: pd.name.clone(), detail: e };
+    let err = |cause: DrawError| ChartError { name: pd.name.clone(), cause };
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, CANVAS).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
+        root.fill(&WHITE).map_err(|e| err(e.into()))?;
         let labelled = pd.lines.iter().any(|l| !l.label.is_empty())
             || !c.bands.is_empty()
             || !c.vlines.is_empty()
@@ -279,7 +279,7 @@ pub fn line_svg(c: &LineChart) -> Result<String, ChartError> {
         if let Some(area) = legend {
             crate::line_legend::draw_legend(&area, c).map_err(err)?;
         }
-        root.present().map_err(|e| err(e.to_string()))?;
+        root.present().map_err(|e| err(e.into()))?;
     }
     Ok(scaled_svg_header(svg))
 }
@@ -328,7 +328,7 @@ fn draw<X, Y>(
     x: X,
     y: Y,
     labels: (Labels, Labels),
-) -> Result<(), String>
+) -> Result<(), DrawError>
 where
     X: AsRangedCoord<Value = f64>,
     Y: AsRangedCoord<Value = f64>,
@@ -340,8 +340,7 @@ where
         .margin(px(12))
         .x_label_area_size(px(46))
         .y_label_area_size(px(76))
-        .build_cartesian_2d(x, y)
-        .map_err(|e| e.to_string())?;
+        .build_cartesian_2d(x, y)?;
     let (log_x, log_y) = (pd.log_x, pd.log_y);
     chart
         .configure_mesh()
@@ -355,8 +354,7 @@ where
         .light_line_style(WHITE.mix(0.0))
         .axis_style(BLACK.stroke_width(px(1)))
         .set_all_tick_mark_size(px(5))
-        .draw()
-        .map_err(|e| e.to_string())?;
+        .draw()?;
     let x_range = chart.x_range();
     let y_range = chart.y_range();
     let colours = colours(pd);
@@ -412,14 +410,10 @@ where
         lower.reverse();
         upper.extend(lower);
         if upper.len() >= 3 {
-            chart
-                .draw_series(std::iter::once(Polygon::new(upper, color.mix(0.3).filled())))
-                .map_err(|e| e.to_string())?;
+            chart.draw_series(std::iter::once(Polygon::new(upper, color.mix(0.3).filled())))?;
         }
         for edge in edges.into_iter().flatten().filter(|e| e.len() >= 2) {
-            chart
-                .draw_series(std::iter::once(PathElement::new(edge, color.stroke_width(px(2)))))
-                .map_err(|e| e.to_string())?;
+            chart.draw_series(std::iter::once(PathElement::new(edge, color.stroke_width(px(2)))))?;
         }
     }
     for (i, line) in pd.lines.iter().enumerate() {
@@ -435,9 +429,7 @@ where
         let mut pts: Vec<(f64, f64)> = line.x.iter().copied().zip(line.y.iter().copied()).collect();
         if line.points {
             let pts: Vec<(f64, f64)> = pts.into_iter().filter(keep).collect();
-            chart
-                .draw_series(pts.into_iter().map(|p| Circle::new(p, px(4), color.filled())))
-                .map_err(|e| e.to_string())?;
+            chart.draw_series(pts.into_iter().map(|p| Circle::new(p, px(4), color.filled())))?;
             continue;
         }
         if c.style(i) == LineStyle::Step {
@@ -472,32 +464,22 @@ where
             let s: Vec<(f64, f64)> =
                 crate::clip::simplified(&canvas, f64::from(crate::SCALE) / 4.0).into_iter().map(|k| s[k]).collect();
             if c.style(i) == LineStyle::Dashed {
-                chart
-                    .draw_series(DashedLineSeries::new(s, px(8), px(5), color.stroke_width(width)))
-                    .map_err(|e| e.to_string())?;
+                chart.draw_series(DashedLineSeries::new(s, px(8), px(5), color.stroke_width(width)))?;
             } else if faint {
-                chart
-                    .draw_series(DashedLineSeries::new(s, px(3), px(3), color.stroke_width(width)))
-                    .map_err(|e| e.to_string())?;
+                chart.draw_series(DashedLineSeries::new(s, px(3), px(3), color.stroke_width(width)))?;
             } else {
-                chart
-                    .draw_series(std::iter::once(PathElement::new(s, color.stroke_width(width))))
-                    .map_err(|e| e.to_string())?;
+                chart.draw_series(std::iter::once(PathElement::new(s, color.stroke_width(width))))?;
             }
         }
     }
     for (k, (x, _)) in c.vlines.iter().enumerate() {
         let s = vec![(*x, y_range.start), (*x, y_range.end)];
         let (dash, gap, colour) = vline_style(k);
-        chart
-            .draw_series(DashedLineSeries::new(s, dash, gap, colour.stroke_width(px(2))))
-            .map_err(|e| e.to_string())?;
+        chart.draw_series(DashedLineSeries::new(s, dash, gap, colour.stroke_width(px(2))))?;
     }
     for (y, _) in &c.hlines {
         let s = vec![(x_range.start, *y), (x_range.end, *y)];
-        chart
-            .draw_series(DashedLineSeries::new(s, px(3), px(4), MARK.stroke_width(px(2))))
-            .map_err(|e| e.to_string())?;
+        chart.draw_series(DashedLineSeries::new(s, px(3), px(4), MARK.stroke_width(px(2))))?;
     }
     Ok(())
 }

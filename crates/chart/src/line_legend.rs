@@ -6,7 +6,7 @@ use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 
 use crate::line::{colours, vline_style, BandStyle, LineChart, LineStyle, MARK};
-use crate::px;
+use crate::{px, DrawError};
 
 /// Characters per line of the legend panel's text (17-px sans-serif in [`crate::line::LEGEND_W`] px less
 /// the swatch).
@@ -49,13 +49,13 @@ fn legend_text(
     text: &str,
     (x, y): (i32, i32),
     font: &TextStyle,
-) -> Result<i32, String> {
+) -> Result<i32, DrawError> {
     let mut y = y;
     for (i, line) in wrap(text).into_iter().enumerate() {
         if i > 0 {
             y += px(21) as i32;
         }
-        area.draw(&Text::new(line, (x, y - px(9) as i32), font.clone())).map_err(|e| e.to_string())?;
+        area.draw(&Text::new(line, (x, y - px(9) as i32), font.clone()))?;
     }
     Ok(y)
 }
@@ -63,7 +63,7 @@ fn legend_text(
 /// The legend panel: one entry per labelled line (swatch as drawn: the same line width and
 /// dash pattern, or the marker), each band (a filled swatch), then the markers and levels. A
 /// line with nothing drawable on these axes (e.g. 0 throughout on a log axis) says so.
-pub(crate) fn draw_legend(area: &DrawingArea<SVGBackend, Shift>, c: &LineChart) -> Result<(), String> {
+pub(crate) fn draw_legend(area: &DrawingArea<SVGBackend, Shift>, c: &LineChart) -> Result<(), DrawError> {
     let pd = &c.data;
     let colours = colours(pd);
     let font = ("sans-serif", px(17)).into_font().color(&BLACK);
@@ -71,7 +71,6 @@ pub(crate) fn draw_legend(area: &DrawingArea<SVGBackend, Shift>, c: &LineChart) 
     let x0 = px(10) as i32;
     let step = px(26) as i32;
     let swatch = |y: i32| vec![(x0, y), (x0 + px(28) as i32, y)];
-    let e = |e: DrawingAreaErrorKind<std::io::Error>| e.to_string();
     for (i, line) in pd.lines.iter().enumerate() {
         if line.label.is_empty() {
             continue;
@@ -82,16 +81,16 @@ pub(crate) fn draw_legend(area: &DrawingArea<SVGBackend, Shift>, c: &LineChart) 
         if !line.points {
             let w = px(if i == 0 { 3 } else { 2 });
             if c.style(i) == LineStyle::Dashed {
-                area.draw(&DashedPathElement::new(swatch(y), px(8), px(5), color.stroke_width(w))).map_err(e)?;
+                area.draw(&DashedPathElement::new(swatch(y), px(8), px(5), color.stroke_width(w)))?;
             } else if c.style(i) == LineStyle::Faint {
                 let faint = color.mix(0.7).stroke_width(px(1));
-                area.draw(&DashedPathElement::new(swatch(y), px(3), px(3), faint)).map_err(e)?;
+                area.draw(&DashedPathElement::new(swatch(y), px(3), px(3), faint))?;
             } else {
-                area.draw(&PathElement::new(swatch(y), color.stroke_width(w))).map_err(e)?;
+                area.draw(&PathElement::new(swatch(y), color.stroke_width(w)))?;
             }
         }
         if marked {
-            area.draw(&Circle::new((x0 + px(14) as i32, y), px(4), color.filled())).map_err(e)?;
+            area.draw(&Circle::new((x0 + px(14) as i32, y), px(4), color.filled()))?;
         }
         let text = if drawable(c, line) {
             line.label.clone()
@@ -106,11 +105,11 @@ pub(crate) fn draw_legend(area: &DrawingArea<SVGBackend, Shift>, c: &LineChart) 
         let color = colours.get(b.line).copied().unwrap_or(MARK);
         let (top, bottom) = (y - px(7) as i32, y + px(7) as i32);
         let r = Rectangle::new([(x0, top), (x0 + px(28) as i32, bottom)], color.mix(0.3).filled());
-        area.draw(&r).map_err(e)?;
+        area.draw(&r)?;
         if b.style == BandStyle::Edges {
             for edge in [top, bottom] {
                 let l = vec![(x0, edge), (x0 + px(28) as i32, edge)];
-                area.draw(&PathElement::new(l, color.stroke_width(px(2)))).map_err(e)?;
+                area.draw(&PathElement::new(l, color.stroke_width(px(2))))?;
             }
         }
         y = legend_text(area, &b.label, (x0 + px(36) as i32, y), &font)? + step;
@@ -122,13 +121,13 @@ pub(crate) fn draw_legend(area: &DrawingArea<SVGBackend, Shift>, c: &LineChart) 
         .map(|(k, v)| (v, vline_style(k)))
         .chain(c.hlines.iter().map(|h| (h, (px(3), px(4), MARK))));
     for ((_, label), (dash, gap, colour)) in levels {
-        area.draw(&DashedPathElement::new(swatch(y), dash, gap, colour.stroke_width(px(2)))).map_err(e)?;
+        area.draw(&DashedPathElement::new(swatch(y), dash, gap, colour.stroke_width(px(2))))?;
         y = legend_text(area, label, (x0 + px(36) as i32, y), &font)? + step;
     }
     if let Some(s) = c.symlog() {
         y += step / 2;
         for line in s.note() {
-            area.draw(&Text::new(line, (x0, y - px(9) as i32), font.clone())).map_err(e)?;
+            area.draw(&Text::new(line, (x0, y - px(9) as i32), font.clone()))?;
             y += step;
         }
     }

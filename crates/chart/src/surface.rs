@@ -25,7 +25,7 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use crate::field::{coolwarm_rgb, locate};
 use crate::labels::{place, Label};
 use crate::Heatmap;
-use crate::{linear_ticks, px, scaled_svg_header, tick, tick_linear, ChartError, CANVAS, SCALE};
+use crate::{linear_ticks, px, scaled_svg_header, tick, tick_linear, ChartError, DrawError, CANVAS, SCALE};
 
 /// At most this many time strips are drawn (samples are taken evenly; the CSV has them all).
 const MAX_STRIPS: usize = 160;
@@ -310,10 +310,10 @@ fn draw_surface(s: &Heatmap, view: View, (vmin, vmax): (f64, f64), vt: &[f64]) -
 
 /// Render the surface as an SVG document (raster surface, vector axes).
 pub fn surface_svg(s: &Heatmap) -> Result<String, ChartError> {
-    let err = |e: String| ChartError { name: s.name.clone(), detail: e };
+    let err = |cause: DrawError| ChartError { name: s.name.clone(), cause };
     let (nt, nz) = (s.t.len(), s.z.len());
     if nt < 2 || nz < 2 || s.values.len() != nt || s.values.iter().any(|r| r.len() != nz) {
-        return Err(err("need at least 2 times and 2 grid points, and one value per (t, z)".into()));
+        return Err(err(DrawError::FieldShape));
     }
     let (vmin, vmax) = height_range(s);
     let cmax = s.scale();
@@ -334,8 +334,8 @@ pub fn surface_svg(s: &Heatmap) -> Result<String, ChartError> {
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, CANVAS).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| err(e.to_string()))?;
-        let e = |e: DrawingAreaErrorKind<std::io::Error>| err(e.to_string());
+        root.fill(&WHITE).map_err(|e| err(e.into()))?;
+        let e = |e: DrawingAreaErrorKind<std::io::Error>| err(e.into());
         let c = |p: (f64, f64)| ((p.0 * SCALE as f64).round() as i32, (p.1 * SCALE as f64).round() as i32);
         let font = |h: HPos, v: VPos| {
             ("sans-serif", px(crate::labels::FONT_PX as u32)).into_font().color(&BLACK).pos(Pos::new(h, v))
@@ -391,7 +391,7 @@ pub fn surface_svg(s: &Heatmap) -> Result<String, ChartError> {
         for l in place(titles.into_iter().chain(ticks).chain(ends).collect()) {
             root.draw(&Text::new(l.text, c(l.at), font(l.h, l.v))).map_err(e)?;
         }
-        root.present().map_err(|e| err(e.to_string()))?;
+        root.present().map_err(|e| err(e.into()))?;
     }
     let s4 = SCALE as i32;
     crate::embed_raster(&mut svg, &(bx0 * s4..bx1 * s4, by0 * s4..by1 * s4), &png).map_err(err)?;
@@ -401,7 +401,7 @@ pub fn surface_svg(s: &Heatmap) -> Result<String, ChartError> {
 }
 
 /// The raster as an indexed PNG with [`palette`].
-fn indexed_png(r: &Raster) -> Result<Vec<u8>, String> {
+fn indexed_png(r: &Raster) -> Result<Vec<u8>, DrawError> {
     let mut out = Vec::new();
     {
         let mut enc = png::Encoder::new(&mut out, r.w as u32, r.h as u32);
@@ -409,15 +409,15 @@ fn indexed_png(r: &Raster) -> Result<Vec<u8>, String> {
         enc.set_depth(png::BitDepth::Eight);
         enc.set_palette(palette().as_flattened().to_vec());
         enc.set_compression(png::Compression::Best);
-        let mut wr = enc.write_header().map_err(|e| e.to_string())?;
-        wr.write_image_data(&r.data).map_err(|e| e.to_string())?;
+        let mut wr = enc.write_header()?;
+        wr.write_image_data(&r.data)?;
     }
     Ok(out)
 }
 
 /// A truecolour PNG of `w × h` pixels (rows top to bottom), filtered per row adaptively (a
 /// smooth gradient leaves small repeating differences, which deflate compresses well).
-fn rgb_png(w: usize, h: usize, data: &[[u8; 3]]) -> Result<Vec<u8>, String> {
+fn rgb_png(w: usize, h: usize, data: &[[u8; 3]]) -> Result<Vec<u8>, DrawError> {
     let mut out = Vec::new();
     {
         let mut enc = png::Encoder::new(&mut out, w as u32, h as u32);
@@ -425,8 +425,8 @@ fn rgb_png(w: usize, h: usize, data: &[[u8; 3]]) -> Result<Vec<u8>, String> {
         enc.set_depth(png::BitDepth::Eight);
         enc.set_compression(png::Compression::Best);
         enc.set_adaptive_filter(png::AdaptiveFilterType::Adaptive);
-        let mut wr = enc.write_header().map_err(|e| e.to_string())?;
-        wr.write_image_data(data.as_flattened()).map_err(|e| e.to_string())?;
+        let mut wr = enc.write_header()?;
+        wr.write_image_data(data.as_flattened())?;
     }
     Ok(out)
 }

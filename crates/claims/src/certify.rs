@@ -23,6 +23,7 @@ use wingcheck_cert::exact::{to_f64, NumberLimits};
 use wingcheck_model::Config;
 
 use crate::lyapunov::{self, Coupling, LyapunovParams};
+use crate::numerics::PencilError;
 use facts::{CertificateFile, FactKind, WeightsText, WingText, FORMAT, VERSION};
 use manifest::{ClaimEntry, FileEntry, Manifest, INDEX, INDEX_FORMAT, INDEX_VERSION};
 
@@ -65,12 +66,13 @@ pub enum CertifyError {
     )]
     SelfCheck(String),
     /// The float computation that finds a witness failed (certify only).
-    #[error("numerical failure while computing {what}: {detail}")]
+    #[error("numerical failure while computing {what}: {cause}")]
     Numerical {
         /// Which quantity.
-        what: String,
-        /// The solver's message.
-        detail: String,
+        what: &'static str,
+        /// What failed.
+        #[source]
+        cause: crate::numerics::PencilError,
     },
     /// Stopped through the cancel token before the set was moved into place.
     #[error(transparent)]
@@ -96,8 +98,8 @@ pub fn format_decimal(x: f64) -> String {
     wingcheck_model::format_number(x)
 }
 
-fn numerical(what: &str) -> impl FnOnce(String) -> CertifyError + '_ {
-    move |detail| CertifyError::Numerical { what: what.into(), detail }
+fn numerical<E: Into<PencilError>>(what: &'static str) -> impl FnOnce(E) -> CertifyError {
+    move |cause| CertifyError::Numerical { what, cause: cause.into() }
 }
 
 /// x rounded down (`down`) or up to a decimal k·10^(−places), exactly (x's exact binary value
@@ -286,8 +288,8 @@ pub fn certificate_set(cfg: &Config) -> Result<(Vec<CertificateFile>, Vec<String
     if to_f64(&l2.value()) <= 0.0 {
         if tight.lambda2 >= 0.0 {
             return Err(CertifyError::Numerical {
-                what: "the lower bound of W/κ".into(),
-                detail: format!("min W/κ = {:.3e} is too close to 0 to certify either sign", tight.lambda2),
+                what: "the lower bound of W/κ",
+                cause: PencilError::NearZero { what: "min W/κ", value: tight.lambda2 },
             });
         }
         out.push(maker.negative("w-bounds-indefinite", a, b, &tight.argmin, n));
@@ -300,7 +302,7 @@ pub fn certificate_set(cfg: &Config) -> Result<(Vec<CertificateFile>, Vec<String
     }
     // a/b_max = ω₁: above ω₁·1.05 a negative direction exists; below ω₁·0.95 W ≻ 0 on V_N.
     let ratio = crate::wbounds::a_over_b_max(cfg, Coupling::Corrected, n)
-        .map_err(|e| numerical("the largest a/b with W positive definite")(e.to_string()))?;
+        .map_err(numerical("the largest a/b with W positive definite"))?;
     let above = round_decimal(ratio * 1.05, false).decimal_text();
     let p = params.with_weights(&above, "1");
     let t = lyapunov::tight_constants(&lyapunov::assemble(&p).map_err(numerical("W at a/b above ω₁"))?)
@@ -345,7 +347,7 @@ fn finer_negative_direction(cfg: &Config, params: &LyapunovParams) -> Result<Fin
     if b <= 0.0 {
         return Ok(Finer::NotNeeded);
     }
-    let omega = crate::theory::w_threshold(cfg).map_err(|e| numerical("ω₁")(e.to_string()))?;
+    let omega = crate::theory::w_threshold(cfg).map_err(numerical("ω₁"))?;
     let ratio = a / b;
     if ratio <= omega.value - omega.error {
         return Ok(Finer::NotNeeded);

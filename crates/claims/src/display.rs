@@ -5,6 +5,8 @@
 //! into display [`Node`]s, which the report lays out. So the page and the JSON agree field by
 //! field, every value carries its own label and unit, and no meaning is recovered from a key.
 
+use std::sync::Arc;
+
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value};
 use wingcheck_model::{Quantity, Unit};
@@ -227,19 +229,46 @@ fn cell(n: &Node) -> (Column, Cell) {
     }
 }
 
+/// Why a serialised evidence struct is not made of labelled leaves and tables (a bug of the
+/// evidence type); `path` is the JSON path of the offending value (`$.x`, `$.cases.rows[1]`).
+#[derive(Debug, Clone, thiserror::Error)]
+pub enum ShapeError {
+    /// The evidence does not serialise to JSON.
+    #[error("{0}")]
+    Serialise(#[source] Arc<serde_json::Error>),
+    /// A table row is not a record.
+    #[error("{path} is not a record")]
+    NotARecord {
+        /// JSON path of the row.
+        path: String,
+    },
+    /// A bare value (number, string) where a labelled value is needed.
+    #[error("{path}: a bare value without a label")]
+    Unlabelled {
+        /// JSON path of the value.
+        path: String,
+    },
+    /// A labelled value that is neither a quantity, a flag, a text nor a table.
+    #[error("{path}: a labelled value of unknown shape")]
+    UnknownShape {
+        /// JSON path of the value.
+        path: String,
+    },
+}
+
 /// A record's leaves, in field order (nested unlabelled groups flattened).
-fn record(path: &str, v: &Map<String, Value>, out: &mut Vec<Node>) -> Result<(), String> {
+fn record(path: &str, v: &Map<String, Value>, out: &mut Vec<Node>) -> Result<(), ShapeError> {
     for (k, x) in v {
         nodes_into(&format!("{path}.{k}"), x, out)?;
     }
     Ok(())
 }
 
-fn table(path: &str, label: &str, rows: &[Value]) -> Result<Node, String> {
+fn table(path: &str, label: &str, rows: &[Value]) -> Result<Node, ShapeError> {
     let mut columns: Vec<Column> = Vec::new();
     let mut parsed: Vec<Vec<(Column, Cell)>> = Vec::new();
     for (i, r) in rows.iter().enumerate() {
-        let m = r.as_object().ok_or_else(|| format!("{path}.rows[{i}] is not a record"))?;
+        let m = r.as_object().ok_or_else(|| ShapeError::NotARecord { path: format!("{path}.rows[{i}]") })?;
         let mut leaves = Vec::new();
         record(&format!("{path}.rows[{i}]"), m, &mut leaves)?;
         let cells: Vec<(Column, Cell)> = leaves.iter().map(cell).collect();
@@ -268,12 +297,12 @@ fn table(path: &str, label: &str, rows: &[Value]) -> Result<Node, String> {
     Ok(Node::Table { label: label.into(), columns, rows })
 }
 
-fn nodes_into(path: &str, v: &Value, out: &mut Vec<Node>) -> Result<(), String> {
-    let m = v.as_object().ok_or_else(|| format!("{path}: a bare value without a label"))?;
+fn nodes_into(path: &str, v: &Value, out: &mut Vec<Node>) -> Result<(), ShapeError> {
+    let m = v.as_object().ok_or_else(|| ShapeError::Unlabelled { path: path.into() })?;
     if let (Some(Value::String(label)), Some(Value::Array(rows))) = (m.get("label"), m.get("rows")) {
         out.push(table(path, label, rows)?);
     } else if m.contains_key("label") {
-        out.push(leaf(m).ok_or_else(|| format!("{path}: a labelled value of unknown shape"))?);
+        out.push(leaf(m).ok_or_else(|| ShapeError::UnknownShape { path: path.into() })?);
     } else {
         record(path, m, out)?;
     }
@@ -282,8 +311,8 @@ fn nodes_into(path: &str, v: &Value, out: &mut Vec<Node>) -> Result<(), String> 
 
 /// The display nodes of a serialised evidence struct, in field order. An error names the
 /// JSON path of a value that is not a labelled leaf or table (a bug of the evidence type).
-pub fn nodes<T: Serialize>(evidence: &T) -> Result<Vec<Node>, String> {
-    let v = serde_json::to_value(evidence).map_err(|e| e.to_string())?;
+pub fn nodes<T: Serialize>(evidence: &T) -> Result<Vec<Node>, ShapeError> {
+    let v = serde_json::to_value(evidence).map_err(|e| ShapeError::Serialise(Arc::new(e)))?;
     let mut out = Vec::new();
     nodes_into("$", &v, &mut out)?;
     Ok(out)
@@ -352,7 +381,7 @@ mod tests {
         struct Bad {
             x: f64,
         }
-        assert_eq!(nodes(&Bad { x: 1.0 }).unwrap_err(), "$.x: a bare value without a label");
+        assert_eq!(nodes(&Bad { x: 1.0 }).unwrap_err().to_string(), "$.x: a bare value without a label");
         let q = Quantity::based("r", 2.0, Unit::Dimensionless, ValueBasis::Simulation);
         assert_eq!(number_at(&serde_json::json!({ "r": q }), "r"), Some(2.0));
     }

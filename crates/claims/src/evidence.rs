@@ -74,7 +74,7 @@ impl Evidence {
     }
 
     /// The display nodes of the evidence ([`crate::display::nodes`]).
-    pub fn nodes(&self) -> Result<Vec<crate::display::Node>, String> {
+    pub fn nodes(&self) -> Result<Vec<crate::display::Node>, crate::display::ShapeError> {
         match self {
             Evidence::None => Ok(Vec::new()),
             e => crate::display::nodes(e),

@@ -18,6 +18,7 @@ mod ledger;
 pub mod lemmas;
 pub mod lyapunov;
 pub mod mu;
+pub mod numerics;
 pub mod ode;
 pub mod plan;
 pub mod sdp;
@@ -55,12 +56,13 @@ pub enum ClaimsError {
     #[error(transparent)]
     Cancelled(#[from] wingcheck_model::Cancelled),
     /// A numerical step failed.
-    #[error("numerical failure in {what}: {detail}")]
+    #[error("numerical failure in {what}: {cause}")]
     Numerical {
         /// Which computation.
-        what: String,
-        /// What happened.
-        detail: String,
+        what: &'static str,
+        /// What failed.
+        #[source]
+        cause: numerics::PencilError,
     },
 }
 
@@ -181,11 +183,21 @@ fn theory_rows(cfg: &Config, study: &Study, settings: &CheckSettings) -> (Vec<(C
     (rows, extra)
 }
 
+/// Why `certify` writes no certificates for a configuration.
+#[derive(Debug, thiserror::Error)]
+enum NoCertificates {
+    /// It panicked (a bug of wingcheck).
+    #[error(transparent)]
+    Panicked(#[from] wingcheck_io::Panicked),
+    /// It refused or failed.
+    #[error(transparent)]
+    Certify(#[from] certify::CertifyError),
+}
+
 /// The certificate files `certify` writes for `cfg`, per claim (empty with the reason when the
 /// configuration cannot be certified).
-fn certificate_files(cfg: &Config) -> Result<Vec<(ClaimId, String)>, String> {
-    let files =
-        wingcheck_io::catch(|| certify::certificates(cfg)).map_err(|p| p.to_string())?.map_err(|e| e.to_string())?;
+fn certificate_files(cfg: &Config) -> Result<Vec<(ClaimId, String)>, NoCertificates> {
+    let files = wingcheck_io::catch(|| certify::certificates(cfg))??;
     Ok(files
         .iter()
         .filter_map(|f| {

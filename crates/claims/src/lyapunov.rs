@@ -22,6 +22,8 @@ use wingcheck_cert::fe::{ClampedMesh, Space};
 use wingcheck_cert::RationalMatrix;
 use wingcheck_model::Config;
 
+use crate::numerics::{FormsError, PencilError};
+
 /// Which cross term −c ∫q̇θ̇ the function carries: the paper prints b·x_c (x_c = ρx_c/ρ);
 /// the kinetic energy and the bound (27) have b·ρx_c.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
@@ -86,8 +88,8 @@ impl LyapunovParams {
         LyapunovParams { a: a.into(), b: b.into(), ..self.clone() }
     }
 
-    fn q(&self, field: &str, s: &str) -> Result<BigRational, String> {
-        parse_rational(s).map_err(|e| format!("{field}: {e}"))
+    fn q(&self, field: &'static str, s: &str) -> Result<BigRational, FormsError> {
+        parse_rational(s).map_err(|cause| FormsError::Rational { field, cause })
     }
 }
 
@@ -120,9 +122,9 @@ fn place(target: &mut RationalMatrix, block: &RationalMatrix, r0: usize, c0: usi
 }
 
 /// Assemble W and κ exactly.
-pub fn assemble(p: &LyapunovParams) -> Result<ExactForms, String> {
+pub fn assemble(p: &LyapunovParams) -> Result<ExactForms, FormsError> {
     if p.elements == 0 || p.elements > 64 {
-        return Err(format!("elements = {} out of range [1, 64]", p.elements));
+        return Err(FormsError::Elements(p.elements));
     }
     let rho = p.q("rho", &p.rho)?;
     let rho_xc = p.q("rho_xc", &p.rho_xc)?;
@@ -133,7 +135,7 @@ pub fn assemble(p: &LyapunovParams) -> Result<ExactForms, String> {
     let a = p.q("a", &p.a)?;
     let b = p.q("b", &p.b)?;
     if span <= BigRational::zero() || rho <= BigRational::zero() {
-        return Err("span and rho must be positive".into());
+        return Err(FormsError::NonPositive);
     }
     let n = p.elements;
     let mesh = ClampedMesh::new(span, n);
@@ -176,13 +178,14 @@ pub fn to_dense(m: &RationalMatrix) -> faer::Mat<f64> {
 }
 
 /// Generalised eigenpairs of (A, B), B ≻ 0: eigenvalues ascending and eigenvectors (columns).
-pub fn generalized_eigen(a: &faer::Mat<f64>, b: &faer::Mat<f64>) -> Result<(Vec<f64>, faer::Mat<f64>), String> {
+pub fn generalized_eigen(a: &faer::Mat<f64>, b: &faer::Mat<f64>) -> Result<(Vec<f64>, faer::Mat<f64>), PencilError> {
     use faer::Side;
     let n = a.nrows();
-    let llt = b.llt(Side::Lower).map_err(|e| format!("κ is not positive definite: {e:?}"))?;
+    let llt = b.llt(Side::Lower).map_err(|cause| PencilError::NotPositiveDefinite { what: "κ", cause })?;
     let l = llt.L();
     let c = wingcheck_sim::dense::congruence(l, a);
-    let eig = c.self_adjoint_eigen(Side::Lower).map_err(|e| format!("eigen solver failed: {e:?}"))?;
+    let eig =
+        c.self_adjoint_eigen(Side::Lower).map_err(|cause| PencilError::Eigen { what: "eigen solver failed", cause })?;
     let vals: Vec<f64> = (0..n).map(|i| eig.S()[i]).collect();
     // back-transform: x = L⁻ᵀ y
     let mut vecs = eig.U().to_owned();
@@ -208,7 +211,7 @@ pub struct TightConstants {
 }
 
 /// Compute the tight constants from exact forms (float generalised eigenvalue problem).
-pub fn tight_constants(forms: &ExactForms) -> Result<TightConstants, String> {
+pub fn tight_constants(forms: &ExactForms) -> Result<TightConstants, PencilError> {
     let (vals, vecs) = generalized_eigen(&to_dense(&forms.w), &to_dense(&forms.kappa))?;
     let n = vals.len();
     Ok(TightConstants {
@@ -234,31 +237,35 @@ pub fn round_vector(x: &[f64]) -> Vec<BigRational> {
 /// Recipe parameters → the certified matrix. `form`: `w-minus-lambda-kappa` (W − λκ),
 /// `lambda-kappa-minus-w` (λκ − W) or `negative-direction` (the 1×1 matrix [−xᵀ(W − λκ)x],
 /// positive iff W(x) < λ κ(x)), `positive-direction` ([xᵀ(W − λκ)x], positive iff W(x) > λκ(x)).
-pub fn recipe_build(params: &Value) -> Result<RationalMatrix, String> {
-    let p: LyapunovParams =
-        serde_json::from_value(params.get("forms").cloned().ok_or("missing `forms`")?).map_err(|e| e.to_string())?;
-    let lambda = parse_rational(params.get("lambda").and_then(Value::as_str).ok_or("missing `lambda`")?)
-        .map_err(|e| format!("lambda: {e}"))?;
-    let form = params.get("form").and_then(Value::as_str).ok_or("missing `form`")?;
+pub fn recipe_build(params: &Value) -> Result<RationalMatrix, FormsError> {
+    let p: LyapunovParams = serde_json::from_value(params.get("forms").cloned().ok_or(FormsError::Missing("forms"))?)
+        .map_err(|e| FormsError::Json(std::sync::Arc::new(e)))?;
+    let lambda = parse_rational(params.get("lambda").and_then(Value::as_str).ok_or(FormsError::Missing("lambda"))?)
+        .map_err(|cause| FormsError::Rational { field: "lambda", cause })?;
+    let form = params.get("form").and_then(Value::as_str).ok_or(FormsError::Missing("form"))?;
     let f = assemble(&p)?;
     let lk = f.kappa.scale(&lambda);
-    let diff = f.w.sub(&lk).ok_or("dimension mismatch")?;
+    let diff = f.w.sub(&lk).ok_or(FormsError::DimensionMismatch)?;
     match form {
         "w-minus-lambda-kappa" => Ok(diff),
-        "lambda-kappa-minus-w" => Ok(lk.sub(&f.w).ok_or("dimension mismatch")?),
+        "lambda-kappa-minus-w" => Ok(lk.sub(&f.w).ok_or(FormsError::DimensionMismatch)?),
         "negative-direction" | "positive-direction" => {
-            let xs = params.get("x").and_then(Value::as_array).ok_or("missing `x`")?;
-            let x: Result<Vec<BigRational>, String> =
-                xs.iter().map(|v| parse_rational(v.as_str().unwrap_or("")).map_err(|e| format!("x: {e}"))).collect();
+            let xs = params.get("x").and_then(Value::as_array).ok_or(FormsError::Missing("x"))?;
+            let x: Result<Vec<BigRational>, FormsError> = xs
+                .iter()
+                .map(|v| {
+                    parse_rational(v.as_str().unwrap_or("")).map_err(|cause| FormsError::Rational { field: "x", cause })
+                })
+                .collect();
             let x = x?;
             if x.len() != diff.rows() {
-                return Err(format!("x has {} entries, the state space {}", x.len(), diff.rows()));
+                return Err(FormsError::DirectionLength { got: x.len(), dim: diff.rows() });
             }
             let v = quadratic_form(&diff, &x);
             let v = if form == "negative-direction" { -v } else { v };
             Ok(RationalMatrix::from_fn(1, 1, |_, _| v.clone()))
         }
-        other => Err(format!("unknown form `{other}`")),
+        other => Err(FormsError::UnknownForm(other.into())),
     }
 }
 

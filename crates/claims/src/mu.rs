@@ -47,8 +47,8 @@ impl MuData {
 pub fn lambda1_on(cfg: &Config, a: f64, b: f64, elements: usize) -> Result<f64, ClaimsError> {
     use crate::lyapunov::{assemble, decimal, tight_constants, Coupling, LyapunovParams};
     let p = LyapunovParams::from_config(cfg, Coupling::Corrected, elements).with_weights(&decimal(a), &decimal(b));
-    let f = assemble(&p).map_err(|d| ClaimsError::Numerical { what: "assembly".into(), detail: d })?;
-    Ok(tight_constants(&f).map_err(|d| ClaimsError::Numerical { what: "eigen".into(), detail: d })?.lambda1)
+    let f = assemble(&p).map_err(crate::wbounds::num("assembly"))?;
+    Ok(tight_constants(&f).map_err(crate::wbounds::num("eigen"))?.lambda1)
 }
 
 /// The ε/λ-optimal point at weights (a, b) with bounds (g_hmax, ζ3, ζ4) ([`theory::best_point`]

@@ -23,6 +23,8 @@
 use faer::{Mat, Side};
 use serde::Serialize;
 
+use crate::numerics::PencilError;
+
 mod reduce;
 
 pub use reduce::hierarchical_basis;
@@ -57,15 +59,15 @@ fn symmetrise(m: &Mat<f64>) -> Mat<f64> {
 }
 
 /// max λ s.t. A − λB ⪰ 0 by SDP on the congruent problem, re-verified.
-pub fn max_lambda(a: &Mat<f64>, b: &Mat<f64>) -> Result<SdpCheck, String> {
+pub fn max_lambda(a: &Mat<f64>, b: &Mat<f64>) -> Result<SdpCheck, PencilError> {
     let n = a.nrows();
     if a.ncols() != n || b.nrows() != n || b.ncols() != n {
-        return Err(format!("A is {}x{}, B is {}x{}", a.nrows(), a.ncols(), b.nrows(), b.ncols()));
+        return Err(PencilError::Shape { a: (a.nrows(), a.ncols()), b: (b.nrows(), b.ncols()) });
     }
     let (c, eig) = congruent_to_identity(a, b)?;
     let rows: Vec<Vec<f64>> = (0..n).map(|i| (0..n).map(|j| c[(i, j)]).collect()).collect();
     let id: Vec<Vec<f64>> = (0..n).map(|i| (0..n).map(|j| if i == j { 1.0 } else { 0.0 }).collect()).collect();
-    let out = wingcheck_lapack::sdp::max_generalized_lambda(&rows, &id).map_err(|e| e.to_string())?;
+    let out = wingcheck_lapack::sdp::max_generalized_lambda(&rows, &id)?;
     let scale = (0..n).flat_map(|i| (0..n).map(move |j| (i, j))).fold(1.0f64, |m, (i, j)| m.max(c[(i, j)].abs()));
     let (accepted, lambda_sdp) = match out.lambda {
         Some(lam) if lam.is_finite() => {
@@ -204,9 +206,8 @@ fn solve_side(
     beta: f64,
     budget: &mut u32,
     cancel: &wingcheck_model::Cancel,
-) -> Result<SideSolution, String> {
+) -> Result<SideSolution, PencilError> {
     use wingcheck_lapack::sdp::{PsdConstraint, SdpProblem};
-    let err = |e: wingcheck_lapack::sdp::SdpError| e.to_string();
     // The 4×4 LMI in the congruent form diag(1, 1, β, β)·[[A, B], [Bᵀ, P]]·diag(1, 1, β, β).
     // Variable k is p̃_k = m_k β² P_k/σ, m_k = max(1, max|G_k|/β²), so that its coefficients in
     // both LMIs are ≤ 1 in size.
@@ -233,19 +234,14 @@ fn solve_side(
         .and_then(|c| c.term(0, &unit(&[(0, 0), (1, 1)], -1.0)))
         .and_then(|c| c.term(1, &unit(&[(2, 2)], 1.0 / m[0])))
         .and_then(|c| c.term(2, &unit(&[(2, 3)], 1.0 / m[1])))
-        .and_then(|c| c.term(3, &unit(&[(3, 3)], 1.0 / m[2])))
-        .map_err(err)?;
+        .and_then(|c| c.term(3, &unit(&[(3, 3)], 1.0 / m[2])))?;
     let big = PsdConstraint::new(&dense_rows(&r.w_dd, sign * sigma))
         .and_then(|c| c.term(0, &dense_rows(&r.kappa_dd, -1.0)))
         .and_then(|c| c.term(1, &dense_rows(&r.g[0], -b2 * m[0])))
         .and_then(|c| c.term(2, &dense_rows(&r.g[1], -b2 * m[1])))
-        .and_then(|c| c.term(3, &dense_rows(&r.g[2], -b2 * m[2])))
-        .map_err(err)?;
-    let problem = SdpProblem::new(4)
-        .minimize(vec![-1.0, 0.0, 0.0, 0.0])
-        .and_then(|p| p.psd(small))
-        .and_then(|p| p.psd(big))
-        .map_err(err)?;
+        .and_then(|c| c.term(3, &dense_rows(&r.g[2], -b2 * m[2])))?;
+    let problem =
+        SdpProblem::new(4).minimize(vec![-1.0, 0.0, 0.0, 0.0]).and_then(|p| p.psd(small)).and_then(|p| p.psd(big))?;
     let mut out = None;
     for tol in PENCIL_SOLVER_TOLERANCES {
         if *budget == 0 && out.is_some() {
@@ -259,8 +255,7 @@ fn solve_side(
         // cone margins): that solve becomes this side's reason, never the process's end
         let stop = cancel.clone();
         let sol = wingcheck_io::catch(|| problem.solve_with_stop(settings, move || stop.is_cancelled()))
-            .map_err(|p| format!("clarabel failed ({p})"))?
-            .map_err(err)?;
+            .map_err(PencilError::SolverPanicked)??;
         *budget = budget.saturating_sub(sol.iterations.max(1));
         use wingcheck_lapack::sdp::SdpStatus;
         // λ only from a point clarabel calls optimal (an interrupted solve's point means nothing)
@@ -282,7 +277,7 @@ fn solve_side(
             break;
         }
     }
-    out.ok_or_else(|| "no solver tolerance configured".to_string())
+    out.ok_or(PencilError::NoTolerance)
 }
 
 struct SideSolution {
@@ -332,7 +327,9 @@ pub fn pencil_cross_check_within(
     let dimension = w.nrows();
     let (c, eig) = match congruent_to_identity(w, kappa) {
         Ok(x) => x,
-        Err(e) => return PencilSdpRow { seconds: start.elapsed().as_secs_f64(), ..PencilSdpRow::not_run(n, &e) },
+        Err(e) => {
+            return PencilSdpRow { seconds: start.elapsed().as_secs_f64(), ..PencilSdpRow::not_run(n, &e.to_string()) }
+        }
     };
     let sigma = eig[0].abs().max(eig[dimension - 1].abs()).max(f64::MIN_POSITIVE);
     let reduced = reduce(w, kappa, c1, c2, n, span / n as f64);
@@ -354,7 +351,7 @@ pub fn pencil_cross_check_within(
 /// re-verified against the original constraint and compared with the eigenvalue.
 #[allow(clippy::too_many_arguments)]
 fn pencil_side(
-    reduced: &Result<ReducedPencil, String>,
+    reduced: &Result<ReducedPencil, PencilError>,
     c: &Mat<f64>,
     sign: f64,
     sigma: f64,
@@ -367,7 +364,7 @@ fn pencil_side(
     let delta = SDP_TOLERANCE * sigma;
     let r = match &reduced {
         Ok(r) => r,
-        Err(e) => return PencilSide { lambda_eig: Some(lambda_eig), ..not_run(e) },
+        Err(e) => return PencilSide { lambda_eig: Some(lambda_eig), ..not_run(&e.to_string()) },
     };
     let verify =
         |x: &SideSolution| x.status.is_solved() && x.lambda.is_some_and(|l| pencil_feasible(c, sign, l - sign * delta));
@@ -422,11 +419,12 @@ fn pencil_side(
 }
 
 /// C = L⁻¹AL⁻ᵀ (B = LLᵀ, both symmetrised) and its eigenvalues ascending.
-fn congruent_to_identity(a: &Mat<f64>, b: &Mat<f64>) -> Result<(Mat<f64>, Vec<f64>), String> {
+fn congruent_to_identity(a: &Mat<f64>, b: &Mat<f64>) -> Result<(Mat<f64>, Vec<f64>), PencilError> {
     let (a, b) = (symmetrise(a), symmetrise(b));
-    let llt = b.llt(Side::Lower).map_err(|e| format!("κ (B) is not positive definite: {e:?}"))?;
+    let llt = b.llt(Side::Lower).map_err(|cause| PencilError::NotPositiveDefinite { what: "κ (B)", cause })?;
     let c = wingcheck_sim::dense::congruence(llt.L(), &a);
-    let mut eig = c.self_adjoint_eigenvalues(Side::Lower).map_err(|e| format!("eigenvalues: {e:?}"))?;
+    let mut eig =
+        c.self_adjoint_eigenvalues(Side::Lower).map_err(|cause| PencilError::Eigen { what: "eigenvalues", cause })?;
     eig.sort_by(f64::total_cmp);
     Ok((c, eig))
 }
@@ -441,7 +439,7 @@ pub fn pencil_feasible(c: &Mat<f64>, sign: f64, lambda: f64) -> bool {
 
 /// The re-verification on the forms themselves: C = L⁻¹WL⁻ᵀ and the test of [`pencil_feasible`]
 /// for W − λκ ≻ 0 (sign = 1) or λκ − W ≻ 0 (sign = −1).
-pub fn forms_feasible(w: &Mat<f64>, kappa: &Mat<f64>, sign: f64, lambda: f64) -> Result<bool, String> {
+pub fn forms_feasible(w: &Mat<f64>, kappa: &Mat<f64>, sign: f64, lambda: f64) -> Result<bool, PencilError> {
     Ok(pencil_feasible(&congruent_to_identity(w, kappa)?.0, sign, lambda))
 }
 

@@ -1,7 +1,11 @@
 //! A small builder for the second-order-cone programs of the μ-conditions, solved by clarabel.
 
+use std::sync::Arc;
+
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT};
+
+use crate::numerics::PencilError;
 
 /// min cᵀx s.t. linear inequalities `row·x ≤ rhs` and rotated cones u·η ≥ k (u, η ≥ 0).
 #[derive(Debug, Clone, Default)]
@@ -55,7 +59,7 @@ impl Socp {
     }
 
     /// Solve with clarabel (quiet, default tolerances).
-    pub fn solve(&self) -> Result<SocpOutcome, String> {
+    pub fn solve(&self) -> Result<SocpOutcome, PencilError> {
         let (mut ri, mut ci, mut vals, mut rhs) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         let mut row = 0;
         for (r, b) in &self.le {
@@ -88,9 +92,12 @@ impl Socp {
         }
         let a = CscMatrix::new_from_triplets(row, self.n, ri, ci, vals);
         let p = CscMatrix::zeros((self.n, self.n));
-        let settings = DefaultSettingsBuilder::default().verbose(false).build().map_err(|e| format!("{e:?}"))?;
-        let mut solver =
-            DefaultSolver::new(&p, &self.cost, &a, &rhs, &cones, settings).map_err(|e| format!("{e:?}"))?;
+        let settings = DefaultSettingsBuilder::default()
+            .verbose(false)
+            .build()
+            .map_err(|e| PencilError::SolverSettings(Arc::new(e)))?;
+        let mut solver = DefaultSolver::new(&p, &self.cost, &a, &rhs, &cones, settings)
+            .map_err(|e| PencilError::SolverSetup(Arc::new(e)))?;
         solver.solve();
         let s = &solver.solution;
         Ok(SocpOutcome { status: s.status, x: s.x.clone(), objective: s.obj_val, seconds: s.solve_time })

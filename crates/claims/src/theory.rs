@@ -543,23 +543,27 @@ pub struct WPencil {
 
 impl WPencil {
     /// The pencil of the configuration's wing on `elements` uniform elements (corrected cross term).
-    pub fn new(cfg: &Config, elements: usize) -> Result<Self, String> {
+    pub fn new(cfg: &Config, elements: usize) -> Result<Self, crate::numerics::PencilError> {
         use crate::lyapunov::{assemble, to_dense, Coupling, LyapunovParams};
         let p = LyapunovParams::from_config(cfg, Coupling::Corrected, elements);
         let fa = assemble(&p.with_weights("1", "0"))?;
         let fb = assemble(&p.with_weights("0", "1"))?;
         let kappa = to_dense(&fa.kappa);
-        let llt = kappa.llt(faer::Side::Lower).map_err(|e| format!("κ is not positive definite: {e:?}"))?;
+        let llt = kappa
+            .llt(faer::Side::Lower)
+            .map_err(|cause| crate::numerics::PencilError::NotPositiveDefinite { what: "κ", cause })?;
         let l = llt.L();
         use wingcheck_sim::dense::congruence;
         Ok(WPencil { ca: congruence(l, &to_dense(&fa.w)), cb: congruence(l, &to_dense(&fb.w)) })
     }
 
     /// (λ2, λ1) = (min, max) of W/κ at weights (a, b).
-    pub fn constants(&self, a: f64, b: f64) -> Result<(f64, f64), String> {
+    pub fn constants(&self, a: f64, b: f64) -> Result<(f64, f64), crate::numerics::PencilError> {
         let n = self.ca.nrows();
         let c = faer::Mat::from_fn(n, n, |i, j| a * self.ca[(i, j)] + b * self.cb[(i, j)]);
-        let mut vals = c.self_adjoint_eigenvalues(faer::Side::Lower).map_err(|e| format!("eigenvalues: {e:?}"))?;
+        let mut vals = c
+            .self_adjoint_eigenvalues(faer::Side::Lower)
+            .map_err(|cause| crate::numerics::PencilError::Eigen { what: "eigenvalues", cause })?;
         vals.sort_by(f64::total_cmp);
         Ok((vals[0], vals[n - 1]))
     }

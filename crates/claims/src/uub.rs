@@ -291,7 +291,7 @@ fn compute(
     settings: &CheckSettings,
 ) -> Result<Computed, ClaimsError> {
     let out = study.simulate(&operating_run(cfg, best.a, best.b))?;
-    let fields = out.fields.as_ref().ok_or_else(|| num("the UUB envelope")("the run recorded no fields".into()))?;
+    let fields = out.fields.as_ref().ok_or_else(|| num("the UUB envelope")(crate::numerics::PencilError::NoFields))?;
     let envelope = |f: &[Vec<f64>]| f.iter().map(|r| r.iter().fold(0.0f64, |a, v| a.max(v.abs()))).collect::<Vec<_>>();
     let w0s = settings.uub_w0_elements.map(|n| (n, w_initial(cfg, best.b, n)));
     let bound = UubBound { span: cfg.wing.span, lambda2, lambda: best.lambda, epsilon: best.epsilon, w0: w0s[0].1 };

@@ -32,6 +32,7 @@ use wingcheck_model::Config;
 
 use crate::certify::omega1::{EnclosureSummary, Position};
 use crate::lyapunov::{self, Coupling, LyapunovParams};
+use crate::numerics::PencilError;
 use crate::sdp::PencilSdpRow;
 use crate::settings::CheckSettings;
 use crate::theory::{self, Decision, Estimate};
@@ -173,18 +174,17 @@ impl Extremes {
     }
 }
 
-/// Map a numerical failure's detail text to [`ClaimsError::Numerical`] for `what`.
-pub(crate) fn num(what: &'static str) -> impl Fn(String) -> ClaimsError {
-    move |detail| ClaimsError::Numerical { what: what.into(), detail }
+/// Map a numerical failure to [`ClaimsError::Numerical`] for `what`.
+pub(crate) fn num<E: Into<PencilError>>(what: &'static str) -> impl Fn(E) -> ClaimsError {
+    move |cause| ClaimsError::Numerical { what, cause: cause.into() }
 }
 
 /// Largest a/b with W ≻ 0 on V_N: −1/μ_min of the pencil (W(a=1,b=0), W(a=0,b=1)).
-pub fn a_over_b_max(cfg: &Config, coupling: Coupling, elements: usize) -> Result<f64, ClaimsError> {
+pub fn a_over_b_max(cfg: &Config, coupling: Coupling, elements: usize) -> Result<f64, PencilError> {
     let p = LyapunovParams::from_config(cfg, coupling, elements);
-    let wa = lyapunov::assemble(&p.with_weights("1", "0")).map_err(num("assembly"))?;
-    let wb = lyapunov::assemble(&p.with_weights("0", "1")).map_err(num("assembly"))?;
-    let (vals, _) =
-        lyapunov::generalized_eigen(&lyapunov::to_dense(&wa.w), &lyapunov::to_dense(&wb.w)).map_err(num("pencil"))?;
+    let wa = lyapunov::assemble(&p.with_weights("1", "0"))?;
+    let wb = lyapunov::assemble(&p.with_weights("0", "1"))?;
+    let (vals, _) = lyapunov::generalized_eigen(&lyapunov::to_dense(&wa.w), &lyapunov::to_dense(&wb.w))?;
     Ok(-1.0 / vals[0])
 }
 
@@ -373,8 +373,8 @@ pub fn compute_cancellable(
             corrected: tight_study(cfg, Coupling::Corrected, grids)?,
             printed_cross: tight_study(cfg, Coupling::Printed, grids)?,
             omega1: theory::w_threshold(cfg)?,
-            ratio_galerkin: (finest, a_over_b_max(cfg, Coupling::Corrected, finest)?),
-            ratio_printed_cross: a_over_b_max(cfg, Coupling::Printed, finest)?,
+            ratio_galerkin: (finest, a_over_b_max(cfg, Coupling::Corrected, finest).map_err(num("pencil"))?),
+            ratio_printed_cross: a_over_b_max(cfg, Coupling::Printed, finest).map_err(num("pencil"))?,
             witness,
             enclosure: EnclosureSummary::NotCertified { reason: "not computed".into() },
             enclosure_seconds: 0.0,

@@ -2,7 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::{ConfigError, Disturbance, StepBasis, TimeScheme};
+use crate::{ConfigError, Disturbance, StepBasis, TimeScheme, UnknownName};
 
 /// The whole run configuration.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
@@ -73,14 +73,14 @@ impl ControllerKind {
 }
 
 impl std::str::FromStr for ControllerKind {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
+    type Err = UnknownName;
+    fn from_str(s: &str) -> Result<Self, UnknownName> {
         match s {
             "none" => Ok(Self::None),
             "pd" => Ok(Self::Pd),
             "ftdo" => Ok(Self::Ftdo),
             "dobc" => Ok(Self::Dobc),
-            _ => Err(format!("unknown controller `{s}`: allowed none, pd, ftdo, dobc")),
+            _ => Err(UnknownName { what: "controller", given: s.into(), allowed: "none, pd, ftdo, dobc" }),
         }
     }
 }
@@ -122,12 +122,12 @@ impl ObserverRule {
 }
 
 impl std::str::FromStr for ObserverRule {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
+    type Err = UnknownName;
+    fn from_str(s: &str) -> Result<Self, UnknownName> {
         match s {
             "implicit" => Ok(Self::Implicit),
             "explicit" => Ok(Self::Explicit),
-            _ => Err(format!("unknown observer rule `{s}`: allowed implicit, explicit")),
+            _ => Err(UnknownName { what: "observer rule", given: s.into(), allowed: "implicit, explicit" }),
         }
     }
 }
@@ -221,12 +221,12 @@ impl Method {
 }
 
 impl std::str::FromStr for Method {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
+    type Err = UnknownName;
+    fn from_str(s: &str) -> Result<Self, UnknownName> {
         match s {
             "fd" => Ok(Self::Fd),
             "fe" => Ok(Self::Fe),
-            _ => Err(format!("unknown method `{s}`: allowed fd, fe")),
+            _ => Err(UnknownName { what: "method", given: s.into(), allowed: "fd, fe" }),
         }
     }
 }

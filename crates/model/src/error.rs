@@ -1,5 +1,18 @@
 use thiserror::Error;
 
+/// A name that is not one of a setting's choices (`ControllerKind`, `ObserverRule`, `Method`,
+/// `TimeScheme`, `StepBasis` parsed from text): the setting, the name given and the choices.
+#[derive(Debug, Error, Clone, PartialEq, Eq)]
+#[error("unknown {what} `{given}`: allowed {allowed}")]
+pub struct UnknownName {
+    /// The setting (`controller`, `time scheme`).
+    pub what: &'static str,
+    /// The name given.
+    pub given: String,
+    /// The allowed names, comma-separated.
+    pub allowed: &'static str,
+}
+
 /// Everything that can be wrong with a configuration.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum ConfigError {

@@ -27,7 +27,7 @@ pub use bounds::{config_schema, FieldBound, FIELD_BOUNDS, MAX_MAGNITUDE, MIN_POS
 pub use cancel::{Cancel, Cancelled};
 pub use config::*;
 pub use disturbance::{Distributed, Disturbance, MeanSteps, StepMeans, TipDisturbance, TipValues};
-pub use error::ConfigError;
+pub use error::{ConfigError, UnknownName};
 pub use overrides::{apply_override, apply_overrides};
 pub use quantity::{Accuracy, ErrorSource, Estimate, Quantity, Shown, Unit, ValueBasis};
 pub use scheme::{

@@ -3,7 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::{Config, ControllerKind, Method, ObserverRule};
+use crate::{Config, ControllerKind, Method, ObserverRule, UnknownName};
 
 /// Time integrator of the closed loop.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema)]
@@ -47,14 +47,18 @@ impl std::fmt::Display for TimeScheme {
 }
 
 impl std::str::FromStr for TimeScheme {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
+    type Err = UnknownName;
+    fn from_str(s: &str) -> Result<Self, UnknownName> {
         match s {
             "auto" => Ok(Self::Auto),
             "trbdf2" => Ok(Self::Trbdf2),
             "trapezoid" => Ok(Self::Trapezoid),
             "exponential" => Ok(Self::Exponential),
-            _ => Err(format!("unknown time scheme `{s}`: allowed auto, trbdf2, trapezoid, exponential")),
+            _ => Err(UnknownName {
+                what: "time scheme",
+                given: s.into(),
+                allowed: "auto, trbdf2, trapezoid, exponential",
+            }),
         }
     }
 }
@@ -116,13 +120,13 @@ impl std::fmt::Display for StepBasis {
 }
 
 impl std::str::FromStr for StepBasis {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
+    type Err = UnknownName;
+    fn from_str(s: &str) -> Result<Self, UnknownName> {
         match s {
             "auto" => Ok(Self::Auto),
             "modal" => Ok(Self::Modal),
             "nodal" => Ok(Self::Nodal),
-            _ => Err(format!("unknown basis `{s}`: allowed auto, modal, nodal")),
+            _ => Err(UnknownName { what: "basis", given: s.into(), allowed: "auto, modal, nodal" }),
         }
     }
 }

@@ -387,7 +387,7 @@ pub struct RowLinks<'a> {
 /// The ledger row's context; `figures` are the row's plots already turned into figures.
 pub fn row_ctx(r: &ClaimRow, figures: &[Figure], links: &RowLinks) -> Result<RowCtx, ReportError> {
     let id = r.id.to_string();
-    let nodes = r.evidence.nodes().map_err(|e| ReportError::Evidence { claim: id.clone(), detail: e })?;
+    let nodes = r.evidence.nodes().map_err(|e| ReportError::Evidence { claim: id.clone(), cause: e })?;
     let (mut evidence, mut tables) = (Vec::new(), Vec::new());
     for n in &nodes {
         match n {

@@ -54,23 +54,25 @@ pub enum ReportError {
         source: wingcheck_claims::ClaimsError,
     },
     /// A row's evidence is not made of labelled values (a bug of the claim checker).
-    #[error("the evidence of {claim} cannot be shown: {detail}")]
+    #[error("the evidence of {claim} cannot be shown: {cause}")]
     Evidence {
         /// The claim.
         claim: String,
-        /// Where.
-        detail: String,
+        /// Which value, and why.
+        #[source]
+        cause: wingcheck_claims::display::ShapeError,
     },
     /// The claim checker failed.
     #[error("claim checker failed: {0}")]
     Claims(#[from] wingcheck_claims::ClaimsError),
     /// A chart could not be drawn.
-    #[error("cannot draw chart {name}: {detail}")]
+    #[error("cannot draw chart {name}: {cause}")]
     Chart {
         /// File stem of the chart.
         name: String,
         /// What went wrong.
-        detail: String,
+        #[source]
+        cause: wingcheck_chart::DrawError,
     },
     /// The (a, b) region map could not be set up (its search was refused).
     #[error("region map: {detail}")]
@@ -97,6 +99,6 @@ impl ReportError {
 
 impl From<wingcheck_chart::ChartError> for ReportError {
     fn from(e: wingcheck_chart::ChartError) -> Self {
-        ReportError::Chart { name: e.name, detail: e.detail }
+        ReportError::Chart { name: e.name, cause: e.cause }
     }
 }

@@ -131,7 +131,7 @@ fn tip_errors(c: &Config, out: &SimOutput, study: &Study) -> Result<TipErrors, R
         stats: out.stats.clone(),
     };
     let (space, time) = (space?, time?);
-    let no_fourth = String::from("not made: the report uses the series' errors only");
+    let no_fourth = wingcheck_sim::ExtraRunError::NotMade("the report uses the series' errors only");
     let e = wingcheck_sim::estimate_from_runs(lite, &space, &time, Err(&no_fourth), &space_cfg, &time_cfg);
     Ok(TipErrors {
         q: e.q_tip_error,

@@ -185,7 +185,7 @@ pub enum SearchError {
         ny: usize,
     },
     /// A heatmap could not be drawn.
-    #[error("{}.svg: {}", source.name, source.detail)]
+    #[error("{}.svg: {}", source.name, source.cause)]
     Heatmap {
         /// The chart's error (names the heatmap).
         source: wingcheck_chart::ChartError,

@@ -94,8 +94,8 @@ pub struct TheoryCache {
     g_hmax: Mutex<HashMap<String, f64>>,
 }
 
-fn num(what: &str) -> impl Fn(String) -> SearchError + '_ {
-    move |detail| SearchError::Theory { what: what.to_string(), detail }
+fn num(what: &str) -> impl Fn(wingcheck_claims::numerics::PencilError) -> SearchError + '_ {
+    move |e| SearchError::Theory { what: what.to_string(), detail: e.to_string() }
 }
 
 impl TheoryCache {

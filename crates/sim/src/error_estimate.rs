@@ -367,24 +367,52 @@ pub fn simulate_with_error(cfg: &Config, opts: RunOptions<'_>) -> Result<Estimat
     Ok(estimated)
 }
 
+/// Why an extra run of the error estimate (the peaks' 4N grid, the exponential twin) was not
+/// made; a finding recorded in [`ThirdGrid::NotRun`] / [`SubStepCheck::Unavailable`], not an
+/// error of the estimate.
+#[derive(Debug, thiserror::Error)]
+pub enum ExtraRunError {
+    /// Its configuration is not valid (e.g. 4N above the grid limit).
+    #[error("the {run} is not a valid configuration: {cause}")]
+    Invalid {
+        /// The run (`4N grid`, `exponential twin`).
+        run: &'static str,
+        /// The validation error.
+        #[source]
+        cause: wingcheck_model::ConfigError,
+    },
+    /// It failed.
+    #[error("the {run} did not run: {cause}")]
+    Failed {
+        /// The run (`4N run`, `exponential twin`).
+        run: &'static str,
+        /// The simulator's error.
+        #[source]
+        cause: SimError,
+    },
+    /// The caller did not make it, and why.
+    #[error("not made: {0}")]
+    NotMade(&'static str),
+}
+
 /// The twin of `cfg` that probes inside its steps: the exponential scheme in the modal basis,
 /// at the configured step only (the base run resolves its own initial layer).
-fn sub_step_twin(cfg: &Config, opts: RunOptions<'_>) -> Result<SimOutput, String> {
+fn sub_step_twin(cfg: &Config, opts: RunOptions<'_>) -> Result<SimOutput, ExtraRunError> {
     let mut twin = cfg.clone();
     twin.discretisation.stepper = wingcheck_model::TimeScheme::Exponential;
     twin.discretisation.basis = wingcheck_model::StepBasis::Modal;
-    twin.validate().map_err(|e| format!("the exponential twin is not a valid configuration: {e}"))?;
-    crate::simulate_base(&twin, opts).map_err(|e| format!("the exponential twin did not run: {e}"))
+    twin.validate().map_err(|cause| ExtraRunError::Invalid { run: "exponential twin", cause })?;
+    crate::simulate_base(&twin, opts).map_err(|cause| ExtraRunError::Failed { run: "exponential twin", cause })
 }
 
 impl EstimatedRun {
     /// Fold in the exponential twin's probed peaks ([`SubStepCheck::Twin`]), or say why there
     /// is none.
-    fn apply_twin(&mut self, twin: Result<SimOutput, String>) {
+    fn apply_twin(&mut self, twin: Result<SimOutput, ExtraRunError>) {
         let twin = match twin {
             Ok(t) => t,
-            Err(reason) => {
-                self.sub_step_check = SubStepCheck::Unavailable { reason };
+            Err(e) => {
+                self.sub_step_check = SubStepCheck::Unavailable { reason: e.to_string() };
                 return;
             }
         };
@@ -423,7 +451,7 @@ pub fn estimate_from_runs(
     output: SimOutput,
     space: &SimOutput,
     time: &SimOutput,
-    fourth: Result<&SimOutput, &String>,
+    fourth: Result<&SimOutput, &ExtraRunError>,
     space_cfg: &Config,
     time_cfg: &Config,
 ) -> EstimatedRun {
@@ -452,7 +480,7 @@ pub fn estimate_from_runs(
     let peaks = peak_estimates(&output, &space.peaks, &time.peaks, fourth.ok().map(|o| &o.peaks), grids);
     let third_grid = match fourth {
         Ok(o) => ThirdGrid::Ran { t_end: o.series.t.last().copied().unwrap_or(0.0) },
-        Err(reason) => ThirdGrid::NotRun { reason: reason.clone() },
+        Err(e) => ThirdGrid::NotRun { reason: e.to_string() },
     };
     EstimatedRun {
         output,
@@ -488,11 +516,11 @@ pub fn third_grid_run(
     space: &SimOutput,
     space_cfg: &Config,
     opts: RunOptions,
-) -> Result<SimOutput, String> {
+) -> Result<SimOutput, ExtraRunError> {
     let mut fine = refined_space(space_cfg);
     fine.horizon = third_grid_horizon(output, space, space_cfg);
-    fine.validate().map_err(|e| format!("the 4N grid is not a valid configuration: {e}"))?;
-    simulate(&fine, opts).map_err(|e| format!("the 4N run did not run: {e}"))
+    fine.validate().map_err(|cause| ExtraRunError::Invalid { run: "4N grid", cause })?;
+    simulate(&fine, opts).map_err(|cause| ExtraRunError::Failed { run: "4N run", cause })
 }
 
 /// The horizon of [`third_grid_run`]: [0, t₄] sampled every observer period.

@@ -35,7 +35,7 @@ pub mod strain;
 pub use disc::{Discretisation, Interpolation, Parts};
 pub use error_estimate::{
     estimate_from_runs, grid_part, refinements, series_error, simulate_with_error, third_grid_run, EstimatedRun,
-    PeakEstimate, PeakEstimates, SubStepCheck, ThirdGrid, RICHARDSON_2, TIP_TOLERANCE,
+    ExtraRunError, PeakEstimate, PeakEstimates, SubStepCheck, ThirdGrid, RICHARDSON_2, TIP_TOLERANCE,
 };
 pub use estimate::Estimate;
 pub use numerical::{ExponentialNeedsModal, ModalBasisError, NumericalError, SchemeObstacle};

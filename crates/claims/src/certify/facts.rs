@@ -362,7 +362,7 @@ impl CertificateFile {
             coupling: Coupling::Corrected,
             elements: n,
         };
-        lyapunov::assemble(&p).map_err(|e| invalid("wing", e))
+        lyapunov::assemble(&p).map_err(|e| invalid("wing", e.to_string()))
     }
 }
 

@@ -21,6 +21,7 @@ use std::collections::HashMap;
 use std::fmt::Write as _;
 use std::sync::{Arc, Mutex, OnceLock};
 
+use crate::numerics::PencilError;
 use num_rational::BigRational;
 use num_traits::Signed;
 use serde::{Deserialize, Serialize};
@@ -393,10 +394,7 @@ fn float_certificate(
     plan: &Plan,
     margins: &[f64],
 ) -> Result<Omega1Certificate, CertifyError> {
-    let numerical = |what: &str| {
-        let what = what.to_string();
-        move |detail| CertifyError::Numerical { what, detail }
-    };
+    let numerical = |what: &'static str| move |cause| CertifyError::Numerical { what, cause };
     let p = pencil(w, plan.inertia_elements);
     let (k, m) = (Band::from_exact(&p.stiffness), Band::from_exact(&p.mass));
     if unknowns(plan.inertia_elements) < plan.modes {
@@ -421,7 +419,10 @@ fn float_certificate(
     }
     let scale = nodal.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     if !(scale.is_finite() && scale > 0.0) {
-        return Err(CertifyError::Numerical { what: "the test vector".into(), detail: "zero or non-finite".into() });
+        return Err(CertifyError::Numerical {
+            what: "the test vector",
+            cause: PencilError::DegenerateVector("zero or non-finite"),
+        });
     }
     let vector = nodal
         .iter()

@@ -4,16 +4,18 @@
 
 use faer::{Mat, MatRef};
 
+use crate::numerics::PencilError;
+
 /// Nodal ← hierarchical change of basis of the clamped cubic Hermite (2N) and linear (N)
 /// spaces on N = 2^L uniform elements of length `h`: column j holds the nodal coefficients
 /// (value and slope at each node) of the hierarchical function at node j — the coarsest-level
 /// shape function whose support is the pair of elements of its level around node j (the tip
 /// node: the whole span). In 1D these functions are orthogonal across levels in ∫w''² and
 /// ∫θ'², so TᵀKT is 2×2-block (Hermite) / diagonal (linear): a sparse κ-orthonormalisation.
-pub fn hierarchical_basis(elements: usize, h: f64) -> Result<(Mat<f64>, Mat<f64>), String> {
+pub fn hierarchical_basis(elements: usize, h: f64) -> Result<(Mat<f64>, Mat<f64>), PencilError> {
     let n = elements;
     if n == 0 || !n.is_power_of_two() {
-        return Err(format!("elements = {n} is not a power of two"));
+        return Err(PencilError::NotPowerOfTwo(n));
     }
     let mut th = Mat::<f64>::zeros(2 * n, 2 * n);
     let mut tl = Mat::<f64>::zeros(n, n);
@@ -97,7 +99,7 @@ fn velocity_structure(
     kappa: &Mat<f64>,
     cs: [MatRef<'_, f64>; 2],
     n: usize,
-) -> Result<VelocityStructure, String> {
+) -> Result<VelocityStructure, PencilError> {
     let (nd, nv) = (3 * n, 4 * n);
     let off = [nd, nd + nv];
     let dcol = [0, 2 * n];
@@ -123,17 +125,14 @@ fn velocity_structure(
         - Mat::from_fn(2 * nv, 2 * nv, |i, j| if i == j { m[i % nv] } else { 0.0 }))
     .norm_max();
     if residual > STRUCTURE_TOLERANCE * scale || kappa_cross + kappa_vv > STRUCTURE_TOLERANCE * kappa.norm_max() {
-        return Err(format!(
-            "W, κ do not have the velocity structure the reduction needs (residual {:.1e} of max |W|)",
-            residual / scale
-        ));
+        return Err(PencilError::VelocityStructure { residual: residual / scale });
     }
     Ok((a_b, b, m))
 }
 
 /// The change of basis T·S of the 3N displacements: the hierarchical basis T, then the
 /// block-Cholesky S that makes κ's displacement block the identity (checked to 1e-10).
-fn hierarchical_congruence(kappa_d: &Mat<f64>, n: usize, h: f64) -> Result<Mat<f64>, String> {
+fn hierarchical_congruence(kappa_d: &Mat<f64>, n: usize, h: f64) -> Result<Mat<f64>, PencilError> {
     let nd = 3 * n;
     let (th, tl) = hierarchical_basis(n, h)?;
     let mut t = Mat::<f64>::zeros(nd, nd);
@@ -156,7 +155,7 @@ fn hierarchical_congruence(kappa_d: &Mat<f64>, n: usize, h: f64) -> Result<Mat<f
     let ts = &t * &s;
     let identity_error = (ts.transpose() * kappa_d * &ts - Mat::<f64>::identity(nd, nd)).norm_max();
     if !identity_error.is_finite() || identity_error > 1e-10 {
-        return Err(format!("the hierarchical basis did not orthonormalise κ (error {identity_error:.1e})"));
+        return Err(PencilError::NotOrthonormal(identity_error));
     }
     Ok(ts)
 }
@@ -168,7 +167,7 @@ pub(super) fn reduce(
     c2: &Mat<f64>,
     n: usize,
     h: f64,
-) -> Result<ReducedPencil, String> {
+) -> Result<ReducedPencil, PencilError> {
     let nd = 3 * n;
     let cs = [c1.as_ref(), c2.as_ref()];
     let dcol = [0, 2 * n];
