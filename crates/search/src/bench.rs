@@ -4,6 +4,7 @@
 //! explicit observer's cost per point against the implicit one's.
 
 use serde::Serialize;
+use std::path::Path;
 use wingcheck_io::clock::{measure, Elapsed, MachineLoad};
 use wingcheck_model::{apply_overrides, Config};
 use wingcheck_sim::{simulate, RunOptions};
@@ -187,20 +188,18 @@ pub fn bench_estimate(
     })
 }
 
-/// Run the benchmark on `base` (the paper config by default): the grid
-/// a ∈ [1e-4, 10] × b ∈ [1e-2, 1e4], n × n log points, with 1 and `max_threads` threads.
-pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<SearchBench, SearchError> {
-    let mut machine = MachineLoad::at_start();
-    let axes = vec![format!("control.a=1e-4..10:log:{n}"), format!("control.b=1e-2..1e4:log:{n}")];
-    let search = Search::new(base.clone(), &axes, SearchOptions::default())?;
-    let tmp = tempfile::tempdir().map_err(|source| SearchError::FileSystem { path: std::env::temp_dir(), source })?;
-    let cfg = apply_overrides(base, &[])?;
-    let mut simulator = simulate_seconds(&cfg, 5)?;
+/// One search per thread count on the base grid, and the finalisation's time of the last.
+fn thread_runs(
+    base: &Config,
+    axes: &[String],
+    thread_counts: &[usize],
+    tmp: &Path,
+) -> Result<(Vec<ThreadTiming>, f64), SearchError> {
     let mut runs = Vec::new();
     let mut finalize_seconds = 0.0;
     for (k, &threads) in thread_counts.iter().enumerate() {
-        let dir = tmp.path().join(format!("run-{k}"));
-        let (elapsed, s) = timed_run(base, &axes, threads, &dir)?;
+        let dir = tmp.join(format!("run-{k}"));
+        let (elapsed, s) = timed_run(base, axes, threads, &dir)?;
         runs.push(ThreadTiming {
             threads,
             wall_seconds: elapsed.wall_seconds,
@@ -214,6 +213,77 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
         done?;
         finalize_seconds = elapsed.wall_seconds;
     }
+    Ok((runs, finalize_seconds))
+}
+
+/// The two sampling rules on a small grid at `most` threads, alternating over
+/// [`RULE_ROUNDS`] rounds: per rule the median time per point, and the median paired ratios
+/// explicit / implicit (wall, CPU).
+fn rule_timings(base: &Config, most: usize, tmp: &Path) -> Result<(Vec<RuleTiming>, f64, Option<f64>), SearchError> {
+    let small = vec!["control.a=1e-4..10:log:8".to_string(), "control.b=1e-2..1e4:log:8".to_string()];
+    let rule_cfg = |rule: &str| apply_overrides(base, &[format!("observer.rule={rule}")]).map_err(SearchError::from);
+    let rule_cfgs = [rule_cfg(RULES[0])?, rule_cfg(RULES[1])?];
+    // per rule: (wall, CPU) per point of each round, and the points
+    let mut per_point: [Vec<PerPoint>; 2] = [Vec::new(), Vec::new()];
+    let mut evaluated = [0usize; 2];
+    for round in 0..RULE_ROUNDS {
+        let order = if round % 2 == 0 { [0, 1] } else { [1, 0] };
+        for r in order {
+            let dir = tmp.join(format!("rule-{r}-{round}"));
+            let (elapsed, s) = timed_run(&rule_cfgs[r], &small, most, &dir)?;
+            let points = s.evaluated.max(1) as f64;
+            per_point[r].push((elapsed.wall_seconds / points, elapsed.cpu_seconds.map(|c| c / points)));
+            evaluated[r] = s.evaluated;
+        }
+    }
+    let cpu_of = |v: &[PerPoint]| v.iter().map(|p| p.1).collect::<Option<Vec<f64>>>();
+    let rules: Vec<RuleTiming> = (0..2)
+        .map(|r| RuleTiming {
+            rule: RULES[r].into(),
+            scheme: rule_cfgs[r].time_scheme(true).name().into(),
+            points: evaluated[r],
+            wall_seconds_per_point: median(per_point[r].iter().map(|p| p.0).collect()),
+            cpu_seconds_per_point: cpu_of(&per_point[r]).map(median),
+        })
+        .collect();
+    let paired = |f: &dyn Fn(&PerPoint) -> Option<f64>| -> Option<f64> {
+        let ratios: Option<Vec<f64>> =
+            per_point[0].iter().zip(&per_point[1]).map(|(i, e)| Some(f(e)? / f(i)?)).collect();
+        ratios.map(median)
+    };
+    let explicit_over_implicit_wall = paired(&|p| Some(p.0)).unwrap_or(0.0);
+    let explicit_over_implicit_cpu = paired(&|p| p.1);
+    Ok((rules, explicit_over_implicit_wall, explicit_over_implicit_cpu))
+}
+
+/// The modal basis's and the input signal's set-up times, and five timed modal point runs.
+fn modal_setups(cfg: &Config) -> Result<(f64, f64, Vec<Elapsed>), SearchError> {
+    let (basis, elapsed) = measure(|| ModalBasis::new(cfg));
+    let basis = basis?;
+    let modal_basis_seconds = elapsed.seconds();
+    let (signal, elapsed) = measure(|| RecordedSignal::new(cfg));
+    let input_signal_seconds = elapsed.seconds();
+    let mut modal = Vec::new();
+    let runs_cache = RunCache::new();
+    for _ in 0..5 {
+        let (out, elapsed) = measure(|| crate::point::closed_loop(cfg, &runs_cache, None));
+        out?;
+        modal.push(elapsed);
+    }
+    drop((basis, signal));
+    Ok((modal_basis_seconds, input_signal_seconds, modal))
+}
+
+/// Run the benchmark on `base` (the paper config by default): the grid
+/// a ∈ [1e-4, 10] × b ∈ [1e-2, 1e4], n × n log points, with 1 and `max_threads` threads.
+pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<SearchBench, SearchError> {
+    let mut machine = MachineLoad::at_start();
+    let axes = vec![format!("control.a=1e-4..10:log:{n}"), format!("control.b=1e-2..1e4:log:{n}")];
+    let search = Search::new(base.clone(), &axes, SearchOptions::default())?;
+    let tmp = tempfile::tempdir().map_err(|source| SearchError::FileSystem { path: std::env::temp_dir(), source })?;
+    let cfg = apply_overrides(base, &[])?;
+    let mut simulator = simulate_seconds(&cfg, 5)?;
+    let (runs, finalize_seconds) = thread_runs(base, &axes, thread_counts, tmp.path())?;
     let most = thread_counts.iter().copied().max().unwrap_or(1);
     // Each ratio from one search run and the `simulate` timings just before and after it, so
     // that a change of the machine's speed between runs (this VM's neighbours) cancels; the
@@ -240,52 +310,8 @@ pub fn bench_search(base: &Config, n: usize, thread_counts: &[usize]) -> Result<
         .map(|(r, sim)| Some(r.cpu_seconds? / (points * sim.cpu_seconds?)))
         .collect();
     let simulator_point_seconds = median_elapsed(&simulator).seconds();
-    let small = vec!["control.a=1e-4..10:log:8".to_string(), "control.b=1e-2..1e4:log:8".to_string()];
-    let rule_cfg = |rule: &str| apply_overrides(base, &[format!("observer.rule={rule}")]).map_err(SearchError::from);
-    let rule_cfgs = [rule_cfg(RULES[0])?, rule_cfg(RULES[1])?];
-    // per rule: (wall, CPU) per point of each round, and the points
-    let mut per_point: [Vec<PerPoint>; 2] = [Vec::new(), Vec::new()];
-    let mut evaluated = [0usize; 2];
-    for round in 0..RULE_ROUNDS {
-        let order = if round % 2 == 0 { [0, 1] } else { [1, 0] };
-        for r in order {
-            let dir = tmp.path().join(format!("rule-{r}-{round}"));
-            let (elapsed, s) = timed_run(&rule_cfgs[r], &small, most, &dir)?;
-            let points = s.evaluated.max(1) as f64;
-            per_point[r].push((elapsed.wall_seconds / points, elapsed.cpu_seconds.map(|c| c / points)));
-            evaluated[r] = s.evaluated;
-        }
-    }
-    let cpu_of = |v: &[PerPoint]| v.iter().map(|p| p.1).collect::<Option<Vec<f64>>>();
-    let rules: Vec<RuleTiming> = (0..2)
-        .map(|r| RuleTiming {
-            rule: RULES[r].into(),
-            scheme: rule_cfgs[r].time_scheme(true).name().into(),
-            points: evaluated[r],
-            wall_seconds_per_point: median(per_point[r].iter().map(|p| p.0).collect()),
-            cpu_seconds_per_point: cpu_of(&per_point[r]).map(median),
-        })
-        .collect();
-    let paired = |f: &dyn Fn(&PerPoint) -> Option<f64>| -> Option<f64> {
-        let ratios: Option<Vec<f64>> =
-            per_point[0].iter().zip(&per_point[1]).map(|(i, e)| Some(f(e)? / f(i)?)).collect();
-        ratios.map(median)
-    };
-    let explicit_over_implicit_wall = paired(&|p| Some(p.0)).unwrap_or(0.0);
-    let explicit_over_implicit_cpu = paired(&|p| p.1);
-    let (basis, elapsed) = measure(|| ModalBasis::new(&cfg));
-    let basis = basis?;
-    let modal_basis_seconds = elapsed.seconds();
-    let (signal, elapsed) = measure(|| RecordedSignal::new(&cfg));
-    let input_signal_seconds = elapsed.seconds();
-    let mut modal = Vec::new();
-    let runs_cache = RunCache::new();
-    for _ in 0..5 {
-        let (out, elapsed) = measure(|| crate::point::closed_loop(&cfg, &runs_cache, None));
-        out?;
-        modal.push(elapsed);
-    }
-    drop((basis, signal));
+    let (rules, explicit_over_implicit_wall, explicit_over_implicit_cpu) = rule_timings(base, most, tmp.path())?;
+    let (modal_basis_seconds, input_signal_seconds, modal) = modal_setups(&cfg)?;
     let wall_over_simulate_runs = median(ratios);
     machine.finish();
     Ok(SearchBench {

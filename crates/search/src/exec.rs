@@ -203,30 +203,74 @@ pub fn run(search: &Search, out: &Path, ctl: RunControl<'_>) -> Result<RunSummar
     result
 }
 
-fn run_in(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<RunSummary, SearchError> {
-    let start = Instant::now();
-    let clock = wingcheck_io::clock::Stopwatch::start();
-    // First pass over this shard's chunks: which are done, each proven this search's own by
-    // recomputing some of its points (all with --verify-chunks) before any new work; chunks are
-    // read one at a time (a bit per chunk is kept).
-    let (mut skipped, mut owned, mut completed, mut total, mut verified) = (0, 0usize, 0usize, 0usize, 0usize);
-    let mut done = vec![false; search.chunks()];
+/// This shard's chunks found on disk before any new work.
+struct Scan {
+    /// Points in the chunks already done.
+    skipped: usize,
+    /// Chunks this shard owns.
+    owned: usize,
+    /// Of which done.
+    completed: usize,
+    /// Points still to evaluate.
+    total: usize,
+    /// Points of the done chunks recomputed to prove them this search's own.
+    verified: usize,
+    /// Per chunk: done.
+    done: Vec<bool>,
+}
+
+/// First pass over this shard's chunks: which are done, each proven this search's own by
+/// recomputing some of its points (all with --verify-chunks) before any new work; chunks are
+/// read one at a time (a bit per chunk is kept).
+fn scan(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<Scan, SearchError> {
+    let mut scan =
+        Scan { skipped: 0, owned: 0, completed: 0, total: 0, verified: 0, done: vec![false; search.chunks()] };
     let mut verifier = Verifier::new(search, ctl.verify, ctl.controller);
     for c in (0..search.chunks()).filter(|&c| ctl.shard.owns(c)) {
-        owned += 1;
+        scan.owned += 1;
         match store::read_chunk(out, search, c)? {
             Some(points) => {
-                skipped += points.len();
-                completed += 1;
-                done[c] = true;
-                verified += verifier.chosen(c, points.len()).len();
+                scan.skipped += points.len();
+                scan.completed += 1;
+                scan.done[c] = true;
+                scan.verified += verifier.chosen(c, points.len()).len();
                 verifier.add(out, c, points)?;
             }
-            None => total += search.chunk_range(c).len(),
+            None => scan.total += search.chunk_range(c).len(),
         }
     }
     verifier.flush()?;
-    drop(verifier);
+    Ok(scan)
+}
+
+/// The points of chunk `c`, in parallel, counting each in `done` of `total` for the progress
+/// callback; stops at the cancel token.
+fn evaluate_chunk(
+    search: &Search,
+    c: usize,
+    (cache, runs): (&TheoryCache, &RunCache),
+    ctl: &RunControl<'_>,
+    (done, total): (&AtomicUsize, usize),
+) -> Result<Vec<PointResult>, wingcheck_model::Cancelled> {
+    search
+        .chunk_range(c)
+        .into_par_iter()
+        .map(|p| {
+            ctl.cancel.check()?;
+            let r = search.evaluate_with(p, cache, runs, ctl.controller);
+            let d = done.fetch_add(1, Ordering::Relaxed) + 1;
+            if let Some(cb) = ctl.progress {
+                cb(Progress { done: d, total });
+            }
+            Ok(r)
+        })
+        .collect()
+}
+
+fn run_in(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<RunSummary, SearchError> {
+    let start = Instant::now();
+    let clock = wingcheck_io::clock::Stopwatch::start();
+    let Scan { skipped, owned, mut completed, total, verified, done } = scan(search, out, ctl)?;
     let progress_name = format!("progress-{}-of-{}.json", ctl.shard.k, ctl.shard.n);
     // what is on disk now (a run killed between a chunk and its progress file left it behind)
     wingcheck_io::write_file_atomic(&out.join(&progress_name), progress_text(ctl, owned, completed).as_bytes())?;
@@ -259,19 +303,7 @@ fn run_in(search: &Search, out: &Path, ctl: &RunControl<'_>) -> Result<RunSummar
             (cache, runs, cache_points) = (TheoryCache::new(search.options.lyapunov_elements), RunCache::new(), 0);
         }
         cache_points += search.chunk_range(c).len();
-        let points: Vec<PointResult> = search
-            .chunk_range(c)
-            .into_par_iter()
-            .map(|p| {
-                ctl.cancel.check()?;
-                let r = search.evaluate_with(p, &cache, &runs, ctl.controller);
-                let d = points_done.fetch_add(1, Ordering::Relaxed) + 1;
-                if let Some(cb) = ctl.progress {
-                    cb(Progress { done: d, total });
-                }
-                Ok(r)
-            })
-            .collect::<Result<_, wingcheck_model::Cancelled>>()?;
+        let points = evaluate_chunk(search, c, (&cache, &runs), ctl, (&points_done, total))?;
         // the chunk and the progress file that counts it, written together
         completed += 1;
         // (staged together, the chunk renamed first: a kill between the two renames leaves the
