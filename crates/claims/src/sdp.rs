@@ -196,24 +196,19 @@ fn dense_rows(m: &Mat<f64>, scale: f64) -> Vec<Vec<f64>> {
         .collect()
 }
 
-/// clarabel's point for one side: max λ s.t. sign·W − λκ ⪰ 0 in the reduced form, with data
-/// divided by σ, the 4×4 LMI rescaled by β and each P entry scaled by the size of its
-/// coefficients.
-fn solve_side(
+/// The SDP of one side of the cross-check at N: max λ with the 4×4 LMI in the congruent form
+/// diag(1, 1, β, β)·[[A, B], [Bᵀ, P]]·diag(1, 1, β, β) and the big LMI on the eliminated
+/// displacements, and the variables' scales m_k (variable k is p̃_k = m_k β² P_k/σ, m_k =
+/// max(1, max|G_k|/β²), so that its coefficients in both LMIs are ≤ 1 in size).
+fn side_problem(
     r: &ReducedPencil,
     sign: f64,
     sigma: f64,
     beta: f64,
-    budget: &mut u32,
-    cancel: &wingcheck_model::Cancel,
-) -> Result<SideSolution, PencilError> {
+) -> Result<(wingcheck_lapack::sdp::SdpProblem, Vec<f64>), PencilError> {
     use wingcheck_lapack::sdp::{PsdConstraint, SdpProblem};
-    // The 4×4 LMI in the congruent form diag(1, 1, β, β)·[[A, B], [Bᵀ, P]]·diag(1, 1, β, β).
-    // Variable k is p̃_k = m_k β² P_k/σ, m_k = max(1, max|G_k|/β²), so that its coefficients in
-    // both LMIs are ≤ 1 in size.
     let b2 = beta * beta;
     let m: Vec<f64> = r.g.iter().map(|g| (g.norm_max() / b2).max(1.0)).collect();
-    let bmax = r.b.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs())) / sigma;
     let mut f0 = vec![vec![0.0; 4]; 4];
     for i in 0..2 {
         for j in 0..2 {
@@ -242,6 +237,23 @@ fn solve_side(
         .and_then(|c| c.term(3, &dense_rows(&r.g[2], -b2 * m[2])))?;
     let problem =
         SdpProblem::new(4).minimize(vec![-1.0, 0.0, 0.0, 0.0]).and_then(|p| p.psd(small)).and_then(|p| p.psd(big))?;
+    Ok((problem, m))
+}
+
+/// clarabel's point for one side: max λ s.t. sign·W − λκ ⪰ 0 in the reduced form, with data
+/// divided by σ, the 4×4 LMI rescaled by β and each P entry scaled by the size of its
+/// coefficients.
+fn solve_side(
+    r: &ReducedPencil,
+    sign: f64,
+    sigma: f64,
+    beta: f64,
+    budget: &mut u32,
+    cancel: &wingcheck_model::Cancel,
+) -> Result<SideSolution, PencilError> {
+    let b2 = beta * beta;
+    let (problem, m) = side_problem(r, sign, sigma, beta)?;
+    let bmax = r.b.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs())) / sigma;
     let mut out = None;
     for tol in PENCIL_SOLVER_TOLERANCES {
         if *budget == 0 && out.is_some() {
