@@ -327,6 +327,27 @@ fn evaluated_at(a: f64, b: f64, configured: bool) -> String {
     }
 }
 
+/// W(0) and max W/bound (35) along the run at the evaluated point, and the configured run's
+/// late tip maxima.
+fn run_quantities(c: &Computed, at: &str) -> [Quantity; 4] {
+    let sim = |label: String, v: f64, unit: Unit| Quantity::based(label, v, unit, ValueBasis::Simulation);
+    [
+        sim(
+            format!("W(0) of the simulated run {at} (its grid, zero initial velocity)"),
+            c.lyapunov.w.first().copied().unwrap_or(0.0),
+            Unit::JouleSecond,
+        ),
+        Quantity::based(
+            format!("max over t of simulated W(t) / bound (35) {at}"),
+            c.lyapunov.max_ratio,
+            Unit::Dimensionless,
+            ValueBasis::Simulation,
+        ),
+        sim("max |q(s,t)| over [t_end/2, t_end] at the configured gains".into(), c.config_tail[0], Unit::Metre),
+        sim("max |θ(s,t)| over [t_end/2, t_end] at the configured gains".into(), c.config_tail[1], Unit::Radian),
+    ]
+}
+
 fn evidence_of(c: &Computed, hypotheses_here: bool, cfg: &Config, settings: &CheckSettings) -> UubEvidence {
     let (best, n2) = (&c.best, settings.uub_lambda2_elements);
     let at = evaluated_at(best.a, best.b, hypotheses_here);
@@ -337,6 +358,8 @@ fn evidence_of(c: &Computed, hypotheses_here: bool, cfg: &Config, settings: &Che
     let tail = |v: &[f64]| max_abs_in(&c.t, v, late).unwrap_or(0.0);
     let [bq, bt] = [c.bounds[0].last().copied().unwrap_or(0.0), c.bounds[1].last().copied().unwrap_or(0.0)];
     let violated = (0..2).any(|k| c.env[k].iter().zip(&c.bounds[k]).any(|(e, b)| e > b));
+    let [w0_of_run, max_w_over_bound35, config_max_abs_q_tip_second_half_m, config_max_abs_theta_tip_second_half_rad] =
+        run_quantities(c, &at);
     UubEvidence {
         hypotheses_hold_at_config: Flag::new("λ2 > 0 and (32) hold at the configured gains", hypotheses_here),
         evaluated_at_a: based(
@@ -391,27 +414,10 @@ fn evidence_of(c: &Computed, hypotheses_here: bool, cfg: &Config, settings: &Che
         ),
         bound_violated: Flag::new("the simulated envelope exceeds the bound somewhere", violated),
         field_points: Quantity::count("output grid points in z of the envelope", c.field_points),
-        w0_of_run: sim(
-            format!("W(0) of the simulated run {at} (its grid, zero initial velocity)"),
-            c.lyapunov.w.first().copied().unwrap_or(0.0),
-            Unit::JouleSecond,
-        ),
-        max_w_over_bound35: Quantity::based(
-            format!("max over t of simulated W(t) / bound (35) {at}"),
-            c.lyapunov.max_ratio,
-            Unit::Dimensionless,
-            ValueBasis::Simulation,
-        ),
-        config_max_abs_q_tip_second_half_m: sim(
-            "max |q(s,t)| over [t_end/2, t_end] at the configured gains".into(),
-            c.config_tail[0],
-            Unit::Metre,
-        ),
-        config_max_abs_theta_tip_second_half_rad: sim(
-            "max |θ(s,t)| over [t_end/2, t_end] at the configured gains".into(),
-            c.config_tail[1],
-            Unit::Radian,
-        ),
+        w0_of_run,
+        max_w_over_bound35,
+        config_max_abs_q_tip_second_half_m,
+        config_max_abs_theta_tip_second_half_rad,
     }
 }
 
