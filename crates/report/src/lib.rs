@@ -115,6 +115,37 @@ fn region_stage(
     region::region_map(cfg, omega1, r_star, progress, cancel).map(Some)
 }
 
+/// The page's timings: the report's stages, then the ledger's own wall times.
+fn page_timings(timings: &[StageTiming], ledger: &Ledger) -> Vec<Timing> {
+    timings
+        .iter()
+        .map(|s| (s.name.clone(), s.seconds))
+        .chain(ledger.wall_seconds.iter().map(|w| (format!("ledger: {}", w.what), w.seconds)))
+        .map(|(name, seconds)| Timing { name, seconds: format!("{seconds:.3}") })
+        .collect()
+}
+
+/// The files beside the page: the model as simulated, the configuration, the ledger and the
+/// provenance record with every data file's columns.
+fn write_side_files(
+    cfg: &Config,
+    ledger: &Ledger,
+    config_sha256: &str,
+    csv_records: Vec<wingcheck_io::FileRecord>,
+    staging: &atomic::Staging,
+    files: &mut Vec<String>,
+) -> Result<(), ReportError> {
+    // The model as simulated (docs/model.md of the repository), so the report is self-contained.
+    files.push(staging.write("model.md", MODEL_MD.as_bytes())?);
+    // The canonical compact JSON, so that `sha256sum config.json` equals the hash shown.
+    files.push(staging.write("config.json", serde_json::to_string(cfg).expect("config serialises").as_bytes())?);
+    files.push(staging.write("ledger.json", ledger.to_json().as_bytes())?);
+    // Where the data came from, and what each data file's columns hold (docs/outputs.md).
+    let provenance = wingcheck_io::Provenance::new(config_sha256, csv_records);
+    files.push(staging.write("provenance.json", provenance.to_json().as_bytes())?);
+    Ok(())
+}
+
 /// Render the report for `cfg` into `out_dir` (created, or an earlier report there replaced).
 ///
 /// Refuses an existing `out_dir` that is neither a report (marker file [`MARKER`]) nor an
@@ -178,24 +209,12 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
         coarser_enclosure,
     };
     let mut page = page(cfg, opts, &ledger, figures)?;
-    page.timings = timings
-        .iter()
-        .map(|s| (s.name.clone(), s.seconds))
-        .chain(ledger.wall_seconds.iter().map(|w| (format!("ledger: {}", w.what), w.seconds)))
-        .map(|(name, seconds)| Timing { name, seconds: format!("{seconds:.3}") })
-        .collect();
+    page.timings = page_timings(&timings, &ledger);
     page.build.total_seconds = format!("{:.3}", started.elapsed().as_secs_f64());
     page.build.machine = Some(provenance::machine());
     let html = render_html(&page)?;
     files.push(staging.write("index.html", html.as_bytes())?);
-    // The model as simulated (docs/model.md of the repository), so the report is self-contained.
-    files.push(staging.write("model.md", MODEL_MD.as_bytes())?);
-    // The canonical compact JSON, so that `sha256sum config.json` equals the hash shown.
-    files.push(staging.write("config.json", serde_json::to_string(cfg).expect("config serialises").as_bytes())?);
-    files.push(staging.write("ledger.json", ledger.to_json().as_bytes())?);
-    // Where the data came from, and what each data file's columns hold (docs/outputs.md).
-    let provenance = wingcheck_io::Provenance::new(&page.config_sha256, csv_records);
-    files.push(staging.write("provenance.json", provenance.to_json().as_bytes())?);
+    write_side_files(cfg, &ledger, &page.config_sha256, csv_records, &staging, &mut files)?;
     timings.push(StageTiming { name: "html".into(), seconds: t.elapsed().as_secs_f64() });
     report(progress, "html", 1, 1);
 
