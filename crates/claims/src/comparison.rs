@@ -22,7 +22,7 @@ use crate::study::Study;
 use crate::ClaimsError;
 
 pub use explain::{check, ComparisonEvidence, RunRecord, SweepRecord, TipDifferences};
-pub use refine::{metric_errors, quotient_error, reached_error, refinement_error, refinements};
+pub use refine::{metric_errors, quotient_error, reached_error, refined_runs, refinement_error, refinements};
 
 /// Metrics of one run (units: m, rad, N, N m, s).
 #[derive(Debug, Clone, PartialEq)]
@@ -497,9 +497,7 @@ fn sweep_points(plan: &Runs, study: &Study, settings: &CheckSettings) -> Result<
 /// The metrics of the run of `cfg` and their errors from its refinements ([`metric_errors`]).
 pub fn measured(study: &Study, cfg: &Config, settings: &CheckSettings) -> Result<(Metrics, Metrics), ClaimsError> {
     let base = metrics(&*study.simulate(cfg)?, settings);
-    let [fine, half_dt] = refinements(cfg);
-    let (fine, half_dt) = (study.refinement(&fine)?, study.refinement(&half_dt)?);
-    let roundoff = [&fine, &half_dt].iter().filter_map(|o| o.stats.eigenbasis_roundoff).fold(0.0, f64::max);
+    let (fine, half_dt, roundoff) = refined_runs(study, cfg)?;
     // settling read off the output samples; g̃'s band entry at full rate (the steps) where the
     // simulator tracks it at the ledger's threshold, else off the output samples too
     let output = cfg.horizon.sample_every;

@@ -153,9 +153,7 @@ impl Study {
         let mut c = cfg.clone();
         c.control.kind = ControllerKind::Ftdo;
         let base = self.simulate(&c)?;
-        let [fine, half_dt] = crate::comparison::refinements(&c);
-        let (fine, half_dt) = (self.refinement(&fine)?, self.refinement(&half_dt)?);
-        let roundoff = [&fine, &half_dt].iter().filter_map(|o| o.stats.eigenbasis_roundoff).fold(0.0, f64::max);
+        let (fine, half_dt, roundoff) = crate::comparison::refined_runs(self, &c)?;
         let sup = wingcheck_sim::metrics::observer_error_sup;
         Ok([0, 1]
             .map(|ch| crate::comparison::refinement_error(sup(&base, ch), sup(&fine, ch), sup(&half_dt, ch), roundoff)))

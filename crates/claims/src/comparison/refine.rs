@@ -8,7 +8,12 @@
 //! passes. A peak's change to its refinements therefore also holds what the layer and the
 //! probe add to the configured run's peak: a ± at least as wide as the peak's resolution needs.
 
+use std::sync::Arc;
+
 use wingcheck_model::Config;
+use wingcheck_sim::SimOutput;
+
+use crate::ClaimsError;
 
 use super::{same_scheme, Metrics, EXPLICIT_RMS_GRID_FACTOR};
 
@@ -18,6 +23,16 @@ pub fn refinements(cfg: &Config) -> [Config; 2] {
         same_scheme(wingcheck_model::work::refined_in_space(cfg), cfg),
         same_scheme(wingcheck_model::work::refined_in_time(cfg), cfg),
     ]
+}
+
+/// The refinement runs of `cfg` through `study` ([`refinements`], [`crate::Study::refinement`]):
+/// the doubled grid's, dt/2's, and the larger of their eigenbasis round-off estimates
+/// (relative; 0 where neither stepped in the eigenbasis).
+pub fn refined_runs(study: &crate::Study, cfg: &Config) -> Result<(Arc<SimOutput>, Arc<SimOutput>, f64), ClaimsError> {
+    let [fine, half_dt] = refinements(cfg);
+    let (fine, half_dt) = (study.refinement(&fine)?, study.refinement(&half_dt)?);
+    let roundoff = [&fine, &half_dt].iter().filter_map(|o| o.stats.eigenbasis_roundoff).fold(0.0, f64::max);
+    Ok((fine, half_dt, roundoff))
 }
 
 /// Error of a metric with value `value` on the configured grid and step, `fine` on the doubled
