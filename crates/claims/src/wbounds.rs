@@ -404,3 +404,19 @@ pub fn sdp_wall_times(c: &Computed) -> Vec<WallTime> {
     out.extend(c.sdp.iter().map(|r| WallTime { what: format!("W-bounds SDP N = {}", r.elements), seconds: r.seconds }));
     out
 }
+
+/// The sign of λ2* the certificate proves where the float extrapolation, with its error, does
+/// not show it: a/b below the certified enclosure of ω₁ proves W ≻ 0, so λ2* > 0; above it,
+/// λ2* < 0. λ2* → 0 as a/b → ω₁, so close to ω₁ the float value may straddle 0 or even show
+/// the other sign; `None` where the float value agrees or nothing is certified.
+pub(crate) fn certified_sign_unshown(
+    lambda2: &wingcheck_model::Quantity,
+    position: Option<Position>,
+) -> Option<&'static str> {
+    let error = lambda2.error().unwrap_or(0.0);
+    match position {
+        Some(Position::Below) if lambda2.value - error <= 0.0 => Some("> 0"),
+        Some(Position::Above) if lambda2.value + error >= 0.0 => Some("< 0"),
+        _ => None,
+    }
+}

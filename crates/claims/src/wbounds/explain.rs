@@ -3,7 +3,7 @@
 use wingcheck_cert::exact::to_f64;
 use wingcheck_model::{Config, ErrorSource, Quantity, Unit, ValueBasis};
 
-use super::{compute_cancellable, sdp_wall_times, Computed};
+use super::{certified_sign_unshown, compute_cancellable, sdp_wall_times, Computed};
 use crate::certify::omega1::{EnclosureSummary, Position};
 use crate::display::{Fact, Flag, Table, Text};
 use crate::evidence::Explain;
@@ -366,19 +366,6 @@ fn evidence_of(cfg: &Config, c: &Computed) -> WBoundsEvidence {
         ev.lambda2_tight = ev.lambda2_tight.relabel(label);
     }
     ev
-}
-
-/// The sign of λ2* the certificate proves where the float extrapolation, with its error, does
-/// not show it: a/b below the certified enclosure of ω₁ proves W ≻ 0, so λ2* > 0; above it,
-/// λ2* < 0. λ2* → 0 as a/b → ω₁, so close to ω₁ the float value may straddle 0 or even show
-/// the other sign; `None` where the float value agrees or nothing is certified.
-fn certified_sign_unshown(lambda2: &Quantity, position: Option<Position>) -> Option<&'static str> {
-    let error = lambda2.error().unwrap_or(0.0);
-    match position {
-        Some(Position::Below) if lambda2.value - error <= 0.0 => Some("> 0"),
-        Some(Position::Above) if lambda2.value + error >= 0.0 => Some("< 0"),
-        _ => None,
-    }
 }
 
 /// Compute the evidence (and the SDP wall times).

@@ -31,6 +31,7 @@ mod eigenbasis_tests;
 mod exact;
 mod gemv;
 mod layout;
+mod loop_eigen;
 mod lyapunov;
 pub(crate) mod memo;
 mod probe;
