@@ -80,7 +80,9 @@ impl Study {
     }
 
     /// A run of `cfg` for its series only, as a refinement of another run's metrics (the
-    /// comparison's ± from the doubled grid and dt/2): every output sample, no fields, no
+    /// comparison's ± from the doubled grid and dt/2): every output sample of the tip values,
+    /// τ and the observer ([`RunOptions::series_only`]: the energy column is an upper bound, the
+    /// tip boundary states are not recorded; no metric reads them), no fields, no
     /// initial-layer re-run, no sub-step probe, and the exponential scheme in the closed loop's
     /// eigenbasis where its round-off estimate is at most
     /// [`wingcheck_sim::MAX_EIGENBASIS_ROUNDOFF`] (`stats.eigenbasis_roundoff` states it; the
@@ -91,6 +93,7 @@ impl Study {
             let opts = RunOptions {
                 sub_step_probe: wingcheck_sim::SubStepProbe::Off,
                 eigenbasis: Some(wingcheck_sim::MAX_EIGENBASIS_ROUNDOFF),
+                series_only: true,
                 cancel: self.cancel.clone(),
                 ..Default::default()
             };

@@ -289,6 +289,15 @@ pub struct RunOptions<'a> {
     /// probe, and its ∫τ² is exact per output interval only ([`RunStats::eigenbasis_roundoff`]
     /// says whether it ran and with what estimate). For runs that only need statistics.
     pub eigenbasis: Option<f64>,
+    /// Record only what whole-run metrics read (`crate::modal`'s [`crate::modal::Reads::SERIES`];
+    /// ignored with `fields`): every output's tip values, τ and observer output, every output
+    /// interval's ∫τ², and the state at the last output. Where the run steps in the eigenbasis,
+    /// the outputs before the last then skip the O(N²) reconstruction of the modal state: their
+    /// `energy` is the O(N) upper bound of the mechanical energy, the columns formed from the
+    /// state (`displacement_momentum`, `q_tip_shear`, `theta_tip_slope`) are not brought up to
+    /// date, and every other value is the one a full recording gives, to round-off. For refinement runs read through their
+    /// tip, τ and observer columns.
+    pub series_only: bool,
     /// A controller of the user's in place of `control.kind` ([`ControllerFactory`]): each run
     /// (the base run, the initial layer's, an error estimate's refinements) makes one and
     /// resets it. Stepped in the basis [`resolved_basis`] selects, as the built-ins are; in the

@@ -511,6 +511,13 @@ impl DiagonalStep {
         if !squares {
             return [0.0; 2];
         }
+        self.interval_squares(ds)
+    }
+
+    /// The boundary terms e_aᵀPe_a − e_bᵀPe_b of the interval since the previous checkpoint a
+    /// (N² s, N² m² s), as [`DiagonalStep::checkpoint`] returns them, without bringing η, ζ, w
+    /// up to date: O(N r) instead of the reconstruction's O(N²).
+    pub(crate) fn interval_squares(&self, ds: &mut DiagonalState) -> [f64; 2] {
         let now = self.boundary(ds);
         let before = std::mem::replace(&mut ds.boundary, now);
         let jumps = self.jump_state_parts(ds);

@@ -85,9 +85,9 @@ pub struct Reads {
     /// O(N r) work of each intermediate checkpoint's part is saved.
     pub interval_squares: bool,
     /// The modal state at every output (true) or only the tip values, τ and the observer's
-    /// output there, and the state at the last output. With false (and `interval_squares`
-    /// false), where the scheme carries the state in the eigenbasis, the outputs before the
-    /// last skip its O(N²) reconstruction: their tip values are the step's own (UᵀV x̂ from
+    /// output there, and the state at the last output. With false, where the scheme carries the
+    /// state in the eigenbasis, the outputs before the last skip its O(N²) reconstruction (an
+    /// interval's ∫τ², where read, is formed in the eigenbasis, [`ModalLoop::interval_squares`]): their tip values are the step's own (UᵀV x̂ from
     /// precomputed rows, equal to the reconstructed ones to round-off), their `energy` is the
     /// O(N) upper bound [`ModalLoop::energy_bound`], and η, ζ, w and the quantities formed from
     /// them are the previous checkpoint's. The divergence check gives the same verdict: where
@@ -107,6 +107,9 @@ impl Reads {
     /// Only the outputs' tip values, τ and observer output, and ∫τ² over the whole run: what
     /// the search and the finite-time rows' digital runs read.
     pub const OUTPUTS: Reads = Reads { interval_squares: false, state: false, tip_states: false };
+    /// The outputs' tip values, τ and observer output, and every output interval's ∫τ²; the
+    /// state at the last output only (`simulate`'s [`crate::RunOptions::series_only`]).
+    pub const SERIES: Reads = Reads { interval_squares: true, state: false, tip_states: false };
 }
 
 /// Run the loop `lp` of `cfg` on `basis` over [0, T] from the state `st`, with the observer
@@ -124,7 +127,7 @@ pub fn drive<S: Signal, R: Recorder>(
     let h = cfg.discretisation.dt;
     let e0 = basis.energy(&st.eta, &st.zeta);
     let reads = rec.reads();
-    let lean = !reads.state && !reads.interval_squares;
+    let lean = !reads.state;
     // a controller that reads the plant measures w
     let tip_states = reads.tip_states || S::READS_PLANT;
     let mut quads = Vec::with_capacity(if S::READS_PLANT { cfg.steps_per_sample() } else { 0 });
@@ -132,6 +135,11 @@ pub fn drive<S: Signal, R: Recorder>(
         if lean && k != total {
             // margin 1e-10 relative: far above the bound's and the energy's round-off
             if let Some(bound) = lp.energy_bound(st).filter(|b| b * (1.0 + 1e-10) <= energy_limit(e0)) {
+                if reads.interval_squares {
+                    if let Some(squares) = lp.interval_squares(st) {
+                        rec.deferred_squares(squares);
+                    }
+                }
                 let sample = Sample { energy: bound, ..lp.sample(basis, st, t, obs) };
                 check_sample(&sample, e0)?;
                 return rec.output(st, &sample, k);

@@ -5,7 +5,7 @@ use std::time::Instant;
 
 use wingcheck_model::{Config, TipValues};
 
-use super::{controlled_loop, dot, drive, ModalBasis, ModalLoop, ModalState, ObserverSignal, Recorder, Signal};
+use super::{controlled_loop, dot, drive, ModalBasis, ModalLoop, ModalState, ObserverSignal, Reads, Recorder, Signal};
 use crate::run::{Envelope, Fields, RunOptions, RunStats, Series, SimOutput, SubStepProbe};
 use crate::stepper::FullRate;
 use crate::{Sample, SimError};
@@ -49,9 +49,16 @@ struct Simulation<'c, 'o> {
     raised: usize,
     /// g(t) at the step ends, by rotation from step to step ([`TipValues`]).
     tip_values: TipValues,
+    /// What the driver must provide ([`Reads::ALL`], or [`Reads::SERIES`] for
+    /// [`RunOptions::series_only`]).
+    reads: Reads,
 }
 
 impl Recorder for Simulation<'_, '_> {
+    fn reads(&self) -> Reads {
+        self.reads
+    }
+
     fn instant(
         &mut self,
         lp: &ModalLoop<'_>,
@@ -173,6 +180,7 @@ fn run<S: Signal>(
         probes: 0,
         raised: 0,
         tip_values: cfg.disturbance.tip_values(cfg.discretisation.dt),
+        reads: if opts.series_only && !opts.fields { Reads::SERIES } else { Reads::ALL },
     };
     drive(cfg, basis, lp, st, signal, &mut rec)?;
     Ok(SimOutput {

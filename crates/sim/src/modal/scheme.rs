@@ -433,6 +433,16 @@ impl<'a> ModalLoop<'a> {
         }
     }
 
+    /// The deferred ∫τ² terms of the output interval just ended where the scheme carries the
+    /// state in the eigenbasis, without the O(N²) reconstruction of η, ζ, w that
+    /// [`ModalLoop::checkpoint`] makes (`None` for the other schemes, which defer nothing).
+    pub fn interval_squares(&self, st: &mut ModalState) -> Option<[f64; 2]> {
+        match (&self.stepping, st.diagonal.as_mut()) {
+            (Stepping::Diagonal(diagonal), Some(ds)) => Some(diagonal.interval_squares(ds)),
+            _ => None,
+        }
+    }
+
     /// An upper bound of the mechanical energy (J) of `st`'s current state for the scheme that
     /// carries it in the eigenbasis (O(N), without the O(N²) reconstruction a
     /// [`ModalLoop::checkpoint`] does; `None` for the other schemes): ½‖V₁‖²_F‖x̂‖², V₁ the
