@@ -2,6 +2,8 @@
 //! of "Vibration Suppression of a Coupled Aircraft Wing with Finite-Time Convergence".
 //! This binary is a thin layer over the workspace crates.
 
+#![forbid(unsafe_code)]
+
 mod cli;
 
 use clap::Parser;

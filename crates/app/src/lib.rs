@@ -18,6 +18,8 @@
 //! Every error is an [`AppError`]; [`AppError::kind`] classifies it for a front end (the
 //! Python exception classes).
 
+#![forbid(unsafe_code)]
+
 pub mod bench;
 mod build_info;
 pub mod compare;

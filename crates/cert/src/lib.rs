@@ -15,6 +15,7 @@
 //! The certificate files, their manifest and the verifier that re-derives each fact from its
 //! parameters live in `wingcheck-claims` (`certify`), built on these checks.
 
+#![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
 pub mod banded;

@@ -6,6 +6,8 @@
 //! writes labels as SVG `<text>` elements (font chosen by the viewer) and plotters only
 //! *estimates* their width, so no system font is ever read.
 
+#![forbid(unsafe_code)]
+
 //!
 //! Resolution: plotters' SVG backend writes integer coordinates, which turns smooth curves
 //! into false one-pixel staircases. Line charts and field maps are therefore drawn on a canvas

@@ -8,6 +8,8 @@
 //! of labelled quantities ([`display`]) with its own [`evidence::Explain`]: the verdict and the
 //! words come from the evidence alone.
 
+#![forbid(unsafe_code)]
+
 pub mod certify;
 pub mod comparison;
 pub mod convex;

@@ -10,6 +10,8 @@
 //! evaluation rules (explicit and implicit/set-valued) and the per-channel bookkeeping; the
 //! simulator feeds it the measured tip quantities.
 
+#![forbid(unsafe_code)]
+
 mod controller;
 mod law;
 mod observer;

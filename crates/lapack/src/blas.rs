@@ -43,46 +43,49 @@ pub unsafe extern "C" fn dgemm_(
     c: *mut f64,
     ldc: *const c_int,
 ) {
-    let (ta, tb) = (is_trans(ch(transa)), is_trans(ch(transb)));
-    let (m, n, k) = (int(m), int(n), int(k));
-    let (lda, ldb, ldc) = (int(lda), int(ldb), int(ldc));
-    let nrowa = if ta == Some(false) { m } else { k };
-    let nrowb = if tb == Some(false) { k } else { n };
-    let bad = if ta.is_none() {
-        1
-    } else if tb.is_none() {
-        2
-    } else if m < 0 {
-        3
-    } else if n < 0 {
-        4
-    } else if k < 0 {
-        5
-    } else if lda < nrowa.max(1) {
-        8
-    } else if ldb < nrowb.max(1) {
-        10
-    } else if ldc < m.max(1) {
-        13
-    } else {
-        0
-    };
-    if bad != 0 {
-        return xerbla("DGEMM", bad);
+    // SAFETY: the caller passes valid Fortran arguments (the `# Safety` section above), as the BLAS/LAPACK ABI requires of clarabel's calls.
+    unsafe {
+        let (ta, tb) = (is_trans(ch(transa)), is_trans(ch(transb)));
+        let (m, n, k) = (int(m), int(n), int(k));
+        let (lda, ldb, ldc) = (int(lda), int(ldb), int(ldc));
+        let nrowa = if ta == Some(false) { m } else { k };
+        let nrowb = if tb == Some(false) { k } else { n };
+        let bad = if ta.is_none() {
+            1
+        } else if tb.is_none() {
+            2
+        } else if m < 0 {
+            3
+        } else if n < 0 {
+            4
+        } else if k < 0 {
+            5
+        } else if lda < nrowa.max(1) {
+            8
+        } else if ldb < nrowb.max(1) {
+            10
+        } else if ldc < m.max(1) {
+            13
+        } else {
+            0
+        };
+        if bad != 0 {
+            return xerbla("DGEMM", bad);
+        }
+        let (alpha, beta) = (*alpha, *beta);
+        if m == 0 || n == 0 || ((alpha == 0.0 || k == 0) && beta == 1.0) {
+            return;
+        }
+        let (m, n, k) = (m as usize, n as usize, k as usize);
+        let mut cv = view_mut(c, m, n, ldc as usize);
+        scale_all(cv.rb_mut(), beta);
+        if alpha == 0.0 || k == 0 {
+            return;
+        }
+        let av = op(view(a, nrowa as usize, if ta == Some(false) { k } else { m }, lda as usize), ta);
+        let bv = op(view(b, nrowb as usize, if tb == Some(false) { n } else { k }, ldb as usize), tb);
+        matmul(cv, Accum::Add, av, bv, alpha, Par::Seq);
     }
-    let (alpha, beta) = (*alpha, *beta);
-    if m == 0 || n == 0 || ((alpha == 0.0 || k == 0) && beta == 1.0) {
-        return;
-    }
-    let (m, n, k) = (m as usize, n as usize, k as usize);
-    let mut cv = view_mut(c, m, n, ldc as usize);
-    scale_all(cv.rb_mut(), beta);
-    if alpha == 0.0 || k == 0 {
-        return;
-    }
-    let av = op(view(a, nrowa as usize, if ta == Some(false) { k } else { m }, lda as usize), ta);
-    let bv = op(view(b, nrowb as usize, if tb == Some(false) { n } else { k }, ldb as usize), tb);
-    matmul(cv, Accum::Add, av, bv, alpha, Par::Seq);
 }
 
 fn op(x: MatRef<'_, f64>, t: Option<bool>) -> MatRef<'_, f64> {
@@ -129,41 +132,44 @@ pub unsafe extern "C" fn dsyrk_(
     c: *mut f64,
     ldc: *const c_int,
 ) {
-    let (up, tr) = (uplo_flag(ch(uplo)), is_trans(ch(trans)));
-    let (n, k, lda, ldc) = (int(n), int(k), int(lda), int(ldc));
-    let nrowa = if tr == Some(false) { n } else { k };
-    let bad = if up.is_none() {
-        1
-    } else if tr.is_none() {
-        2
-    } else if n < 0 {
-        3
-    } else if k < 0 {
-        4
-    } else if lda < nrowa.max(1) {
-        7
-    } else if ldc < n.max(1) {
-        10
-    } else {
-        0
-    };
-    if bad != 0 {
-        return xerbla("DSYRK", bad);
+    // SAFETY: the caller passes valid Fortran arguments (the `# Safety` section above), as the BLAS/LAPACK ABI requires of clarabel's calls.
+    unsafe {
+        let (up, tr) = (uplo_flag(ch(uplo)), is_trans(ch(trans)));
+        let (n, k, lda, ldc) = (int(n), int(k), int(lda), int(ldc));
+        let nrowa = if tr == Some(false) { n } else { k };
+        let bad = if up.is_none() {
+            1
+        } else if tr.is_none() {
+            2
+        } else if n < 0 {
+            3
+        } else if k < 0 {
+            4
+        } else if lda < nrowa.max(1) {
+            7
+        } else if ldc < n.max(1) {
+            10
+        } else {
+            0
+        };
+        if bad != 0 {
+            return xerbla("DSYRK", bad);
+        }
+        let (alpha, beta) = (*alpha, *beta);
+        if n == 0 || ((alpha == 0.0 || k == 0) && beta == 1.0) {
+            return;
+        }
+        let (upper, (n, k)) = (up == Some(true), (n as usize, k as usize));
+        let mut cv = view_mut(c, n, n, ldc as usize);
+        scale_triangle(cv.rb_mut(), upper, beta);
+        if alpha == 0.0 || k == 0 {
+            return;
+        }
+        // opA is n x k in both cases.
+        let opa = if tr == Some(false) { view(a, n, k, lda as usize) } else { view(a, k, n, lda as usize).transpose() };
+        let rect = BlockStructure::Rectangular;
+        triangular::matmul(cv, tri(upper), Accum::Add, opa, rect, opa.transpose(), rect, alpha, Par::Seq);
     }
-    let (alpha, beta) = (*alpha, *beta);
-    if n == 0 || ((alpha == 0.0 || k == 0) && beta == 1.0) {
-        return;
-    }
-    let (upper, (n, k)) = (up == Some(true), (n as usize, k as usize));
-    let mut cv = view_mut(c, n, n, ldc as usize);
-    scale_triangle(cv.rb_mut(), upper, beta);
-    if alpha == 0.0 || k == 0 {
-        return;
-    }
-    // opA is n x k in both cases.
-    let opa = if tr == Some(false) { view(a, n, k, lda as usize) } else { view(a, k, n, lda as usize).transpose() };
-    let rect = BlockStructure::Rectangular;
-    triangular::matmul(cv, tri(upper), Accum::Add, opa, rect, opa.transpose(), rect, alpha, Par::Seq);
 }
 
 /// Symmetric rank-2k update of one triangle of `C` (`n x n`):
@@ -188,46 +194,49 @@ pub unsafe extern "C" fn dsyr2k_(
     c: *mut f64,
     ldc: *const c_int,
 ) {
-    let (up, tr) = (uplo_flag(ch(uplo)), is_trans(ch(trans)));
-    let (n, k, lda, ldb, ldc) = (int(n), int(k), int(lda), int(ldb), int(ldc));
-    let nrowa = if tr == Some(false) { n } else { k };
-    let bad = if up.is_none() {
-        1
-    } else if tr.is_none() {
-        2
-    } else if n < 0 {
-        3
-    } else if k < 0 {
-        4
-    } else if lda < nrowa.max(1) {
-        7
-    } else if ldb < nrowa.max(1) {
-        9
-    } else if ldc < n.max(1) {
-        12
-    } else {
-        0
-    };
-    if bad != 0 {
-        return xerbla("DSYR2K", bad);
+    // SAFETY: the caller passes valid Fortran arguments (the `# Safety` section above), as the BLAS/LAPACK ABI requires of clarabel's calls.
+    unsafe {
+        let (up, tr) = (uplo_flag(ch(uplo)), is_trans(ch(trans)));
+        let (n, k, lda, ldb, ldc) = (int(n), int(k), int(lda), int(ldb), int(ldc));
+        let nrowa = if tr == Some(false) { n } else { k };
+        let bad = if up.is_none() {
+            1
+        } else if tr.is_none() {
+            2
+        } else if n < 0 {
+            3
+        } else if k < 0 {
+            4
+        } else if lda < nrowa.max(1) {
+            7
+        } else if ldb < nrowa.max(1) {
+            9
+        } else if ldc < n.max(1) {
+            12
+        } else {
+            0
+        };
+        if bad != 0 {
+            return xerbla("DSYR2K", bad);
+        }
+        let (alpha, beta) = (*alpha, *beta);
+        if n == 0 || ((alpha == 0.0 || k == 0) && beta == 1.0) {
+            return;
+        }
+        let (upper, (n, k)) = (up == Some(true), (n as usize, k as usize));
+        let mut cv = view_mut(c, n, n, ldc as usize);
+        scale_triangle(cv.rb_mut(), upper, beta);
+        if alpha == 0.0 || k == 0 {
+            return;
+        }
+        let (opa, opb) = if tr == Some(false) {
+            (view(a, n, k, lda as usize), view(b, n, k, ldb as usize))
+        } else {
+            (view(a, k, n, lda as usize).transpose(), view(b, k, n, ldb as usize).transpose())
+        };
+        let rect = BlockStructure::Rectangular;
+        let s = tri(upper);
+        triangular::matmul(cv.rb_mut(), s, Accum::Add, opa, rect, opb.transpose(), rect, alpha, Par::Seq);
+        triangular::matmul(cv, s, Accum::Add, opb, rect, opa.transpose(), rect, alpha, Par::Seq);
     }
-    let (alpha, beta) = (*alpha, *beta);
-    if n == 0 || ((alpha == 0.0 || k == 0) && beta == 1.0) {
-        return;
-    }
-    let (upper, (n, k)) = (up == Some(true), (n as usize, k as usize));
-    let mut cv = view_mut(c, n, n, ldc as usize);
-    scale_triangle(cv.rb_mut(), upper, beta);
-    if alpha == 0.0 || k == 0 {
-        return;
-    }
-    let (opa, opb) = if tr == Some(false) {
-        (view(a, n, k, lda as usize), view(b, n, k, ldb as usize))
-    } else {
-        (view(a, k, n, lda as usize).transpose(), view(b, k, n, ldb as usize).transpose())
-    };
-    let rect = BlockStructure::Rectangular;
-    let s = tri(upper);
-    triangular::matmul(cv.rb_mut(), s, Accum::Add, opa, rect, opb.transpose(), rect, alpha, Par::Seq);
-    triangular::matmul(cv, s, Accum::Add, opb, rect, opa.transpose(), rect, alpha, Par::Seq);
 }

@@ -37,41 +37,44 @@ pub unsafe extern "C" fn dpotrf_(
     lda: *const c_int,
     info: *mut c_int,
 ) {
-    let u = ch(uplo);
-    let (n, lda) = (int(n), int(lda));
-    *info = if u != b'U' && u != b'L' {
-        -1
-    } else if n < 0 {
-        -2
-    } else if lda < n.max(1) {
-        -4
-    } else {
-        0
-    };
-    if *info != 0 || n == 0 {
-        return;
-    }
-    let (n, upper) = (n as usize, u == b'U');
-    let mut av = view_mut(a, n, n, lda as usize);
-    let mut l = lower_copy(av.rb(), upper);
-    let mut mem = MemBuffer::new(cholesky_in_place_scratch::<f64>(n, Par::Seq, Default::default()));
-    let stack = MemStack::new(&mut mem);
-    let res = cholesky_in_place(l.as_mut(), Default::default(), Par::Seq, stack, Default::default());
-    if let Err(LltError::NonPositivePivot { index }) = res {
-        *info = index as c_int + 1;
-        return;
-    }
-    // faer does not flag NaN pivots in every code path; LAPACK does.
-    if let Some(j) = (0..n).find(|&j| l[(j, j)].is_nan()) {
-        *info = j as c_int + 1;
-        return;
-    }
-    for j in 0..n {
-        for i in j..n {
-            if upper {
-                av[(j, i)] = l[(i, j)];
-            } else {
-                av[(i, j)] = l[(i, j)];
+    // SAFETY: the caller passes valid Fortran arguments (the `# Safety` section above), as the BLAS/LAPACK ABI requires of clarabel's calls.
+    unsafe {
+        let u = ch(uplo);
+        let (n, lda) = (int(n), int(lda));
+        *info = if u != b'U' && u != b'L' {
+            -1
+        } else if n < 0 {
+            -2
+        } else if lda < n.max(1) {
+            -4
+        } else {
+            0
+        };
+        if *info != 0 || n == 0 {
+            return;
+        }
+        let (n, upper) = (n as usize, u == b'U');
+        let mut av = view_mut(a, n, n, lda as usize);
+        let mut l = lower_copy(av.rb(), upper);
+        let mut mem = MemBuffer::new(cholesky_in_place_scratch::<f64>(n, Par::Seq, Default::default()));
+        let stack = MemStack::new(&mut mem);
+        let res = cholesky_in_place(l.as_mut(), Default::default(), Par::Seq, stack, Default::default());
+        if let Err(LltError::NonPositivePivot { index }) = res {
+            *info = index as c_int + 1;
+            return;
+        }
+        // faer does not flag NaN pivots in every code path; LAPACK does.
+        if let Some(j) = (0..n).find(|&j| l[(j, j)].is_nan()) {
+            *info = j as c_int + 1;
+            return;
+        }
+        for j in 0..n {
+            for i in j..n {
+                if upper {
+                    av[(j, i)] = l[(i, j)];
+                } else {
+                    av[(i, j)] = l[(i, j)];
+                }
             }
         }
     }
@@ -93,27 +96,30 @@ pub unsafe extern "C" fn dpotrs_(
     ldb: *const c_int,
     info: *mut c_int,
 ) {
-    let u = ch(uplo);
-    let (n, nrhs, lda, ldb) = (int(n), int(nrhs), int(lda), int(ldb));
-    *info = if u != b'U' && u != b'L' {
-        -1
-    } else if n < 0 {
-        -2
-    } else if nrhs < 0 {
-        -3
-    } else if lda < n.max(1) {
-        -5
-    } else if ldb < n.max(1) {
-        -7
-    } else {
-        0
-    };
-    if *info != 0 || n == 0 || nrhs == 0 {
-        return;
+    // SAFETY: the caller passes valid Fortran arguments (the `# Safety` section above), as the BLAS/LAPACK ABI requires of clarabel's calls.
+    unsafe {
+        let u = ch(uplo);
+        let (n, nrhs, lda, ldb) = (int(n), int(nrhs), int(lda), int(ldb));
+        *info = if u != b'U' && u != b'L' {
+            -1
+        } else if n < 0 {
+            -2
+        } else if nrhs < 0 {
+            -3
+        } else if lda < n.max(1) {
+            -5
+        } else if ldb < n.max(1) {
+            -7
+        } else {
+            0
+        };
+        if *info != 0 || n == 0 || nrhs == 0 {
+            return;
+        }
+        let (n, nrhs) = (n as usize, nrhs as usize);
+        let l = lower_copy(view(a, n, n, lda as usize), u == b'U');
+        let mut bv = view_mut(b, n, nrhs, ldb as usize);
+        solve_lower_triangular_in_place(l.as_ref(), bv.rb_mut(), Par::Seq);
+        solve_upper_triangular_in_place(l.transpose(), bv, Par::Seq);
     }
-    let (n, nrhs) = (n as usize, nrhs as usize);
-    let l = lower_copy(view(a, n, n, lda as usize), u == b'U');
-    let mut bv = view_mut(b, n, nrhs, ldb as usize);
-    solve_lower_triangular_in_place(l.as_ref(), bv.rb_mut(), Par::Seq);
-    solve_upper_triangular_in_place(l.transpose(), bv, Par::Seq);
 }

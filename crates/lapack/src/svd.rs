@@ -47,13 +47,25 @@ fn compute(a: MatRef<'_, f64>, cu: ComputeSvdVectors, cv: ComputeSvdVectors) -> 
 }
 
 /// Write the first `cols` columns of `u` into the column-major buffer `dst`.
+///
+/// # Safety
+/// `dst` must be writable for `ld * (cols - 1) + u.nrows()` `f64`s, not aliased ([`view_mut`]).
 unsafe fn put_u(dst: *mut f64, ld: usize, u: &Mat<f64>, cols: usize) {
-    view_mut(dst, u.nrows(), cols, ld).copy_from(u.as_ref().subcols(0, cols));
+    // SAFETY: the caller upholds the `# Safety` section above, which is view_mut's.
+    unsafe {
+        view_mut(dst, u.nrows(), cols, ld).copy_from(u.as_ref().subcols(0, cols));
+    }
 }
 
 /// Write the first `rows` rows of `V^T` into the column-major buffer `dst`.
+///
+/// # Safety
+/// `dst` must be writable for `ld * (v.nrows() - 1) + rows` `f64`s, not aliased ([`view_mut`]).
 unsafe fn put_vt(dst: *mut f64, ld: usize, v: &Mat<f64>, rows: usize) {
-    view_mut(dst, rows, v.nrows(), ld).copy_from(v.as_ref().subcols(0, rows).transpose());
+    // SAFETY: the caller upholds the `# Safety` section above, which is view_mut's.
+    unsafe {
+        view_mut(dst, rows, v.nrows(), ld).copy_from(v.as_ref().subcols(0, rows).transpose());
+    }
 }
 
 /// Minimum (and reported optimal) `lwork` of `dgesdd` (LAPACK 3.x docs).
@@ -103,67 +115,70 @@ pub unsafe extern "C" fn dgesdd_(
     _iwork: *mut c_int,
     info: *mut c_int,
 ) {
-    let jz = ch(jobz);
-    let (mi, ni, lda, ldu, ldvt, lwork) = (int(m), int(n), int(lda), int(ldu), int(ldvt), int(lwork));
-    let mni = mi.min(ni);
-    let (wa, ws, wo) = (jz == b'A', jz == b'S', jz == b'O');
-    let lw_min = gesdd_lwork(jz, mi.max(0) as usize, ni.max(0) as usize);
-    *info = if !matches!(jz, b'A' | b'S' | b'O' | b'N') {
-        -1
-    } else if mi < 0 {
-        -2
-    } else if ni < 0 {
-        -3
-    } else if lda < mi.max(1) {
-        -5
-    } else if ldu < 1 || ((wa || ws) && ldu < mi) || (wo && mi < ni && ldu < mi) {
-        -8
-    } else if ldvt < 1 || (wa && ldvt < ni) || (ws && ldvt < mni) || (wo && mi >= ni && ldvt < ni) {
-        -10
-    } else if lwork != -1 && (lwork as i64) < lw_min as i64 {
-        -12
-    } else {
-        0
-    };
-    if *info != 0 {
-        return;
-    }
-    if lwork == -1 {
-        return set_work_size(work, lw_min);
-    }
-    if mi == 0 || ni == 0 {
-        return;
-    }
-    let (m, n, mn) = (mi as usize, ni as usize, mni as usize);
-    let (lda, ldu, ldvt) = (lda as usize, ldu as usize, ldvt as usize);
-    use ComputeSvdVectors::{Full, No, Thin};
-    let (cu, cv) = match jz {
-        b'N' => (No, No),
-        b'S' => (Thin, Thin),
-        b'A' => (Full, Full),
-        _ if m >= n => (Thin, Full),
-        _ => (Full, Thin),
-    };
-    let Some(r) = compute(view(a, m, n, lda), cu, cv) else {
-        *info = 1;
-        return;
-    };
-    std::ptr::copy_nonoverlapping(r.s.as_ptr(), s, mn);
-    let (Some(uu), Some(vv)) = (r.u, r.v) else {
-        return;
-    };
-    match jz {
-        b'O' if m >= n => {
-            put_u(a, lda, &uu, n);
-            put_vt(vt, ldvt, &vv, n);
+    // SAFETY: the caller passes valid Fortran arguments (the `# Safety` section above), as the BLAS/LAPACK ABI requires of clarabel's calls.
+    unsafe {
+        let jz = ch(jobz);
+        let (mi, ni, lda, ldu, ldvt, lwork) = (int(m), int(n), int(lda), int(ldu), int(ldvt), int(lwork));
+        let mni = mi.min(ni);
+        let (wa, ws, wo) = (jz == b'A', jz == b'S', jz == b'O');
+        let lw_min = gesdd_lwork(jz, mi.max(0) as usize, ni.max(0) as usize);
+        *info = if !matches!(jz, b'A' | b'S' | b'O' | b'N') {
+            -1
+        } else if mi < 0 {
+            -2
+        } else if ni < 0 {
+            -3
+        } else if lda < mi.max(1) {
+            -5
+        } else if ldu < 1 || ((wa || ws) && ldu < mi) || (wo && mi < ni && ldu < mi) {
+            -8
+        } else if ldvt < 1 || (wa && ldvt < ni) || (ws && ldvt < mni) || (wo && mi >= ni && ldvt < ni) {
+            -10
+        } else if lwork != -1 && (lwork as i64) < lw_min as i64 {
+            -12
+        } else {
+            0
+        };
+        if *info != 0 {
+            return;
         }
-        b'O' => {
-            put_u(u, ldu, &uu, m);
-            put_vt(a, lda, &vv, m);
+        if lwork == -1 {
+            return set_work_size(work, lw_min);
         }
-        _ => {
-            put_u(u, ldu, &uu, uu.ncols());
-            put_vt(vt, ldvt, &vv, vv.ncols());
+        if mi == 0 || ni == 0 {
+            return;
+        }
+        let (m, n, mn) = (mi as usize, ni as usize, mni as usize);
+        let (lda, ldu, ldvt) = (lda as usize, ldu as usize, ldvt as usize);
+        use ComputeSvdVectors::{Full, No, Thin};
+        let (cu, cv) = match jz {
+            b'N' => (No, No),
+            b'S' => (Thin, Thin),
+            b'A' => (Full, Full),
+            _ if m >= n => (Thin, Full),
+            _ => (Full, Thin),
+        };
+        let Some(r) = compute(view(a, m, n, lda), cu, cv) else {
+            *info = 1;
+            return;
+        };
+        std::ptr::copy_nonoverlapping(r.s.as_ptr(), s, mn);
+        let (Some(uu), Some(vv)) = (r.u, r.v) else {
+            return;
+        };
+        match jz {
+            b'O' if m >= n => {
+                put_u(a, lda, &uu, n);
+                put_vt(vt, ldvt, &vv, n);
+            }
+            b'O' => {
+                put_u(u, ldu, &uu, m);
+                put_vt(a, lda, &vv, m);
+            }
+            _ => {
+                put_u(u, ldu, &uu, uu.ncols());
+                put_vt(vt, ldvt, &vv, vv.ncols());
+            }
         }
     }
 }
@@ -204,52 +219,55 @@ pub unsafe extern "C" fn dgesvd_(
     lwork: *const c_int,
     info: *mut c_int,
 ) {
-    let (ju, jv) = (ch(jobu), ch(jobvt));
-    let (mi, ni, lda, ldu, ldvt, lwork) = (int(m), int(n), int(lda), int(ldu), int(ldvt), int(lwork));
-    let mni = mi.min(ni);
-    let lw_min = gesvd_lwork(mi.max(0) as usize, ni.max(0) as usize);
-    *info = if job_mode(ju).is_none() {
-        -1
-    } else if job_mode(jv).is_none() || (ju == b'O' && jv == b'O') {
-        -2
-    } else if mi < 0 {
-        -3
-    } else if ni < 0 {
-        -4
-    } else if lda < mi.max(1) {
-        -6
-    } else if ldu < 1 || (matches!(ju, b'A' | b'S') && ldu < mi) {
-        -9
-    } else if ldvt < 1 || (jv == b'A' && ldvt < ni) || (jv == b'S' && ldvt < mni) {
-        -11
-    } else if lwork != -1 && (lwork as i64) < lw_min as i64 {
-        -13
-    } else {
-        0
-    };
-    if *info != 0 {
-        return;
-    }
-    if lwork == -1 {
-        return set_work_size(work, lw_min);
-    }
-    if mi == 0 || ni == 0 {
-        return;
-    }
-    let (m, n, mn) = (mi as usize, ni as usize, mni as usize);
-    let (lda, ldu, ldvt) = (lda as usize, ldu as usize, ldvt as usize);
-    let (cu, cv) = (job_mode(ju).unwrap(), job_mode(jv).unwrap());
-    let Some(r) = compute(view(a, m, n, lda), cu, cv) else {
-        *info = 1;
-        return;
-    };
-    std::ptr::copy_nonoverlapping(r.s.as_ptr(), s, mn);
-    if let Some(uu) = &r.u {
-        let (dst, ld) = if ju == b'O' { (a, lda) } else { (u, ldu) };
-        put_u(dst, ld, uu, uu.ncols());
-    }
-    if let Some(vv) = &r.v {
-        let (dst, ld) = if jv == b'O' { (a, lda) } else { (vt, ldvt) };
-        put_vt(dst, ld, vv, vv.ncols());
+    // SAFETY: the caller passes valid Fortran arguments (the `# Safety` section above), as the BLAS/LAPACK ABI requires of clarabel's calls.
+    unsafe {
+        let (ju, jv) = (ch(jobu), ch(jobvt));
+        let (mi, ni, lda, ldu, ldvt, lwork) = (int(m), int(n), int(lda), int(ldu), int(ldvt), int(lwork));
+        let mni = mi.min(ni);
+        let lw_min = gesvd_lwork(mi.max(0) as usize, ni.max(0) as usize);
+        *info = if job_mode(ju).is_none() {
+            -1
+        } else if job_mode(jv).is_none() || (ju == b'O' && jv == b'O') {
+            -2
+        } else if mi < 0 {
+            -3
+        } else if ni < 0 {
+            -4
+        } else if lda < mi.max(1) {
+            -6
+        } else if ldu < 1 || (matches!(ju, b'A' | b'S') && ldu < mi) {
+            -9
+        } else if ldvt < 1 || (jv == b'A' && ldvt < ni) || (jv == b'S' && ldvt < mni) {
+            -11
+        } else if lwork != -1 && (lwork as i64) < lw_min as i64 {
+            -13
+        } else {
+            0
+        };
+        if *info != 0 {
+            return;
+        }
+        if lwork == -1 {
+            return set_work_size(work, lw_min);
+        }
+        if mi == 0 || ni == 0 {
+            return;
+        }
+        let (m, n, mn) = (mi as usize, ni as usize, mni as usize);
+        let (lda, ldu, ldvt) = (lda as usize, ldu as usize, ldvt as usize);
+        let (cu, cv) = (job_mode(ju).unwrap(), job_mode(jv).unwrap());
+        let Some(r) = compute(view(a, m, n, lda), cu, cv) else {
+            *info = 1;
+            return;
+        };
+        std::ptr::copy_nonoverlapping(r.s.as_ptr(), s, mn);
+        if let Some(uu) = &r.u {
+            let (dst, ld) = if ju == b'O' { (a, lda) } else { (u, ldu) };
+            put_u(dst, ld, uu, uu.ncols());
+        }
+        if let Some(vv) = &r.v {
+            let (dst, ld) = if jv == b'O' { (a, lda) } else { (vt, ldvt) };
+            put_vt(dst, ld, vv, vv.ncols());
+        }
     }
 }

@@ -40,7 +40,8 @@ pub(crate) fn xerbla(routine: &'static str, arg: i32) {
 /// `p` must be valid for reads.
 #[inline]
 pub(crate) unsafe fn ch(p: *const c_char) -> u8 {
-    (*p as u8).to_ascii_uppercase()
+    // SAFETY: the caller upholds the `# Safety` section above.
+    unsafe { (*p as u8).to_ascii_uppercase() }
 }
 
 /// Read a Fortran INTEGER argument.
@@ -49,7 +50,8 @@ pub(crate) unsafe fn ch(p: *const c_char) -> u8 {
 /// `p` must be valid for reads.
 #[inline]
 pub(crate) unsafe fn int(p: *const c_int) -> i32 {
-    *p
+    // SAFETY: the caller upholds the `# Safety` section above.
+    unsafe { *p }
 }
 
 /// Column-major strided read-only view of `rows x cols` entries at `ptr`.
@@ -59,10 +61,13 @@ pub(crate) unsafe fn int(p: *const c_int) -> i32 {
 /// `ld * (cols - 1) + rows` readable `f64`s that outlive `'a`.
 #[inline]
 pub(crate) unsafe fn view<'a>(ptr: *const f64, rows: usize, cols: usize, ld: usize) -> MatRef<'a, f64> {
-    if rows == 0 || cols == 0 {
-        return MatRef::from_column_major_slice(&[], rows, cols);
+    // SAFETY: the caller upholds the `# Safety` section above.
+    unsafe {
+        if rows == 0 || cols == 0 {
+            return MatRef::from_column_major_slice(&[], rows, cols);
+        }
+        MatRef::from_raw_parts(ptr, rows, cols, 1, ld as isize)
     }
-    MatRef::from_raw_parts(ptr, rows, cols, 1, ld as isize)
 }
 
 /// Column-major strided mutable view of `rows x cols` entries at `ptr`.
@@ -71,10 +76,13 @@ pub(crate) unsafe fn view<'a>(ptr: *const f64, rows: usize, cols: usize, ld: usi
 /// As for [`view`], plus the region must be writable and not aliased.
 #[inline]
 pub(crate) unsafe fn view_mut<'a>(ptr: *mut f64, rows: usize, cols: usize, ld: usize) -> MatMut<'a, f64> {
-    if rows == 0 || cols == 0 {
-        return MatMut::from_column_major_slice_mut(&mut [], rows, cols);
+    // SAFETY: the caller upholds the `# Safety` section above.
+    unsafe {
+        if rows == 0 || cols == 0 {
+            return MatMut::from_column_major_slice_mut(&mut [], rows, cols);
+        }
+        MatMut::from_raw_parts_mut(ptr, rows, cols, 1, ld as isize)
     }
-    MatMut::from_raw_parts_mut(ptr, rows, cols, 1, ld as isize)
 }
 
 /// Scale the `uplo` triangle (`b'U'` or `b'L'`) of an `n x n` view by `beta`,
@@ -110,7 +118,10 @@ pub(crate) fn scale_all(mut c: MatMut<'_, f64>, beta: f64) {
 /// `work` must be valid for one write.
 #[inline]
 pub(crate) unsafe fn set_work_size(work: *mut f64, size: usize) {
-    *work = size.max(1) as f64;
+    // SAFETY: the caller upholds the `# Safety` section above.
+    unsafe {
+        *work = size.max(1) as f64;
+    }
 }
 
 /// Copy the `upper`/lower triangle of a square view into a full symmetric

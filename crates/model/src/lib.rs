@@ -9,6 +9,8 @@
 //! [`Config::validate`] checks every field and returns a [`ConfigError`] naming the field
 //! and the allowed range.
 
+#![forbid(unsafe_code)]
+
 pub mod bounds;
 pub mod cancel;
 mod config;

@@ -15,6 +15,8 @@
 //! the wall times, which appear only between `<!-- walltime:begin -->` and
 //! `<!-- walltime:end -->` in index.html.
 
+#![forbid(unsafe_code)]
+
 mod accuracy;
 pub mod atomic;
 use wingcheck_chart as chart;

@@ -17,6 +17,8 @@
 //! Results never depend on the number of rayon threads: points are pure functions of their
 //! config, collected in index order.
 
+#![forbid(unsafe_code)]
+
 mod assemble;
 pub mod axis;
 pub mod bench;

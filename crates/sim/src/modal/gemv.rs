@@ -106,47 +106,56 @@ mod avx {
 
     #[inline(always)]
     unsafe fn sum(lo: __m256d, hi: __m256d) -> f64 {
-        let mut a = [0.0; LANES];
-        _mm256_storeu_pd(a.as_mut_ptr(), lo);
-        _mm256_storeu_pd(a.as_mut_ptr().add(4), hi);
-        total(&a)
+        // SAFETY: the caller upholds this function's contract (the CPU has AVX; every lane read or written lies inside its slice).
+        unsafe {
+            let mut a = [0.0; LANES];
+            _mm256_storeu_pd(a.as_mut_ptr(), lo);
+            _mm256_storeu_pd(a.as_mut_ptr().add(4), hi);
+            total(&a)
+        }
     }
 
     #[target_feature(enable = "avx")]
     pub(super) unsafe fn mul_into(m: &RowMajor, x: &[f64], y: &mut [f64]) {
-        let full = m.rows - m.rows % BLOCK;
-        for i in (0..full).step_by(BLOCK) {
-            rows::<BLOCK>(m, x, y, i);
-        }
-        // the last rows in blocks of two and one: none is computed twice
-        let mut i = full;
-        if m.rows - i >= 2 {
-            rows::<2>(m, x, y, i);
-            i += 2;
-        }
-        if i < m.rows {
-            rows::<1>(m, x, y, i);
+        // SAFETY: the caller upholds this function's contract (the CPU has AVX; every lane read or written lies inside its slice).
+        unsafe {
+            let full = m.rows - m.rows % BLOCK;
+            for i in (0..full).step_by(BLOCK) {
+                rows::<BLOCK>(m, x, y, i);
+            }
+            // the last rows in blocks of two and one: none is computed twice
+            let mut i = full;
+            if m.rows - i >= 2 {
+                rows::<2>(m, x, y, i);
+                i += 2;
+            }
+            if i < m.rows {
+                rows::<1>(m, x, y, i);
+            }
         }
     }
 
     /// Rows i..i + R of the product (R ≤ [`BLOCK`]), each x chunk loaded once for all of them.
     #[inline(always)]
     unsafe fn rows<const R: usize>(m: &RowMajor, x: &[f64], y: &mut [f64], i: usize) {
-        let (stride, xp) = (m.stride, x.as_ptr());
-        let r: [*const f64; R] = std::array::from_fn(|b| m.data.as_ptr().add((i + b) * stride));
-        let mut lo = [_mm256_setzero_pd(); R];
-        let mut hi = [_mm256_setzero_pd(); R];
-        let mut j = 0;
-        while j < stride {
-            let (xl, xh) = (_mm256_loadu_pd(xp.add(j)), _mm256_loadu_pd(xp.add(j + 4)));
-            for b in 0..R {
-                lo[b] = _mm256_add_pd(lo[b], _mm256_mul_pd(_mm256_loadu_pd(r[b].add(j)), xl));
-                hi[b] = _mm256_add_pd(hi[b], _mm256_mul_pd(_mm256_loadu_pd(r[b].add(j + 4)), xh));
+        // SAFETY: the caller upholds this function's contract (the CPU has AVX; every lane read or written lies inside its slice).
+        unsafe {
+            let (stride, xp) = (m.stride, x.as_ptr());
+            let r: [*const f64; R] = std::array::from_fn(|b| m.data.as_ptr().add((i + b) * stride));
+            let mut lo = [_mm256_setzero_pd(); R];
+            let mut hi = [_mm256_setzero_pd(); R];
+            let mut j = 0;
+            while j < stride {
+                let (xl, xh) = (_mm256_loadu_pd(xp.add(j)), _mm256_loadu_pd(xp.add(j + 4)));
+                for b in 0..R {
+                    lo[b] = _mm256_add_pd(lo[b], _mm256_mul_pd(_mm256_loadu_pd(r[b].add(j)), xl));
+                    hi[b] = _mm256_add_pd(hi[b], _mm256_mul_pd(_mm256_loadu_pd(r[b].add(j + 4)), xh));
+                }
+                j += LANES;
             }
-            j += LANES;
-        }
-        for b in 0..R {
-            y[i + b] = sum(lo[b], hi[b]);
+            for b in 0..R {
+                y[i + b] = sum(lo[b], hi[b]);
+            }
         }
     }
 }

@@ -192,41 +192,44 @@ mod avx {
         zeta: &mut [f64],
         eta: &mut [f64],
     ) -> StateSums {
-        let s = &p.solve;
-        let b = _mm256_set1_pd;
-        let (phi, e, e2) = (b(phi), [b(e[0]), b(e[1])], [b(e2[0]), b(e2[1])]);
-        let (eta_u, alpha) = (b(p.eta_u), b(p.alpha));
-        // channel 0 and 1 of t, then of t₂; lane l of each is the portable loop's partial sum l
-        let (mut t0, mut t1, mut t20, mut t21) =
-            (_mm256_setzero_pd(), _mm256_setzero_pd(), _mm256_setzero_pd(), _mm256_setzero_pd());
-        for j in (0..s.cz.len()).step_by(WIDTH) {
-            let (et, zt) = (get(eta, j), get(zeta, j));
-            let (cz, ce, k1, k2) = (get(&s.cz, j), get(&s.ce, j), get(&p.k1, j), get(&p.k2, j));
-            let (z0, z1) = (get(&s.z0, j), get(&s.z1, j));
-            let ce_eta = mul(ce, et);
-            let v = sub(mul(cz, zt), ce_eta);
-            let phi_ld = mul(phi, get(&s.ld, j));
-            let u = add(v, add(phi_ld, add(mul(z0, e[0]), mul(z1, e[1]))));
-            let rest = add(sub(sub(phi_ld, ce_eta), mul(k2, zt)), add(mul(z0, e2[0]), mul(z1, e2[1])));
-            let zn = add(mul(k1, u), rest);
-            let en = add(add(et, mul(eta_u, u)), mul(alpha, zn));
-            let ce_en = mul(ce, en);
-            let vn = sub(mul(cz, zn), ce_en);
-            let wn = sub(mul(k1, vn), add(mul(k2, zn), ce_en));
-            let (u0, u1) = (get(&s.u0, j), get(&s.u1, j));
-            t0 = add(t0, mul(u0, vn));
-            t1 = add(t1, mul(u1, vn));
-            t20 = add(t20, mul(u0, wn));
-            t21 = add(t21, mul(u1, wn));
-            put(eta, j, en);
-            put(zeta, j, zn);
+        // SAFETY: the caller upholds this function's contract (the CPU has AVX; every lane read or written lies inside its slice).
+        unsafe {
+            let s = &p.solve;
+            let b = _mm256_set1_pd;
+            let (phi, e, e2) = (b(phi), [b(e[0]), b(e[1])], [b(e2[0]), b(e2[1])]);
+            let (eta_u, alpha) = (b(p.eta_u), b(p.alpha));
+            // channel 0 and 1 of t, then of t₂; lane l of each is the portable loop's partial sum l
+            let (mut t0, mut t1, mut t20, mut t21) =
+                (_mm256_setzero_pd(), _mm256_setzero_pd(), _mm256_setzero_pd(), _mm256_setzero_pd());
+            for j in (0..s.cz.len()).step_by(WIDTH) {
+                let (et, zt) = (get(eta, j), get(zeta, j));
+                let (cz, ce, k1, k2) = (get(&s.cz, j), get(&s.ce, j), get(&p.k1, j), get(&p.k2, j));
+                let (z0, z1) = (get(&s.z0, j), get(&s.z1, j));
+                let ce_eta = mul(ce, et);
+                let v = sub(mul(cz, zt), ce_eta);
+                let phi_ld = mul(phi, get(&s.ld, j));
+                let u = add(v, add(phi_ld, add(mul(z0, e[0]), mul(z1, e[1]))));
+                let rest = add(sub(sub(phi_ld, ce_eta), mul(k2, zt)), add(mul(z0, e2[0]), mul(z1, e2[1])));
+                let zn = add(mul(k1, u), rest);
+                let en = add(add(et, mul(eta_u, u)), mul(alpha, zn));
+                let ce_en = mul(ce, en);
+                let vn = sub(mul(cz, zn), ce_en);
+                let wn = sub(mul(k1, vn), add(mul(k2, zn), ce_en));
+                let (u0, u1) = (get(&s.u0, j), get(&s.u1, j));
+                t0 = add(t0, mul(u0, vn));
+                t1 = add(t1, mul(u1, vn));
+                t20 = add(t20, mul(u0, wn));
+                t21 = add(t21, mul(u1, wn));
+                put(eta, j, en);
+                put(zeta, j, zn);
+            }
+            let t = |x: __m256d| {
+                let mut a = [0.0; WIDTH];
+                _mm256_storeu_pd(a.as_mut_ptr(), x);
+                (a[0] + a[1]) + (a[2] + a[3])
+            };
+            StateSums { t: [t(t0), t(t1)], t2: [t(t20), t(t21)] }
         }
-        let t = |x: __m256d| {
-            let mut a = [0.0; WIDTH];
-            _mm256_storeu_pd(a.as_mut_ptr(), x);
-            (a[0] + a[1]) + (a[2] + a[3])
-        };
-        StateSums { t: [t(t0), t(t1)], t2: [t(t20), t(t21)] }
     }
 }
 

@@ -227,37 +227,45 @@ pub(super) mod avx {
     /// 4 values from index i (i + 4 ≤ len: every caller iterates below the checked length).
     #[inline(always)]
     pub(in crate::modal) unsafe fn get(v: &[f64], i: usize) -> __m256d {
-        _mm256_loadu_pd(v.as_ptr().add(i))
+        // SAFETY: the caller upholds this function's contract (the CPU has AVX; every lane read or written lies inside its slice).
+        unsafe { _mm256_loadu_pd(v.as_ptr().add(i)) }
     }
 
     /// Store 4 values at index i (i + 4 ≤ len, as for [`get`]).
     #[inline(always)]
     pub(in crate::modal) unsafe fn put(v: &mut [f64], i: usize, x: __m256d) {
-        _mm256_storeu_pd(v.as_mut_ptr().add(i), x)
+        // SAFETY: the caller upholds this function's contract (the CPU has AVX; every lane read or written lies inside its slice).
+        unsafe { _mm256_storeu_pd(v.as_mut_ptr().add(i), x) }
     }
 
     #[inline(always)]
     pub(in crate::modal) unsafe fn mul(a: __m256d, b: __m256d) -> __m256d {
-        _mm256_mul_pd(a, b)
+        // SAFETY: the caller upholds this function's contract (the CPU has AVX; every lane read or written lies inside its slice).
+        unsafe { _mm256_mul_pd(a, b) }
     }
 
     #[inline(always)]
     pub(in crate::modal) unsafe fn add(a: __m256d, b: __m256d) -> __m256d {
-        _mm256_add_pd(a, b)
+        // SAFETY: the caller upholds this function's contract (the CPU has AVX; every lane read or written lies inside its slice).
+        unsafe { _mm256_add_pd(a, b) }
     }
 
     #[inline(always)]
     pub(in crate::modal) unsafe fn sub(a: __m256d, b: __m256d) -> __m256d {
-        _mm256_sub_pd(a, b)
+        // SAFETY: the caller upholds this function's contract (the CPU has AVX; every lane read or written lies inside its slice).
+        unsafe { _mm256_sub_pd(a, b) }
     }
 
     /// The two partial-sum vectors of lanes 0–3 and 4–7, in the portable loops' order.
     #[inline(always)]
     unsafe fn sum(lo: __m256d, hi: __m256d) -> f64 {
-        let mut a = [0.0; LANES];
-        _mm256_storeu_pd(a.as_mut_ptr(), lo);
-        _mm256_storeu_pd(a.as_mut_ptr().add(4), hi);
-        total(&a)
+        // SAFETY: the caller upholds this function's contract (the CPU has AVX; every lane read or written lies inside its slice).
+        unsafe {
+            let mut a = [0.0; LANES];
+            _mm256_storeu_pd(a.as_mut_ptr(), lo);
+            _mm256_storeu_pd(a.as_mut_ptr().add(4), hi);
+            total(&a)
+        }
     }
 
     /// The [`LANES`] partial sums of (Σ u0 y, Σ u1 y) as four named registers (lanes 0–3 and
@@ -273,37 +281,48 @@ pub(super) mod avx {
     impl Dots {
         #[inline(always)]
         unsafe fn new() -> Dots {
-            let z = _mm256_setzero_pd();
-            Dots { u0_lo: z, u0_hi: z, u1_lo: z, u1_hi: z }
+            // SAFETY: the caller upholds this function's contract (the CPU has AVX; every lane read or written lies inside its slice).
+            unsafe {
+                let z = _mm256_setzero_pd();
+                Dots { u0_lo: z, u0_hi: z, u1_lo: z, u1_hi: z }
+            }
         }
 
         /// Add u·v for the modes i + half .. i + half + 4 of the pack at i (half 0 or 4).
         #[inline(always)]
         unsafe fn accumulate(&mut self, s: &StepSolve, i: usize, half: usize, v: __m256d) {
-            let j = i + half;
-            let (a0, a1) =
-                if half == 0 { (&mut self.u0_lo, &mut self.u1_lo) } else { (&mut self.u0_hi, &mut self.u1_hi) };
-            *a0 = add(*a0, mul(get(&s.u0, j), v));
-            *a1 = add(*a1, mul(get(&s.u1, j), v));
+            // SAFETY: the caller upholds this function's contract (the CPU has AVX; every lane read or written lies inside its slice).
+            unsafe {
+                let j = i + half;
+                let (a0, a1) =
+                    if half == 0 { (&mut self.u0_lo, &mut self.u1_lo) } else { (&mut self.u0_hi, &mut self.u1_hi) };
+                *a0 = add(*a0, mul(get(&s.u0, j), v));
+                *a1 = add(*a1, mul(get(&s.u1, j), v));
+            }
         }
 
         #[inline(always)]
         unsafe fn totals(&self) -> [f64; 2] {
-            [sum(self.u0_lo, self.u0_hi), sum(self.u1_lo, self.u1_hi)]
+            // SAFETY: the caller upholds this function's contract (the CPU has AVX; every lane read or written lies inside its slice).
+            unsafe { [sum(self.u0_lo, self.u0_hi), sum(self.u1_lo, self.u1_hi)] }
         }
     }
 
     /// cz ζ − ce η + φ ld + z0 f0 + z1 f1 at i, in the portable loops' order.
     #[inline(always)]
     unsafe fn rhs_at(s: &StepSolve, i: usize, zt: __m256d, et: __m256d, phi: __m256d, f: [__m256d; 2]) -> __m256d {
-        let v = sub(mul(get(&s.cz, i), zt), mul(get(&s.ce, i), et));
-        add(add(add(v, mul(phi, get(&s.ld, i))), mul(get(&s.z0, i), f[0])), mul(get(&s.z1, i), f[1]))
+        // SAFETY: the caller upholds this function's contract (the CPU has AVX; every lane read or written lies inside its slice).
+        unsafe {
+            let v = sub(mul(get(&s.cz, i), zt), mul(get(&s.ce, i), et));
+            add(add(add(v, mul(phi, get(&s.ld, i))), mul(get(&s.z0, i), f[0])), mul(get(&s.z1, i), f[1]))
+        }
     }
 
     /// y − z0 c0 − z1 c1 at i.
     #[inline(always)]
     unsafe fn corrected(s: &StepSolve, i: usize, y: __m256d, c: [__m256d; 2]) -> __m256d {
-        sub(sub(y, mul(get(&s.z0, i), c[0])), mul(get(&s.z1, i), c[1]))
+        // SAFETY: the caller upholds this function's contract (the CPU has AVX; every lane read or written lies inside its slice).
+        unsafe { sub(sub(y, mul(get(&s.z0, i), c[0])), mul(get(&s.z1, i), c[1])) }
     }
 
     #[target_feature(enable = "avx")]
@@ -315,17 +334,20 @@ pub(super) mod avx {
         f: [f64; 2],
         y: &mut [f64],
     ) -> [f64; 2] {
-        let (phi, f) = (_mm256_set1_pd(phi), [_mm256_set1_pd(f[0]), _mm256_set1_pd(f[1])]);
-        let mut acc = Dots::new();
-        // one pack of LANES modes per pass: lanes 0–3 and 4–7 in two registers each
-        for i in (0..y.len()).step_by(LANES) {
-            for half in [0, 4] {
-                let v = rhs_at(s, i + half, get(zeta, i + half), get(eta, i + half), phi, f);
-                put(y, i + half, v);
-                acc.accumulate(s, i, half, v);
+        // SAFETY: the caller upholds this function's contract (the CPU has AVX; every lane read or written lies inside its slice).
+        unsafe {
+            let (phi, f) = (_mm256_set1_pd(phi), [_mm256_set1_pd(f[0]), _mm256_set1_pd(f[1])]);
+            let mut acc = Dots::new();
+            // one pack of LANES modes per pass: lanes 0–3 and 4–7 in two registers each
+            for i in (0..y.len()).step_by(LANES) {
+                for half in [0, 4] {
+                    let v = rhs_at(s, i + half, get(zeta, i + half), get(eta, i + half), phi, f);
+                    put(y, i + half, v);
+                    acc.accumulate(s, i, half, v);
+                }
             }
+            acc.totals()
         }
-        acc.totals()
     }
 
     #[target_feature(enable = "avx")]
@@ -337,11 +359,14 @@ pub(super) mod avx {
         zeta: &mut [f64],
         eta: &mut [f64],
     ) {
-        let (c, h, two) = ([_mm256_set1_pd(c[0]), _mm256_set1_pd(c[1])], _mm256_set1_pd(h), _mm256_set1_pd(2.0));
-        for i in (0..y.len()).step_by(4) {
-            let zbar = corrected(s, i, get(y, i), c);
-            put(eta, i, add(get(eta, i), mul(h, zbar)));
-            put(zeta, i, sub(mul(two, zbar), get(zeta, i)));
+        // SAFETY: the caller upholds this function's contract (the CPU has AVX; every lane read or written lies inside its slice).
+        unsafe {
+            let (c, h, two) = ([_mm256_set1_pd(c[0]), _mm256_set1_pd(c[1])], _mm256_set1_pd(h), _mm256_set1_pd(2.0));
+            for i in (0..y.len()).step_by(4) {
+                let zbar = corrected(s, i, get(y, i), c);
+                put(eta, i, add(get(eta, i), mul(h, zbar)));
+                put(zeta, i, sub(mul(two, zbar), get(zeta, i)));
+            }
         }
     }
 }
