@@ -78,8 +78,7 @@ pub fn metrics(out: &SimOutput, settings: &CheckSettings) -> Metrics {
     let late = Window::second_half(whole.t1);
     let rms = |v: &[f64], w: Window| metrics::rms_in(&s.t, v, w).unwrap_or(0.0);
     let gt = [metrics::observer_error(s, 0), metrics::observer_error(s, 1)];
-    let settle =
-        |x: &[f64]| metrics::settle_time(&s.t, x, settings.settle_fraction * x.first().map_or(0.0, |v| v.abs()));
+    let settle = |x: &[f64]| metrics::tip_settle_time(&s.t, x, settings.settle_fraction);
     Metrics {
         rms_q_full: rms(&s.q_tip, whole),
         rms_q_late: rms(&s.q_tip, late),
@@ -95,13 +94,7 @@ pub fn metrics(out: &SimOutput, settings: &CheckSettings) -> Metrics {
         peak_tau2: metrics::tau_peak(out, 1),
         rms_gtilde_full: [rms(&gt[0], whole), rms(&gt[1], whole)],
         rms_gtilde_late: [rms(&gt[0], late), rms(&gt[1], late)],
-        // t_band at full rate (the simulator tracks it at GTILDE_THRESHOLD); from the output
-        // samples only for another threshold
-        gtilde_settle: if settings.gtilde_threshold == metrics::GTILDE_THRESHOLD {
-            out.gtilde_band_entry
-        } else {
-            [0, 1].map(|c| metrics::settle_time(&s.t, &gt[c], settings.gtilde_threshold))
-        },
+        gtilde_settle: metrics::gtilde_band(out, settings.gtilde_threshold).entry,
     }
 }
 
@@ -496,12 +489,12 @@ fn sweep_points(plan: &Runs, study: &Study, settings: &CheckSettings) -> Result<
 
 /// The metrics of the run of `cfg` and their errors from its refinements ([`metric_errors`]).
 pub fn measured(study: &Study, cfg: &Config, settings: &CheckSettings) -> Result<(Metrics, Metrics), ClaimsError> {
-    let base = metrics(&*study.simulate(cfg)?, settings);
+    let run = study.simulate(cfg)?;
+    let base = metrics(&run, settings);
     let (fine, half_dt, roundoff) = refined_runs(study, cfg)?;
-    // settling read off the output samples; g̃'s band entry at full rate (the steps) where the
-    // simulator tracks it at the ledger's threshold, else off the output samples too
+    // settling read off the output samples; g̃'s band entry where metrics::gtilde_band read it
     let output = cfg.horizon.sample_every;
-    let band = if settings.gtilde_threshold == metrics::GTILDE_THRESHOLD { cfg.discretisation.dt } else { output };
+    let band = metrics::gtilde_band(&run, settings.gtilde_threshold).sampling(cfg);
     let errors =
         metric_errors(&base, &metrics(&fine, settings), &metrics(&half_dt, settings), roundoff, [output, band]);
     Ok((base, errors))

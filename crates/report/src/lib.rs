@@ -176,7 +176,7 @@ pub fn write_report(cfg: &Config, out_dir: &Path, opts: &ReportOptions) -> Resul
     // The figures that need the ledger, side by side.
     let t = Instant::now();
     let (series, mut row_figs) = rayon::join(
-        || paper::series_figures(cfg, &runs, paper::ftdo_marks(&ledger)),
+        || paper::series_figures(cfg, &runs, paper::ftdo_marks(&ledger), ledger.settings.gtilde_threshold),
         || ledger.rows.iter().enumerate().map(|(i, r)| claim_figures(i, r)).collect::<Vec<_>>(),
     );
     timings.push(StageTiming { name: "figure data".into(), seconds: t.elapsed().as_secs_f64() });

@@ -10,7 +10,7 @@
 //! - |g̃| with t_band (from when the simulated |g̃| stays below the threshold, at full rate) and,
 //!   for the FTDO, the ledger's t_reach and bound t_f of (38)/(39) (one symbol, one value).
 
-use wingcheck_sim::metrics::{envelope_abs_max, envelope_abs_min, envelope_of, GTILDE_THRESHOLD};
+use wingcheck_sim::metrics::{envelope_abs_max, envelope_abs_min, envelope_of, gtilde_band};
 use wingcheck_sim::SimOutput;
 
 use crate::chart::{padded_range, tick, Band, BandStyle, LineChart, LineStyle};
@@ -42,6 +42,8 @@ pub struct Frame<'a> {
     pub every: f64,
     /// The run without control.
     pub none: &'a SimOutput,
+    /// The ledger's |g̃| convergence threshold (N, N m; `CheckSettings::gtilde_threshold`).
+    pub gtilde_threshold: f64,
 }
 
 fn unit(ch: u8) -> &'static str {
@@ -306,10 +308,10 @@ fn tip_figure(r: &RunView, is_q: bool, f: &Frame, chart: LineChart, twin: u32, s
 }
 
 /// |g̃| of channel `ch` on a log axis: the samples as a line, the full-rate range of |g̃| per
-/// interval as a band, the threshold, t_band (the simulator's full-rate entry into the band),
+/// interval as a band, the ledger's threshold, t_band (the entry into its band, [`gtilde_band`]),
 /// and the ledger's t_reach and bound t_f of (38)/(39) when given (times > 0: the time axis is
 /// logarithmic).
-fn gerr_chart(r: &RunView, ch: u8) -> LineChart {
+fn gerr_chart(r: &RunView, ch: u8, f: &Frame) -> LineChart {
     let s = &r.out.series;
     let v: Vec<f64> = wingcheck_sim::metrics::observer_error(s, usize::from(ch - 1)).iter().map(|x| x.abs()).collect();
     let env = envelope_of(r.out, usize::from(ch + 1));
@@ -343,13 +345,13 @@ fn gerr_chart(r: &RunView, ch: u8) -> LineChart {
         },
         style: if chatter { BandStyle::Edges } else { BandStyle::Shade },
     });
-    c.hlines.push((GTILDE_THRESHOLD, format!("|g̃| = {} {}", tick(GTILDE_THRESHOLD), unit(ch))));
+    c.hlines.push((f.gtilde_threshold, format!("|g̃| = {} {}", tick(f.gtilde_threshold), unit(ch))));
     let m = &r.marks[usize::from(ch - 1)];
     // (a time 0 has no place on the log time axis; the caption states it)
     if let Some(q) = m.reach.as_ref().filter(|q| q.value > 0.0) {
         c.vlines.push((q.value, format!("t_reach = {} (ledger)", q.value_text())));
     }
-    if let Some(tb) = r.out.gtilde_band_entry[usize::from(ch - 1)].filter(|t| *t > 0.0) {
+    if let Some(tb) = gtilde_band(r.out, f.gtilde_threshold).entry[usize::from(ch - 1)].filter(|t| *t > 0.0) {
         c.vlines.push((tb, format!("t_band = {} s", tick(tb))));
     }
     if let Some(q) = m.bound.as_ref().filter(|q| q.value > 0.0) {
@@ -362,7 +364,13 @@ fn gerr_figure(r: &RunView, ch: u8, f: &Frame, chart: LineChart, twin: u32) -> F
     let s = &r.out.series;
     let n = r.first + 3 + u32::from(ch);
     let u = unit(ch);
-    let thr = tick(GTILDE_THRESHOLD);
+    let thr = tick(f.gtilde_threshold);
+    let band = gtilde_band(r.out, f.gtilde_threshold);
+    let read = if band.full_rate {
+        "at full rate (every integrator step, both sides of every sample's jump)"
+    } else {
+        "at the output samples"
+    };
     let hi = envelope_abs_max(envelope_of(r.out, usize::from(ch + 1)));
     let mut cap = Caption::default()
         .t(format!(
@@ -378,12 +386,15 @@ fn gerr_figure(r: &RunView, ch: u8, f: &Frame, chart: LineChart, twin: u32) -> F
         ))
         .n(format!("fig{n}.max_abs_late"), max_abs(&s.t, &hi, f.t_end / 2.0, f.t_end))
         .t(format!(" {u}"));
-    cap = match r.out.gtilde_band_entry[usize::from(ch - 1)] {
+    cap = match band.entry[usize::from(ch - 1)] {
         Some(tb) => cap
-            .t(format!("; at full rate (every integrator step, both sides of every sample's jump) |g̃{ch}| stays ≤ {thr} {u} (the threshold used throughout) from t_band = "))
+            .t(format!("; {read} |g̃{ch}| stays ≤ {thr} {u} (the threshold used throughout) from t_band = "))
             .n(format!("fig{n}.t_band"), tb)
             .t(" s"),
-        None => cap.t(format!("; at full rate |g̃{ch}| still exceeds {thr} {u} (the threshold used throughout) at the end of the run")),
+        None => cap.t(format!(
+            "; {} |g̃{ch}| still exceeds {thr} {u} (the threshold used throughout) at the end of the run",
+            if band.full_rate { "at full rate" } else { "at the output samples" }
+        )),
     };
     let m = &r.marks[usize::from(ch - 1)];
     if let Some(q) = &m.reach {
@@ -446,7 +457,7 @@ pub fn paired(a: &RunView, b: &RunView, f: &Frame) -> (Vec<Figure>, Vec<Figure>)
         fb.push(tip_figure(b, is_q, f, cb, twin(a, k), small));
     }
     for ch in [1u8, 2] {
-        let (mut ca, mut cb) = (gerr_chart(a, ch), gerr_chart(b, ch));
+        let (mut ca, mut cb) = (gerr_chart(a, ch, f), gerr_chart(b, ch, f));
         share_y(&mut ca, &mut cb, true);
         let k = 3 + u32::from(ch);
         fa.push(gerr_figure(a, ch, f, ca, twin(b, k)));

@@ -240,9 +240,14 @@ const DOBC: &str = "with DOBC";
 
 /// The time-series figures of Figures 7–12 and 15–20 (FTDO/DOBC pairs on common axes); `marks`
 /// are the ledger's bounds t_f1, t_f2 of (38)/(39) and its reaching times t_reach, marked on the
-/// FTDO's |g̃|.
-pub fn series_figures(cfg: &Config, runs: &Runs, marks: [FiniteTimeMarks; 2]) -> (Vec<Figure>, Vec<Figure>) {
-    let frame = Frame { t_end: cfg.horizon.t_end, every: cfg.horizon.sample_every, none: &runs.none };
+/// FTDO's |g̃|, with the ledger's |g̃| threshold `gtilde_threshold` (N, N m).
+pub fn series_figures(
+    cfg: &Config,
+    runs: &Runs,
+    marks: [FiniteTimeMarks; 2],
+    gtilde_threshold: f64,
+) -> (Vec<Figure>, Vec<Figure>) {
+    let frame = Frame { t_end: cfg.horizon.t_end, every: cfg.horizon.sample_every, none: &runs.none, gtilde_threshold };
     let view = |tag, desc, first, out, err, marks| RunView { tag, desc, first, out, err, marks };
     paired(
         &view("ftdo", PROPOSED, 7, &runs.ftdo, &runs.errors[1], marks),

@@ -145,7 +145,7 @@ fn metric_text(metric: Metric, window: (f64, f64)) -> (String, String, String) {
         Metric::SettlingTime => (
             format!(
                 "Settling time (|q|, |θ| within {} % of their initial values)",
-                100.0 * wingcheck_sim::metrics::SETTLE_FRACTION
+                100.0 * crate::point::settle_fraction()
             ),
             format!("settling time ({unit})"),
             "no value: not settled by t_end, or the point failed".into(),

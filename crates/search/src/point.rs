@@ -97,9 +97,17 @@ pub fn window(cfg: &Config, w: Option<(f64, f64)>) -> (f64, f64) {
     w.unwrap_or((0.5 * cfg.horizon.t_end, cfg.horizon.t_end))
 }
 
-/// Joint 5 % settling time of the tip ([`metrics::joint_tip_settle_time`], [`Metric::SettlingTime`]).
+/// Joint settling time of the tip ([`metrics::joint_tip_settle_time`], [`Metric::SettlingTime`])
+/// in the ledger's band ([`settle_fraction`]).
 pub fn settling_time(s: &TipTrace) -> Option<f64> {
-    metrics::joint_tip_settle_time(&s.t, &s.q_tip, &s.theta_tip)
+    metrics::joint_tip_settle_time(&s.t, &s.q_tip, &s.theta_tip, settle_fraction())
+}
+
+/// The settling band of [`Metric::SettlingTime`] as a fraction of the tip's initial values: the
+/// ledger's ([`wingcheck_claims::CheckSettings::settle_fraction`], its default), so that a
+/// point's settling time and the ftdo-vs-dobc row's agree.
+pub fn settle_fraction() -> f64 {
+    wingcheck_claims::CheckSettings::default().settle_fraction
 }
 
 /// The simulation metrics ([`Metric::SIMULATION`], in order).

@@ -21,6 +21,41 @@ pub const SETTLE_FRACTION: f64 = 0.05;
 /// |g̃| below which the disturbance estimate counts as converged (N or N m).
 pub const GTILDE_THRESHOLD: f64 = 1e-4;
 
+/// When |g̃1| and |g̃2| enter the band |g̃| ≤ a threshold for good, and how that was read.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GtildeBand {
+    /// Per channel, the time (s) from which |g̃| stays within the band; `None` if it is outside
+    /// at the end of the run.
+    pub entry: [Option<f64>; 2],
+    /// Read at full rate (every integrator step and both sides of every sample's jump: the
+    /// simulator tracks the band at [`GTILDE_THRESHOLD`]); false: off the output samples.
+    pub full_rate: bool,
+}
+
+impl GtildeBand {
+    /// The spacing (s) of the instants the entry was read from: the integrator step at full
+    /// rate, the output interval otherwise.
+    pub fn sampling(&self, cfg: &wingcheck_model::Config) -> f64 {
+        if self.full_rate {
+            cfg.discretisation.dt
+        } else {
+            cfg.horizon.sample_every
+        }
+    }
+}
+
+/// The band entry of g̃ at `threshold` (N, N m): at full rate ([`SimOutput::gtilde_band_entry`])
+/// where `threshold` is the one the simulator tracks, [`GTILDE_THRESHOLD`]; otherwise the
+/// settling time of g̃'s output samples against `threshold` ([`settle_time`]).
+pub fn gtilde_band(out: &SimOutput, threshold: f64) -> GtildeBand {
+    if threshold == GTILDE_THRESHOLD {
+        GtildeBand { entry: out.gtilde_band_entry, full_rate: true }
+    } else {
+        let entry = [0, 1].map(|c| settle_time(&out.series.t, &observer_error(&out.series, c), threshold));
+        GtildeBand { entry, full_rate: false }
+    }
+}
+
 /// A closed time window [t0, t1] (s).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Window {
@@ -80,28 +115,24 @@ pub fn settle_time(t: &[f64], x: &[f64], threshold: f64) -> Option<f64> {
     }
 }
 
-/// Settling time of a tip signal: [`settle_time`] with the band [`SETTLE_FRACTION`]·|x(0)|.
-/// A signal that starts at 0 is settled from the start only if it stays at 0.
-pub fn tip_settle_time(t: &[f64], x: &[f64]) -> Option<f64> {
-    settle_time(t, x, SETTLE_FRACTION * x.first().map_or(0.0, |v| v.abs()))
+/// Settling time of a tip signal: [`settle_time`] with the band `fraction`·|x(0)| (the ledger's
+/// `settle_fraction`, default [`SETTLE_FRACTION`]). A signal that starts at 0 is settled from
+/// the start only if it stays at 0.
+pub fn tip_settle_time(t: &[f64], x: &[f64], fraction: f64) -> Option<f64> {
+    settle_time(t, x, fraction * x.first().map_or(0.0, |v| v.abs()))
 }
 
 /// Joint settling time of the tip: the first sample time after which |q(s,t)| ≤
-/// [`SETTLE_FRACTION`]·|q(s,0)| and |θ(s,t)| ≤ [`SETTLE_FRACTION`]·|θ(s,0)| for the rest of the
-/// run, i.e. the later of the two channels' [`tip_settle_time`]. A channel that starts at 0 has
-/// no band and is left out; None if both start at 0, or a channel has not settled by the end.
-pub fn joint_tip_settle_time(t: &[f64], q_tip: &[f64], theta_tip: &[f64]) -> Option<f64> {
+/// `fraction`·|q(s,0)| and |θ(s,t)| ≤ `fraction`·|θ(s,0)| for the rest of the run, i.e. the
+/// later of the two channels' [`tip_settle_time`]. A channel that starts at 0 has no band and is
+/// left out; None if both start at 0, or a channel has not settled by the end.
+pub fn joint_tip_settle_time(t: &[f64], q_tip: &[f64], theta_tip: &[f64], fraction: f64) -> Option<f64> {
     let starts_nonzero = |x: &[f64]| x.first().is_some_and(|v| *v != 0.0);
     let channels: Vec<&[f64]> = [q_tip, theta_tip].into_iter().filter(|x| starts_nonzero(x)).collect();
     if channels.is_empty() {
         return None;
     }
-    channels.into_iter().try_fold(f64::NEG_INFINITY, |later, x| Some(later.max(tip_settle_time(t, x)?)))
-}
-
-/// [`joint_tip_settle_time`] of a run's output samples.
-pub fn joint_settle_time(s: &Series) -> Option<f64> {
-    joint_tip_settle_time(&s.t, &s.q_tip, &s.theta_tip)
+    channels.into_iter().try_fold(f64::NEG_INFINITY, |later, x| Some(later.max(tip_settle_time(t, x, fraction)?)))
 }
 
 /// Full-rate RMS of τ over the window ([`windowed_rms`]: ∫τ² dt over every integrator step);
@@ -178,9 +209,9 @@ mod tests {
     fn settling_is_the_last_exit_from_the_band() {
         let t = [0.0, 1.0, 2.0, 3.0, 4.0];
         // band 0.05 × 1: last sample outside is t = 2, so settled from t = 3
-        assert_eq!(tip_settle_time(&t, &[1.0, 0.5, -0.2, 0.01, 0.0]), Some(3.0));
+        assert_eq!(tip_settle_time(&t, &[1.0, 0.5, -0.2, 0.01, 0.0], SETTLE_FRACTION), Some(3.0));
         // outside at the end: never
-        assert_eq!(tip_settle_time(&t, &[1.0, 0.5, 0.2, 0.1, 0.06]), None);
+        assert_eq!(tip_settle_time(&t, &[1.0, 0.5, 0.2, 0.1, 0.06], SETTLE_FRACTION), None);
         // never outside: settled at the first sample
         assert_eq!(settle_time(&t, &[0.0; 5], 0.1), Some(0.0));
     }
