@@ -238,7 +238,7 @@ fn report_kind(e: &ReportError) -> ErrorKind {
         ReportError::Config { .. } => ErrorKind::Config,
         ReportError::Sim { source, .. } | ReportError::Claims(source) => claims_kind(source),
         ReportError::Cancelled(_) => ErrorKind::Cancelled,
-        ReportError::Region { .. } => ErrorKind::Search,
+        ReportError::Region(_) | ReportError::RegionTooLarge { .. } => ErrorKind::Search,
         ReportError::Evidence { .. } | ReportError::Chart { .. } | ReportError::Template(_) => ErrorKind::Internal,
     }
 }

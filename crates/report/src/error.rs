@@ -75,10 +75,15 @@ pub enum ReportError {
         cause: wingcheck_chart::DrawError,
     },
     /// The (a, b) region map could not be set up (its search was refused).
-    #[error("region map: {detail}")]
-    Region {
-        /// What went wrong.
-        detail: String,
+    #[error("region map: {0}")]
+    Region(#[source] wingcheck_search::SearchError),
+    /// The (a, b) region map has more points than the work estimate counts.
+    #[error("region map: {points} points, more than the {limit} counted")]
+    RegionTooLarge {
+        /// Points of the map.
+        points: usize,
+        /// The most the estimate counts ([`wingcheck_model::work::REGION_MAP_MAX_POINTS`]).
+        limit: usize,
     },
     /// The report was stopped through [`crate::ReportOptions::cancel`]; nothing was written
     /// (the staging directory is removed, an earlier report is unchanged).

@@ -116,7 +116,7 @@ pub fn region_map(
     cancel: &wingcheck_model::Cancel,
 ) -> Result<RegionMap, ReportError> {
     let (a, b) = axes(cfg, omega1, r_star);
-    let region = |e: wingcheck_search::SearchError| ReportError::Region { detail: e.to_string() };
+    let region = ReportError::Region;
     let axes =
         vec![Axis::of_numbers("control.a", &a).map_err(region)?, Axis::of_numbers("control.b", &b).map_err(region)?];
     let search = Search::from_axes(cfg.clone(), axes, SearchOptions::default()).map_err(region)?;
@@ -124,9 +124,7 @@ pub fn region_map(
     let total = search.points();
     if total > wingcheck_model::work::REGION_MAP_MAX_POINTS {
         // the work estimate counts at most this many points
-        return Err(ReportError::Region {
-            detail: format!("{total} points, more than the {} counted", wingcheck_model::work::REGION_MAP_MAX_POINTS),
-        });
+        return Err(ReportError::RegionTooLarge { points: total, limit: wingcheck_model::work::REGION_MAP_MAX_POINTS });
     }
     let done = AtomicUsize::new(0);
     let points: Vec<PointResult> = (0..total)
