@@ -270,7 +270,8 @@ pub enum ChunkProblem {
         /// The point's index in the grid.
         index: usize,
         /// The first difference.
-        why: String,
+        #[source]
+        why: crate::verify::PointDifference,
     },
 }
 

@@ -20,7 +20,7 @@ use rayon::prelude::*;
 
 use crate::metric::METRICS;
 use crate::modal::RunCache;
-use crate::point::PointResult;
+use crate::point::{PointResult, PointVerdicts, Status};
 use crate::{Search, SearchError, TheoryCache};
 
 /// How many of a chunk's points a resume or merge recomputes.
@@ -130,30 +130,77 @@ impl<'a> Verifier<'a> {
     }
 }
 
+/// How a stored point differs from its recomputation: the first deterministic field that
+/// is not the same, bit for bit ([`difference`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum PointDifference {
+    /// The swept values.
+    #[error("values {stored:?}, recomputed {fresh:?}")]
+    Values {
+        /// Stored values.
+        stored: Vec<String>,
+        /// Recomputed values.
+        fresh: Vec<String>,
+    },
+    /// The status or its message.
+    #[error("status {} {stored_message:?}, recomputed {} {fresh_message:?}", stored.name(), fresh.name())]
+    Status {
+        /// Stored status.
+        stored: Status,
+        /// Stored message.
+        stored_message: String,
+        /// Recomputed status.
+        fresh: Status,
+        /// Recomputed message.
+        fresh_message: String,
+    },
+    /// The theory verdicts.
+    #[error("verdicts {stored:?}, recomputed {fresh:?}")]
+    Verdicts {
+        /// Stored verdicts.
+        stored: PointVerdicts,
+        /// Recomputed verdicts.
+        fresh: PointVerdicts,
+    },
+    /// A metric (absent where not finite, as the chunk writes it).
+    #[error("{name} = {}, recomputed {}", shown(*stored), shown(*fresh))]
+    Metric {
+        /// The metric's column name.
+        name: String,
+        /// Stored value.
+        stored: Option<f64>,
+        /// Recomputed value.
+        fresh: Option<f64>,
+    },
+}
+
+/// A metric's value as [`PointDifference::Metric`] prints it.
+fn shown(x: Option<f64>) -> String {
+    x.map_or("absent".to_string(), |x| format!("{x}"))
+}
+
 /// How a stored point differs from its recomputation (the deterministic fields, bit for bit),
 /// or `None`.
-pub fn difference(stored: &PointResult, fresh: &PointResult) -> Option<String> {
+pub fn difference(stored: &PointResult, fresh: &PointResult) -> Option<PointDifference> {
     if stored.values != fresh.values {
-        return Some(format!("values {:?}, recomputed {:?}", stored.values, fresh.values));
+        return Some(PointDifference::Values { stored: stored.values.clone(), fresh: fresh.values.clone() });
     }
     if stored.status != fresh.status || stored.message != fresh.message {
-        return Some(format!(
-            "status {} {:?}, recomputed {} {:?}",
-            stored.status.name(),
-            stored.message,
-            fresh.status.name(),
-            fresh.message
-        ));
+        return Some(PointDifference::Status {
+            stored: stored.status,
+            stored_message: stored.message.clone(),
+            fresh: fresh.status,
+            fresh_message: fresh.message.clone(),
+        });
     }
     if stored.verdicts() != fresh.verdicts() {
-        return Some(format!("verdicts {:?}, recomputed {:?}", stored.verdicts(), fresh.verdicts()));
+        return Some(PointDifference::Verdicts { stored: stored.verdicts(), fresh: fresh.verdicts() });
     }
     for (name, (a, b)) in METRICS.iter().zip(stored.metrics.iter().zip(&fresh.metrics)) {
         // the chunk writes a metric that is not finite as absent
         let b = b.filter(|x| x.is_finite());
         if a.map(f64::to_bits) != b.map(f64::to_bits) {
-            let show = |x: Option<f64>| x.map_or("absent".to_string(), |x| format!("{x}"));
-            return Some(format!("{name} = {}, recomputed {}", show(*a), show(b)));
+            return Some(PointDifference::Metric { name: name.to_string(), stored: *a, fresh: b });
         }
     }
     None
