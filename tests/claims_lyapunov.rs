@@ -5,13 +5,13 @@
 mod common;
 
 use common::paper_with;
-use wingcheck_claims::convex::check_lambda3;
-use wingcheck_claims::lyapunov::Coupling;
-use wingcheck_claims::mu::MuData;
 use wingcheck_claims::Study;
 use wingcheck_claims::{mu, uub, wbounds, Basis, CheckSettings, ClaimId, Evidence, Verdict};
 use wingcheck_model::Method;
 use wingcheck_sim::{modes, Discretisation};
+use wingcheck_theory::convex::check_lambda3;
+use wingcheck_theory::lyapunov::Coupling;
+use wingcheck_theory::MuData;
 
 fn settings() -> CheckSettings {
     CheckSettings::default()
@@ -111,7 +111,7 @@ fn mu_conditions_boundary_matches_the_closed_form() {
     // the exact criterion: at a = b = 1 μ3 ≤ bξEI/(2s⁴) − aρ = 0.6·0.2/32 − 10 < 0
     assert_eq!(
         MuData::new(&cfg, 1.0, 1.0).obstruction_exact(2.0, 1.0),
-        Some(wingcheck_claims::theory::Obstruction::Mu3Constant)
+        Some(wingcheck_theory::Obstruction::Mu3Constant)
     );
 }
 

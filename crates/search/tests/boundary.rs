@@ -2,11 +2,12 @@
 //! W ≻ 0 ⟺ a/b < ω₁ (the converged fundamental frequency of the simulator's FE modes, the
 //! threshold of the ledger's W-bounds row), (32) feasible ⟺ a/b < `closed_form_ratio`.
 
-use wingcheck_claims::lyapunov::{assemble, tight_constants, Coupling, LyapunovParams};
-use wingcheck_claims::mu::{best_point, MuData};
+use wingcheck_claims::mu::best_point;
 use wingcheck_claims::wbounds::a_over_b_max;
 use wingcheck_model::{apply_overrides, Config};
 use wingcheck_search::{run, RunControl, Search, SearchOptions, TheoryCache};
+use wingcheck_theory::lyapunov::{assemble, tight_constants, Coupling, LyapunovParams};
+use wingcheck_theory::MuData;
 
 /// Paper config with a short horizon (the theory does not depend on it; the simulation only
 /// has to run).

@@ -1,7 +1,7 @@
-//! Typed failures of the claim checker's numerics: building the exact forms W, κ of (22)–(25)
-//! ([`FormsError`]), and the float pencils, eigen-solves and convex solves on them
-//! ([`PencilError`]). [`crate::ClaimsError::Numerical`] and
-//! [`crate::certify::CertifyError::Numerical`] carry a [`PencilError`] as their cause.
+//! Typed failures of the theory's and the claim checker's numerics: building the exact forms
+//! W, κ of (22)–(25) ([`FormsError`]), and the float pencils, eigen-solves and convex solves on
+//! them ([`PencilError`]). The claims crate's `ClaimsError::Numerical` and
+//! `certify::CertifyError::Numerical` carry a [`PencilError`] as their cause.
 
 use std::sync::Arc;
 
