@@ -42,12 +42,12 @@ fn w_bounds_largest_ratio_equals_the_fundamental_frequency() {
     // the exact-rational Lyapunov assembly (wingcheck-claims) and the f64 Gauss-quadrature FE
     // of the simulator (wingcheck-sim), same uniform 16-element Hermite/linear space.
     let cfg = paper_with(&["discretisation.grading=0"]);
-    let ratio = wbounds::a_over_b_max(&cfg, Coupling::Corrected, 16).unwrap();
+    let ratio = wingcheck_theory::lyapunov::a_over_b_max(&cfg, Coupling::Corrected, 16).unwrap();
     let omega1 = modes::natural_frequencies(&Discretisation::with(&cfg, Method::Fe, 16), 1).unwrap()[0];
     println!("a/b_max = {ratio:.12}, ω₁ = {omega1:.12}");
     assert!((ratio - omega1).abs() < 1e-9 * omega1);
     // the printed cross term b·x_c gives a smaller region
-    let printed = wbounds::a_over_b_max(&cfg, Coupling::Printed, 16).unwrap();
+    let printed = wingcheck_theory::lyapunov::a_over_b_max(&cfg, Coupling::Printed, 16).unwrap();
     assert!(printed < ratio && printed > 0.05, "{printed}");
 }
 

@@ -301,7 +301,7 @@ pub fn certificate_set(cfg: &Config) -> Result<(Vec<CertificateFile>, Vec<String
         }
     }
     // a/b_max = ω₁: above ω₁·1.05 a negative direction exists; below ω₁·0.95 W ≻ 0 on V_N.
-    let ratio = crate::wbounds::a_over_b_max(cfg, Coupling::Corrected, n)
+    let ratio = lyapunov::a_over_b_max(cfg, Coupling::Corrected, n)
         .map_err(numerical("the largest a/b with W positive definite"))?;
     let above = round_decimal(ratio * 1.05, false).decimal_text();
     let p = params.with_weights(&above, "1");

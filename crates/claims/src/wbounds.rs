@@ -179,15 +179,6 @@ pub(crate) fn num<E: Into<PencilError>>(what: &'static str) -> impl Fn(E) -> Cla
     move |cause| ClaimsError::Numerical { what, cause: cause.into() }
 }
 
-/// Largest a/b with W ≻ 0 on V_N: −1/μ_min of the pencil (W(a=1,b=0), W(a=0,b=1)).
-pub fn a_over_b_max(cfg: &Config, coupling: Coupling, elements: usize) -> Result<f64, PencilError> {
-    let p = LyapunovParams::from_config(cfg, coupling, elements);
-    let wa = lyapunov::assemble(&p.with_weights("1", "0"))?;
-    let wb = lyapunov::assemble(&p.with_weights("0", "1"))?;
-    let (vals, _) = lyapunov::generalized_eigen(&lyapunov::to_dense(&wa.w), &lyapunov::to_dense(&wb.w))?;
-    Ok(-1.0 / vals[0])
-}
-
 /// An exact witness of W(x) < 0 at the configured weights (if W is indefinite there): the
 /// extremal state rounded to rationals and W(x), κ(x) evaluated exactly.
 pub fn indefinite_witness(cfg: &Config, elements: usize) -> Result<Option<(Vec<BigRational>, f64, f64)>, ClaimsError> {
@@ -373,8 +364,8 @@ pub fn compute_cancellable(
             corrected: tight_study(cfg, Coupling::Corrected, grids)?,
             printed_cross: tight_study(cfg, Coupling::Printed, grids)?,
             omega1: theory::w_threshold(cfg)?,
-            ratio_galerkin: (finest, a_over_b_max(cfg, Coupling::Corrected, finest).map_err(num("pencil"))?),
-            ratio_printed_cross: a_over_b_max(cfg, Coupling::Printed, finest).map_err(num("pencil"))?,
+            ratio_galerkin: (finest, lyapunov::a_over_b_max(cfg, Coupling::Corrected, finest).map_err(num("pencil"))?),
+            ratio_printed_cross: lyapunov::a_over_b_max(cfg, Coupling::Printed, finest).map_err(num("pencil"))?,
             witness,
             enclosure: EnclosureSummary::NotCertified { reason: "not computed".into() },
             enclosure_seconds: 0.0,

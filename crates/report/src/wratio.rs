@@ -186,7 +186,7 @@ mod tests {
             let mut cfg = Config::paper();
             set(&mut cfg);
             let elements = 16;
-            let reference = wingcheck_claims::wbounds::a_over_b_max(
+            let reference = wingcheck_theory::lyapunov::a_over_b_max(
                 &cfg,
                 wingcheck_theory::lyapunov::Coupling::Corrected,
                 elements,
