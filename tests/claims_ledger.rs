@@ -5,9 +5,9 @@
 use proptest::prelude::*;
 use serde_json::Value;
 use wingcheck_claims::mu;
-use wingcheck_claims::theory::{Decision, MuData};
 use wingcheck_claims::{check_all, CheckSettings, ClaimId, Evidence, Explain, Ledger, Study, Verdict};
 use wingcheck_model::{apply_overrides, Config};
+use wingcheck_theory::{Decision, MuData};
 
 fn cfg_with(sets: &[String]) -> Config {
     apply_overrides(&Config::paper(), sets).expect("valid overrides")

@@ -5,13 +5,13 @@
 mod common;
 
 use common::paper_with;
-use wingcheck_claims::convex::check_lambda3;
-use wingcheck_claims::lyapunov::Coupling;
-use wingcheck_claims::mu::MuData;
 use wingcheck_claims::Study;
 use wingcheck_claims::{mu, uub, wbounds, Basis, CheckSettings, ClaimId, Evidence, Verdict};
 use wingcheck_model::Method;
 use wingcheck_sim::{modes, Discretisation};
+use wingcheck_theory::convex::check_lambda3;
+use wingcheck_theory::lyapunov::Coupling;
+use wingcheck_theory::MuData;
 
 fn settings() -> CheckSettings {
     CheckSettings::default()
@@ -42,12 +42,12 @@ fn w_bounds_largest_ratio_equals_the_fundamental_frequency() {
     // the exact-rational Lyapunov assembly (wingcheck-claims) and the f64 Gauss-quadrature FE
     // of the simulator (wingcheck-sim), same uniform 16-element Hermite/linear space.
     let cfg = paper_with(&["discretisation.grading=0"]);
-    let ratio = wbounds::a_over_b_max(&cfg, Coupling::Corrected, 16).unwrap();
+    let ratio = wingcheck_theory::lyapunov::a_over_b_max(&cfg, Coupling::Corrected, 16).unwrap();
     let omega1 = modes::natural_frequencies(&Discretisation::with(&cfg, Method::Fe, 16), 1).unwrap()[0];
     println!("a/b_max = {ratio:.12}, ω₁ = {omega1:.12}");
     assert!((ratio - omega1).abs() < 1e-9 * omega1);
     // the printed cross term b·x_c gives a smaller region
-    let printed = wbounds::a_over_b_max(&cfg, Coupling::Printed, 16).unwrap();
+    let printed = wingcheck_theory::lyapunov::a_over_b_max(&cfg, Coupling::Printed, 16).unwrap();
     assert!(printed < ratio && printed > 0.05, "{printed}");
 }
 
@@ -111,7 +111,7 @@ fn mu_conditions_boundary_matches_the_closed_form() {
     // the exact criterion: at a = b = 1 μ3 ≤ bξEI/(2s⁴) − aρ = 0.6·0.2/32 − 10 < 0
     assert_eq!(
         MuData::new(&cfg, 1.0, 1.0).obstruction_exact(2.0, 1.0),
-        Some(wingcheck_claims::theory::Obstruction::Mu3Constant)
+        Some(wingcheck_theory::Obstruction::Mu3Constant)
     );
 }
 

@@ -2,17 +2,17 @@
 //! max μ s.t. −W − μκ ⪰ 0, velocities eliminated exactly, hierarchical basis), against the
 //! Galerkin eigenvalues at the same N, the re-verification, and its ledger table, at the
 //! paper's point and off it. (The dense SDP helper's hard inputs — cond(B) = 1e8, repeated
-//! eigenvalues, rounding-level asymmetry — are in crates/claims/tests/sdp.rs.)
+//! eigenvalues, rounding-level asymmetry — are in crates/theory/tests/sdp.rs.)
 
 mod common;
 
 use common::paper_with;
 use wingcheck_cert::fe::{ClampedMesh, Space};
-use wingcheck_claims::lyapunov::{self, Coupling, LyapunovParams};
-use wingcheck_claims::sdp::{self, PencilSdpRow, SDP_GRIDS, SDP_TOLERANCE};
 use wingcheck_claims::wbounds;
 use wingcheck_claims::CheckSettings;
 use wingcheck_model::Config;
+use wingcheck_theory::lyapunov::{self, Coupling, LyapunovParams};
+use wingcheck_theory::sdp::{self, PencilSdpRow, SDP_GRIDS, SDP_TOLERANCE};
 
 /// The SI-scale wing of the issue (span 6 m, EI 1e7, GJ 1e6, ρ 100, I_p 10; ρx_c = 10 so that
 /// ρ·I_p = 1000 > ρx_c² = 100).

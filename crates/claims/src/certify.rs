@@ -5,7 +5,7 @@
 //!
 //! A certificate is a *recipe*: parameters (the configuration's decimals, the Galerkin element
 //! count, λ as a rational) and a witness. The verifier rebuilds W and κ ((22)–(25), via
-//! [`crate::lyapunov::assemble`]) or the μ3 system of (32) from the parameters, checks the
+//! [`wingcheck_theory::lyapunov::assemble`]) or the μ3 system of (32) from the parameters, checks the
 //! witness and writes the statement itself ([`facts`]). The set is bound to one configuration
 //! by `index.json` ([`manifest`]). A passing verify proves that the printed facts follow from
 //! the printed parameters; it says nothing about who made the files.
@@ -22,10 +22,10 @@ use num_rational::BigRational;
 use wingcheck_cert::exact::{to_f64, NumberLimits};
 use wingcheck_model::Config;
 
-use crate::lyapunov::{self, Coupling, LyapunovParams};
-use crate::numerics::PencilError;
 use facts::{CertificateFile, FactKind, WeightsText, WingText, FORMAT, VERSION};
 use manifest::{ClaimEntry, FileEntry, Manifest, INDEX, INDEX_FORMAT, INDEX_VERSION};
+use wingcheck_theory::lyapunov::{self, Coupling, LyapunovParams};
+use wingcheck_theory::numerics::PencilError;
 
 pub use manifest::{verify_set, verify_set_for, VerifiedSet};
 
@@ -72,7 +72,7 @@ pub enum CertifyError {
         what: &'static str,
         /// What failed.
         #[source]
-        cause: crate::numerics::PencilError,
+        cause: wingcheck_theory::numerics::PencilError,
     },
     /// Stopped through the cancel token before the set was moved into place.
     #[error(transparent)]
@@ -301,7 +301,7 @@ pub fn certificate_set(cfg: &Config) -> Result<(Vec<CertificateFile>, Vec<String
         }
     }
     // a/b_max = ω₁: above ω₁·1.05 a negative direction exists; below ω₁·0.95 W ≻ 0 on V_N.
-    let ratio = crate::wbounds::a_over_b_max(cfg, Coupling::Corrected, n)
+    let ratio = lyapunov::a_over_b_max(cfg, Coupling::Corrected, n)
         .map_err(numerical("the largest a/b with W positive definite"))?;
     let above = round_decimal(ratio * 1.05, false).decimal_text();
     let p = params.with_weights(&above, "1");
@@ -347,7 +347,7 @@ fn finer_negative_direction(cfg: &Config, params: &LyapunovParams) -> Result<Fin
     if b <= 0.0 {
         return Ok(Finer::NotNeeded);
     }
-    let omega = crate::theory::w_threshold(cfg).map_err(numerical("ω₁"))?;
+    let omega = wingcheck_theory::w_threshold(cfg).map_err(numerical("ω₁"))?;
     let ratio = a / b;
     if ratio <= omega.value - omega.error {
         return Ok(Finer::NotNeeded);

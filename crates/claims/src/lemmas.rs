@@ -19,9 +19,9 @@ mod explain;
 use wingcheck_model::Config;
 
 use crate::finite_time::reach::{lemma3_time, num_err};
-use crate::numerics::PencilError;
 use crate::settings::CheckSettings;
 use crate::ClaimsError;
+use wingcheck_theory::numerics::PencilError;
 
 pub use explain::{check, LemmasEvidence};
 

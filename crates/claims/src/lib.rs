@@ -12,24 +12,17 @@
 
 pub mod certify;
 pub mod comparison;
-pub mod convex;
 pub mod display;
 pub mod evidence;
 pub mod finite_time;
 mod ledger;
 pub mod lemmas;
-pub mod lyapunov;
 pub mod mu;
-pub mod numerics;
 pub mod ode;
 pub mod plan;
-pub mod sdp;
 pub mod settings;
-pub mod socp;
 pub mod spec;
-pub mod status;
 pub mod study;
-pub mod theory;
 pub mod uub;
 pub mod wbounds;
 
@@ -64,7 +57,7 @@ pub enum ClaimsError {
         what: &'static str,
         /// What failed.
         #[source]
-        cause: numerics::PencilError,
+        cause: wingcheck_theory::numerics::PencilError,
     },
 }
 

@@ -2,50 +2,26 @@
 //! λ3 = min μ3..μ6, λ = λ3/λ1, ε.
 //!
 //! Evidence → verdict → text: [`evidence`] computes [`MuEvidence`] from the closed forms of
-//! [`crate::theory`] (satisfiability decided in exact rational arithmetic; the best point's
-//! μ's re-checked exactly) and the clarabel cross-checks of [`crate::convex`]; its
+//! [`wingcheck_theory`] (satisfiability decided in exact rational arithmetic; the best point's
+//! μ's re-checked exactly) and the clarabel cross-checks of [`wingcheck_theory::convex`]; its
 //! [`crate::evidence::Explain`] reads only that evidence ([`explain`]).
 
 mod explain;
 
 use wingcheck_model::Config;
 
-use crate::convex::{check_epsilon, check_lambda3, CrossCheck};
 use crate::settings::CheckSettings;
 use crate::study::Study;
-use crate::theory::{self, BestPoint, DisturbanceBounds, Obstruction};
 use crate::ClaimsError;
+use wingcheck_theory::convex::{check_epsilon, check_lambda3, CrossCheck};
+use wingcheck_theory::{self as theory, ratio_boundary, BestPoint, DisturbanceBounds, MuData, Obstruction};
 
-pub use crate::theory::MuData;
 pub use explain::{check, MuEvidence, MuResult};
-
-/// Closed-form largest a/b for which (32) can hold (0 if none): the smallest positive root
-/// of (α − rρ)(β − rI_p) = (2ρx_c r)², α = ξEI/(2s⁴), β = ξGJ/(2s²), capped at 1/(2ξ).
-pub fn ratio_boundary(cfg: &Config) -> f64 {
-    let w = &cfg.wing;
-    if w.xi <= 0.0 {
-        return 0.0;
-    }
-    let alpha = w.xi * w.ei / (2.0 * w.span.powi(4));
-    let beta = w.xi * w.gj / (2.0 * w.span * w.span);
-    let c = 2.0 * w.rho_xc.abs();
-    let lin = alpha * w.ip + beta * w.rho;
-    let disc = (alpha * w.ip - beta * w.rho).powi(2) + 4.0 * c * c * alpha * beta;
-    let r34 = 2.0 * alpha * beta / (lin + disc.sqrt());
-    r34.min(1.0 / (2.0 * w.xi))
-}
-
-impl MuData {
-    /// Closed-form boundary of a/b ([`ratio_boundary`]).
-    pub fn closed_form_ratio(cfg: &Config) -> f64 {
-        ratio_boundary(cfg)
-    }
-}
 
 /// Tight λ1 (sup W/κ) at weights (a, b) on `elements` Galerkin elements (a lower bound of
 /// sup W/κ: the maximum over a subspace).
 pub fn lambda1_on(cfg: &Config, a: f64, b: f64, elements: usize) -> Result<f64, ClaimsError> {
-    use crate::lyapunov::{assemble, decimal, tight_constants, Coupling, LyapunovParams};
+    use wingcheck_theory::lyapunov::{assemble, decimal, tight_constants, Coupling, LyapunovParams};
     let p = LyapunovParams::from_config(cfg, Coupling::Corrected, elements).with_weights(&decimal(a), &decimal(b));
     let f = assemble(&p).map_err(crate::wbounds::num("assembly"))?;
     Ok(tight_constants(&f).map_err(crate::wbounds::num("eigen"))?.lambda1)

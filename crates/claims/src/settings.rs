@@ -49,8 +49,8 @@ impl Default for CheckSettings {
     fn default() -> Self {
         CheckSettings {
             w_grids: [2, 4, 8, 16],
-            sdp_grids: crate::sdp::SDP_GRIDS,
-            sdp_tolerance: crate::sdp::SDP_TOLERANCE,
+            sdp_grids: wingcheck_theory::sdp::SDP_GRIDS,
+            sdp_tolerance: wingcheck_theory::sdp::SDP_TOLERANCE,
             mu_lambda1_elements: 8,
             mu_cross_check_tolerance: 1e-6,
             uub_lambda2_elements: 16,

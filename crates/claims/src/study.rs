@@ -10,8 +10,8 @@ use std::sync::{Arc, Mutex, OnceLock};
 use wingcheck_model::{Config, ControllerKind};
 use wingcheck_sim::{simulate, RunOptions, SimOutput};
 
-use crate::theory::{g_hmax, DisturbanceBounds};
 use crate::{config_sha256, ClaimsError};
+use wingcheck_theory::{g_hmax, DisturbanceBounds};
 
 /// A run's outcome, shared by everyone who asked for it.
 type Shared = Arc<OnceLock<Result<Arc<SimOutput>, Arc<wingcheck_sim::SimError>>>>;

@@ -17,13 +17,14 @@ use wingcheck_sim::Discretisation;
 
 use crate::display::{ratio_of, Flag, Table};
 use crate::evidence::Explain;
-use crate::lyapunov::{assemble, decimal, tight_constants, Coupling, LyapunovParams};
 use crate::mu::MuResult;
 use crate::settings::CheckSettings;
 use crate::study::Study;
-use crate::theory::{Decision, UubBound};
 use crate::wbounds::{num, WBounds};
 use crate::{Basis, ClaimId, ClaimRow, ClaimsError, Line, PlotData, Verdict};
+use wingcheck_theory::lyapunov::{assemble, decimal, tight_constants, Coupling, LyapunovParams};
+use wingcheck_theory::uub::UubBound;
+use wingcheck_theory::Decision;
 
 /// W(0) for zero initial velocity: b × the elastic energy of the discretised initial shape,
 /// on a uniform FE mesh of `elements` elements.
@@ -238,7 +239,7 @@ pub fn operating_run(cfg: &Config, a: f64, b: f64) -> Config {
 /// The facts of the bound at the operating point, before they are put into words.
 struct Computed {
     /// The operating point (configured gains, or the mu row's fallback).
-    best: crate::theory::BestPoint,
+    best: wingcheck_theory::BestPoint,
     /// λ2 on the Galerkin space at the operating point.
     lambda2: f64,
     /// (elements, W(0)) per mesh.
@@ -285,13 +286,16 @@ impl LyapunovAlongRun {
 /// λ2 at the operating point, the W(0) study, the simulated envelope and the bound.
 fn compute(
     cfg: &Config,
-    best: crate::theory::BestPoint,
+    best: wingcheck_theory::BestPoint,
     lambda2: f64,
     study: &Study,
     settings: &CheckSettings,
 ) -> Result<Computed, ClaimsError> {
     let out = study.simulate(&operating_run(cfg, best.a, best.b))?;
-    let fields = out.fields.as_ref().ok_or_else(|| num("the UUB envelope")(crate::numerics::PencilError::NoFields))?;
+    let fields = out
+        .fields
+        .as_ref()
+        .ok_or_else(|| num("the UUB envelope")(wingcheck_theory::numerics::PencilError::NoFields))?;
     let envelope = |f: &[Vec<f64>]| f.iter().map(|r| r.iter().fold(0.0f64, |a, v| a.max(v.abs()))).collect::<Vec<_>>();
     let w0s = settings.uub_w0_elements.map(|n| (n, w_initial(cfg, best.b, n)));
     let bound = UubBound { span: cfg.wing.span, lambda2, lambda: best.lambda, epsilon: best.epsilon, w0: w0s[0].1 };

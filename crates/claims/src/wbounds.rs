@@ -5,9 +5,9 @@
 //!    λ2 ≤ b(m/2 − ρx_c) and the condition needs m > 2ρx_c (m = min{ρ, I_p, EI, GJ}),
 //!    independently of a, b; for the paper m = 0.2 < 7, so λ2 < 0 for all a, b > 0.
 //! 2. The tightest constants λ2* = inf W/κ, λ1* = sup W/κ from the exact Galerkin forms
-//!    ([`crate::lyapunov`]), by a generalised eigenvalue computation (faer), with convergence
+//!    ([`wingcheck_theory::lyapunov`]), by a generalised eigenvalue computation (faer), with convergence
 //!    under refinement; cross-checked at N = 2 … 32 by the SDPs `max λ s.t. W − λκ ⪰ 0` and
-//!    `max μ s.t. −W − μκ ⪰ 0` in clarabel ([`crate::sdp::pencil_cross_check`]), re-verified.
+//!    `max μ s.t. −W − μκ ⪰ 0` in clarabel ([`wingcheck_theory::sdp::pencil_cross_check`]), re-verified.
 //! 3. The largest a/b for which W is positive definite: W = b·W_b + a·W_a, so W ≻ 0 iff
 //!    a/b < −1/μ_min(W_a, W_b). With the corrected cross term b ρx_c, minimising over the
 //!    velocities gives W ≥ (b/2)[P − (a/b)² ∫ xᵀMx] ⇒ a/b_max = ω₁, the fundamental natural
@@ -31,12 +31,12 @@ use wingcheck_cert::fe::{ClampedMesh, Space};
 use wingcheck_model::Config;
 
 use crate::certify::omega1::{EnclosureSummary, Position};
-use crate::lyapunov::{self, Coupling, LyapunovParams};
-use crate::numerics::PencilError;
-use crate::sdp::PencilSdpRow;
 use crate::settings::CheckSettings;
-use crate::theory::{self, Decision, Estimate};
 use crate::{ClaimsError, WallTime};
+use wingcheck_theory::lyapunov::{self, Coupling, LyapunovParams};
+use wingcheck_theory::numerics::PencilError;
+use wingcheck_theory::sdp::PencilSdpRow;
+use wingcheck_theory::{self as theory, Decision, Estimate};
 
 pub use explain::{
     check, check_cancellable, evidence, evidence_cancellable, EnclosureEvidence, SdpRecord, WBounds, WBoundsEvidence,
@@ -179,15 +179,6 @@ pub(crate) fn num<E: Into<PencilError>>(what: &'static str) -> impl Fn(E) -> Cla
     move |cause| ClaimsError::Numerical { what, cause: cause.into() }
 }
 
-/// Largest a/b with W ≻ 0 on V_N: −1/μ_min of the pencil (W(a=1,b=0), W(a=0,b=1)).
-pub fn a_over_b_max(cfg: &Config, coupling: Coupling, elements: usize) -> Result<f64, PencilError> {
-    let p = LyapunovParams::from_config(cfg, coupling, elements);
-    let wa = lyapunov::assemble(&p.with_weights("1", "0"))?;
-    let wb = lyapunov::assemble(&p.with_weights("0", "1"))?;
-    let (vals, _) = lyapunov::generalized_eigen(&lyapunov::to_dense(&wa.w), &lyapunov::to_dense(&wb.w))?;
-    Ok(-1.0 / vals[0])
-}
-
 /// An exact witness of W(x) < 0 at the configured weights (if W is indefinite there): the
 /// extremal state rounded to rationals and W(x), κ(x) evaluated exactly.
 pub fn indefinite_witness(cfg: &Config, elements: usize) -> Result<Option<(Vec<BigRational>, f64, f64)>, ClaimsError> {
@@ -213,12 +204,12 @@ fn richardson(c: f64, f: f64) -> f64 {
 
 /// SDP cross-check of λ2(N) = min W/κ and λ1(N) = max W/κ at N ∈ `grids`: clarabel on
 /// max λ s.t. W − λκ ⪰ 0 and max μ s.t. −W − μκ ⪰ 0 (λ1 = −μ), with the velocities eliminated
-/// exactly and the displacements in the hierarchical basis ([`crate::sdp::pencil_cross_check`]),
+/// exactly and the displacements in the hierarchical basis ([`wingcheck_theory::sdp::pencil_cross_check`]),
 /// each answer re-verified and compared with the eigenvalues at the same N. A failure at one N
 /// is recorded in its row, never fatal.
 ///
 /// Bounded, deterministically: the whole cross-check spends at most
-/// [`crate::sdp::SDP_ITERATION_BUDGET`] interior-point iterations (16–20 per N on the paper's
+/// [`wingcheck_theory::sdp::SDP_ITERATION_BUDGET`] interior-point iterations (16–20 per N on the paper's
 /// wing, far more on wings whose parameters span many decades); a solve at the budget stops
 /// with status `MaxIterations` and the remaining N are not run, each saying why. The same
 /// input gives the same rows whatever the machine's speed or load.
@@ -234,7 +225,7 @@ pub fn sdp_cross_check_cancellable(
     grids: &[usize],
     cancel: &wingcheck_model::Cancel,
 ) -> Vec<PencilSdpRow> {
-    let mut budget = crate::sdp::SDP_ITERATION_BUDGET;
+    let mut budget = wingcheck_theory::sdp::SDP_ITERATION_BUDGET;
     grids
         .iter()
         .map(|&n| {
@@ -246,7 +237,7 @@ pub fn sdp_cross_check_cancellable(
                     n,
                     &format!(
                         "not run: the cross-check's budget of {} solver iterations was spent on the smaller N",
-                        crate::sdp::SDP_ITERATION_BUDGET
+                        wingcheck_theory::sdp::SDP_ITERATION_BUDGET
                     ),
                 );
             }
@@ -258,7 +249,7 @@ pub fn sdp_cross_check_cancellable(
             let c1 = lyapunov::to_dense(&mesh.mass(Space::DgCubic, Space::Hermite));
             let c2 = lyapunov::to_dense(&mesh.mass(Space::DgCubic, Space::Linear));
             let (w, k) = (lyapunov::to_dense(&f.w), lyapunov::to_dense(&f.kappa));
-            crate::sdp::pencil_cross_check_within(&w, &k, &c1, &c2, n, cfg.wing.span, &mut budget, cancel)
+            wingcheck_theory::sdp::pencil_cross_check_within(&w, &k, &c1, &c2, n, cfg.wing.span, &mut budget, cancel)
         })
         .collect()
 }
@@ -373,8 +364,8 @@ pub fn compute_cancellable(
             corrected: tight_study(cfg, Coupling::Corrected, grids)?,
             printed_cross: tight_study(cfg, Coupling::Printed, grids)?,
             omega1: theory::w_threshold(cfg)?,
-            ratio_galerkin: (finest, a_over_b_max(cfg, Coupling::Corrected, finest).map_err(num("pencil"))?),
-            ratio_printed_cross: a_over_b_max(cfg, Coupling::Printed, finest).map_err(num("pencil"))?,
+            ratio_galerkin: (finest, lyapunov::a_over_b_max(cfg, Coupling::Corrected, finest).map_err(num("pencil"))?),
+            ratio_printed_cross: lyapunov::a_over_b_max(cfg, Coupling::Printed, finest).map_err(num("pencil"))?,
             witness,
             enclosure: EnclosureSummary::NotCertified { reason: "not computed".into() },
             enclosure_seconds: 0.0,

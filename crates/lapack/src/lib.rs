@@ -1,7 +1,8 @@
 //! # wingcheck-lapack
 //!
 //! Pure-Rust providers of the Fortran BLAS/LAPACK symbols that clarabel's SDP
-//! (PSD cone) support links against, plus a small safe [`sdp`] helper layer.
+//! (PSD cone) support links against. The SDP modelling layer over clarabel is
+//! `wingcheck_theory::sdp::problem`.
 //!
 //! ## Why this crate exists
 //!
@@ -35,27 +36,28 @@
 //! ## How to link it
 //!
 //! The symbols are only linked into a binary if this crate is actually used
-//! by it. Any crate that uses clarabel SDPs (directly or through [`sdp`]) must
+//! by it. Any crate that uses clarabel SDPs (directly or through
+//! `wingcheck_theory::sdp::problem`) must
 //! depend on `wingcheck-lapack` and reference it, e.g.
 //!
 //! ```ignore
 //! use wingcheck_lapack as _; // provides dgemm_, dsyevr_, ... for clarabel
 //! ```
 //!
-//! or call [`link()`] once (it is a no-op that keeps every symbol alive). The
-//! [`sdp`] helpers call [`link()`] themselves. clarabel must be built with the
-//! features `sdp`, `blas-src`, `lapack-src` (no provider selected) and
-//! `serde` (clarabel 0.11.1 does not compile without `serde`); this crate
-//! also enables `faer-sparse` so clarabel's `"auto"` KKT solver is faer's
-//! supernodal LDLᵀ (≈8x faster than QDLDL on a dense 60x60 LMI). Cargo feature
-//! unification applies these features workspace-wide.
+//! or call [`link()`] once (it is a no-op that keeps every symbol alive); the
+//! SDP layer `wingcheck_theory::sdp::problem` calls [`link()`] itself. clarabel
+//! must be built with the features `sdp`, `blas-src`, `lapack-src` (no provider
+//! selected) and `serde` (clarabel 0.11.1 does not compile without `serde`);
+//! `wingcheck-theory` also enables `faer-sparse` so clarabel's `"auto"` KKT
+//! solver is faer's supernodal LDLᵀ (≈8x faster than QDLDL on a dense 60x60
+//! LMI). Cargo feature unification applies these features workspace-wide.
+//! This crate itself does not depend on clarabel.
 
 #![warn(missing_docs)]
 
 mod blas;
 mod chol;
 mod eig;
-pub mod sdp;
 mod svd;
 mod util;
 

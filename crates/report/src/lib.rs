@@ -110,7 +110,7 @@ fn region_stage(
     cancel: &wingcheck_model::Cancel,
 ) -> Result<Option<region::RegionMap>, ReportError> {
     let Some(omega1) = paper::omega1(cfg) else { return Ok(None) };
-    let r_star = wingcheck_claims::mu::MuData::closed_form_ratio(cfg);
+    let r_star = wingcheck_theory::MuData::closed_form_ratio(cfg);
     if !(r_star.is_finite() && r_star > 0.0) {
         return Ok(None);
     }

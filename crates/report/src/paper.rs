@@ -358,9 +358,9 @@ pub fn ftdo_marks(ledger: &wingcheck_claims::Ledger) -> [FiniteTimeMarks; 2] {
 }
 
 /// The fundamental (lowest natural) angular frequency ω1 (rad/s) of the configured wing: the
-/// converged value the ledger's W ≻ 0 threshold uses ([`wingcheck_claims::theory::w_threshold`]).
+/// converged value the ledger's W ≻ 0 threshold uses ([`wingcheck_theory::w_threshold`]).
 pub fn omega1(cfg: &Config) -> Option<f64> {
-    wingcheck_claims::theory::w_threshold(cfg).ok().map(|e| e.value).filter(|w| w.is_finite() && *w > 0.0)
+    wingcheck_theory::w_threshold(cfg).ok().map(|e| e.value).filter(|w| w.is_finite() && *w > 0.0)
 }
 
 /// A sentence on the fundamental period 2π/ω1 against the horizon.

@@ -5,9 +5,9 @@
 
 use num_traits::ToPrimitive;
 use rayon::prelude::*;
-use wingcheck_claims::theory::WPencil;
 use wingcheck_claims::wbounds::PrintedWing;
 use wingcheck_model::Config;
+use wingcheck_theory::WPencil;
 
 use crate::chart::{tick, LineChart, LineStyle};
 use crate::figure::{Caption, Chart, Figure};
@@ -186,13 +186,13 @@ mod tests {
             let mut cfg = Config::paper();
             set(&mut cfg);
             let elements = 16;
-            let reference = wingcheck_claims::wbounds::a_over_b_max(
+            let reference = wingcheck_theory::lyapunov::a_over_b_max(
                 &cfg,
-                wingcheck_claims::lyapunov::Coupling::Corrected,
+                wingcheck_theory::lyapunov::Coupling::Corrected,
                 elements,
             )
             .unwrap();
-            let omega1 = wingcheck_claims::theory::w_threshold(&cfg).unwrap().value;
+            let omega1 = wingcheck_theory::w_threshold(&cfg).unwrap().value;
             let s = sweep(&cfg, &WPencil::new(&cfg, elements).unwrap(), omega1).unwrap();
             let x = s.crossing.expect("the sweep spans ω₁");
             assert!((x / reference - 1.0).abs() < 1e-11, "crossing {x} against ω₁ of the space {reference}");

@@ -97,8 +97,8 @@ fn closed_form_marks(search: &Search, ax: &GridAxis, ay: &GridAxis) -> Option<Ve
         return None;
     }
     let cfg = &search.base;
-    let omega1 = wingcheck_claims::theory::w_threshold(cfg).ok()?.value;
-    let r_star = wingcheck_claims::mu::MuData::closed_form_ratio(cfg);
+    let omega1 = wingcheck_theory::w_threshold(cfg).ok()?.value;
+    let r_star = wingcheck_theory::MuData::closed_form_ratio(cfg);
     if !(omega1.is_finite() && omega1 > 0.0 && r_star.is_finite() && r_star > 0.0) {
         return None;
     }

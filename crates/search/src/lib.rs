@@ -107,7 +107,7 @@ pub struct Manifest {
     pub format: u32,
     /// The base configuration.
     pub base_config: Config,
-    /// SHA-256 of the base configuration (`wingcheck_claims::config_sha256`).
+    /// SHA-256 of the base configuration ([`Config::sha256`](wingcheck_model::Config::sha256)).
     pub base_config_sha256: String,
     /// The axes.
     pub axes: Vec<Axis>,
@@ -262,7 +262,7 @@ impl Search {
             schema_version: wingcheck_io::SCHEMA_VERSION,
             format: 1,
             base_config: self.base.clone(),
-            base_config_sha256: wingcheck_claims::config_sha256(&self.base),
+            base_config_sha256: self.base.sha256(),
             axes: self.grid.axes.clone(),
             axis_specs: self.grid.axes.iter().map(Axis::spec).collect(),
             points: self.points(),

@@ -138,7 +138,7 @@ impl BestDocument {
 pub fn provenance(search: &crate::Search) -> wingcheck_io::Provenance {
     let file = |f: &str, c: &str| wingcheck_io::FileRecord { file: f.into(), contents: c.into() };
     wingcheck_io::Provenance::new(
-        &wingcheck_claims::config_sha256(&search.base),
+        &search.base.sha256(),
         vec![
             file("results.csv", "one row per point: axis values, status columns, metrics with unit-suffixed names (docs/outputs.md, results.csv)"),
             file("failures.csv", "the points whose status is not ok, with the reason"),

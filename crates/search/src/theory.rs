@@ -1,11 +1,11 @@
 //! The theory side of a point: Theorem 1's W ≻ 0 (decided as a/b < ω₁ against the converged
-//! fundamental frequency and its error, [`wingcheck_claims::theory::w_threshold`], as in the
-//! ledger's W-bounds row; tight λ2, λ1 on the Galerkin space of `wingcheck_claims::lyapunov`), the μ-conditions (32) (λ3*, λ, ε) and Theorem 2's
-//! ultimate bound — all computed by `wingcheck_claims::theory` (one definition, shared with the
+//! fundamental frequency and its error, [`wingcheck_theory::w_threshold`], as in the
+//! ledger's W-bounds row; tight λ2, λ1 on the Galerkin space of `wingcheck_theory::lyapunov`), the μ-conditions (32) (λ3*, λ, ε) and Theorem 2's
+//! ultimate bound — all computed by `wingcheck_theory` (one definition, shared with the
 //! ledger); this module only caches.
 //!
 //! Cost: W(a, b) = a·W(1, 0) + b·W(0, 1) exactly, so the pencil
-//! ([`wingcheck_claims::theory::WPencil`]) is built once per wing and each point needs only
+//! ([`wingcheck_theory::WPencil`]) is built once per wing and each point needs only
 //! one symmetric eigenvalue problem. (32) is decided by its closed form in exact arithmetic and
 //! λ3*, ε are closed forms (no solver per point). Verdicts are cached per (wing, a, b), and
 //! g_hmax per (distributed load, span, T), so sweeping keys that do not enter the theory
@@ -15,8 +15,8 @@ use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
 use serde::{Deserialize, Serialize};
-use wingcheck_claims::theory::{self, Decision, DisturbanceBounds, MuData, WPencil};
 use wingcheck_model::Config;
+use wingcheck_theory::{self as theory, Decision, DisturbanceBounds, MuData, WPencil};
 
 use crate::SearchError;
 
@@ -41,7 +41,7 @@ impl Verdicts {
     pub fn w_positive_definite(&self) -> bool {
         self.w_pd == Decision::Yes
     }
-    /// (29)–(32) satisfiable ([`wingcheck_claims::theory::MuData::obstruction_exact`]).
+    /// (29)–(32) satisfiable ([`wingcheck_theory::MuData::obstruction_exact`]).
     pub fn feasible_32(&self) -> Option<bool> {
         Some(self.satisfiable)
     }
@@ -94,7 +94,7 @@ pub struct TheoryCache {
     g_hmax: Mutex<HashMap<String, f64>>,
 }
 
-fn num(what: &str) -> impl Fn(wingcheck_claims::numerics::PencilError) -> SearchError + '_ {
+fn num(what: &str) -> impl Fn(wingcheck_theory::numerics::PencilError) -> SearchError + '_ {
     move |e| SearchError::Theory { what: what.to_string(), detail: e.to_string() }
 }
 
@@ -147,7 +147,7 @@ impl TheoryCache {
         Ok(v)
     }
 
-    /// g_hmax ([`wingcheck_claims::theory::g_hmax`]), cached.
+    /// g_hmax ([`wingcheck_theory::g_hmax`]), cached.
     pub fn g_hmax(&self, cfg: &Config) -> f64 {
         let d = &cfg.disturbance.distributed;
         let key = format!("{}|{}|{}", serde_json::to_string(d).expect("serialises"), cfg.wing.span, cfg.horizon.t_end);
@@ -171,7 +171,7 @@ impl TheoryCache {
             if let Some(p) = theory::best_point(&d, v.lambda1, &db, c.k1, c.k2) {
                 t.lambda = Some(p.lambda);
                 t.epsilon = Some(p.epsilon);
-                t.uub_bound_q = theory::ultimate_bound_q(cfg.wing.span, v.lambda2, &p);
+                t.uub_bound_q = theory::uub::ultimate_bound_q(cfg.wing.span, v.lambda2, &p);
             }
         }
         Ok(t)

@@ -2,11 +2,12 @@
 //! W ≻ 0 ⟺ a/b < ω₁ (the converged fundamental frequency of the simulator's FE modes, the
 //! threshold of the ledger's W-bounds row), (32) feasible ⟺ a/b < `closed_form_ratio`.
 
-use wingcheck_claims::lyapunov::{assemble, tight_constants, Coupling, LyapunovParams};
-use wingcheck_claims::mu::{best_point, MuData};
-use wingcheck_claims::wbounds::a_over_b_max;
+use wingcheck_claims::mu::best_point;
 use wingcheck_model::{apply_overrides, Config};
 use wingcheck_search::{run, RunControl, Search, SearchOptions, TheoryCache};
+use wingcheck_theory::lyapunov::a_over_b_max;
+use wingcheck_theory::lyapunov::{assemble, tight_constants, Coupling, LyapunovParams};
+use wingcheck_theory::MuData;
 
 /// Paper config with a short horizon (the theory does not depend on it; the simulation only
 /// has to run).
@@ -53,7 +54,7 @@ fn boundaries_along_a_match_the_claim_checker() {
     // Reference 1: largest a/b with W ≻ 0 = ω₁, here the simulator's converged FE ω₁
     // (wingcheck_sim::modes::fundamental_frequency, Romberg over uniform meshes, error ~1e-12
     // relative); cross-checked against the pencil (W(1,0), W(0,1)) on V_8
-    // (wingcheck_claims::wbounds::a_over_b_max), an upper bound by Rayleigh–Ritz within 1e-3.
+    // (wingcheck_theory::lyapunov::a_over_b_max), an upper bound by Rayleigh–Ritz within 1e-3.
     // b = 1, so a* = (a/b)*.
     let w_ref = wingcheck_sim::modes::fundamental_frequency(&base).expect("ω₁").value;
     let pencil = a_over_b_max(&base, Coupling::Corrected, 8).expect("pencil");

@@ -23,7 +23,7 @@ use wingcheck_cert::psd::check_positive_definite;
 use wingcheck_cert::RationalMatrix;
 
 use super::CertifyError;
-use crate::lyapunov::{self, Coupling, LyapunovParams};
+use wingcheck_theory::lyapunov::{self, Coupling, LyapunovParams};
 
 /// Value of the `"format"` field of a certificate file.
 pub const FORMAT: &str = "wingcheck-certificate";

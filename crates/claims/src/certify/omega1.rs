@@ -21,7 +21,6 @@ use std::collections::HashMap;
 use std::fmt::Write as _;
 use std::sync::{Arc, Mutex, OnceLock};
 
-use crate::numerics::PencilError;
 use num_rational::BigRational;
 use num_traits::Signed;
 use serde::{Deserialize, Serialize};
@@ -30,6 +29,7 @@ use wingcheck_cert::enclosure::{
 };
 use wingcheck_cert::exact::{parse_rational_bounded, to_f64, NumberLimits};
 use wingcheck_model::Config;
+use wingcheck_theory::numerics::PencilError;
 
 use super::facts::{CheckedFact, ExactParams, FactKind, WingText, FORMAT, MAX_FILE_BYTES, VERSION, WING_FIELDS};
 use super::{format_decimal, CertifyError};

@@ -361,7 +361,10 @@ pub fn check_with(
     let c = compute(cfg, channel, settings, runs)?;
     let reference = reference_period(settings);
     if c.run(ObserverRule::Implicit, reference).is_none() || c.run(ObserverRule::Explicit, reference).is_none() {
-        return Err(super::reach::num_err("finite_time", crate::numerics::PencilError::MissingReferenceRuns));
+        return Err(super::reach::num_err(
+            "finite_time",
+            wingcheck_theory::numerics::PencilError::MissingReferenceRuns,
+        ));
     }
     let e = evidence_of(&c, settings);
     let n = channel_index(channel) + 1;

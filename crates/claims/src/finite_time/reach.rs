@@ -8,9 +8,9 @@ use wingcheck_sim::metrics::max_abs;
 use wingcheck_sim::modal::{drive, ModalBasis, ModalLoop, ModalState, ObserverSignal, Reads, Recorder};
 use wingcheck_sim::{Sample, Stepper};
 
-use crate::numerics::PencilError;
 use crate::ode::rk4_step;
 use crate::ClaimsError;
+use wingcheck_theory::numerics::PencilError;
 
 /// Lemma 3, (14): t_f = ln((φ1 Q0^{1−φ3} + φ2)/φ2) / (φ1 (1 − φ3)) (s), the exact time at which
 /// the solution of Q̇ = −φ1 Q − φ2 Q^{φ3}, Q(0) = Q0 ≥ 0, reaches 0 (hence an upper bound for

@@ -2,14 +2,14 @@
 
 use wingcheck_model::{Config, ErrorSource, Quantity, Unit, ValueBasis};
 
-use super::{compute, ratio_boundary, Computed, MuData};
-use crate::convex::{check_lambda3, CrossCheck};
+use super::{compute, Computed};
 use crate::display::{Flag, Table, Text};
 use crate::evidence::Explain;
 use crate::settings::CheckSettings;
 use crate::study::Study;
-use crate::theory::BestPoint;
 use crate::{Basis, ClaimId, ClaimRow, ClaimsError, Line, PlotData, Verdict};
+use wingcheck_theory::convex::{check_lambda3, CrossCheck};
+use wingcheck_theory::{ratio_boundary, BestPoint, MuData};
 
 /// What the mu-conditions row found, reused by the UUB row.
 #[derive(Debug, Clone)]

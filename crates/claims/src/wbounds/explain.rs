@@ -7,10 +7,10 @@ use super::{certified_sign_unshown, compute_cancellable, sdp_wall_times, Compute
 use crate::certify::omega1::{EnclosureSummary, Position};
 use crate::display::{Fact, Flag, Table, Text};
 use crate::evidence::Explain;
-use crate::sdp::PencilSdpRow;
 use crate::settings::CheckSettings;
-use crate::theory::{self, Decision};
 use crate::{Basis, ClaimId, ClaimRow, ClaimsError, Verdict, WallTime};
+use wingcheck_theory::sdp::PencilSdpRow;
+use wingcheck_theory::{self as theory, Decision};
 
 use super::text::{fmt, refinement_plot, sdp_sentence};
 
@@ -73,10 +73,10 @@ pub struct SdpRecord {
 
 impl SdpRecord {
     fn of(r: &PencilSdpRow) -> SdpRecord {
-        let side = |s: &crate::sdp::PencilSide, name: &str| {
+        let side = |s: &wingcheck_theory::sdp::PencilSide, name: &str| {
             s.lambda_sdp.map(|l| Quantity::based(format!("{name} by SDP"), l, Unit::JouleSecond, ValueBasis::Solver))
         };
-        let eig = |s: &crate::sdp::PencilSide, name: &str| {
+        let eig = |s: &wingcheck_theory::sdp::PencilSide, name: &str| {
             s.lambda_eig
                 .map(|l| Quantity::based(format!("{name} by eigenvalues"), l, Unit::JouleSecond, ValueBasis::Solver))
         };

@@ -11,7 +11,7 @@
 use wingcheck_cert::banded::SymBand;
 use wingcheck_cert::exact::to_f64;
 
-use crate::numerics::PencilError;
+use wingcheck_theory::numerics::PencilError;
 
 /// A symmetric banded f64 matrix, `rows[i][d] = A[i][i + d]`.
 #[derive(Debug, Clone)]

@@ -1,7 +1,7 @@
-//! Typed failures of the claim checker's numerics: building the exact forms W, κ of (22)–(25)
-//! ([`FormsError`]), and the float pencils, eigen-solves and convex solves on them
-//! ([`PencilError`]). [`crate::ClaimsError::Numerical`] and
-//! [`crate::certify::CertifyError::Numerical`] carry a [`PencilError`] as their cause.
+//! Typed failures of the theory's and the claim checker's numerics: building the exact forms
+//! W, κ of (22)–(25) ([`FormsError`]), and the float pencils, eigen-solves and convex solves on
+//! them ([`PencilError`]). The claims crate's `ClaimsError::Numerical` and
+//! `certify::CertifyError::Numerical` carry a [`PencilError`] as their cause.
 
 use std::sync::Arc;
 
@@ -95,7 +95,7 @@ pub enum PencilError {
     NotOrthonormal(f64),
     /// Building or solving an SDP failed (infeasibility is a status, not this).
     #[error("{0}")]
-    Sdp(#[source] Arc<wingcheck_lapack::sdp::SdpError>),
+    Sdp(#[source] Arc<crate::sdp::problem::SdpError>),
     /// clarabel panicked inside a solve.
     #[error("clarabel failed ({0})")]
     SolverPanicked(#[source] wingcheck_io::Panicked),
@@ -210,8 +210,8 @@ impl From<wingcheck_sim::SimError> for PencilError {
     }
 }
 
-impl From<wingcheck_lapack::sdp::SdpError> for PencilError {
-    fn from(e: wingcheck_lapack::sdp::SdpError) -> Self {
+impl From<crate::sdp::problem::SdpError> for PencilError {
+    fn from(e: crate::sdp::problem::SdpError) -> Self {
         PencilError::Sdp(Arc::new(e))
     }
 }

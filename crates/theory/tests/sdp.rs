@@ -3,7 +3,7 @@
 //! orthogonal Q, which leaves the pencil's eigenvalues unchanged) λ = min a_i/b_i.
 
 use faer::Mat;
-use wingcheck_claims::sdp::max_lambda;
+use wingcheck_theory::sdp::max_lambda;
 
 /// A Householder reflection Q = I − 2vvᵀ/vᵀv (orthogonal, dense).
 fn householder(n: usize) -> Mat<f64> {

@@ -9,8 +9,8 @@
 //! multiplied by `√2`, so that `svec(X)·svec(Y) = tr(XY)`; [`svec`] and
 //! [`smat`] implement exactly that convention.
 //!
-//! Every solve calls [`crate::link()`], so users of this module need nothing
-//! else to get the BLAS/LAPACK symbols linked.
+//! Every solve calls [`wingcheck_lapack::link()`], so users of this module need nothing
+//! else to get the BLAS/LAPACK symbols (the `wingcheck-lapack` shim) linked.
 
 // Index loops over (i, j) mirror the matrix formulas and read clearer here.
 #![allow(clippy::needless_range_loop)]
@@ -81,11 +81,6 @@ impl SdpStatus {
             SolverStatus::DualInfeasible | SolverStatus::AlmostDualInfeasible => Self::Unbounded,
             other => Self::Other(other),
         }
-    }
-
-    /// `true` for [`SdpStatus::Solved`] and [`SdpStatus::AlmostSolved`].
-    pub fn is_solved(self) -> bool {
-        matches!(self, Self::Solved | Self::AlmostSolved)
     }
 }
 
@@ -337,7 +332,7 @@ impl SdpProblem {
         settings: DefaultSettings<f64>,
         stop: impl Fn() -> bool + Send + Sync + 'static,
     ) -> Result<SdpSolution, SdpError> {
-        crate::link();
+        wingcheck_lapack::link();
         let d = self.to_clarabel();
         let mut solver = DefaultSolver::new(&d.p, &d.q, &d.a, &d.b, &d.cones, settings)?;
         solver.set_termination_callback(move |_| stop());
@@ -399,7 +394,8 @@ pub fn prescaled_chordal_settings(tol: f64) -> DefaultSettings<f64> {
 pub struct SdpOutcome {
     /// Simplified status; `Infeasible` / `Unbounded` are answers, not errors.
     pub status: SdpStatus,
-    /// The optimal `λ` when `status.is_solved()`.
+    /// The optimal `λ` when the point is worth re-verifying ([`crate::status::worth_reverifying`]:
+    /// `Solved` or `AlmostSolved`, finite); the caller re-verifies it.
     pub lambda: Option<f64>,
     /// Dual matrix `Z ⪰ 0` (at optimum `tr(BZ) = 1`, `tr(AZ) = λ`).
     pub dual: Vec<Vec<f64>>,
@@ -422,7 +418,7 @@ pub fn max_generalized_lambda(a: &[Vec<f64>], b: &[Vec<f64>]) -> Result<SdpOutco
     let sol = SdpProblem::new(1).minimize(vec![-1.0])?.psd(lmi)?.solve()?;
     Ok(SdpOutcome {
         status: sol.status,
-        lambda: sol.status.is_solved().then(|| sol.x[0]),
+        lambda: crate::status::worth_reverifying(sol.raw_status, &sol.x).then(|| sol.x[0]),
         dual: sol.psd_duals.into_iter().next().unwrap_or_default(),
         iterations: sol.iterations,
         solve_time: sol.solve_time,

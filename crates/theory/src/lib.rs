@@ -1,5 +1,11 @@
-//! The theory functions, defined once: W ≻ 0 (Theorem 1), the feasibility of (29)–(32), the
-//! best operating point, g_hmax and ε. The ledger rows and `wingcheck search` both call these.
+//! The paper's theory, defined once, apart from the claim rows: W ≻ 0 (Theorem 1), the
+//! feasibility of (29)–(32), the best operating point, g_hmax and ε (this file); the bound (37)
+//! ([`uub`]); the exact Lyapunov forms W, κ of (22)–(25) ([`lyapunov`]); and the solver front ends
+//! that cross-check them — second-order-cone programs ([`socp`], [`convex`]) and SDPs ([`sdp`])
+//! over clarabel, every solve's point accepted by the one rule [`status::worth_reverifying`].
+//! Typed failures: [`numerics::PencilError`], [`numerics::FormsError`]. The ledger rows
+//! (`wingcheck-claims`), `wingcheck search` and the report call these; this crate depends on
+//! none of them (only model, sim, cert, lapack and io).
 //!
 //! **Closed forms of (29)–(32).** For fixed gains the conditions split into three independent
 //! blocks (x = |x_ac|, c = 2a|ρx_c|, A3 = bξEI/(2s⁴) − aρ, A4 = bξGJ/(2s²) − aI_p):
@@ -18,6 +24,14 @@
 //! Every constraint is homogeneous of degree one in (a, b) with the η's fixed, so λ3*/a, λ and
 //! the η-part of ε divided by a are invariant under (a, b) → (ca, cb); the observer terms
 //! η8ζ3² + η9ζ4² = ζ3²/k1 + ζ4²/k2 are not (they do not depend on a, b at all).
+
+pub mod convex;
+pub mod lyapunov;
+pub mod numerics;
+pub mod sdp;
+pub mod socp;
+pub mod status;
+pub mod uub;
 
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
@@ -400,6 +414,29 @@ pub fn epsilon(d: &MuData, t: f64, bounds: &DisturbanceBounds, k1: f64, k2: f64)
     d.epsilon_eta_min(t, bounds.g_hmax) + bounds.zeta3 * bounds.zeta3 / k1 + bounds.zeta4 * bounds.zeta4 / k2
 }
 
+/// Closed-form largest a/b for which (32) can hold (0 if none): the smallest positive root
+/// of (α − rρ)(β − rI_p) = (2ρx_c r)², α = ξEI/(2s⁴), β = ξGJ/(2s²), capped at 1/(2ξ).
+pub fn ratio_boundary(cfg: &Config) -> f64 {
+    let w = &cfg.wing;
+    if w.xi <= 0.0 {
+        return 0.0;
+    }
+    let alpha = w.xi * w.ei / (2.0 * w.span.powi(4));
+    let beta = w.xi * w.gj / (2.0 * w.span * w.span);
+    let c = 2.0 * w.rho_xc.abs();
+    let lin = alpha * w.ip + beta * w.rho;
+    let disc = (alpha * w.ip - beta * w.rho).powi(2) + 4.0 * c * c * alpha * beta;
+    let r34 = 2.0 * alpha * beta / (lin + disc.sqrt());
+    r34.min(1.0 / (2.0 * w.xi))
+}
+
+impl MuData {
+    /// Closed-form boundary of a/b ([`ratio_boundary`]).
+    pub fn closed_form_ratio(cfg: &Config) -> f64 {
+        ratio_boundary(cfg)
+    }
+}
+
 /// The bounds on the disturbances assumed in (29)–(32).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct DisturbanceBounds {
@@ -486,51 +523,6 @@ pub fn best_point(d: &MuData, lambda1: f64, bounds: &DisturbanceBounds, k1: f64,
     })
 }
 
-/// Theorem 2's bound (37): |q(z,t)| ≤ √(s³/λ2 · (W(0)e^{−λt} + ε/λ)) (m) and
-/// |θ(z,t)| ≤ √(s/λ2 · (W(0)e^{−λt} + ε/λ)) (rad), for λ2 > 0, λ > 0. The one definition, used
-/// by the UUB row and the search.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct UubBound {
-    /// Span s (m).
-    pub span: f64,
-    /// λ2 > 0 (J s per SI unit of κ).
-    pub lambda2: f64,
-    /// λ = λ3/λ1 > 0 (1/s).
-    pub lambda: f64,
-    /// ε of (32) (J).
-    pub epsilon: f64,
-    /// W(0) (J s; 0 for the ultimate bound).
-    pub w0: f64,
-}
-
-impl UubBound {
-    /// The bound (35) on W(t): W(0)e^{−λt} + ε/λ (J s).
-    pub fn lyapunov(&self, t: f64) -> f64 {
-        self.w0 * (-self.lambda * t).exp() + self.epsilon / self.lambda
-    }
-
-    /// The bound on |q| at time t (m).
-    pub fn q(&self, t: f64) -> f64 {
-        (self.span.powi(3) / self.lambda2 * self.lyapunov(t)).sqrt()
-    }
-
-    /// The bound on |θ| at time t (rad).
-    pub fn theta(&self, t: f64) -> f64 {
-        (self.span / self.lambda2 * self.lyapunov(t)).sqrt()
-    }
-
-    /// The ultimate bound √(s³/λ2 · ε/λ) on |q| (m), the limit t → ∞.
-    pub fn ultimate_q(&self) -> f64 {
-        (self.span.powi(3) / self.lambda2 * self.epsilon / self.lambda).sqrt()
-    }
-}
-
-/// Theorem 2's ultimate bound √(s³/λ2 · ε/λ) on |q| (m) at the best point, for λ2 > 0.
-pub fn ultimate_bound_q(span: f64, lambda2: f64, best: &BestPoint) -> Option<f64> {
-    (lambda2 > 0.0)
-        .then(|| UubBound { span, lambda2, lambda: best.lambda, epsilon: best.epsilon, w0: 0.0 }.ultimate_q())
-}
-
 /// W(a, b) = a·W(1, 0) + b·W(0, 1) on the Galerkin space of [`crate::lyapunov`] with κ = LLᵀ
 /// factorised once: the tight λ2 = min W/κ, λ1 = max W/κ at any (a, b) are the extreme
 /// eigenvalues of a·C_a + b·C_b, C = L⁻¹WL⁻ᵀ (symmetrised) — the pencil `tight_constants`
@@ -543,7 +535,7 @@ pub struct WPencil {
 
 impl WPencil {
     /// The pencil of the configuration's wing on `elements` uniform elements (corrected cross term).
-    pub fn new(cfg: &Config, elements: usize) -> Result<Self, crate::numerics::PencilError> {
+    pub fn new(cfg: &Config, elements: usize) -> Result<Self, numerics::PencilError> {
         use crate::lyapunov::{assemble, to_dense, Coupling, LyapunovParams};
         let p = LyapunovParams::from_config(cfg, Coupling::Corrected, elements);
         let fa = assemble(&p.with_weights("1", "0"))?;
@@ -551,19 +543,19 @@ impl WPencil {
         let kappa = to_dense(&fa.kappa);
         let llt = kappa
             .llt(faer::Side::Lower)
-            .map_err(|cause| crate::numerics::PencilError::NotPositiveDefinite { what: "κ", cause })?;
+            .map_err(|cause| numerics::PencilError::NotPositiveDefinite { what: "κ", cause })?;
         let l = llt.L();
         use wingcheck_sim::dense::congruence;
         Ok(WPencil { ca: congruence(l, &to_dense(&fa.w)), cb: congruence(l, &to_dense(&fb.w)) })
     }
 
     /// (λ2, λ1) = (min, max) of W/κ at weights (a, b).
-    pub fn constants(&self, a: f64, b: f64) -> Result<(f64, f64), crate::numerics::PencilError> {
+    pub fn constants(&self, a: f64, b: f64) -> Result<(f64, f64), numerics::PencilError> {
         let n = self.ca.nrows();
         let c = faer::Mat::from_fn(n, n, |i, j| a * self.ca[(i, j)] + b * self.cb[(i, j)]);
         let mut vals = c
             .self_adjoint_eigenvalues(faer::Side::Lower)
-            .map_err(|cause| crate::numerics::PencilError::Eigen { what: "eigenvalues", cause })?;
+            .map_err(|cause| numerics::PencilError::Eigen { what: "eigenvalues", cause })?;
         vals.sort_by(f64::total_cmp);
         Ok((vals[0], vals[n - 1]))
     }

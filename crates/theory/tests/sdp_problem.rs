@@ -3,7 +3,9 @@
 
 use faer::linalg::triangular_solve::solve_lower_triangular_in_place;
 use faer::{Mat, Par, Side};
-use wingcheck_lapack::sdp::{max_generalized_lambda, smat, svec, PsdConstraint, SdpError, SdpProblem, SdpStatus};
+use wingcheck_theory::sdp::problem::{
+    max_generalized_lambda, smat, svec, PsdConstraint, SdpError, SdpProblem, SdpStatus,
+};
 
 /// Deterministic xorshift64* stream in [-1, 1).
 struct Rng(u64);

@@ -1,9 +1,9 @@
 //! The convex layer of (29)–(32): closed forms against clarabel (re-verified), exactness,
 //! scale invariance, and ε against an independent brute-force minimisation.
 
-use wingcheck_claims::convex::{check_epsilon, check_lambda3};
-use wingcheck_claims::theory::{best_point, DisturbanceBounds, MuData, WPencil};
 use wingcheck_model::Config;
+use wingcheck_theory::convex::{check_epsilon, check_lambda3};
+use wingcheck_theory::{best_point, DisturbanceBounds, MuData, WPencil};
 
 fn paper() -> Config {
     Config::paper()

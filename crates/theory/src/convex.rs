@@ -1,4 +1,4 @@
-//! The second-order-cone cross-checks of the closed forms of [`crate::theory`].
+//! The second-order-cone cross-checks of the closed forms of (29)–(32) ([`crate::MuData`]).
 //!
 //! Scale-free formulation: every η is written as η_i = S_i·y_i with S_i an upper bound of η_i
 //! read off the data (S1 = m3/b, S2 = m4/(b x), S3 = S4 = b/(2a), S5 = √(m3/m4),
@@ -16,7 +16,7 @@
 use serde::Serialize;
 
 use crate::socp::Socp;
-use crate::theory::{Etas, MuData};
+use crate::{Etas, MuData};
 
 /// Relative tolerance of a re-verified row: μ_i(η) ≥ t − ROW_TOLERANCE · m_i.
 pub const ROW_TOLERANCE: f64 = 1e-7;

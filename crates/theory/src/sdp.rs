@@ -18,6 +18,9 @@
 //!   (cliques of 25). Every returned λ is re-verified by Cholesky against the original
 //!   constraint and compared with the eigenvalues at the same N.
 //!
+//! Both are posed through [`problem`], the modelling layer over clarabel's PSD triangle cone
+//! (its BLAS/LAPACK symbols come from `wingcheck-lapack`).
+//!
 //! A float SDP is evidence, not proof.
 
 use faer::{Mat, Side};
@@ -25,6 +28,7 @@ use serde::Serialize;
 
 use crate::numerics::PencilError;
 
+pub mod problem;
 mod reduce;
 
 pub use reduce::hierarchical_basis;
@@ -39,7 +43,7 @@ pub struct SdpCheck {
     /// clarabel's status (simplified).
     #[serde(serialize_with = "debug_name")]
     #[schemars(with = "String")]
-    pub status: wingcheck_lapack::sdp::SdpStatus,
+    pub status: problem::SdpStatus,
     /// The SDP's λ (0 when not accepted).
     pub lambda_sdp: f64,
     /// λ_min of the pencil from the symmetric eigenvalue solver.
@@ -67,7 +71,7 @@ pub fn max_lambda(a: &Mat<f64>, b: &Mat<f64>) -> Result<SdpCheck, PencilError> {
     let (c, eig) = congruent_to_identity(a, b)?;
     let rows: Vec<Vec<f64>> = (0..n).map(|i| (0..n).map(|j| c[(i, j)]).collect()).collect();
     let id: Vec<Vec<f64>> = (0..n).map(|i| (0..n).map(|j| if i == j { 1.0 } else { 0.0 }).collect()).collect();
-    let out = wingcheck_lapack::sdp::max_generalized_lambda(&rows, &id)?;
+    let out = problem::max_generalized_lambda(&rows, &id)?;
     let scale = (0..n).flat_map(|i| (0..n).map(move |j| (i, j))).fold(1.0f64, |m, (i, j)| m.max(c[(i, j)].abs()));
     let (accepted, lambda_sdp) = match out.lambda {
         Some(lam) if lam.is_finite() => {
@@ -205,8 +209,8 @@ fn side_problem(
     sign: f64,
     sigma: f64,
     beta: f64,
-) -> Result<(wingcheck_lapack::sdp::SdpProblem, Vec<f64>), PencilError> {
-    use wingcheck_lapack::sdp::{PsdConstraint, SdpProblem};
+) -> Result<(problem::SdpProblem, Vec<f64>), PencilError> {
+    use problem::{PsdConstraint, SdpProblem};
     let b2 = beta * beta;
     let m: Vec<f64> = r.g.iter().map(|g| (g.norm_max() / b2).max(1.0)).collect();
     let mut f0 = vec![vec![0.0; 4]; 4];
@@ -259,7 +263,7 @@ fn solve_side(
         if *budget == 0 && out.is_some() {
             break;
         }
-        let mut settings = wingcheck_lapack::sdp::prescaled_chordal_settings(tol);
+        let mut settings = problem::prescaled_chordal_settings(tol);
         // clarabel stops with status MaxIterations at the budget (recorded, not accepted)
         settings.max_iter = (*budget).max(1);
         settings.time_limit = SDP_SOLVE_GUARD_SECONDS;
@@ -269,7 +273,7 @@ fn solve_side(
         let sol = wingcheck_io::catch(|| problem.solve_with_stop(settings, move || stop.is_cancelled()))
             .map_err(PencilError::SolverPanicked)??;
         *budget = budget.saturating_sub(sol.iterations.max(1));
-        use wingcheck_lapack::sdp::SdpStatus;
+        use problem::SdpStatus;
         // λ only from a point clarabel calls optimal (an interrupted solve's point means nothing)
         let optimal = crate::status::worth_reverifying(sol.raw_status, &sol.x) && !sol.x.is_empty();
         let lambda = optimal.then(|| sign * sigma * sol.x[0]);

@@ -1,7 +1,7 @@
 //! Times `max_generalized_lambda` on random dense problems.
-//! Usage: `cargo run -p wingcheck-lapack --release --example sdp_timing -- 20 60 120`
+//! Usage: `cargo run -p wingcheck-theory --release --example sdp_timing -- 20 60 120`
 
-use wingcheck_lapack::sdp::max_generalized_lambda;
+use wingcheck_theory::sdp::problem::max_generalized_lambda;
 
 fn main() {
     let sizes: Vec<usize> = std::env::args().skip(1).filter_map(|s| s.parse().ok()).collect();

@@ -222,6 +222,15 @@ pub fn tight_constants(forms: &ExactForms) -> Result<TightConstants, PencilError
     })
 }
 
+/// Largest a/b with W ≻ 0 on V_N: −1/μ_min of the pencil (W(a=1,b=0), W(a=0,b=1)).
+pub fn a_over_b_max(cfg: &Config, coupling: Coupling, elements: usize) -> Result<f64, PencilError> {
+    let p = LyapunovParams::from_config(cfg, coupling, elements);
+    let wa = assemble(&p.with_weights("1", "0"))?;
+    let wb = assemble(&p.with_weights("0", "1"))?;
+    let (vals, _) = generalized_eigen(&to_dense(&wa.w), &to_dense(&wb.w))?;
+    Ok(-1.0 / vals[0])
+}
+
 /// xᵀ A x exactly.
 pub fn quadratic_form(a: &RationalMatrix, x: &[BigRational]) -> BigRational {
     let ax = a.mul_vec(x).expect("dimensions agree");
