@@ -60,3 +60,39 @@ fn every_owner_in_the_table_exists() {
     }
     assert!(checked >= 30, "only {checked} owners checked: is the table still there?");
 }
+
+/// The crate table of docs/architecture.md ("## Crate dependencies": one row per library crate,
+/// the wingcheck crates it depends on) is the dependency graph of the Cargo.toml files: every
+/// row's list equals the crate's `[dependencies]` on other wingcheck crates (dev-dependencies
+/// aside), and every crate under crates/ has a row. A new dependency arrow fails here until the
+/// page says it.
+#[test]
+fn the_crate_table_is_the_dependency_graph() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let doc = std::fs::read_to_string(root.join("docs/architecture.md")).unwrap();
+    let table = doc.split("## Crate dependencies").nth(1).expect("the crate table").split("\n## ").next().unwrap();
+    let mut documented = std::collections::BTreeMap::new();
+    for line in table.lines().filter(|l| l.starts_with("| `")) {
+        let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+        let name = cells[1].trim_matches('`').to_string();
+        let mut deps: Vec<String> =
+            cells[2].split(',').map(|d| d.trim().trim_matches('`').to_string()).filter(|d| !d.is_empty() && d != "—").collect();
+        deps.sort();
+        documented.insert(name, deps);
+    }
+    let mut actual = std::collections::BTreeMap::new();
+    for entry in std::fs::read_dir(root.join("crates")).unwrap() {
+        let dir = entry.unwrap().path();
+        let manifest = std::fs::read_to_string(dir.join("Cargo.toml")).unwrap();
+        // the [dependencies] section only (not dev- or build-dependencies)
+        let deps_section = manifest.split("\n[dependencies]").nth(1).unwrap_or("").split("\n[").next().unwrap();
+        let mut deps: Vec<String> = deps_section
+            .lines()
+            .filter_map(|l| l.trim().strip_prefix("wingcheck-"))
+            .map(|rest| rest.split(|c: char| !(c.is_alphanumeric() || c == '-')).next().unwrap().to_string())
+            .collect();
+        deps.sort();
+        actual.insert(dir.file_name().unwrap().to_string_lossy().to_string(), deps);
+    }
+    assert_eq!(documented, actual, "docs/architecture.md's crate table against the Cargo.toml files");
+}

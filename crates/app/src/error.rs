@@ -206,7 +206,7 @@ fn search_kind(e: &SearchError) -> ErrorKind {
         | SearchError::HeatmapCells { .. }
         | SearchError::Heatmap { .. }
         | SearchError::Output(_) => ErrorKind::Output,
-        SearchError::Theory { .. } => ErrorKind::Numerical,
+        SearchError::Theory { .. } | SearchError::Omega1(_) => ErrorKind::Numerical,
         SearchError::Cancelled(_) => ErrorKind::Cancelled,
         SearchError::Config(ConfigError::Read { .. }) => ErrorKind::Input,
         SearchError::Config(_) => ErrorKind::Config,

@@ -239,14 +239,18 @@ pub enum SearchError {
     /// kept in a directory it created).
     #[error(transparent)]
     Cancelled(#[from] wingcheck_model::Cancelled),
-    /// A theory computation failed (eigenproblem, SOCP).
-    #[error("theory ({what}): {detail}")]
+    /// A theory computation failed (the W pencil, its eigenvalues).
+    #[error("theory ({what}): {cause}")]
     Theory {
         /// Which computation.
-        what: String,
+        what: &'static str,
         /// What happened.
-        detail: String,
+        #[source]
+        cause: wingcheck_theory::numerics::PencilError,
     },
+    /// The converged ω₁ (the W ≻ 0 threshold, `theory::w_threshold`) could not be computed.
+    #[error("theory (ω₁): {0}")]
+    Omega1(#[source] wingcheck_sim::SimError),
 }
 
 /// The refusal of [`SearchError::TooLarge`]: the estimate, the limit and the way out.

@@ -94,8 +94,8 @@ pub struct TheoryCache {
     g_hmax: Mutex<HashMap<String, f64>>,
 }
 
-fn num(what: &str) -> impl Fn(wingcheck_theory::numerics::PencilError) -> SearchError + '_ {
-    move |e| SearchError::Theory { what: what.to_string(), detail: e.to_string() }
+fn num(what: &'static str) -> impl Fn(wingcheck_theory::numerics::PencilError) -> SearchError {
+    move |cause| SearchError::Theory { what, cause }
 }
 
 impl TheoryCache {
@@ -134,8 +134,7 @@ impl TheoryCache {
         }
         let (lambda2, lambda1) = self.pencil(cfg)?.constants(c.a, c.b).map_err(num("eigenvalues"))?;
         let d = MuData::new(cfg, c.a, c.b);
-        let omega1 = theory::w_threshold(cfg)
-            .map_err(|e| SearchError::Theory { what: "ω₁".into(), detail: e.to_string() })?;
+        let omega1 = theory::w_threshold(cfg).map_err(SearchError::Omega1)?;
         let v = Verdicts {
             w_pd: theory::w_positive_definite(c.a, c.b, omega1),
             lambda2,

@@ -25,6 +25,8 @@
 //! the η-part of ε divided by a are invariant under (a, b) → (ca, cb); the observer terms
 //! η8ζ3² + η9ζ4² = ζ3²/k1 + ζ4²/k2 are not (they do not depend on a, b at all).
 
+#![forbid(unsafe_code)]
+
 pub mod convex;
 pub mod lyapunov;
 pub mod numerics;
