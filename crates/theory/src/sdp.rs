@@ -382,13 +382,15 @@ fn pencil_side(
         Ok(r) => r,
         Err(e) => return PencilSide { lambda_eig: Some(lambda_eig), ..not_run(&e.to_string()) },
     };
-    let verify =
-        |x: &SideSolution| x.status.is_solved() && x.lambda.is_some_and(|l| pencil_feasible(c, sign, l - sign * delta));
+    // the one acceptance rule (status::worth_reverifying), then the original constraint
+    let verify = |x: &SideSolution| {
+        x.status.is_candidate() && x.lambda.is_some_and(|l| l.is_finite() && pencil_feasible(c, sign, l - sign * delta))
+    };
     let first = match solve_side(r, sign, sigma, 1.0, budget, cancel) {
         Ok(x) => x,
         Err(e) => return PencilSide { lambda_eig: Some(lambda_eig), ..not_run(&format!("SDP: {e}")) },
     };
-    // Not Solved or not re-verified (never because of the eigenvalue comparison): once more
+    // Not a candidate or not re-verified (never because of the eigenvalue comparison): once more
     // with the 4×4 LMI rescaled by β = 1/√max(|P/σ|, |B/σ|²) from the first point, which
     // makes its P-block O(1) (measured: on an SI-scale wing at a/b ≈ 5 the first point has
     // P ≈ 0, violating the 4×4 LMI by ~|B/σ|² ≈ 2e-9, and λ1 fails re-verification).
@@ -410,8 +412,8 @@ fn pencil_side(
     let difference = lambda.map(|l| (l - lambda_eig).abs());
     let accepted = verified;
     let agrees = accepted && difference.is_some_and(|d| d <= delta);
-    let reason = if !status.is_solved() {
-        Some(format!("clarabel status {status} (only Solved is accepted)"))
+    let reason = if !status.is_candidate() {
+        Some(format!("clarabel status {status} (only Solved and AlmostSolved points are re-verified)"))
     } else if !verified {
         let constraint = if sign > 0.0 { "W − λκ ⪰ 0" } else { "λκ − W ⪰ 0" };
         Some(format!("re-verification failed: the returned λ violates {constraint} by more than δ = {delta:.1e}"))

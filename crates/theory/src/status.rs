@@ -13,9 +13,10 @@ pub enum SolveStatus {
 }
 
 impl SolveStatus {
-    /// clarabel's `Solved` (full accuracy).
-    pub fn is_solved(&self) -> bool {
-        matches!(self, SolveStatus::Clarabel(SolverStatus::Solved))
+    /// Whether the status makes the point a candidate under [`worth_reverifying`] (`Solved` or
+    /// `AlmostSolved`; the caller checks the point's coordinates and re-verifies it).
+    pub fn is_candidate(&self) -> bool {
+        matches!(self, SolveStatus::Clarabel(s) if worth_reverifying(*s, &[]))
     }
 
     /// The status as printed: clarabel's name (`Solved`, `AlmostSolved`, …) or `not run`.
