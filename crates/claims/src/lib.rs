@@ -201,7 +201,7 @@ fn certificate_files(cfg: &Config) -> Result<Vec<(ClaimId, String)>, NoCertifica
     Ok(files
         .iter()
         .filter_map(|f| {
-            let id = certify::manifest::role(&f.id)?.claim;
+            let id = spec::role(&f.id)?.claim;
             Some((id, format!("{}.json", f.id)))
         })
         .collect())

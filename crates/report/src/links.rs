@@ -4,7 +4,7 @@
 
 use serde::Serialize;
 use wingcheck_claims::certify::facts::FactKind;
-use wingcheck_claims::certify::manifest::{role, WeightsRule};
+use wingcheck_claims::spec::{role, WeightsRule};
 use wingcheck_claims::{ClaimId, Ledger};
 
 use crate::context::claim_anchor;
