@@ -49,7 +49,7 @@ pub struct RunRecord {
     pub gtilde2_settle: Maybe,
 }
 
-/// What a simulated metric's ± covers ([`super::refinement_error`]).
+/// What a simulated metric's ± covers ([`crate::study::refine::refinement_error`]).
 const REFINED: [ErrorSource; 3] = [ErrorSource::Grid, ErrorSource::TimeStep, ErrorSource::RoundOff];
 
 impl RunRecord {
