@@ -170,7 +170,7 @@ pub fn digital_runs(cfg: &Config, settings: &CheckSettings) -> Result<DigitalRun
     for channel in [Channel::Bending, Channel::Torsion] {
         let ix = channel_index(channel);
         let (gain, a1, a2, g) = channel_data(cfg, channel);
-        sigma0[ix] = sigma0_other(cfg, ix)? + 0.0;
+        sigma0[ix] = reach::sigma0_other(cfg, ix)? + 0.0;
         let fil = filippov_reach(&gain, &|t: f64| g.at(t), sigma0[ix], 60.0, settings.filippov_steps)?;
         longest =
             longest.max(bound_38(gain.linear, gain.fractional, a1, a2, sigma0[ix])?).max(fil.reach_s.unwrap_or(0.0));
@@ -283,12 +283,6 @@ pub fn channel_index(channel: Channel) -> usize {
         Channel::Bending => 0,
         Channel::Torsion => 1,
     }
-}
-
-/// σ(0) of channel `ix` (0: bending, 1: torsion) from the configured initial state.
-pub fn sigma0_other(cfg: &Config, ix: usize) -> Result<f64, ClaimsError> {
-    let c = reach::digital_config(cfg, cfg.observer.rule, cfg.observer.sample_period, cfg.horizon.t_end);
-    Ok(wingcheck_sim::Stepper::new(&c)?.channels[ix].sigma)
 }
 
 fn thin(x: &[f64], y: &[f64], max: usize, keep_zero: bool) -> (Vec<f64>, Vec<f64>) {

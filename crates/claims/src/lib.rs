@@ -5,7 +5,7 @@
 //! closed forms and exact certificates; `UUB` ([`uub`]) combines them with simulation;
 //! `finite-time-1/2` ([`finite_time`]), `lemmas` ([`lemmas`]) and `ftdo-vs-dobc`
 //! ([`comparison`]) on simulation and adversarial search. Each row's evidence is a typed struct
-//! of labelled quantities ([`display`]) with its own [`evidence::Explain`]: the verdict and the
+//! of labelled quantities ([`display`]) with its own [`explain::Explain`]: the verdict and the
 //! words come from the evidence alone.
 
 pub mod certify;
@@ -13,6 +13,7 @@ pub mod comparison;
 pub mod convex;
 pub mod display;
 pub mod evidence;
+pub mod explain;
 pub mod finite_time;
 mod ledger;
 pub mod lemmas;
@@ -35,7 +36,8 @@ use std::sync::Arc;
 use std::time::Instant;
 
 pub use display::{NEVER_SETTLED, NOT_REACHED};
-pub use evidence::{Evidence, Explain};
+pub use evidence::Evidence;
+pub use explain::Explain;
 pub use ledger::{Basis, ClaimId, ClaimRow, Ledger, Line, PlotData, Verdict, WallTime};
 pub use settings::CheckSettings;
 pub use study::Study;

@@ -5,7 +5,7 @@ use wingcheck_sim::SimOutput;
 
 use super::{compute, other_rule, Computed, Metrics};
 use crate::display::{Flag, Maybe, Table, Text, NEVER_SETTLED};
-use crate::evidence::Explain;
+use crate::explain::Explain;
 use crate::settings::CheckSettings;
 use crate::study::Study;
 use crate::{Basis, ClaimId, ClaimRow, ClaimsError, Line, PlotData, Verdict};

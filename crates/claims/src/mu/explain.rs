@@ -5,7 +5,7 @@ use wingcheck_model::{Config, ErrorSource, Quantity, Unit, ValueBasis};
 use super::{compute, ratio_boundary, Computed, MuData};
 use crate::convex::{check_lambda3, CrossCheck};
 use crate::display::{Flag, Table, Text};
-use crate::evidence::Explain;
+use crate::explain::Explain;
 use crate::settings::CheckSettings;
 use crate::study::Study;
 use crate::theory::BestPoint;

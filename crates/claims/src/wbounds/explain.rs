@@ -6,7 +6,7 @@ use wingcheck_model::{Config, ErrorSource, Quantity, Unit, ValueBasis};
 use super::{certified_sign_unshown, compute_cancellable, sdp_wall_times, Computed};
 use crate::certify::omega1::{EnclosureSummary, Position};
 use crate::display::{Fact, Flag, Table, Text};
-use crate::evidence::Explain;
+use crate::explain::Explain;
 use crate::sdp::PencilSdpRow;
 use crate::settings::CheckSettings;
 use crate::theory::{self, Decision};
