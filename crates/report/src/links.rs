@@ -7,7 +7,7 @@ use wingcheck_claims::certify::facts::FactKind;
 use wingcheck_claims::spec::{role, WeightsRule};
 use wingcheck_claims::{ClaimId, Ledger};
 
-use crate::context::claim_anchor;
+use crate::figure::claim_anchor;
 
 /// A link: where to and the words.
 #[derive(Debug, Clone, PartialEq, Serialize)]
