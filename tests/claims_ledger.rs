@@ -269,7 +269,7 @@ fn each_distinct_simulation_runs_once() {
     mu::check(&cfg, &study, &CheckSettings::default()).unwrap();
     assert_eq!(study.simulations_run(), 3);
     let plan = wingcheck_claims::comparison::Runs::of(&cfg, &CheckSettings::default());
-    let shared = wingcheck_claims::comparison::refinements(&study_ftdo(&cfg));
+    let shared = wingcheck_claims::study::refine::refinements(&study_ftdo(&cfg));
     assert!(shared.iter().all(|c| plan.refined().contains(c)), "the comparison refines the same FTDO run");
     // two threads asking for the same run at once: it runs once, both get it
     let other = short(&["control.a=0.7"]);

@@ -5,7 +5,7 @@ use plotters::coord::Shift;
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 
-use crate::line::{colours, vline_style, BandStyle, LineChart, LineStyle, MARK};
+use crate::line_chart::{colours, vline_style, BandStyle, LineChart, LineStyle, MARK};
 use crate::{px, DrawError};
 
 /// Characters per line of the legend panel's text (17-px sans-serif in [`crate::line::LEGEND_W`] px less

@@ -14,6 +14,7 @@ mod conclude;
 pub mod facts;
 pub mod manifest;
 pub mod omega1;
+mod verify;
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
@@ -27,7 +28,7 @@ use manifest::{ClaimEntry, FileEntry, Manifest, INDEX, INDEX_FORMAT, INDEX_VERSI
 use wingcheck_theory::lyapunov::{self, Coupling, LyapunovParams};
 use wingcheck_theory::numerics::PencilError;
 
-pub use manifest::{verify_set, verify_set_for, VerifiedSet};
+pub use verify::{verify_set, verify_set_for, VerifiedSet};
 
 /// Elements of the Galerkin space used in certificates (dimension 11·N).
 pub const CERT_ELEMENTS: usize = 4;
@@ -255,7 +256,7 @@ pub fn certificates(cfg: &Config) -> Result<Vec<CertificateFile>, CertifyError> 
 /// The certificate files for `cfg` and the notes `certify` prints with them (why a fact the
 /// claim checker finds is not in the set, e.g. a negative direction of W too close to ω₁).
 pub fn certificate_set(cfg: &Config) -> Result<(Vec<CertificateFile>, Vec<String>), CertifyError> {
-    let exact = manifest::config_params(cfg)?; // refuses values that cannot be certified
+    let exact = facts::config_params(cfg)?; // refuses values that cannot be certified
     let n = CERT_ELEMENTS;
     let d = format_decimal;
     let wing = wing_text(cfg);
@@ -442,7 +443,7 @@ fn render_files(
     let ids = certs.iter().map(|c| c.id.as_str()).chain([omega1::ID]);
     let mut claims: Vec<ClaimEntry> = Vec::new();
     for id in ids {
-        let claim = manifest::role(id).expect("certify writes known roles").claim;
+        let claim = crate::spec::role(id).expect("certify writes known roles").claim;
         match claims.iter_mut().find(|e| e.claim == claim) {
             Some(e) => e.needs.push(id.into()),
             None => claims.push(ClaimEntry { claim, needs: vec![id.into()] }),
@@ -506,7 +507,7 @@ pub fn write_set_cancellable(
     for (name, text) in &files {
         staging.write(name, text.as_bytes())?;
     }
-    manifest::verify_set_for(staging.path(), Some(cfg)).map_err(|e| CertifyError::SelfCheck(e.to_string()))?;
+    verify_set_for(staging.path(), Some(cfg)).map_err(|e| CertifyError::SelfCheck(e.to_string()))?;
     cancel.commit(|| {
         Ok::<_, CertifyError>(staging.commit(|old| wingcheck_io::only_listed_files(old, &files_of_set(old)))?)
     })?;

@@ -18,11 +18,12 @@ use wingcheck_sim::SimOutput;
 
 use crate::finite_time::reach::zeta;
 use crate::settings::CheckSettings;
+use crate::study::refine::{refinements, same_scheme, EXPLICIT_RMS_GRID_FACTOR};
 use crate::study::Study;
 use crate::ClaimsError;
 
 pub use explain::{check, ComparisonEvidence, RunRecord, SweepRecord, TipDifferences};
-pub use refine::{metric_errors, quotient_error, reached_error, refined_runs, refinement_error, refinements};
+pub use refine::{metric_errors, quotient_error};
 
 /// Metrics of one run (units: m, rad, N, N m, s).
 #[derive(Debug, Clone, PartialEq)]
@@ -145,16 +146,6 @@ pub fn variant(cfg: &Config, kind: ControllerKind, rule: ObserverRule, a: f64, b
     c.control.a = a;
     c.control.b = b;
     c
-}
-
-/// `refined` stepped with the time scheme `base` is expected to step
-/// ([`Config::expected_time_scheme`]), as `simulate --error-estimate` pins its refinements to
-/// the base run's: under `stepper = auto` the explicit FTDO's doubled grid could otherwise cross
-/// [`wingcheck_model::MODAL_AUTO_UNKNOWNS`] into the nodal basis and TR-BDF2 (from 96 elements
-/// on), and the grid part of the error would absorb the two schemes' difference (1–2 % of RMS τ).
-fn same_scheme(mut refined: Config, base: &Config) -> Config {
-    refined.discretisation.stepper = base.expected_time_scheme();
-    refined
 }
 
 /// One point of the (a, b) sweep (configured rule).
@@ -351,12 +342,6 @@ impl Runs {
     }
 }
 
-/// Grid-part factor of the explicit FTDO's RMS τ error: F·|RMS(h) − RMS(h/2)| with F = 1.25·2,
-/// the Richardson tail for order 1 with a 1.25 margin. The RMS of a chattering command
-/// converges in h at an order between 1 and 2 (measured at the paper's point on 24, 48, 96
-/// elements: 1.33 for τ1, 1.79 for τ2), so order 2's factor (4/3) would not cover it.
-pub const EXPLICIT_RMS_GRID_FACTOR: f64 = 1.25 * 2.0;
-
 /// Relative nudge of the explicit FTDO's start ν(0) (of max(1, |ν(0)|)) for its spread: 1e-12.
 /// At rest σ(0) = 0 exactly and ĝ₀ = φ(σ₀) evaluates sign(0), so the chatter pattern, and with it
 /// RMS τ, depends on which side of 0 the start falls (measured: 1.3 % on RMS τ1 at the paper's
@@ -491,7 +476,7 @@ fn sweep_points(plan: &Runs, study: &Study, settings: &CheckSettings) -> Result<
 pub fn measured(study: &Study, cfg: &Config, settings: &CheckSettings) -> Result<(Metrics, Metrics), ClaimsError> {
     let run = study.simulate(cfg)?;
     let base = metrics(&run, settings);
-    let (fine, half_dt, roundoff) = refined_runs(study, cfg)?;
+    let (fine, half_dt, roundoff) = study.refined_runs(cfg)?;
     // settling read off the output samples; g̃'s band entry where metrics::gtilde_band read it
     let output = cfg.horizon.sample_every;
     let band = metrics::gtilde_band(&run, settings.gtilde_threshold).sampling(cfg);

@@ -1,42 +1,15 @@
-//! The typed evidence of a row and the one trait that turns it into a verdict and words.
-//!
-//! Each claim module computes its evidence struct (labelled [`wingcheck_model::Quantity`]s,
-//! [`crate::display::Flag`]s, [`crate::display::Text`]s, [`crate::display::Table`]s) and
-//! implements [`Explain`] on it: the verdict and its basis, the finding (≤ 3 short sentences),
-//! the decisive numbers, further detail and the correction all come from the evidence alone, so
-//! `check`, `check --json` and the report say the same thing at any configuration.
+//! The typed evidence of a row: one variant per claim, holding that claim's evidence struct,
+//! each of which turns itself into a verdict and words through [`Explain`] ([`crate::explain`]).
 
 use serde::Serialize;
-use wingcheck_model::Quantity;
 
 use crate::comparison::ComparisonEvidence;
+use crate::explain::Explain;
 use crate::finite_time::FiniteTimeEvidence;
 use crate::lemmas::LemmasEvidence;
 use crate::mu::MuEvidence;
 use crate::uub::UubEvidence;
 use crate::wbounds::WBoundsEvidence;
-use crate::{Basis, Verdict};
-
-/// Verdict and words from a row's evidence.
-pub trait Explain {
-    /// The verdict and what it rests on.
-    fn verdict(&self) -> (Verdict, Basis);
-    /// The finding: at most three short sentences, every number from the evidence.
-    fn finding(&self) -> Vec<String>;
-    /// The decisive numbers (two to four), with units and errors or bases.
-    fn decisive(&self) -> Vec<Quantity>;
-    /// The one comparison that decides the verdict, in a few words with its numbers (the
-    /// report's first screen: one line per claim, so at most about 70 characters).
-    fn deciding(&self) -> String;
-    /// Further sentences for the detail section.
-    fn details(&self) -> Vec<String> {
-        Vec::new()
-    }
-    /// The correction under which the claim holds, if any.
-    fn correction(&self) -> Option<String> {
-        None
-    }
-}
 
 /// A row's evidence, one variant per claim (serialised as the claim's own struct).
 #[derive(Debug, Clone, PartialEq, Serialize, schemars::JsonSchema)]

@@ -93,7 +93,7 @@ pub struct Computed {
 pub const CHATTER_JUMP_FACTOR: f64 = 2.0;
 
 /// The errors of one digital run's per-channel values ([`reach::DigitalChannel`]) from the same
-/// run on the doubled grid and at dt/2 ([`crate::comparison::refinement_error`]). The
+/// run on the doubled grid and at dt/2 ([`crate::study::refine::refinement_error`]). The
 /// observer's values (σ_k, ĝ_k, g̃_k) do not depend on the plant, so their refinements change
 /// them by round-off only; τ's jumps do.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -124,11 +124,11 @@ impl DigitalErrors {
     ) -> Self {
         let floor = wingcheck_sim::layer::PEAK_ROUND_OFF * scale;
         let e = |v: fn(&reach::DigitalChannel) -> f64| {
-            crate::comparison::refinement_error(v(base), v(fine), v(half_dt), 0.0) + floor
+            crate::study::refine::refinement_error(v(base), v(fine), v(half_dt), 0.0) + floor
         };
         DigitalErrors {
             // a sample time of the digital model itself: no spacing added
-            reach_s: crate::comparison::reached_error(base.reach_s, fine.reach_s, half_dt.reach_s, 0.0, 0.0),
+            reach_s: crate::study::refine::reached_error(base.reach_s, fine.reach_s, half_dt.reach_s, 0.0, 0.0),
             sigma_after_max: e(|c| c.sigma_after_max),
             gtilde_max: e(|c| c.gtilde_max),
             ghat_jump_max: e(|c| c.ghat_jump_max),
@@ -170,7 +170,7 @@ pub fn digital_runs(cfg: &Config, settings: &CheckSettings) -> Result<DigitalRun
     for channel in [Channel::Bending, Channel::Torsion] {
         let ix = channel_index(channel);
         let (gain, a1, a2, g) = channel_data(cfg, channel);
-        sigma0[ix] = sigma0_other(cfg, ix)? + 0.0;
+        sigma0[ix] = reach::sigma0_other(cfg, ix)? + 0.0;
         let fil = filippov_reach(&gain, &|t: f64| g.at(t), sigma0[ix], 60.0, settings.filippov_steps)?;
         longest =
             longest.max(bound_38(gain.linear, gain.fractional, a1, a2, sigma0[ix])?).max(fil.reach_s.unwrap_or(0.0));
@@ -188,7 +188,7 @@ pub fn digital_runs(cfg: &Config, settings: &CheckSettings) -> Result<DigitalRun
     // the configuration, then its refinements (the doubled grid, dt/2) for the values' errors;
     // the simulator's choice of basis for each: the runs differ from their configuration in the
     // step, horizon and sampling only, which the basis does not depend on
-    let [fine, half_dt] = crate::comparison::refinements(cfg);
+    let [fine, half_dt] = crate::study::refine::refinements(cfg);
     let mut sets = Vec::with_capacity(3);
     for (c, trace) in [(cfg, true), (&fine, false), (&half_dt, false)] {
         let (_, basis) = wingcheck_sim::resolved_basis(c, &wingcheck_sim::Discretisation::new(c))?;
@@ -283,12 +283,6 @@ pub fn channel_index(channel: Channel) -> usize {
         Channel::Bending => 0,
         Channel::Torsion => 1,
     }
-}
-
-/// σ(0) of channel `ix` (0: bending, 1: torsion) from the configured initial state.
-pub fn sigma0_other(cfg: &Config, ix: usize) -> Result<f64, ClaimsError> {
-    let c = reach::digital_config(cfg, cfg.observer.rule, cfg.observer.sample_period, cfg.horizon.t_end);
-    Ok(wingcheck_sim::Stepper::new(&c)?.channels[ix].sigma)
 }
 
 fn thin(x: &[f64], y: &[f64], max: usize, keep_zero: bool) -> (Vec<f64>, Vec<f64>) {

@@ -8,7 +8,8 @@ use wingcheck_model::Quantity;
 pub use crate::spec::ClaimId;
 pub use wingcheck_chart::{Line, PlotData};
 
-use crate::evidence::{Evidence, Explain};
+use crate::evidence::Evidence;
+use crate::explain::Explain;
 use crate::settings::CheckSettings;
 
 /// What the check concluded. Never overclaims: see [`Basis`] for what it rests on.

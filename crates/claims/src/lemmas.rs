@@ -267,7 +267,7 @@ pub fn compute(cfg: &Config, settings: &CheckSettings) -> Result<Computed, Claim
     let counterexample = counterexample(span)?;
     // Lemma 3 on a parameter grid: p = a1/a2 of the configured observer, Q0 including σ2(0)²/2.
     let p = cfg.observer.a1 as f64 / cfg.observer.a2 as f64;
-    let q0_config = 0.5 * crate::finite_time::sigma0_other(cfg, 1)?.powi(2);
+    let q0_config = 0.5 * crate::finite_time::reach::sigma0_other(cfg, 1)?.powi(2);
     let (mut max_err, mut ineq, mut viol) = (0.0_f64, 0, 0);
     let (mut xs, mut ys) = (Vec::new(), Vec::new());
     for &phi1 in &[0.1, 1.6, 10.0] {

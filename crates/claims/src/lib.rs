@@ -5,7 +5,7 @@
 //! closed forms and exact certificates; `UUB` ([`uub`]) combines them with simulation;
 //! `finite-time-1/2` ([`finite_time`]), `lemmas` ([`lemmas`]) and `ftdo-vs-dobc`
 //! ([`comparison`]) on simulation and adversarial search. Each row's evidence is a typed struct
-//! of labelled quantities ([`display`]) with its own [`evidence::Explain`]: the verdict and the
+//! of labelled quantities ([`display`]) with its own [`explain::Explain`]: the verdict and the
 //! words come from the evidence alone.
 
 #![forbid(unsafe_code)]
@@ -14,6 +14,7 @@ pub mod certify;
 pub mod comparison;
 pub mod display;
 pub mod evidence;
+pub mod explain;
 pub mod finite_time;
 mod ledger;
 pub mod lemmas;
@@ -30,7 +31,8 @@ use std::sync::Arc;
 use std::time::Instant;
 
 pub use display::{NEVER_SETTLED, NOT_REACHED};
-pub use evidence::{Evidence, Explain};
+pub use evidence::Evidence;
+pub use explain::Explain;
 pub use ledger::{Basis, ClaimId, ClaimRow, Ledger, Line, PlotData, Verdict, WallTime};
 pub use settings::CheckSettings;
 pub use study::Study;
@@ -196,7 +198,7 @@ fn certificate_files(cfg: &Config) -> Result<Vec<(ClaimId, String)>, NoCertifica
     Ok(files
         .iter()
         .filter_map(|f| {
-            let id = certify::manifest::role(&f.id)?.claim;
+            let id = spec::role(&f.id)?.claim;
             Some((id, format!("{}.json", f.id)))
         })
         .collect())

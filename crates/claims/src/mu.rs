@@ -4,7 +4,7 @@
 //! Evidence → verdict → text: [`evidence`] computes [`MuEvidence`] from the closed forms of
 //! [`wingcheck_theory`] (satisfiability decided in exact rational arithmetic; the best point's
 //! μ's re-checked exactly) and the clarabel cross-checks of [`wingcheck_theory::convex`]; its
-//! [`crate::evidence::Explain`] reads only that evidence ([`explain`]).
+//! [`crate::explain::Explain`] reads only that evidence ([`explain`]).
 
 mod explain;
 

@@ -16,7 +16,7 @@ pub fn check_runs(cfg: &Config, settings: &CheckSettings) -> Vec<Config> {
     let mut ftdo = cfg.clone();
     ftdo.control.kind = ControllerKind::Ftdo;
     // and their errors from its refinements (Study::zeta_errors)
-    let refined = crate::comparison::refinements(&ftdo);
+    let refined = crate::study::refine::refinements(&ftdo);
     runs.push(ftdo);
     runs.extend(refined);
     // UUB: the configured run, and the FTDO at the operating point (when (32) can hold)

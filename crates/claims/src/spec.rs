@@ -1,9 +1,12 @@
 //! The claim table: one spec per claim of the paper (its id, the paper's equations and theorem,
-//! the claim in words; the certificates it can rest on come from the verifier's roles). Every place that names a claim — the
-//! ledger rows, the report, `certify`/`verify`'s manifest, an inconclusive row, docs/ledger.md —
-//! reads it from here.
+//! the claim in words) and the certificate roles each claim can rest on ([`ROLES`]). Every place
+//! that names a claim — the ledger rows, the report, `certify`/`verify`'s manifest, an
+//! inconclusive row, docs/ledger.md — reads it from here.
 
 use serde::{Deserialize, Deserializer, Serialize};
+
+use crate::certify::facts::FactKind;
+use crate::certify::omega1;
 
 /// The claims of the paper, in the paper's order.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, schemars::JsonSchema)]
@@ -140,10 +143,10 @@ impl ClaimId {
     }
 
     /// Ids of the certificates (`<id>.json` in a proofs directory) the claim can rest on: the
-    /// verifier's own roles for it ([`crate::certify::manifest::ROLES`]); which of them
-    /// `certify` writes depends on the configuration.
+    /// verifier's own roles for it ([`ROLES`]); which of them `certify` writes depends on the
+    /// configuration.
     pub fn certificates(self) -> Vec<&'static str> {
-        crate::certify::manifest::ROLES.iter().filter(|r| r.claim == self).map(|r| r.id).collect()
+        ROLES.iter().filter(|r| r.claim == self).map(|r| r.id).collect()
     }
 
     /// The claim by its printed id.
@@ -156,6 +159,65 @@ impl std::fmt::Display for ClaimId {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.pad(self.name())
     }
+}
+
+/// Which weights a certificate of a role must carry.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum WeightsRule {
+    /// The configuration's a, b.
+    Config,
+    /// b = 1 and any a > 0 (a ratio a/b; W is linear in (a, b), so W(a, b) = b·W(a/b, 1)).
+    Ratio,
+    /// The fact does not depend on a, b and the file carries none (the ω₁ enclosure).
+    Independent,
+}
+
+/// One role in the certificate set: its id, the claim it supports, its fact and weights.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Role {
+    /// Certificate id (the file is `<id>.json`).
+    pub id: &'static str,
+    /// The paper's claim it supports.
+    pub claim: ClaimId,
+    /// The fact the certificate must prove.
+    pub fact: FactKind,
+    /// Which weights it must carry.
+    pub weights: WeightsRule,
+}
+
+const W_BOUNDS: ClaimId = ClaimId::WBounds;
+const MU_CONDITIONS: ClaimId = ClaimId::MuConditions;
+
+/// Every role the verifier knows: the certificates each claim can rest on
+/// ([`ClaimId::certificates`]).
+pub const ROLES: [Role; 7] = [
+    Role { id: "w-bounds-lower", claim: W_BOUNDS, fact: FactKind::WLowerBound, weights: WeightsRule::Config },
+    Role { id: "w-bounds-upper", claim: W_BOUNDS, fact: FactKind::WUpperBound, weights: WeightsRule::Config },
+    Role {
+        id: "w-bounds-indefinite",
+        claim: W_BOUNDS,
+        fact: FactKind::WNegativeDirection,
+        weights: WeightsRule::Config,
+    },
+    Role {
+        id: "w-bounds-ratio-above",
+        claim: W_BOUNDS,
+        fact: FactKind::WNegativeDirection,
+        weights: WeightsRule::Ratio,
+    },
+    Role { id: "w-bounds-ratio-below", claim: W_BOUNDS, fact: FactKind::WLowerBound, weights: WeightsRule::Ratio },
+    Role {
+        id: "mu-conditions-infeasible",
+        claim: MU_CONDITIONS,
+        fact: FactKind::Mu3Infeasible,
+        weights: WeightsRule::Config,
+    },
+    Role { id: omega1::ID, claim: W_BOUNDS, fact: FactKind::Omega1Enclosure, weights: WeightsRule::Independent },
+];
+
+/// The role with this id.
+pub fn role(id: &str) -> Option<&'static Role> {
+    ROLES.iter().find(|r| r.id == id)
 }
 
 #[cfg(test)]

@@ -4,6 +4,8 @@
 //! one study from several threads. A cached value is a pure function of its key, so caching
 //! never changes a result.
 
+pub mod refine;
+
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 
@@ -101,6 +103,16 @@ impl Study {
         })
     }
 
+    /// The refinement runs of `cfg` ([`refine::refinements`], [`Study::refinement`]): the
+    /// doubled grid's, dt/2's, and the larger of their eigenbasis round-off estimates (relative;
+    /// 0 where neither stepped in the eigenbasis).
+    pub fn refined_runs(&self, cfg: &Config) -> Result<(Arc<SimOutput>, Arc<SimOutput>, f64), ClaimsError> {
+        let [fine, half_dt] = refine::refinements(cfg);
+        let (fine, half_dt) = (self.refinement(&fine)?, self.refinement(&half_dt)?);
+        let roundoff = [&fine, &half_dt].iter().filter_map(|o| o.stats.eigenbasis_roundoff).fold(0.0, f64::max);
+        Ok((fine, half_dt, roundoff))
+    }
+
     fn cached(
         &self,
         map: &Mutex<HashMap<String, Shared>>,
@@ -150,15 +162,14 @@ impl Study {
     }
 
     /// The errors of ζ3, ζ4 ([`Study::disturbance_bounds`]) from the FTDO run's refinements on
-    /// the doubled grid and at dt/2 ([`crate::comparison::refinement_error`]; the same runs as
+    /// the doubled grid and at dt/2 ([`refine::refinement_error`]; the same runs as
     /// the comparison's FTDO refinements at the configured rule, so no extra simulation there).
     pub fn zeta_errors(&self, cfg: &Config) -> Result<[f64; 2], ClaimsError> {
         let mut c = cfg.clone();
         c.control.kind = ControllerKind::Ftdo;
         let base = self.simulate(&c)?;
-        let (fine, half_dt, roundoff) = crate::comparison::refined_runs(self, &c)?;
+        let (fine, half_dt, roundoff) = self.refined_runs(&c)?;
         let sup = wingcheck_sim::metrics::observer_error_sup;
-        Ok([0, 1]
-            .map(|ch| crate::comparison::refinement_error(sup(&base, ch), sup(&fine, ch), sup(&half_dt, ch), roundoff)))
+        Ok([0, 1].map(|ch| refine::refinement_error(sup(&base, ch), sup(&fine, ch), sup(&half_dt, ch), roundoff)))
     }
 }

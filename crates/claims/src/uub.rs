@@ -16,7 +16,7 @@ use wingcheck_sim::metrics::{max_abs_in, window_indices, Window};
 use wingcheck_sim::Discretisation;
 
 use crate::display::{ratio_of, Flag, Table};
-use crate::evidence::Explain;
+use crate::explain::Explain;
 use crate::mu::MuResult;
 use crate::settings::CheckSettings;
 use crate::study::Study;

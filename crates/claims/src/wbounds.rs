@@ -22,6 +22,7 @@
 //!    since the state lies in the true state space.
 
 mod explain;
+mod records;
 mod text;
 
 use num_rational::BigRational;
@@ -39,8 +40,9 @@ use wingcheck_theory::sdp::PencilSdpRow;
 use wingcheck_theory::{self as theory, Decision, Estimate};
 
 pub use explain::{
-    check, check_cancellable, evidence, evidence_cancellable, EnclosureEvidence, SdpRecord, WBounds, WBoundsEvidence,
+    check, check_cancellable, evidence, evidence_cancellable, EnclosureEvidence, WBounds, WBoundsEvidence,
 };
+pub use records::SdpRecord;
 pub use text::sdp_sentence;
 
 /// The printed constants of (26)–(28), exactly.

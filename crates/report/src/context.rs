@@ -7,7 +7,7 @@ use wingcheck_claims::{Basis, ClaimRow, Ledger, Verdict};
 use wingcheck_model::{Config, Quantity};
 
 use crate::accuracy::AccuracyRow;
-use crate::figure::{Figure, Part};
+use crate::figure::{claim_anchor, Figure, Part};
 use crate::links::Link;
 use crate::top::{pieces, Piece};
 use crate::ReportError;
@@ -255,11 +255,6 @@ pub struct Timing {
     pub name: String,
     /// Seconds, formatted.
     pub seconds: String,
-}
-
-/// Anchor of a claim's section.
-pub fn claim_anchor(id: &str) -> String {
-    format!("claim-{}", crate::figure::safe_name(id))
 }
 
 /// A number as the page shows it: label, formatted value with its unit, error or basis.

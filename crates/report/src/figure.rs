@@ -305,6 +305,11 @@ pub fn safe_name(s: &str) -> String {
     }
 }
 
+/// Anchor of a claim's section.
+pub fn claim_anchor(id: &str) -> String {
+    format!("claim-{}", safe_name(id))
+}
+
 /// A one-line plot: y(t).
 pub fn line_plot(name: &str, title: &str, y_label: &str, lines: Vec<(String, &[f64], Vec<f64>)>) -> PlotData {
     PlotData {

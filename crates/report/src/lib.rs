@@ -53,10 +53,9 @@ pub use stats::fmt_num;
 pub use top::command_text;
 
 use crate::context::{
-    assumptions, basis_tally, claim_anchor, row_assumptions, row_ctx, tally, Build, FigCtx, GroupCtx, Page, RowLinks,
-    Timing,
+    assumptions, basis_tally, row_assumptions, row_ctx, tally, Build, FigCtx, GroupCtx, Page, RowLinks, Timing,
 };
-use crate::figure::{safe_name, Caption, Chart, Figure};
+use crate::figure::{claim_anchor, safe_name, Caption, Chart, Figure};
 use crate::progress::{report, Tracker};
 
 /// The page template.

@@ -31,7 +31,18 @@ pub struct RunView<'a> {
     /// Its tip errors.
     pub err: &'a TipErrors,
     /// The ledger's bound t_f and reaching time t_reach per channel to mark (the FTDO's).
-    pub marks: [crate::paper::FiniteTimeMarks; 2],
+    pub marks: [FiniteTimeMarks; 2],
+}
+
+/// What a finite-time row states about one observer channel, for its |g̃| figure: the bound
+/// t_f of (38)/(39) and the reaching time t_reach, as the ledger prints them (one symbol, one
+/// value: the figure shows the ledger's numbers).
+#[derive(Debug, Clone, Default)]
+pub struct FiniteTimeMarks {
+    /// The bound t_f1 or t_f2.
+    pub bound: Option<wingcheck_model::Quantity>,
+    /// The Filippov reaching time t_reach with its error.
+    pub reach: Option<wingcheck_model::Quantity>,
 }
 
 /// The horizon, the late window and the uncontrolled run.

@@ -4,10 +4,10 @@
 
 use serde::Serialize;
 use wingcheck_claims::certify::facts::FactKind;
-use wingcheck_claims::certify::manifest::{role, WeightsRule};
+use wingcheck_claims::spec::{role, WeightsRule};
 use wingcheck_claims::{ClaimId, Ledger};
 
-use crate::context::claim_anchor;
+use crate::figure::claim_anchor;
 
 /// A link: where to and the words.
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -7,7 +7,7 @@ use wingcheck_sim::SimOutput;
 
 use crate::chart::Heatmap;
 use crate::figure::{Caption, Chart, Figure};
-use crate::lines::{paired, Frame, RunView};
+use crate::lines::{paired, FiniteTimeMarks, Frame, RunView};
 use crate::runs::{Runs, TipErrors};
 use crate::stats::{diff, fmt_num, max_abs};
 
@@ -328,17 +328,6 @@ pub fn comparison_figures(cfg: &Config, runs: &Runs) -> Vec<Figure> {
         });
     }
     figs
-}
-
-/// What a finite-time row states about one observer channel, for its |g̃| figure: the bound
-/// t_f of (38)/(39) and the reaching time t_reach, as the ledger prints them (one symbol, one
-/// value: the figure shows the ledger's numbers).
-#[derive(Debug, Clone, Default)]
-pub struct FiniteTimeMarks {
-    /// The bound t_f1 or t_f2.
-    pub bound: Option<wingcheck_model::Quantity>,
-    /// The Filippov reaching time t_reach with its error.
-    pub reach: Option<wingcheck_model::Quantity>,
 }
 
 /// The bounds t_f1, t_f2 of (38)/(39) and the reaching times t_reach as the ledger's

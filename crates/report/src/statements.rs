@@ -12,7 +12,7 @@ use wingcheck_claims::wbounds::WBoundsEvidence;
 use wingcheck_claims::{Basis, ClaimId, ClaimRow, Evidence, Ledger, Verdict};
 use wingcheck_model::Quantity;
 
-use crate::context::claim_anchor;
+use crate::figure::claim_anchor;
 
 /// One statement of the paper against what was measured.
 #[derive(Debug, Clone, Serialize)]

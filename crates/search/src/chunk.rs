@@ -18,7 +18,7 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 
 use crate::metric::METRICS;
-use crate::point::{PointResult, Status};
+use crate::point::{PointResult, PointVerdicts, Status};
 use crate::store::{chunk_path, read};
 use crate::{Search, SearchError};
 
@@ -271,7 +271,7 @@ pub enum ChunkProblem {
         index: usize,
         /// The first difference.
         #[source]
-        why: crate::verify::PointDifference,
+        why: PointDifference,
     },
 }
 
@@ -329,4 +329,53 @@ pub enum PointProblem {
         /// The time (s).
         seconds: f64,
     },
+}
+
+/// How a stored point differs from its recomputation: the first deterministic field that
+/// is not the same, bit for bit ([`difference`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum PointDifference {
+    /// The swept values.
+    #[error("values {stored:?}, recomputed {fresh:?}")]
+    Values {
+        /// Stored values.
+        stored: Vec<String>,
+        /// Recomputed values.
+        fresh: Vec<String>,
+    },
+    /// The status or its message.
+    #[error("status {} {stored_message:?}, recomputed {} {fresh_message:?}", stored.name(), fresh.name())]
+    Status {
+        /// Stored status.
+        stored: Status,
+        /// Stored message.
+        stored_message: String,
+        /// Recomputed status.
+        fresh: Status,
+        /// Recomputed message.
+        fresh_message: String,
+    },
+    /// The theory verdicts.
+    #[error("verdicts {stored:?}, recomputed {fresh:?}")]
+    Verdicts {
+        /// Stored verdicts.
+        stored: PointVerdicts,
+        /// Recomputed verdicts.
+        fresh: PointVerdicts,
+    },
+    /// A metric (absent where not finite, as the chunk writes it).
+    #[error("{name} = {}, recomputed {}", shown(*stored), shown(*fresh))]
+    Metric {
+        /// The metric's column name.
+        name: String,
+        /// Stored value.
+        stored: Option<f64>,
+        /// Recomputed value.
+        fresh: Option<f64>,
+    },
+}
+
+/// A metric's value as [`PointDifference::Metric`] prints it.
+fn shown(x: Option<f64>) -> String {
+    x.map_or("absent".to_string(), |x| format!("{x}"))
 }

@@ -12,7 +12,7 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
-use crate::modal::RunCache;
+use crate::modal::{RunCache, CACHE_POINTS};
 use crate::point::{PointResult, Status};
 use crate::verify::{ChunkCheck, Verifier};
 use crate::{finalize, limits, store, Manifest, Progress, RunControl, RunSummary, Search, SearchError, TheoryCache};
@@ -168,11 +168,6 @@ fn clean_up(out: &Path, found: Found, force: bool) {
         }
     }
 }
-
-/// Points evaluated with one set of caches ([`TheoryCache`], [`RunCache`]) before they are
-/// dropped and rebuilt: bounds their memory (the verdict cache holds ≈ 300 bytes per point)
-/// while a sweep over wing keys rebuilds each wing's basis and pencil only once per window.
-pub(crate) const CACHE_POINTS: usize = 1024;
 
 /// Run (this shard of) a search into `out`, resuming from chunks already there; when every
 /// chunk of the search is present, write the final files ([`finalize`]). Refused before any

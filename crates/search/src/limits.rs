@@ -252,7 +252,7 @@ pub fn estimate_with_threads(base: &Config, axes: &[Axis], threads: usize) -> Wo
 
 /// Core seconds of g_hmax (φ on a 1e-4 s grid over the horizon, `wingcheck_model::work::g_hmax_seconds`,
 /// at the longest horizon): the theory cache computes it once per disturbance, span and horizon
-/// in each window of [`crate::exec::CACHE_POINTS`] points, and each thread may compute it once
+/// in each window of [`crate::modal::CACHE_POINTS`] points, and each thread may compute it once
 /// more while another is at it.
 fn g_hmax_seconds(base: &Config, axes: &[Axis], points: u128, threads: usize) -> f64 {
     let longest = axes.iter().filter(|a| a.key == "horizon.t_end").fold(base.clone(), |most, a| {
@@ -262,7 +262,7 @@ fn g_hmax_seconds(base: &Config, axes: &[Axis], points: u128, threads: usize) ->
             .fold(most, |m, c| if c.horizon.t_end > m.horizon.t_end { c } else { m })
     });
     let keys = distinct_values(axes, &["disturbance.distributed", "wing.span", "horizon.t_end"]);
-    let windows = (points as f64 / crate::exec::CACHE_POINTS as f64).ceil().max(1.0);
+    let windows = (points as f64 / crate::modal::CACHE_POINTS as f64).ceil().max(1.0);
     let per_window = (keys + threads as f64).min(points as f64);
     wingcheck_model::work::g_hmax_seconds(&longest) * per_window * windows
 }

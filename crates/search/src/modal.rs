@@ -26,6 +26,11 @@ pub use wingcheck_sim::modal::ModalBasis;
 /// search's memory estimate counts them).
 pub const CACHE_ENTRIES: usize = 16;
 
+/// Points evaluated with one set of caches ([`crate::TheoryCache`], [`RunCache`]) before they are
+/// dropped and rebuilt: bounds their memory (the verdict cache holds ≈ 300 bytes per point)
+/// while a sweep over wing keys rebuilds each wing's basis and pencil only once per window.
+pub(crate) const CACHE_POINTS: usize = 1024;
+
 /// sup |g(t_k) − ĝ_k| over the output samples of `cfg` (k a multiple of `samples_per_output`,
 /// and k = K), per channel: ζ3 (N), ζ4 (N m) of (32) as
 /// `wingcheck_claims::mu::disturbance_bounds` defines them (sup over the FTDO run's series).

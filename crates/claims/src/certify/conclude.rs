@@ -1,5 +1,5 @@
 //! What a verified set concludes: the manifest's claims checked against the verifier's
-//! [`ROLES`](super::manifest::ROLES) table (every required fact listed, every listed fact present
+//! [`ROLES`](crate::spec::ROLES) table (every required fact listed, every listed fact present
 //! and used), and the statements the verifier writes itself from the checked facts.
 
 use std::collections::BTreeSet;
@@ -8,10 +8,10 @@ use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 
 use super::facts::{mu3_system, show, CheckedFact, ExactParams};
-use super::manifest::{bad, role, Manifest, VerifiedCert, INDEX, ROLES};
+use super::manifest::{bad, Manifest, VerifiedCert, INDEX};
 use super::omega1::{self, Omega1Enclosure, Position};
 use super::CertifyError;
-use crate::spec::ClaimId;
+use crate::spec::{role, ClaimId, ROLES};
 
 const W_BOUNDS: ClaimId = ClaimId::WBounds;
 const MU_CONDITIONS: ClaimId = ClaimId::MuConditions;

@@ -140,6 +140,27 @@ pub struct ExactParams {
 /// Names of [`ExactParams::wing`] entries.
 pub const WING_FIELDS: [&str; 7] = ["span", "rho", "rho_xc", "ei", "gj", "ip", "xi"];
 
+/// The exact parameters a configuration gives (its decimals as the user wrote them).
+pub fn config_params(cfg: &wingcheck_model::Config) -> Result<ExactParams, CertifyError> {
+    let w = &cfg.wing;
+    let q = |field: &str, x: f64| {
+        parse_rational_bounded(&super::format_decimal(x), &NumberLimits::CERTIFICATE)
+            .map_err(|e| CertifyError::Invalid { field: field.into(), message: format!("cannot be certified: {e}") })
+    };
+    Ok(ExactParams {
+        wing: [
+            q("wing.span", w.span)?,
+            q("wing.rho", w.rho)?,
+            q("wing.rho_xc", w.rho_xc)?,
+            q("wing.ei", w.ei)?,
+            q("wing.gj", w.gj)?,
+            q("wing.ip", w.ip)?,
+            q("wing.xi", w.xi)?,
+        ],
+        weights: [q("control.a", cfg.control.a)?, q("control.b", cfg.control.b)?],
+    })
+}
+
 /// What the verifier established, in its own words, with the numbers it checked.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CheckedFact {

@@ -2,12 +2,12 @@
 //!
 //! `index.json` names the configuration the set was made for (the whole config and its
 //! SHA-256), the claims and the facts each needs, and every certificate file with the SHA-256
-//! of its bytes. [`verify_set`] accepts a directory only if
+//! of its bytes. [`verify_set`](super::verify_set) accepts a directory only if
 //! * it holds exactly `index.json` and the files it lists (nothing missing, nothing extra);
 //! * every file is `<id>.json`, its `id` is the listed one and its bytes hash to the listed hash;
 //! * every certificate was made for the manifest's configuration (its wing parameters, and the
 //!   weights a, b where the role says so, equal the config's exactly);
-//! * each claim lists at least the facts the verifier's own [`ROLES`] table requires, and every
+//! * each claim lists at least the facts the verifier's own [`ROLES`](crate::spec::ROLES) table requires, and every
 //!   certificate re-derives (see [`super::facts`]).
 
 use std::collections::BTreeSet;
@@ -16,13 +16,12 @@ use std::path::Path;
 use num_rational::BigRational;
 use num_traits::One;
 use serde::{Deserialize, Serialize};
-use wingcheck_cert::exact::{parse_rational_bounded, NumberLimits};
 use wingcheck_model::Config;
 
 use super::facts::{show, CertificateFile, CheckedFact, ExactParams, FactKind, MAX_FILE_BYTES};
-use super::omega1::{self, Omega1Certificate, Omega1Enclosure};
-use super::{format_decimal, CertifyError};
-use crate::spec::ClaimId;
+use super::omega1::Omega1Certificate;
+use super::CertifyError;
+use crate::spec::{role, ClaimId, Role, WeightsRule};
 
 /// File name of the manifest.
 pub const INDEX: &str = "index.json";
@@ -31,69 +30,11 @@ pub const INDEX_FORMAT: &str = "wingcheck-proofs";
 /// Version of the manifest.
 pub const INDEX_VERSION: u64 = 1;
 
-/// Which weights a certificate of a role must carry.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum WeightsRule {
-    /// The configuration's a, b.
-    Config,
-    /// b = 1 and any a > 0 (a ratio a/b; W is linear in (a, b), so W(a, b) = b·W(a/b, 1)).
-    Ratio,
-    /// The fact does not depend on a, b and the file carries none (the ω₁ enclosure).
-    Independent,
-}
-
-/// One role in the certificate set: its id, the claim it supports, its fact and weights.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Role {
-    /// Certificate id (the file is `<id>.json`).
-    pub id: &'static str,
-    /// The paper's claim (from the claim table, [`crate::spec`]).
-    pub claim: ClaimId,
-    /// The fact the certificate must prove.
-    pub fact: FactKind,
-    /// Which weights it must carry.
-    pub weights: WeightsRule,
-}
-
-const W_BOUNDS: ClaimId = ClaimId::WBounds;
-const MU_CONDITIONS: ClaimId = ClaimId::MuConditions;
-
-/// Every role the verifier knows.
-pub const ROLES: [Role; 7] = [
-    Role { id: "w-bounds-lower", claim: W_BOUNDS, fact: FactKind::WLowerBound, weights: WeightsRule::Config },
-    Role { id: "w-bounds-upper", claim: W_BOUNDS, fact: FactKind::WUpperBound, weights: WeightsRule::Config },
-    Role {
-        id: "w-bounds-indefinite",
-        claim: W_BOUNDS,
-        fact: FactKind::WNegativeDirection,
-        weights: WeightsRule::Config,
-    },
-    Role {
-        id: "w-bounds-ratio-above",
-        claim: W_BOUNDS,
-        fact: FactKind::WNegativeDirection,
-        weights: WeightsRule::Ratio,
-    },
-    Role { id: "w-bounds-ratio-below", claim: W_BOUNDS, fact: FactKind::WLowerBound, weights: WeightsRule::Ratio },
-    Role {
-        id: "mu-conditions-infeasible",
-        claim: MU_CONDITIONS,
-        fact: FactKind::Mu3Infeasible,
-        weights: WeightsRule::Config,
-    },
-    Role { id: omega1::ID, claim: W_BOUNDS, fact: FactKind::Omega1Enclosure, weights: WeightsRule::Independent },
-];
-
-/// The role with this id.
-pub fn role(id: &str) -> Option<&'static Role> {
-    ROLES.iter().find(|r| r.id == id)
-}
-
 /// A claim and the certificate ids it needs.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ClaimEntry {
-    /// The claim (one of the [`ROLES`] claims), by its id (`W-bounds`).
+    /// The claim (one of the [`ROLES`](crate::spec::ROLES) claims), by its id (`W-bounds`).
     pub claim: ClaimId,
     /// Certificate ids.
     pub needs: Vec<String>,
@@ -136,27 +77,6 @@ pub fn config_hash(cfg: &Config) -> String {
     cfg.sha256()
 }
 
-/// The exact parameters a configuration gives (its decimals as the user wrote them).
-pub fn config_params(cfg: &Config) -> Result<ExactParams, CertifyError> {
-    let w = &cfg.wing;
-    let q = |field: &str, x: f64| {
-        parse_rational_bounded(&format_decimal(x), &NumberLimits::CERTIFICATE)
-            .map_err(|e| CertifyError::Invalid { field: field.into(), message: format!("cannot be certified: {e}") })
-    };
-    Ok(ExactParams {
-        wing: [
-            q("wing.span", w.span)?,
-            q("wing.rho", w.rho)?,
-            q("wing.rho_xc", w.rho_xc)?,
-            q("wing.ei", w.ei)?,
-            q("wing.gj", w.gj)?,
-            q("wing.ip", w.ip)?,
-            q("wing.xi", w.xi)?,
-        ],
-        weights: [q("control.a", cfg.control.a)?, q("control.b", cfg.control.b)?],
-    })
-}
-
 /// Reads at most [`MAX_FILE_BYTES`] of a regular file ([`wingcheck_io::read_regular`]: the type
 /// is checked before the file is opened — opening a FIFO for reading blocks until a writer
 /// appears — and again on the file opened non-blocking).
@@ -180,22 +100,6 @@ pub struct VerifiedCert {
     pub role: &'static Role,
     /// What was checked.
     pub fact: CheckedFact,
-}
-
-/// A verified set.
-#[derive(Debug, Clone)]
-pub struct VerifiedSet {
-    /// The configuration (validated).
-    pub config: Config,
-    /// Its hash.
-    pub config_sha256: String,
-    /// The certificates, in manifest order.
-    pub certs: Vec<VerifiedCert>,
-    /// Per claim, the conclusion the verifier draws from its facts.
-    pub conclusions: Vec<(String, String)>,
-    /// The checked enclosure ω̲₁ ≤ ω₁ ≤ ω̄₁ (a set always has one; `None` only if absent,
-    /// which [`verify_set`] refuses).
-    pub omega1: Option<Omega1Enclosure>,
 }
 
 pub(super) fn bad(field: &str, message: impl Into<String>) -> CertifyError {
@@ -247,45 +151,9 @@ pub fn config_differences(set: &Config, expected: &Config) -> Vec<String> {
         .collect()
 }
 
-/// Verifies the certificate set in `dir` (see the module documentation) for whatever
-/// configuration its manifest names.
-pub fn verify_set(dir: &Path) -> Result<VerifiedSet, CertifyError> {
-    verify_set_for(dir, None)
-}
-
-/// [`verify_set`], and with `expected` the set must have been made for exactly that
-/// configuration (its hash), else it is refused naming the keys that differ: any self-consistent
-/// set of some configuration verifies, so only a pinned verify says the facts are about yours.
-pub fn verify_set_for(dir: &Path, expected: Option<&Config>) -> Result<VerifiedSet, CertifyError> {
-    let (manifest, cfg) = parse_manifest(&read_bounded(&dir.join(INDEX))?)?;
-    if let Some(want) = expected {
-        check_pinned(&manifest, &cfg, want)?;
-    }
-    // everything that needs no arithmetic first: the claim list, the listing
-    super::conclude::check_claim_list(&manifest)?;
-    let cfg_params = config_params(&cfg)?;
-    check_listing(dir, &manifest)?;
-    let (parsed, enclosure) = parse_certificates(dir, &manifest, &cfg_params)?;
-    check_one_discretisation(&parsed)?;
-    // Pass 2: the exact checks.
-    let mut certs: Vec<VerifiedCert> = Vec::new();
-    for (role, file, name) in parsed {
-        let fact = file.check().map_err(|err| err.in_file(name))?;
-        certs.push(VerifiedCert { role, fact });
-    }
-    let mut omega1 = None;
-    if let Some((role, file, name)) = enclosure {
-        let (fact, e) = file.check(&cfg_params.weights).map_err(|err| err.in_file(name))?;
-        certs.push(VerifiedCert { role, fact });
-        omega1 = Some(e);
-    }
-    let conclusions = super::conclude::conclusions(&manifest, &cfg_params, &certs, omega1.as_ref())?;
-    Ok(VerifiedSet { config: cfg, config_sha256: manifest.config_sha256, certs, conclusions, omega1 })
-}
-
 /// A pinned verify: the set must have been made for exactly `want` (its hash), else refused
 /// naming the keys that differ.
-fn check_pinned(manifest: &Manifest, cfg: &Config, want: &Config) -> Result<(), CertifyError> {
+pub(super) fn check_pinned(manifest: &Manifest, cfg: &Config, want: &Config) -> Result<(), CertifyError> {
     let hash = config_hash(want);
     if hash != manifest.config_sha256 {
         let diff = config_differences(cfg, want);
@@ -304,7 +172,7 @@ fn check_pinned(manifest: &Manifest, cfg: &Config, want: &Config) -> Result<(), 
 }
 
 /// The directory holds exactly index.json and the listed files, each listed once.
-fn check_listing(dir: &Path, manifest: &Manifest) -> Result<(), CertifyError> {
+pub(super) fn check_listing(dir: &Path, manifest: &Manifest) -> Result<(), CertifyError> {
     let listed: BTreeSet<&str> = manifest.certificates.iter().map(|e| e.file.as_str()).collect();
     if listed.len() != manifest.certificates.len() {
         return Err(bad(INDEX, "a file is listed twice"));
@@ -321,12 +189,12 @@ fn check_listing(dir: &Path, manifest: &Manifest) -> Result<(), CertifyError> {
 }
 
 /// A listed certificate parsed and matched to its role, not yet checked.
-type Parsed<'a, F> = (&'static Role, F, &'a str);
+pub(super) type Parsed<'a, F> = (&'static Role, F, &'a str);
 
 /// Pass 1, no arithmetic beyond bounded parsing: names, hashes, ids, roles, the set's wing and
 /// the weights each role asks for. The ω₁ enclosure is returned apart (its own file format).
 #[allow(clippy::type_complexity)]
-fn parse_certificates<'a>(
+pub(super) fn parse_certificates<'a>(
     dir: &Path,
     manifest: &'a Manifest,
     cfg_params: &ExactParams,
@@ -394,7 +262,7 @@ fn parse_certificates<'a>(
 
 /// The bounds (statements about one Galerkin space) share one discretisation; a negative
 /// direction is a state of the PDE whatever its space, so it may come from a finer one.
-fn check_one_discretisation(parsed: &[Parsed<'_, CertificateFile>]) -> Result<(), CertifyError> {
+pub(super) fn check_one_discretisation(parsed: &[Parsed<'_, CertificateFile>]) -> Result<(), CertifyError> {
     let mut sizes = Vec::new();
     for (role, file, name) in parsed {
         if file.fact != FactKind::Mu3Infeasible {

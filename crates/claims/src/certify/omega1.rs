@@ -558,6 +558,6 @@ fn unrepresentable(cfg: &Config, e: CertifyError) -> CertifyError {
 
 /// The exact ratio a/b of a configuration (its decimals), if b > 0.
 pub fn config_ratio(cfg: &Config) -> Result<Option<BigRational>, CertifyError> {
-    let [a, b] = super::manifest::config_params(cfg)?.weights;
+    let [a, b] = super::facts::config_params(cfg)?.weights;
     Ok(b.is_positive().then(|| a / b))
 }

@@ -5,7 +5,7 @@ use wingcheck_sim::SimOutput;
 
 use super::{compute, other_rule, Computed, Metrics};
 use crate::display::{Flag, Maybe, Table, Text, NEVER_SETTLED};
-use crate::evidence::Explain;
+use crate::explain::Explain;
 use crate::settings::CheckSettings;
 use crate::study::Study;
 use crate::{Basis, ClaimId, ClaimRow, ClaimsError, Line, PlotData, Verdict};
@@ -49,7 +49,7 @@ pub struct RunRecord {
     pub gtilde2_settle: Maybe,
 }
 
-/// What a simulated metric's ± covers ([`super::refinement_error`]).
+/// What a simulated metric's ± covers ([`crate::study::refine::refinement_error`]).
 const REFINED: [ErrorSource; 3] = [ErrorSource::Grid, ErrorSource::TimeStep, ErrorSource::RoundOff];
 
 impl RunRecord {

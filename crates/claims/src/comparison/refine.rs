@@ -1,72 +1,10 @@
 //! The ± of the comparison's simulation values: every run of the row again on the doubled grid
-//! and at dt/2 (each stepping the run's own scheme, [`super::same_scheme`]), every metric's
-//! error from its changes ([`refinement_error`]), and the errors of the ratios and relative
+//! and at dt/2 ([`crate::study::refine`]), every metric's error from its changes
+//! ([`metric_errors`], by [`refinement_error`]), and the errors of the ratios and relative
 //! differences formed from them ([`quotient_error`]).
-//!
-//! The refinements are runs for their series only ([`crate::Study::refinement`]): no initial-layer
-//! re-run and no sub-step probe, and the exponential scheme in the loop's eigenbasis where it
-//! passes. A peak's change to its refinements therefore also holds what the layer and the
-//! probe add to the configured run's peak: a ± at least as wide as the peak's resolution needs.
 
-use std::sync::Arc;
-
-use wingcheck_model::Config;
-use wingcheck_sim::SimOutput;
-
-use crate::ClaimsError;
-
-use super::{same_scheme, Metrics, EXPLICIT_RMS_GRID_FACTOR};
-
-/// The refinements of `cfg`: the doubled grid, then dt/2, each stepping `cfg`'s scheme.
-pub fn refinements(cfg: &Config) -> [Config; 2] {
-    [
-        same_scheme(wingcheck_model::work::refined_in_space(cfg), cfg),
-        same_scheme(wingcheck_model::work::refined_in_time(cfg), cfg),
-    ]
-}
-
-/// The refinement runs of `cfg` through `study` ([`refinements`], [`crate::Study::refinement`]):
-/// the doubled grid's, dt/2's, and the larger of their eigenbasis round-off estimates
-/// (relative; 0 where neither stepped in the eigenbasis).
-pub fn refined_runs(study: &crate::Study, cfg: &Config) -> Result<(Arc<SimOutput>, Arc<SimOutput>, f64), ClaimsError> {
-    let [fine, half_dt] = refinements(cfg);
-    let (fine, half_dt) = (study.refinement(&fine)?, study.refinement(&half_dt)?);
-    let roundoff = [&fine, &half_dt].iter().filter_map(|o| o.stats.eigenbasis_roundoff).fold(0.0, f64::max);
-    Ok((fine, half_dt, roundoff))
-}
-
-/// Error of a metric with value `value` on the configured grid and step, `fine` on the doubled
-/// grid and `half_dt` at dt/2: the grid part [`EXPLICIT_RMS_GRID_FACTOR`]·|Δ| (the order-1 tail
-/// with a 1.25 margin: RMS values of chattering commands converge in h at orders 1.3–1.8, a
-/// settling time or a peak may converge slower still), the time-step part
-/// [`wingcheck_sim::RICHARDSON_2`]·|Δ| (order 2 in dt), a round-off floor of
-/// [`wingcheck_sim::layer::PEAK_ROUND_OFF`] of the value, and the refinements' eigenbasis
-/// round-off (`roundoff`, relative, 0 where they stepped otherwise) through the same factors.
-pub fn refinement_error(value: f64, fine: f64, half_dt: f64, roundoff: f64) -> f64 {
-    let (grid, time) = (EXPLICIT_RMS_GRID_FACTOR, wingcheck_sim::RICHARDSON_2);
-    grid * (value - fine).abs()
-        + time * (value - half_dt).abs()
-        + wingcheck_sim::layer::PEAK_ROUND_OFF * value.abs()
-        + (grid + time) * roundoff * value.abs()
-}
-
-/// Error of a time that a run may or may not reach (a settling time, read off samples `sampling`
-/// s apart: the crossing lies within one spacing before it): [`refinement_error`] plus the
-/// spacing where the run and both refinements reach it; where only some do, the value itself
-/// (its ± as large as it: unresolved); `None` where the run does not.
-pub fn reached_error(
-    value: Option<f64>,
-    fine: Option<f64>,
-    half_dt: Option<f64>,
-    roundoff: f64,
-    sampling: f64,
-) -> Option<f64> {
-    match (value, fine, half_dt) {
-        (Some(v), Some(f), Some(h)) => Some(refinement_error(v, f, h, roundoff) + sampling),
-        (Some(v), _, _) => Some(v.abs()),
-        (None, _, _) => None,
-    }
-}
+use super::Metrics;
+use crate::study::refine::{reached_error, refinement_error};
 
 /// The errors of every metric of a run (a [`Metrics`] holding, per field, the error of that
 /// field of `base`) from its values on the doubled grid (`fine`) and at dt/2 (`half_dt`);
@@ -129,16 +67,5 @@ mod tests {
         }
         // a denominator whose interval reaches 0: unresolved (the ± as large as the value)
         assert!(quotient_error(1e-3, 2e-3, 5.0, 0.0) >= 5.0 / 1e-3);
-    }
-
-    /// A metric that converges at order 2 in h and in dt: the bar from N, 2N and dt/2 covers the
-    /// exact error of the configured value (a synthetic value v(h, dt) = v* + c h² + d dt²).
-    #[test]
-    fn refinement_error_covers_a_second_order_value() {
-        let exact = 1.0;
-        let v = |h: f64, dt: f64| exact + 0.3 * h * h - 0.7 * dt * dt;
-        let (h, dt) = (0.1, 0.05);
-        let e = refinement_error(v(h, dt), v(h / 2.0, dt), v(h, dt / 2.0), 0.0);
-        assert!((v(h, dt) - exact).abs() <= e, "{} > {e}", (v(h, dt) - exact).abs());
     }
 }

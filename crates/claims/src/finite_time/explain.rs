@@ -4,7 +4,7 @@ use wingcheck_model::{Config, ErrorSource, ObserverRule, Quantity, Unit, ValueBa
 
 use super::{channel_index, channel_unit, compute, plots, reference_period, Channel, Computed};
 use crate::display::{Flag, Maybe, Table, Text};
-use crate::evidence::Explain;
+use crate::explain::Explain;
 use crate::settings::CheckSettings;
 use crate::{Basis, ClaimId, ClaimRow, ClaimsError, Verdict};
 

@@ -232,6 +232,12 @@ pub fn digital_config(cfg: &Config, rule: ObserverRule, period: f64, t_end: f64)
     wingcheck_model::work::finite_time_config(cfg, rule, period, t_end)
 }
 
+/// σ(0) of channel `ix` (0: bending, 1: torsion) from the configured initial state.
+pub fn sigma0_other(cfg: &Config, ix: usize) -> Result<f64, ClaimsError> {
+    let c = digital_config(cfg, cfg.observer.rule, cfg.observer.sample_period, cfg.horizon.t_end);
+    Ok(wingcheck_sim::Stepper::new(&c)?.channels[ix].sigma)
+}
+
 /// Run the closed loop (FTDO, `rule`, hold `period`) over [0, `t_end`] sample by sample and
 /// measure σ's reaching time and the chatter of ĝ and τ over the last `window` seconds.
 /// `trace_from`: keep per-sample traces from this time on (None: no traces). `basis`: the modal

@@ -4,7 +4,7 @@ use wingcheck_model::{Config, ErrorSource, Quantity, Unit, ValueBasis};
 
 use super::{compute, Computed};
 use crate::display::{Flag, Table, Text};
-use crate::evidence::Explain;
+use crate::explain::Explain;
 use crate::settings::CheckSettings;
 use crate::study::Study;
 use crate::{Basis, ClaimId, ClaimRow, ClaimsError, Line, PlotData, Verdict};

@@ -6,12 +6,13 @@ use wingcheck_model::{Config, ErrorSource, Quantity, Unit, ValueBasis};
 use super::{certified_sign_unshown, compute_cancellable, sdp_wall_times, Computed};
 use crate::certify::omega1::{EnclosureSummary, Position};
 use crate::display::{Fact, Flag, Table, Text};
-use crate::evidence::Explain;
+use crate::explain::Explain;
 use crate::settings::CheckSettings;
 use crate::{Basis, ClaimId, ClaimRow, ClaimsError, Verdict, WallTime};
 use wingcheck_theory::sdp::PencilSdpRow;
 use wingcheck_theory::{self as theory, Decision};
 
+use super::records::{GalerkinRecord, SdpRecord};
 use super::text::{fmt, refinement_plot, sdp_sentence};
 
 /// What the W-bounds row found, reused by the mu-conditions and UUB rows.
@@ -23,52 +24,6 @@ pub struct WBounds {
     pub evidence: WBoundsEvidence,
     /// Wall times of the SDP cross-check.
     pub wall: Vec<WallTime>,
-}
-
-/// One element count of the W/κ refinement study.
-#[derive(Debug, Clone, PartialEq, serde::Serialize, schemars::JsonSchema)]
-pub struct GalerkinRecord {
-    /// N.
-    pub elements: Quantity,
-    /// λ2(N) = min W/κ on the N-element space (≥ λ2*).
-    pub lambda2: Quantity,
-    /// λ1(N) = max W/κ on it (≤ λ1*).
-    pub lambda1: Quantity,
-}
-
-/// One element count of the SDP cross-check.
-#[derive(Debug, Clone, PartialEq, serde::Serialize, schemars::JsonSchema)]
-pub struct SdpRecord {
-    /// N.
-    pub elements: Quantity,
-    /// λ2 from clarabel (absent when it returned no point).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub lambda2_sdp: Option<Quantity>,
-    /// λ2(N) from the generalised eigenvalues at the same N.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub lambda2_eigenvalue: Option<Quantity>,
-    /// λ1 from clarabel.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub lambda1_sdp: Option<Quantity>,
-    /// λ1(N) from the generalised eigenvalues.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub lambda1_eigenvalue: Option<Quantity>,
-    /// max |W/κ| at this N (the scale of the re-verification tolerance).
-    pub scale: Quantity,
-    /// Largest |SDP − eigenvalue| over both sides, relative to max |W/κ|.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub difference: Option<Quantity>,
-    /// clarabel's status, both sides.
-    pub status: Text,
-    /// Interior-point iterations, both sides.
-    pub iterations: Quantity,
-    /// Formulations tried, both sides (2 when the first point was rescaled and solved again).
-    pub attempts: Quantity,
-    /// Both sides solved, re-verified and agreeing with the eigenvalues.
-    pub accepted: Flag,
-    /// Why not, when not.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub reason: Option<Text>,
 }
 
 impl SdpRecord {
@@ -582,7 +537,7 @@ pub fn check_cancellable(
         ),
         "the threshold ω₁: W ≻ 0 iff a/b < ω₁ for the continuous model (the per-mode argument in model.md); decided by the certified enclosure ω̲₁ ≤ ω₁ ≤ ω̄₁ (omega1-enclosure.json: a Rayleigh quotient above, the trace of the compliance operator with exact inertia counts below) when a/b lies outside it, else by the converged fundamental frequency (Romberg over uniform FE meshes 16, 32, …, with its error estimate); the Galerkin value on the finest space, an upper bound (Rayleigh–Ritz), is a cross-check".into(),
     ];
-    let plots = vec![refinement_plot(&e)];
+    let plots = vec![refinement_plot(&e.lambda_by_elements.rows, &e.a, &e.b, &e.lambda2_tight, &e.lambda1_tight)];
     let row = ClaimRow::decided(ClaimId::WBounds, e.clone(), assumptions, plots);
     Ok(WBounds { row, evidence: e, wall })
 }

@@ -3,7 +3,7 @@
 
 use wingcheck_model::Quantity;
 
-use super::explain::{SdpRecord, WBoundsEvidence};
+use super::records::{GalerkinRecord, SdpRecord};
 use crate::{Line, PlotData};
 
 /// A quantity's value as the row's sentences print it.
@@ -35,18 +35,24 @@ pub fn sdp_sentence(rows: &[SdpRecord]) -> String {
     }
 }
 
-/// λ2(N) and λ1(N) against the Galerkin elements N, with the extrapolated values in the title.
-pub(super) fn refinement_plot(e: &WBoundsEvidence) -> PlotData {
-    let rows = &e.lambda_by_elements.rows;
+/// λ2(N) and λ1(N) (`rows`) against the Galerkin elements N, with the weights `a`, `b` and the
+/// extrapolated values `lambda2`, `lambda1` in the title.
+pub(super) fn refinement_plot(
+    rows: &[GalerkinRecord],
+    a: &Quantity,
+    b: &Quantity,
+    lambda2: &Quantity,
+    lambda1: &Quantity,
+) -> PlotData {
     let x: Vec<f64> = rows.iter().map(|r| r.elements.value).collect();
     PlotData {
         name: "w-bounds-refinement".into(),
         title: format!(
             "Tight bounds of W/κ against the Galerkin elements N (a = {}, b = {}); extrapolated λ2* = {}, λ1* = {}",
-            fmt(&e.a),
-            fmt(&e.b),
-            fmt(&e.lambda2_tight),
-            fmt(&e.lambda1_tight)
+            fmt(a),
+            fmt(b),
+            fmt(lambda2),
+            fmt(lambda1)
         ),
         x_label: "elements N".into(),
         y_label: "W/κ extremes (J s)".into(),

@@ -34,12 +34,12 @@
 
 use faer::{c64, Mat};
 
-use super::exact::{closed_loop, LoopCoefficients, INPUTS};
+use super::closed_loop::{closed_loop, LoopCoefficients, INPUTS};
 use super::gemv::RowMajor;
 use super::layout::{stack, Half, Layout};
-use super::loop_eigen::LoopEigen;
+use super::loop_eigen::{within, LoopEigen, Refused};
 use super::lyapunov::{pivoted_cholesky, real_forms};
-use super::scheme::dot;
+use super::woodbury::dot;
 use super::{ModalBasis, ModalState};
 
 /// Held inputs that move the state: ḡ1 − ĝ1, ḡ2 − ĝ2, φ̄ (ĝ enters τ only).
@@ -64,8 +64,6 @@ pub(crate) const MAX_CONDITION: f64 = 1e6;
 /// 0.4 × this estimate with the refinement, 1e-5–1e-4 × it on the slow loops whose unrefined
 /// drift reached 1.2 × it.
 pub(crate) const MAX_ROUNDOFF: f64 = 1e-6;
-/// Tolerance of the relative residual ‖AV − VΛ‖_F/(‖A‖_F‖V‖_F) of the eigendecomposition.
-pub(crate) const RESIDUAL_TOLERANCE: f64 = 1e-10;
 
 /// e^{z} − 1 for complex z without cancellation at small |z|.
 fn expm1(z: c64) -> c64 {
@@ -106,10 +104,6 @@ pub(crate) struct Timing {
     pub(crate) h: f64,
     pub(crate) horizon: f64,
 }
-
-/// Why a loop is not stepped in its eigenbasis (the dense scheme is used instead).
-#[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Refused(pub(crate) String);
 
 /// The closed loop's transition in its eigenbasis, built once per run.
 #[derive(Debug)]
@@ -523,9 +517,4 @@ impl DiagonalStep {
         let jumps = self.jump_state_parts(ds);
         [before[0] - now[0] + jumps[0], before[1] - now[1] + jumps[1]]
     }
-}
-
-/// x ≤ limit, false for NaN (a refusal).
-pub(crate) fn within(x: f64, limit: f64) -> bool {
-    x <= limit
 }

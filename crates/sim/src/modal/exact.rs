@@ -31,13 +31,12 @@ use faer::{Accum, Mat, Par, Side};
 
 use crate::{NumericalError, SimError};
 
+use super::closed_loop::{closed_loop, LoopCoefficients, INPUTS};
 use super::gemv::RowMajor;
 use super::memo::{Key, Memo};
 use super::probe::{ProbeBuilder, ProbedStep, SubStepProbe, TauRows, PROBED};
 use super::{ModalBasis, ModalState};
 
-/// Number of held inputs in the state: ḡ1 − ĝ1, ḡ2 − ĝ2, φ̄, ĝ1, ĝ2.
-pub(crate) const INPUTS: usize = 5;
 /// Taylor degree of e^{As₀} and of e^{Aᵀs}c on [0, s₀] with ‖As₀‖₁ ≤ ¼: the remainder is below
 /// (¼)^{19}/19! ≈ 2e-29 relative.
 const TAYLOR_DEGREE: usize = 18;
@@ -69,17 +68,6 @@ pub(crate) struct ExactStep {
     ranks: [usize; 2],
     /// The exact outputs inside a step ([`super::probe`]), from the same chain.
     probe: SubStepProbe,
-}
-
-/// What the closed loop's coefficients are: gains k_c (N/m, N m/rad), a, b, ξ, EI/GJ, signs.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct LoopCoefficients {
-    pub(crate) gain: [f64; 2],
-    pub(crate) a: f64,
-    pub(crate) b: f64,
-    pub(crate) xi: f64,
-    pub(crate) stiff: [f64; 2],
-    pub(crate) sign: [f64; 2],
 }
 
 /// A factor of Q = LLᵀ with at most rank(L) columns and Q's eigenvalues below
@@ -153,61 +141,6 @@ fn identity_plus(f: &Mat<f64>, e: &mut Mat<f64>) {
             e[(i, j)] = f[(i, j)] + if i == j { 1.0 } else { 0.0 };
         }
     }
-}
-
-/// The closed loop's matrix A (Ẋ = AX) in X = (p, ζ, w, u) and its output rows c_c (τ_c = c_cᵀX),
-/// for modes with frequencies `omega` and `tip_states` = 2 (ξ > 0) or 0.
-pub(crate) fn closed_loop(
-    basis: &ModalBasis,
-    co: &LoopCoefficients,
-    omega: &[f64],
-    tip_states: usize,
-) -> (Mat<f64>, [Vec<f64>; 2]) {
-    let n = basis.len();
-    let len = 2 * n + tip_states + INPUTS;
-    let (w0, u0) = (2 * n, 2 * n + tip_states);
-    let u = &basis.tip;
-    // Tip values in X: x_c = Σ U_cj p_j/ω_j, v_c = Σ U_cj ζ_j; the tip force
-    // f_c = −k_c(a x_c + b v_c) + (ḡ_c − ĝ_c).
-    let force_row = |c: usize| -> Vec<f64> {
-        let mut row = vec![0.0; len];
-        for j in 0..n {
-            row[j] = -co.gain[c] * co.a * u[c][j] / omega[j];
-            row[n + j] = -co.gain[c] * co.b * u[c][j];
-        }
-        row[u0 + c] = 1.0;
-        row
-    };
-    let force = [force_row(0), force_row(1)];
-    let mut a = Mat::<f64>::zeros(len, len);
-    for i in 0..n {
-        a[(i, n + i)] = omega[i];
-        a[(n + i, i)] = -omega[i];
-        a[(n + i, n + i)] = -co.xi * basis.omega2[i];
-        for (c, row) in force.iter().enumerate() {
-            for (j, r) in row.iter().enumerate() {
-                a[(n + i, j)] += u[c][i] * r;
-            }
-        }
-        a[(n + i, u0 + 2)] = basis.load[i];
-    }
-    if tip_states == 2 {
-        for (c, row) in force.iter().enumerate() {
-            let scale = co.sign[c] / (co.xi * co.stiff[c]);
-            for (j, r) in row.iter().enumerate() {
-                a[(w0 + c, j)] += scale * r;
-            }
-            a[(w0 + c, w0 + c)] -= 1.0 / co.xi;
-        }
-    }
-    // τ_c = f_c − (ḡ_c − ĝ_c) − ĝ_c
-    let outputs = [0, 1].map(|c| {
-        let mut row = force[c].clone();
-        row[u0 + c] = 0.0;
-        row[u0 + 3 + c] = -1.0;
-        row
-    });
-    (a, outputs)
 }
 
 /// The dense set-ups kept for the next run of the same loop and step.

@@ -4,7 +4,7 @@
 
 use faer::{c64, Mat};
 
-use super::scheme::dot;
+use super::woodbury::dot;
 
 /// The real vectors the step carries: the k representatives' (re, im) pairs of the
 /// construction with the imaginary parts of the real eigenvalues dropped (they are 0 in every

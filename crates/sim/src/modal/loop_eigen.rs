@@ -8,12 +8,23 @@ use std::sync::Arc;
 use faer::linalg::solvers::DenseSolveCore;
 use faer::Mat;
 
-use super::diagonal::{within, Refused, RESIDUAL_TOLERANCE};
+use super::closed_loop::LoopCoefficients;
 use super::eigen_solve::real_eigen;
-use super::exact::LoopCoefficients;
 use super::memo::{Key, Memo};
 use super::refine::RealEigen;
 use super::ModalBasis;
+
+/// Tolerance of the relative residual ‖AV − VΛ‖_F/(‖A‖_F‖V‖_F) of the eigendecomposition.
+pub(crate) const RESIDUAL_TOLERANCE: f64 = 1e-10;
+
+/// Why a loop is not stepped in its eigenbasis (the dense scheme is used instead).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Refused(pub(crate) String);
+
+/// x ≤ limit, false for NaN (a refusal).
+pub(crate) fn within(x: f64, limit: f64) -> bool {
+    x <= limit
+}
 
 /// The closed loop's eigendecomposition after one Newton refinement, with the checks that do
 /// not depend on the step or the horizon: the part of a [`DiagonalStep`] that runs of one loop

@@ -7,7 +7,7 @@
 //! up their key (the modal basis, the loop's coefficients and, for the dense transition, the
 //! step), and they are deterministic, so a reused set-up is the one a fresh computation would
 //! give, bit for bit (`tests::a_kept_setup_gives_the_fresh_runs_bits`; the key covers every input of
-//! [`super::exact::closed_loop`] and the probe rows, `tests::the_key_sees_every_input`).
+//! [`super::closed_loop::closed_loop`] and the probe rows, `tests::the_key_sees_every_input`).
 //!
 //! Bounded: each memo keeps its [`CAPACITY`] most recent set-ups (the oldest leaves first), so
 //! the memory held between runs is at most that many of the largest loop's set-ups (at the
@@ -16,7 +16,7 @@
 
 use std::sync::{Arc, Mutex};
 
-use super::exact::LoopCoefficients;
+use super::closed_loop::LoopCoefficients;
 use super::ModalBasis;
 
 /// Set-ups kept per memo: a row's run and its layer run, or its statistics runs, follow each

@@ -22,6 +22,7 @@
 //! (`tests/basis.rs`), not bit for bit.
 //! [`simulate_modal`] is `simulate` in this basis; `discretisation.basis` chooses.
 
+mod closed_loop;
 mod controlled;
 mod diagonal;
 mod drive;
@@ -51,10 +52,11 @@ pub use controlled::{controlled_loop, measurement, ControlledSignal, StepQuadrat
 pub use drive::{drive, Reads, Recorder, Signal};
 pub use probe::{ProbedStep, SubStepPeak, FINE_PER_OCTAVE, PROBED, PROBE_MARGIN};
 pub use run::simulate_modal;
-pub use scheme::{dot, ModalLoop, ModalState, StepInput};
+pub use scheme::{ModalLoop, ModalState, StepInput};
 pub use signal::{ObserverSignal, RecordedSignal, Replay, SampleInput};
 use wing_modes::wing_modes;
 pub use wing_modes::BasisQuality;
+pub use woodbury::dot;
 
 /// The modal bases kept for the next run of the same wing and grid ([`ModalBasis::of_config`]):
 /// four, a ledger's grid and its doubled grid with and without the exponential scheme (which

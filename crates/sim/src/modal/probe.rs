@@ -45,7 +45,7 @@ use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, Par};
 
 use super::gemv::RowMajor;
-use super::scheme::dot;
+use super::woodbury::dot;
 
 /// Fine grid points per octave of s (the fine grid's relative spacing is 1/32 to 1/64); a power
 /// of two.

@@ -9,26 +9,12 @@ use wingcheck_model::{Config, TimeScheme};
 
 use crate::{Sample, SimError};
 
+use super::closed_loop::LoopCoefficients;
 use super::diagonal::{DiagonalState, DiagonalStep, Timing};
-use super::exact::{ExactStep, LoopCoefficients};
+use super::exact::ExactStep;
 use super::trbdf2_pass::{StateSums, TipStages, Trbdf2Pass};
-use super::woodbury::{padded_len, total, StepSolve, LANES};
+use super::woodbury::{dot, padded_len, total, StepSolve, LANES};
 use super::{ModalBasis, SampleInput, StepQuadrature};
-
-/// Σ x_i y_i over the common length, in [`LANES`] partial sums combined in one fixed order
-/// (independent additions, so the sum vectorises; the same bits on every machine).
-pub fn dot(x: &[f64], y: &[f64]) -> f64 {
-    let n = x.len().min(y.len());
-    let (x, y) = (&x[..n], &y[..n]);
-    let mut s = [0.0; LANES];
-    for (a, b) in x.chunks_exact(LANES).zip(y.chunks_exact(LANES)) {
-        for l in 0..LANES {
-            s[l] += a[l] * b[l];
-        }
-    }
-    let tail = n - n % LANES;
-    x[tail..].iter().zip(&y[tail..]).fold(total(&s), |acc, (a, b)| acc + a * b)
-}
 
 /// [u0·η, u1·η, u0·ζ, u1·ζ] over the modes of u (u: the tip rows), each exactly as [`dot`]
 /// sums it, in one pass over the state instead of four.

@@ -59,6 +59,21 @@ pub(crate) fn total(a: &[f64; LANES]) -> f64 {
     ((a[0] + a[1]) + (a[2] + a[3])) + ((a[4] + a[5]) + (a[6] + a[7]))
 }
 
+/// Σ x_i y_i over the common length, in [`LANES`] partial sums combined in one fixed order
+/// (independent additions, so the sum vectorises; the same bits on every machine).
+pub fn dot(x: &[f64], y: &[f64]) -> f64 {
+    let n = x.len().min(y.len());
+    let (x, y) = (&x[..n], &y[..n]);
+    let mut s = [0.0; LANES];
+    for (a, b) in x.chunks_exact(LANES).zip(y.chunks_exact(LANES)) {
+        for l in 0..LANES {
+            s[l] += a[l] * b[l];
+        }
+    }
+    let tail = n - n % LANES;
+    x[tail..].iter().zip(&y[tail..]).fold(total(&s), |acc, (a, b)| acc + a * b)
+}
+
 /// (Σ_i a_i y_i, Σ_i b_i y_i) over slices of the padded length, each in [`LANES`] partial sums.
 #[inline(always)]
 fn dots(a: &[f64], b: &[f64], y: &[f64]) -> [f64; 2] {
@@ -92,7 +107,6 @@ impl StepSolve {
         let (cz, ce, ld) = (scaled(&|_| 1.0 / alpha), scaled(&|i| om[i]), scaled(&|i| basis.load[i]));
         let (z0, z1) = (scaled(&|i| u[0][i]), scaled(&|i| u[1][i]));
         let (u0, u1) = (pad(u[0].clone()), pad(u[1].clone()));
-        let dot = super::dot;
         let z: [Vec<f64>; 2] = [0, 1].map(|c| (0..n).map(|i| d_inv[i] * u[c][i]).collect());
         let q = [[dot(&u[0], &z[0]), dot(&u[0], &z[1])], [dot(&u[1], &z[0]), dot(&u[1], &z[1])]];
         let wk = [beta * gain[0], beta * gain[1]];
