@@ -57,7 +57,8 @@ pub struct Page {
     pub changes: Vec<crate::top::ConfigChange>,
     /// The notation of the text (symbols and their meaning, with this run's values).
     pub notation: Vec<wingcheck_claims::display::Symbol>,
-    /// The certificate set in `proofs/` (file names), or why there is none.
+    /// The certificate set in `proofs/` (file names), or why there is none: the sentence the
+    /// page prints (the typed `CertifyError` stays with the report's computation).
     pub proofs: Result<Vec<String>, String>,
     /// The certificates of `proofs/` with their statements and rows.
     pub certificates: Vec<crate::links::Certificate>,

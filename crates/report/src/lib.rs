@@ -240,7 +240,7 @@ fn write_proofs(
     set: Result<DecidingSet, wingcheck_claims::certify::CertifyError>,
     staging: &atomic::Staging,
     files: &mut Vec<String>,
-) -> Result<Result<Vec<String>, String>, ReportError> {
+) -> Result<Result<Vec<String>, wingcheck_claims::certify::CertifyError>, ReportError> {
     match set {
         Ok(set) => {
             let mut names = Vec::new();
@@ -250,7 +250,7 @@ fn write_proofs(
             }
             Ok(Ok(names))
         }
-        Err(e) => Ok(Err(e.to_string())),
+        Err(e) => Ok(Err(e)),
     }
 }
 
@@ -404,7 +404,8 @@ struct PageFigures<'a> {
     comparison: &'a [Figure],
     accuracy: (&'a Figure, Vec<accuracy::AccuracyRow>),
     rows: &'a [Vec<Figure>],
-    proofs: Result<Vec<String>, String>,
+    /// The certificate set's file names, or why `certify` could not make it.
+    proofs: Result<Vec<String>, wingcheck_claims::certify::CertifyError>,
     /// Whether `proofs/`'s ω₁ enclosure is coarser than the one `wingcheck certify` writes.
     coarser_enclosure: bool,
 }
@@ -433,7 +434,7 @@ fn page(cfg: &Config, opts: &ReportOptions, ledger: &Ledger, figs: PageFigures) 
         .map(|f| FigCtx { claims: Vec::new(), caption: Vec::new(), ..f.clone() })
         .collect();
     let figure_ids: Vec<String> = paper_figs.iter().map(|f| f.id.clone()).collect();
-    let proof_files: Vec<String> = figs.proofs.clone().unwrap_or_default();
+    let proof_files: Vec<String> = figs.proofs.as_ref().cloned().unwrap_or_default();
     let links = RowLinks { figure_ids: &figure_ids, figures: &paper_figs, proofs: &proof_files };
     Ok(Page {
         tool: ledger.tool.clone(),
@@ -476,7 +477,8 @@ fn page(cfg: &Config, opts: &ReportOptions, ledger: &Ledger, figs: PageFigures) 
         changes: top::config_changes(cfg),
         notation: wingcheck_claims::display::notation(cfg),
         certificates: crate::links::certificates(ledger, &proof_files),
-        proofs: figs.proofs.clone(),
+        // the page shows the set's files, or the refusal as its sentence
+        proofs: figs.proofs.as_ref().cloned().map_err(ToString::to_string),
         coarser_enclosure: figs.coarser_enclosure,
         tally: tally(ledger),
         basis_tally: basis_tally(ledger),
