@@ -107,7 +107,7 @@ pub struct Manifest {
     pub format: u32,
     /// The base configuration.
     pub base_config: Config,
-    /// SHA-256 of the base configuration ([`Config::sha256`](wingcheck_model::Config::sha256)).
+    /// SHA-256 of the base configuration (`Config::sha256`).
     pub base_config_sha256: String,
     /// The axes.
     pub axes: Vec<Axis>,

@@ -34,7 +34,7 @@ pub const INDEX_VERSION: u64 = 1;
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ClaimEntry {
-    /// The claim (one of the [`ROLES`](crate::spec::ROLES) claims), by its id (`W-bounds`).
+    /// The claim (one of the claims with certificate roles, `spec::ROLES`), by its id (`W-bounds`).
     pub claim: ClaimId,
     /// Certificate ids.
     pub needs: Vec<String>,
