@@ -16,6 +16,7 @@ pub mod manifest;
 pub mod omega1;
 mod verify;
 
+use crate::numerics::NumericsError;
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
@@ -26,7 +27,6 @@ use wingcheck_model::Config;
 use facts::{CertificateFile, FactKind, WeightsText, WingText, FORMAT, VERSION};
 use manifest::{ClaimEntry, FileEntry, Manifest, INDEX, INDEX_FORMAT, INDEX_VERSION};
 use wingcheck_theory::lyapunov::{self, Coupling, LyapunovParams};
-use wingcheck_theory::numerics::PencilError;
 
 pub use verify::{verify_set, verify_set_for, VerifiedSet};
 
@@ -73,7 +73,7 @@ pub enum CertifyError {
         what: &'static str,
         /// What failed.
         #[source]
-        cause: wingcheck_theory::numerics::PencilError,
+        cause: crate::numerics::NumericsError,
     },
     /// Stopped through the cancel token before the set was moved into place.
     #[error(transparent)]
@@ -99,7 +99,7 @@ pub fn format_decimal(x: f64) -> String {
     wingcheck_model::format_number(x)
 }
 
-fn numerical<E: Into<PencilError>>(what: &'static str) -> impl FnOnce(E) -> CertifyError {
+fn numerical<E: Into<NumericsError>>(what: &'static str) -> impl FnOnce(E) -> CertifyError {
     move |cause| CertifyError::Numerical { what, cause: cause.into() }
 }
 
@@ -290,7 +290,7 @@ pub fn certificate_set(cfg: &Config) -> Result<(Vec<CertificateFile>, Vec<String
         if tight.lambda2 >= 0.0 {
             return Err(CertifyError::Numerical {
                 what: "the lower bound of W/κ",
-                cause: PencilError::NearZero { what: "min W/κ", value: tight.lambda2 },
+                cause: NumericsError::NearZero { what: "min W/κ", value: tight.lambda2 },
             });
         }
         out.push(maker.negative("w-bounds-indefinite", a, b, &tight.argmin, n));

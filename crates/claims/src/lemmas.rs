@@ -16,12 +16,12 @@
 
 mod explain;
 
+use crate::numerics::NumericsError;
 use wingcheck_model::Config;
 
 use crate::finite_time::reach::{lemma3_time, num_err};
 use crate::settings::CheckSettings;
 use crate::ClaimsError;
-use wingcheck_theory::numerics::PencilError;
 
 pub use explain::{check, LemmasEvidence};
 
@@ -69,7 +69,7 @@ fn spd_solve(g: &[Vec<f64>], v: &[f64]) -> Result<Vec<f64>, ClaimsError> {
             let s = g[i][j] - (0..j).map(|k| l[i][k] * l[j][k]).sum::<f64>();
             if i == j {
                 if s <= 0.0 {
-                    return Err(num_err("lemma2 Gram matrix", PencilError::GramPivot(i)));
+                    return Err(num_err("lemma2 Gram matrix", NumericsError::GramPivot(i)));
                 }
                 l[i][i] = s.sqrt();
             } else {
@@ -93,7 +93,7 @@ fn spd_solve(g: &[Vec<f64>], v: &[f64]) -> Result<Vec<f64>, ClaimsError> {
 /// printed (12)) or N(ω) = ∫_0^f ω'² (`derivative = true`, the corrected form). Dimensionless.
 pub fn lemma2_ratio(span: f64, degree: usize, derivative: bool) -> Result<f64, ClaimsError> {
     if !(span > 0.0 && span.is_finite()) || degree == 0 {
-        return Err(num_err("lemma2_ratio", PencilError::Lemma2Inputs { span, degree }));
+        return Err(num_err("lemma2_ratio", NumericsError::Lemma2Inputs { span, degree }));
     }
     // On the unit interval, then scale: ω(f)² / (f ∫ω²) = (unit ratio)/f²; the derivative form is scale-free.
     let g: Vec<Vec<f64>> = (1..=degree)
@@ -177,9 +177,9 @@ pub fn counterexample(span: f64) -> Result<Counterexample, ClaimsError> {
     use num_rational::BigRational;
     use num_traits::{Signed, Zero};
     let f = wingcheck_cert::exact::parse_rational(&format!("{span}"))
-        .map_err(|cause| num_err("lemma2 span", PencilError::SpanNotDecimal { span, cause }))?;
+        .map_err(|cause| num_err("lemma2 span", NumericsError::SpanNotDecimal { span, cause }))?;
     if !f.is_positive() {
-        return Err(num_err("lemma2 span", PencilError::SpanNotPositive(span)));
+        return Err(num_err("lemma2 span", NumericsError::SpanNotPositive(span)));
     }
     let f2 = &f * &f;
     let one = BigRational::from_integer(1.into());
@@ -292,7 +292,7 @@ pub fn compute(cfg: &Config, settings: &CheckSettings) -> Result<Computed, Claim
         }
     }
     if !max_err.is_finite() {
-        return Err(num_err("lemma3_numeric", PencilError::ReachingTimeNotConverged));
+        return Err(num_err("lemma3_numeric", NumericsError::ReachingTimeNotConverged));
     }
     Ok(Computed {
         lemma1_max_ratio: l1,

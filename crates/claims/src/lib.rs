@@ -19,6 +19,7 @@ pub mod finite_time;
 mod ledger;
 pub mod lemmas;
 pub mod mu;
+pub mod numerics;
 pub mod ode;
 pub mod plan;
 pub mod settings;
@@ -59,7 +60,7 @@ pub enum ClaimsError {
         what: &'static str,
         /// What failed.
         #[source]
-        cause: wingcheck_theory::numerics::PencilError,
+        cause: crate::numerics::NumericsError,
     },
 }
 

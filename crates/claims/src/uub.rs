@@ -11,6 +11,7 @@
 //! and λ (≥ the true λ, its λ1 being a lower bound of sup W/κ) both make the evaluated bound a
 //! lower bound of the theorem's bound with the exact constants: it errs on the optimistic side.
 
+use crate::numerics::NumericsError;
 use wingcheck_model::{Config, ControllerKind, Quantity, Unit, ValueBasis};
 use wingcheck_sim::metrics::{max_abs_in, window_indices, Window};
 use wingcheck_sim::Discretisation;
@@ -292,10 +293,7 @@ fn compute(
     settings: &CheckSettings,
 ) -> Result<Computed, ClaimsError> {
     let out = study.simulate(&operating_run(cfg, best.a, best.b))?;
-    let fields = out
-        .fields
-        .as_ref()
-        .ok_or_else(|| num("the UUB envelope")(wingcheck_theory::numerics::PencilError::NoFields))?;
+    let fields = out.fields.as_ref().ok_or_else(|| num("the UUB envelope")(NumericsError::NoFields))?;
     let envelope = |f: &[Vec<f64>]| f.iter().map(|r| r.iter().fold(0.0f64, |a, v| a.max(v.abs()))).collect::<Vec<_>>();
     let w0s = settings.uub_w0_elements.map(|n| (n, w_initial(cfg, best.b, n)));
     let bound = UubBound { span: cfg.wing.span, lambda2, lambda: best.lambda, epsilon: best.epsilon, w0: w0s[0].1 };

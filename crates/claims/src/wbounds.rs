@@ -25,6 +25,7 @@ mod explain;
 mod records;
 mod text;
 
+use crate::numerics::NumericsError;
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 use wingcheck_cert::exact::{parse_rational, to_f64};
@@ -35,7 +36,6 @@ use crate::certify::omega1::{EnclosureSummary, Position};
 use crate::settings::CheckSettings;
 use crate::{ClaimsError, WallTime};
 use wingcheck_theory::lyapunov::{self, Coupling, LyapunovParams};
-use wingcheck_theory::numerics::PencilError;
 use wingcheck_theory::sdp::PencilSdpRow;
 use wingcheck_theory::{self as theory, Decision, Estimate};
 
@@ -177,7 +177,7 @@ impl Extremes {
 }
 
 /// Map a numerical failure to [`ClaimsError::Numerical`] for `what`.
-pub(crate) fn num<E: Into<PencilError>>(what: &'static str) -> impl Fn(E) -> ClaimsError {
+pub(crate) fn num<E: Into<NumericsError>>(what: &'static str) -> impl Fn(E) -> ClaimsError {
     move |cause| ClaimsError::Numerical { what, cause: cause.into() }
 }
 

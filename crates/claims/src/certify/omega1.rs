@@ -17,6 +17,7 @@
 //! vector's entries decimals with [`VECTOR_DIGITS`] significant digits (R(v) is stationary at
 //! the eigenvector, so their rounding moves the upper bound by ~1e-20 relative).
 
+use crate::numerics::NumericsError;
 use std::collections::HashMap;
 use std::fmt::Write as _;
 use std::sync::{Arc, Mutex, OnceLock};
@@ -29,7 +30,6 @@ use wingcheck_cert::enclosure::{
 };
 use wingcheck_cert::exact::{parse_rational_bounded, to_f64, NumberLimits};
 use wingcheck_model::Config;
-use wingcheck_theory::numerics::PencilError;
 
 use super::facts::{CheckedFact, ExactParams, FactKind, WingText, FORMAT, MAX_FILE_BYTES, VERSION, WING_FIELDS};
 use super::{format_decimal, CertifyError};
@@ -421,7 +421,7 @@ fn float_certificate(
     if !(scale.is_finite() && scale > 0.0) {
         return Err(CertifyError::Numerical {
             what: "the test vector",
-            cause: PencilError::DegenerateVector("zero or non-finite"),
+            cause: NumericsError::DegenerateVector("zero or non-finite"),
         });
     }
     let vector = nodal

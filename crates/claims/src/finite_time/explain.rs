@@ -1,5 +1,6 @@
 //! The finite-time rows' evidence (labelled quantities), verdict and words.
 
+use crate::numerics::NumericsError;
 use wingcheck_model::{Config, ErrorSource, ObserverRule, Quantity, Unit, ValueBasis};
 
 use super::{channel_index, channel_unit, compute, plots, reference_period, Channel, Computed};
@@ -361,10 +362,7 @@ pub fn check_with(
     let c = compute(cfg, channel, settings, runs)?;
     let reference = reference_period(settings);
     if c.run(ObserverRule::Implicit, reference).is_none() || c.run(ObserverRule::Explicit, reference).is_none() {
-        return Err(super::reach::num_err(
-            "finite_time",
-            wingcheck_theory::numerics::PencilError::MissingReferenceRuns,
-        ));
+        return Err(super::reach::num_err("finite_time", NumericsError::MissingReferenceRuns));
     }
     let e = evidence_of(&c, settings);
     let n = channel_index(channel) + 1;

@@ -2,6 +2,7 @@
 //! continuous-time (Filippov) limit of σ̇ = g(t) − φ(σ), and the digital observers of the
 //! simulator (explicit and implicit sampling) across hold periods T.
 
+use crate::numerics::NumericsError;
 use wingcheck_control::{ChannelObserver, ObserverGain, TipChannel};
 use wingcheck_model::{Config, ObserverRule, TipDisturbance};
 use wingcheck_sim::metrics::max_abs;
@@ -10,14 +11,13 @@ use wingcheck_sim::{Sample, Stepper};
 
 use crate::ode::rk4_step;
 use crate::ClaimsError;
-use wingcheck_theory::numerics::PencilError;
 
 /// Lemma 3, (14): t_f = ln((φ1 Q0^{1−φ3} + φ2)/φ2) / (φ1 (1 − φ3)) (s), the exact time at which
 /// the solution of Q̇ = −φ1 Q − φ2 Q^{φ3}, Q(0) = Q0 ≥ 0, reaches 0 (hence an upper bound for
 /// any Q with Q̇ ≤ −φ1 Q − φ2 Q^{φ3}). Needs φ1 > 0, φ2 > 0, 0 < φ3 < 1.
 pub fn lemma3_time(phi1: f64, phi2: f64, phi3: f64, q0: f64) -> Result<f64, ClaimsError> {
     if !(phi1 > 0.0 && phi2 > 0.0 && phi3 > 0.0 && phi3 < 1.0 && q0 >= 0.0 && q0.is_finite()) {
-        return Err(num_err("lemma3_time", PencilError::Lemma3Inputs { phi1, phi2, phi3, q0 }));
+        return Err(num_err("lemma3_time", NumericsError::Lemma3Inputs { phi1, phi2, phi3, q0 }));
     }
     Ok((phi1 * q0.powf(1.0 - phi3) / phi2).ln_1p() / (phi1 * (1.0 - phi3)))
 }
@@ -30,7 +30,7 @@ pub fn lemma3_time(phi1: f64, phi2: f64, phi3: f64, q0: f64) -> Result<f64, Clai
 pub fn bound_38(linear: f64, fractional: f64, a1: u32, a2: u32, sigma0: f64) -> Result<f64, ClaimsError> {
     let p = a1 as f64 / a2 as f64;
     if !(linear > 0.0 && fractional > 0.0 && a1 < a2 && 2 * u64::from(a1) > u64::from(a2) && sigma0.is_finite()) {
-        return Err(num_err("bound_38", PencilError::Bound38Inputs { linear, fractional, a1, a2 }));
+        return Err(num_err("bound_38", NumericsError::Bound38Inputs { linear, fractional, a1, a2 }));
     }
     let q0 = 0.5 * sigma0 * sigma0;
     let c = 2f64.powf(p - 1.0) * fractional;
@@ -93,7 +93,7 @@ pub fn filippov_reach(
 ) -> Result<Filippov, ClaimsError> {
     let gains_ok = [gain.linear, gain.switching, gain.fractional].iter().all(|k| k.is_finite() && *k >= 0.0);
     if !(sigma0.is_finite() && gains_ok && gain.exponent > 0.0 && gain.exponent <= 1.0 && steps >= 2 && t_max > 0.0) {
-        return Err(num_err("filippov_reach", PencilError::FilippovInputs { sigma0, exponent: gain.exponent }));
+        return Err(num_err("filippov_reach", NumericsError::FilippovInputs { sigma0, exponent: gain.exponent }));
     }
     if sigma0 == 0.0 {
         return Ok(Filippov { reach_s: Some(0.0), error_s: 0.0, t: vec![0.0], sigma: vec![0.0], method: SIGMA_DOMAIN });
@@ -254,7 +254,7 @@ pub fn digital_run(
     trace_from: Option<f64>,
 ) -> Result<DigitalRun, ClaimsError> {
     if !(period > 0.0 && t_end > period && window > 0.0) {
-        return Err(num_err("digital_run", PencilError::DigitalRunInputs { period, t_end, window }));
+        return Err(num_err("digital_run", NumericsError::DigitalRunInputs { period, t_end, window }));
     }
     let c = digital_config(cfg, rule, period, t_end);
     let n = c.total_samples();
@@ -437,6 +437,6 @@ fn reach_and_overshoot(
 }
 
 /// A [`ClaimsError::Numerical`].
-pub(crate) fn num_err(what: &'static str, cause: PencilError) -> ClaimsError {
+pub(crate) fn num_err(what: &'static str, cause: NumericsError) -> ClaimsError {
     ClaimsError::Numerical { what, cause }
 }

@@ -8,10 +8,9 @@
 //! bit for bit whatever SIMD path a library would pick. Nothing here is trusted: every number
 //! it produces is re-checked in exact arithmetic.
 
+use crate::numerics::NumericsError;
 use wingcheck_cert::banded::SymBand;
 use wingcheck_cert::exact::to_f64;
-
-use wingcheck_theory::numerics::PencilError;
 
 /// A symmetric banded f64 matrix, `rows[i][d] = A[i][i + d]`.
 #[derive(Debug, Clone)]
@@ -130,8 +129,8 @@ pub fn count_below(k: &Band, m: &Band, sigma: f64) -> Option<usize> {
 
 /// Upper ends σᵢ of bisection brackets of the `count` lowest Galerkin eigenvalues: the
 /// smallest float with f64 count(σᵢ) ≥ i found by halving a bracket to relative width 1e-14.
-pub fn eigenvalue_upper_ends(k: &Band, m: &Band, count: usize) -> Result<Vec<f64>, PencilError> {
-    let cnt = |s: f64| count_below(k, m, s).ok_or(PencilError::LdltBreakdown(s));
+pub fn eigenvalue_upper_ends(k: &Band, m: &Band, count: usize) -> Result<Vec<f64>, NumericsError> {
+    let cnt = |s: f64| count_below(k, m, s).ok_or(NumericsError::LdltBreakdown(s));
     // A scale: K's largest diagonal over M's smallest bounds every eigenvalue from above.
     let dk = k.rows.iter().map(|r| r[0]).fold(0.0, f64::max);
     let dm = m.rows.iter().map(|r| r[0]).fold(f64::INFINITY, f64::min);
@@ -163,7 +162,7 @@ pub fn eigenvalue_upper_ends(k: &Band, m: &Band, count: usize) -> Result<Vec<f64
 
 /// The fundamental eigenvector by inverse iteration with K − σM, σ just below μ₁ (positive
 /// definite there), from the all-ones start, M-normalised.
-pub fn fundamental_vector(k: &Band, m: &Band, mu1: f64) -> Result<Vec<f64>, PencilError> {
+pub fn fundamental_vector(k: &Band, m: &Band, mu1: f64) -> Result<Vec<f64>, NumericsError> {
     let mut sigma = mu1 * (1.0 - 1e-6);
     let mut f = ldlt(&k.shifted(sigma, m));
     for _ in 0..3 {
@@ -174,7 +173,7 @@ pub fn fundamental_vector(k: &Band, m: &Band, mu1: f64) -> Result<Vec<f64>, Penc
         f = ldlt(&k.shifted(sigma, m));
     }
     if f.negative() != Some(0) {
-        return Err(PencilError::ShiftNotDefinite);
+        return Err(NumericsError::ShiftNotDefinite);
     }
     let mut x = vec![1.0; m.dim()];
     for _ in 0..12 {
@@ -182,7 +181,7 @@ pub fn fundamental_vector(k: &Band, m: &Band, mu1: f64) -> Result<Vec<f64>, Penc
         f.solve(&mut y);
         let norm = y.iter().zip(m.mul(&y)).map(|(a, b)| a * b).sum::<f64>().sqrt();
         if !(norm.is_finite() && norm > 0.0) {
-            return Err(PencilError::DegenerateVector("inverse iteration produced a zero or non-finite vector"));
+            return Err(NumericsError::DegenerateVector("inverse iteration produced a zero or non-finite vector"));
         }
         x = y.iter().map(|v| v / norm).collect();
     }
