@@ -18,7 +18,7 @@ use wingcheck_sim::SimOutput;
 
 use crate::finite_time::reach::zeta;
 use crate::settings::CheckSettings;
-use crate::study::refine::{refinements, same_scheme, EXPLICIT_RMS_GRID_FACTOR};
+use crate::study::refine::{refinement_error, refinements};
 use crate::study::Study;
 use crate::ClaimsError;
 
@@ -294,12 +294,13 @@ impl Runs {
         let rule = cfg.observer.rule;
         let explicit = variant(cfg, ControllerKind::Ftdo, ObserverRule::Explicit, a0, b0);
         let f = settings.sweep_factor;
+        let [explicit_fine, explicit_half] = refinements(&explicit);
         Runs {
             ftdo: variant(cfg, ControllerKind::Ftdo, rule, a0, b0),
             other: variant(cfg, ControllerKind::Ftdo, other_rule(rule), a0, b0),
             dobc: variant(cfg, ControllerKind::Dobc, rule, a0, b0),
-            explicit_half: same_scheme(wingcheck_model::work::refined_in_time(&explicit), &explicit),
-            explicit_fine: same_scheme(wingcheck_model::work::refined_in_space(&explicit), &explicit),
+            explicit_half,
+            explicit_fine,
             explicit_nudged: [1.0, -1.0].map(|sign| {
                 let mut c = explicit.clone();
                 c.observer.nu1_0 += sign * START_NUDGE * c.observer.nu1_0.abs().max(1.0);
@@ -351,19 +352,22 @@ pub const START_NUDGE: f64 = 1e-12;
 
 /// Error of a full-rate RMS τ of the explicit-rule FTDO, `value` at the configured grid and
 /// step, from its values on the doubled grid (`fine`), at dt/2 (`half_dt`) and from the
-/// [`START_NUDGE`]d starts (`nudged`): the grid part ([`EXPLICIT_RMS_GRID_FACTOR`]), the
+/// [`START_NUDGE`]d starts (`nudged`): the grid part ([`crate::study::refine::EXPLICIT_RMS_GRID_FACTOR`]), the
 /// time-step part (F·|Δ|, F = [`wingcheck_sim::RICHARDSON_2`], order 2 in dt), the spread (the
 /// largest change over the nudged starts) and a round-off floor of 256 ulp of the value, plus
 /// the eigenbasis round-off of the refined runs (`eigenbasis_roundoff`, relative, the largest
 /// of theirs; 0 where they stepped in the dense form) through the same factors, since each
 /// enters the error through its difference from `value`.
+/// That is [`refinement_error`] plus the spread and the nudged runs' own round-off.
 pub fn explicit_rms_error(value: f64, fine: f64, half_dt: f64, nudged: [f64; 2], eigenbasis_roundoff: f64) -> f64 {
-    let spread = nudged.iter().map(|n| (value - n).abs()).fold(0.0, f64::max);
-    EXPLICIT_RMS_GRID_FACTOR * (value - fine).abs()
-        + wingcheck_sim::RICHARDSON_2 * (value - half_dt).abs()
-        + wingcheck_sim::layer::PEAK_ROUND_OFF * value.abs()
-        + spread
-        + (EXPLICIT_RMS_GRID_FACTOR + wingcheck_sim::RICHARDSON_2 + 1.0) * eigenbasis_roundoff * value.abs()
+    refinement_error(value, fine, half_dt, eigenbasis_roundoff)
+        + start_spread(value, nudged)
+        + eigenbasis_roundoff * value.abs()
+}
+
+/// The largest change of `value` over its [`START_NUDGE`]d starts.
+fn start_spread(value: f64, nudged: [f64; 2]) -> f64 {
+    nudged.iter().map(|n| (value - n).abs()).fold(0.0, f64::max)
 }
 
 /// Whether a full-rate RMS τ of the explicit FTDO is start-sensitive: its [`START_NUDGE`]d
@@ -373,7 +377,7 @@ pub fn explicit_rms_error(value: f64, fine: f64, half_dt: f64, nudged: [f64; 2],
 /// amplitudes 0.6 and 0.2: RMS τ1 0.45 N and 1.11 N from starts 1e-12 apart; an independent
 /// simulator agrees on both branches).
 pub fn start_sensitive(value: f64, error: f64, starts: [f64; 2]) -> bool {
-    let spread = starts.iter().map(|n| (value - n).abs()).fold(0.0, f64::max);
+    let spread = start_spread(value, starts);
     spread > error - spread
 }
 
