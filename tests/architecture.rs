@@ -1,25 +1,16 @@
-//! docs/architecture.md's owner table names real items: every backticked Rust path in the
-//! table's "owner" column resolves to a crate under crates/, and its last segments name items
-//! defined there (a `fn`, `struct`, `enum`, `trait`, `type`, `const`, `static`, `mod` or a
-//! `pub` field of that name in the crate's sources). A renamed or moved owner fails here.
+//! docs/architecture.md against the code:
+//! - its owner table names real items: every backticked Rust path in the table's "owner" column
+//!   resolves to a crate under crates/, and its last segments name items defined there (a `fn`,
+//!   `struct`, `enum`, `trait`, `type`, `const`, `static`, `mod` or a `pub` field of that name in
+//!   the crate's library sources). A renamed or moved owner fails here;
+//! - its crate table is the dependency graph of the Cargo.toml files;
+//! - no two files of a library crate import each other, directly or around a loop.
 
 use std::path::Path;
 
-/// The crate's sources, concatenated.
+/// The crate's library sources ([`crate_modules`]), concatenated.
 fn crate_sources(dir: &Path) -> String {
-    let mut text = String::new();
-    let mut stack = vec![dir.join("src")];
-    while let Some(d) = stack.pop() {
-        for entry in std::fs::read_dir(&d).unwrap() {
-            let p = entry.unwrap().path();
-            if p.is_dir() {
-                stack.push(p);
-            } else if p.extension().is_some_and(|e| e == "rs") {
-                text.push_str(&std::fs::read_to_string(&p).unwrap());
-            }
-        }
-    }
-    text
+    crate_modules(&dir.join("src")).values().map(|p| std::fs::read_to_string(p).unwrap()).collect()
 }
 
 fn defines(sources: &str, name: &str) -> bool {
