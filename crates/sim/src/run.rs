@@ -295,8 +295,8 @@ pub struct RunOptions<'a> {
     /// the outputs before the last then skip the O(N²) reconstruction of the modal state: their
     /// `energy` is the O(N) upper bound of the mechanical energy, the columns formed from the
     /// state (`displacement_momentum`, `q_tip_shear`, `theta_tip_slope`) are not brought up to
-    /// date, and every other value is the one a full recording gives, to round-off. For refinement runs read through their
-    /// tip, τ and observer columns.
+    /// date, and every other value is the one a full recording gives, to round-off. For
+    /// refinement runs read through their tip, τ and observer columns.
     pub series_only: bool,
     /// A controller of the user's in place of `control.kind` ([`ControllerFactory`]): each run
     /// (the base run, the initial layer's, an error estimate's refinements) makes one and

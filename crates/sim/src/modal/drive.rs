@@ -87,7 +87,8 @@ pub struct Reads {
     /// The modal state at every output (true) or only the tip values, τ and the observer's
     /// output there, and the state at the last output. With false, where the scheme carries the
     /// state in the eigenbasis, the outputs before the last skip its O(N²) reconstruction (an
-    /// interval's ∫τ², where read, is formed in the eigenbasis, [`ModalLoop::interval_squares`]): their tip values are the step's own (UᵀV x̂ from
+    /// interval's ∫τ², where read, is formed in the eigenbasis,
+    /// [`ModalLoop::interval_squares`]): their tip values are the step's own (UᵀV x̂ from
     /// precomputed rows, equal to the reconstructed ones to round-off), their `energy` is the
     /// O(N) upper bound [`ModalLoop::energy_bound`], and η, ζ, w and the quantities formed from
     /// them are the previous checkpoint's. The divergence check gives the same verdict: where
